@@ -1,0 +1,93 @@
+//! Denavit–Hartenberg rows in the standard (Siciliano) and modified (Craig) conventions.
+
+use super::pose::{Pose, rot_x, rot_z, trans_x, trans_z};
+use serde::{Deserialize, Serialize};
+
+/// Which Denavit–Hartenberg convention a table uses.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum Convention {
+    /// Siciliano / Spong: `A_i = Rz(theta_i) Tz(d_i) Tx(a_i) Rx(alpha_i)`, eq. (2.52).
+    #[default]
+    Standard,
+    /// Craig: `A_i = Rx(alpha_{i-1}) Tx(a_{i-1}) Rz(theta_i) Tz(d_i)`; row i stores
+    /// `a_{i-1}` and `alpha_{i-1}`.
+    Modified,
+}
+
+impl Convention {
+    /// Name as written in model files.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Convention::Standard => "standard",
+            Convention::Modified => "modified",
+        }
+    }
+}
+
+/// One row of a DH table. Lengths in metres, angles in radians.
+///
+/// For a revolute joint `theta` is ignored at evaluation time (theta = q + offset); for a
+/// prismatic joint `d` is ignored (d = q + offset). For a fixed row both are used as stored.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, Default)]
+pub struct DhRow {
+    /// Link length a (m): along x_i (standard) or x_{i-1} (modified).
+    pub a: f64,
+    /// Link twist alpha (rad).
+    pub alpha: f64,
+    /// Link offset d (m) along z.
+    pub d: f64,
+    /// Joint angle theta (rad) about z.
+    pub theta: f64,
+}
+
+impl DhRow {
+    /// A row from its four parameters.
+    pub const fn new(a: f64, alpha: f64, d: f64, theta: f64) -> Self {
+        Self { a, alpha, d, theta }
+    }
+
+    /// The homogeneous transform `A_i` of this row with the given `theta` and `d` (the caller
+    /// has already put the joint variable into one of them), eq. (2.52) for the standard
+    /// convention.
+    pub fn transform(&self, convention: Convention, theta: f64, d: f64) -> Pose {
+        match convention {
+            Convention::Standard => rot_z(theta) * trans_z(d) * trans_x(self.a) * rot_x(self.alpha),
+            Convention::Modified => rot_x(self.alpha) * trans_x(self.a) * rot_z(theta) * trans_z(d),
+        }
+    }
+}
+
+/// Converts a serial standard-DH table to the modified convention, where that is exact.
+///
+/// Standard `A_i = Rz(th_i) Tz(d_i) Tx(a_i) Rx(al_i)` regrouped as
+/// `[Rz(th_1) Tz(d_1)] [Tx(a_1) Rx(al_1) Rz(th_2) Tz(d_2)] ...`: modified row i takes
+/// `a_{i-1}, alpha_{i-1}` from standard row i-1, and the last `Tx(a_n) Rx(alpha_n)` moves into the
+/// tool. Returns the rows and the extra tool-side transform (`flange_from_tool` to prepend to the
+/// tool). Always exact.
+pub fn standard_to_modified(rows: &[DhRow]) -> (Vec<DhRow>, Pose) {
+    let mut out = Vec::with_capacity(rows.len());
+    let mut prev = (0.0, 0.0);
+    for r in rows {
+        out.push(DhRow::new(prev.0, prev.1, r.d, r.theta));
+        prev = (r.a, r.alpha);
+    }
+    (out, trans_x(prev.0) * rot_x(prev.1))
+}
+
+/// Converts a serial modified-DH table to the standard convention.
+///
+/// The first row's `Rx(alpha_0) Tx(a_0)` moves into the base (`base_from_first`, to append to
+/// the base). Always exact.
+pub fn modified_to_standard(rows: &[DhRow]) -> (Pose, Vec<DhRow>) {
+    let mut out = Vec::with_capacity(rows.len());
+    let base_extra = match rows.first() {
+        Some(r) => rot_x(r.alpha) * trans_x(r.a),
+        None => Pose::identity(),
+    };
+    for (i, r) in rows.iter().enumerate() {
+        let (a, alpha) = rows.get(i + 1).map_or((0.0, 0.0), |n| (n.a, n.alpha));
+        out.push(DhRow::new(a, alpha, r.d, r.theta));
+    }
+    (base_extra, out)
+}

@@ -1,0 +1,154 @@
+//! Direct kinematics, eq. (2.50): the pose of every joint frame and of each end-effector.
+
+use super::error::KinematicsError;
+use super::pose::Pose;
+use super::robot::{Drive, Lowered, Motion, Robot};
+use nalgebra::{Matrix3, Rotation3, Translation3, Vector3};
+
+impl Robot {
+    /// Checks that `q` has `dof()` finite entries.
+    pub fn check_q(&self, q: &[f64]) -> Result<(), KinematicsError> {
+        if q.len() != self.dof() {
+            return Err(KinematicsError::DofMismatch {
+                expected: self.dof(),
+                got: q.len(),
+            });
+        }
+        if let Some((index, &value)) = q.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+            return Err(KinematicsError::NonFinite {
+                index,
+                name: self.dof_joint(index).name.clone(),
+                value,
+            });
+        }
+        Ok(())
+    }
+
+    /// The variable of joint `j` (before its offset) for the joint vector `q`: `q[k]` for an
+    /// actuated joint, the linear combination for a coupled one, 0 for a fixed one.
+    /// `q` must already be checked.
+    #[inline]
+    pub fn joint_variable(&self, j: usize, q: &[f64]) -> f64 {
+        match &self.joints()[j].drive {
+            Drive::Actuated(k) => q[*k],
+            Drive::Coupled(terms) => terms
+                .iter()
+                .map(|&(src, c)| match self.joints()[src].drive {
+                    Drive::Actuated(k) => c * q[k],
+                    _ => 0.0,
+                })
+                .sum(),
+            Drive::None => 0.0,
+        }
+    }
+
+    /// `world_from_frame_j` for every joint j into `frames` (length `joints().len()`), with no
+    /// allocation. Frame j is the joint's output frame (DH frame j for a DH chain).
+    pub fn fk_frames_into(&self, q: &[f64], frames: &mut [Pose]) -> Result<(), KinematicsError> {
+        self.check_q(q)?;
+        assert_eq!(
+            frames.len(),
+            self.lowered.len(),
+            "frames buffer has the wrong length"
+        );
+        for (j, l) in self.lowered.iter().enumerate() {
+            let parent = match l.parent {
+                Some(p) => frames[p],
+                None => self.base,
+            };
+            frames[j] = parent * local(l, self.joint_variable(j, q));
+        }
+        Ok(())
+    }
+
+    /// `world_from_frame_j` for every joint j.
+    pub fn fk_frames(&self, q: &[f64]) -> Result<Vec<Pose>, KinematicsError> {
+        let mut f = vec![Pose::identity(); self.lowered.len()];
+        self.fk_frames_into(q, &mut f)?;
+        Ok(f)
+    }
+
+    /// `world_from_tool` of end-effector `ee`, eq. (2.50) followed by the tool transform:
+    /// `T = base * A_1(q_1) ... A_n(q_n) * tool`. Allocation-free; only the joints on the
+    /// end-effector's chain are evaluated.
+    pub fn fk_ee(&self, q: &[f64], ee: usize) -> Result<Pose, KinematicsError> {
+        self.check_q(q)?;
+        let e = self
+            .end_effectors()
+            .get(ee)
+            .ok_or(KinematicsError::NoSuchEndEffector {
+                index: ee,
+                count: self.end_effectors().len(),
+            })?;
+        let mut t = self.base;
+        for &j in &self.chains[e.parent] {
+            t *= local(&self.lowered[j], self.joint_variable(j, q));
+        }
+        Ok(t * e.tool)
+    }
+
+    /// `world_from_tool` of the first end-effector.
+    pub fn fk(&self, q: &[f64]) -> Result<Pose, KinematicsError> {
+        self.fk_ee(q, 0)
+    }
+
+    /// `world_from_tool` of every end-effector.
+    pub fn fk_all_ee(&self, q: &[f64]) -> Result<Vec<Pose>, KinematicsError> {
+        let frames = self.fk_frames(q)?;
+        Ok(self
+            .end_effectors()
+            .iter()
+            .map(|e| frames[e.parent] * e.tool)
+            .collect())
+    }
+}
+
+/// `pre * M(var + offset) * post` of one lowered joint.
+#[inline]
+pub(crate) fn local(l: &Lowered, var: f64) -> Pose {
+    let v = var + l.offset;
+    let moved = match l.motion {
+        Motion::RotZ => {
+            // Rz(theta) * post, written out: only the first two rows mix (2.8).
+            let (s, c) = v.sin_cos();
+            let r = l.post.rotation.matrix();
+            let t = &l.post.translation.vector;
+            let m = Matrix3::new(
+                c * r[(0, 0)] - s * r[(1, 0)],
+                c * r[(0, 1)] - s * r[(1, 1)],
+                c * r[(0, 2)] - s * r[(1, 2)],
+                s * r[(0, 0)] + c * r[(1, 0)],
+                s * r[(0, 1)] + c * r[(1, 1)],
+                s * r[(0, 2)] + c * r[(1, 2)],
+                r[(2, 0)],
+                r[(2, 1)],
+                r[(2, 2)],
+            );
+            let tv = Vector3::new(c * t.x - s * t.y, s * t.x + c * t.y, t.z);
+            Pose::from_parts(Translation3::from(tv), Rotation3::from_matrix_unchecked(m))
+        }
+        Motion::TransZ => {
+            let mut p = l.post;
+            p.translation.vector.z += v;
+            p
+        }
+        Motion::Rot(axis) => {
+            Pose::from_parts(
+                Translation3::identity(),
+                Rotation3::from_axis_angle(&axis, v),
+            ) * l.post
+        }
+        Motion::Trans(axis) => {
+            Pose::from_parts(
+                Translation3::from(axis.into_inner() * v),
+                Rotation3::identity(),
+            ) * l.post
+        }
+        Motion::Fixed => l.post,
+    };
+    if l.pre_is_identity {
+        moved
+    } else {
+        l.pre * moved
+    }
+}

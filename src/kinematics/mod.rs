@@ -1,0 +1,21 @@
+//! Pure kinematics in f64 (nalgebra): no graphics, no file system.
+//!
+//! Frames follow chapter 2 of Siciliano et al.: a robot is a tree of joints described by DH rows
+//! (standard or modified) or URDF-style origins, the world frame is the base's reference, and
+//! poses are named `world_from_x`. Units: metres and radians.
+
+pub mod dh;
+pub mod error;
+pub mod fk;
+pub mod jacobian;
+pub mod models;
+pub mod orientation;
+pub mod pose;
+pub mod robot;
+
+pub use dh::{Convention, DhRow};
+pub use error::{KinematicsError, ModelError};
+pub use jacobian::JacobianAnalysis;
+pub use orientation::EulerKind;
+pub use pose::Pose;
+pub use robot::{Drive, EndEffector, Joint, JointGeometry, JointId, JointKind, NamedConfig, Robot};

@@ -1,0 +1,123 @@
+//! Rigid transforms: the elementary rotations and translations of chapter 2, and checks.
+
+use nalgebra::{Matrix3, Matrix4, Rotation3, Translation3, Vector3};
+
+/// A rigid transform stored as rotation matrix + translation (metres).
+///
+/// Name values by their frames: `world_from_tool` maps tool coordinates into world coordinates,
+/// and compose right to left, `world_from_tool = world_from_base * base_from_tool`.
+pub type Pose = nalgebra::IsometryMatrix3<f64>;
+
+/// Elementary rotation about x by `angle` (rad), eq. (2.6).
+pub fn rot_x(angle: f64) -> Pose {
+    Pose::from_parts(
+        Translation3::identity(),
+        Rotation3::from_axis_angle(&Vector3::x_axis(), angle),
+    )
+}
+
+/// Elementary rotation about y by `angle` (rad), eq. (2.7).
+pub fn rot_y(angle: f64) -> Pose {
+    Pose::from_parts(
+        Translation3::identity(),
+        Rotation3::from_axis_angle(&Vector3::y_axis(), angle),
+    )
+}
+
+/// Elementary rotation about z by `angle` (rad), eq. (2.8). Built from sin/cos directly.
+pub fn rot_z(angle: f64) -> Pose {
+    let (s, c) = angle.sin_cos();
+    let m = Matrix3::new(c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0);
+    Pose::from_parts(
+        Translation3::identity(),
+        Rotation3::from_matrix_unchecked(m),
+    )
+}
+
+/// Translation by `d` metres along x.
+pub fn trans_x(d: f64) -> Pose {
+    Pose::translation(d, 0.0, 0.0)
+}
+
+/// Translation by `d` metres along y.
+pub fn trans_y(d: f64) -> Pose {
+    Pose::translation(0.0, d, 0.0)
+}
+
+/// Translation by `d` metres along z.
+pub fn trans_z(d: f64) -> Pose {
+    Pose::translation(0.0, 0.0, d)
+}
+
+/// Tolerance on orthonormality used when a 4x4 matrix is accepted as a rigid transform.
+pub const RIGID_TOLERANCE: f64 = 1e-6;
+
+/// Why a 4x4 matrix is not a rigid transform.
+#[derive(Debug, Clone, PartialEq)]
+pub enum NotRigid {
+    /// Some element is NaN or infinite.
+    NonFinite,
+    /// Bottom row differs from `[0 0 0 1]`.
+    BottomRow,
+    /// `R^T R` differs from the identity by more than the tolerance.
+    NotOrthonormal(f64),
+    /// `det R` is -1 (a reflection).
+    Reflection,
+}
+
+impl std::fmt::Display for NotRigid {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            NotRigid::NonFinite => write!(f, "an element is not a finite number"),
+            NotRigid::BottomRow => write!(f, "bottom row is not [0, 0, 0, 1]"),
+            NotRigid::NotOrthonormal(e) => write!(
+                f,
+                "rotation part is not orthonormal: |R^T R - I| = {e:.3e} > {RIGID_TOLERANCE:e}"
+            ),
+            NotRigid::Reflection => write!(f, "rotation part has determinant -1 (a reflection)"),
+        }
+    }
+}
+
+/// Accepts a homogeneous 4x4 matrix as a rigid transform, re-orthonormalising the rotation part
+/// when it is within [`RIGID_TOLERANCE`] of orthonormal (so that 6-digit data in files works).
+pub fn pose_from_matrix(m: &Matrix4<f64>) -> Result<Pose, NotRigid> {
+    if m.iter().any(|v| !v.is_finite()) {
+        return Err(NotRigid::NonFinite);
+    }
+    if m[(3, 0)] != 0.0 || m[(3, 1)] != 0.0 || m[(3, 2)] != 0.0 || m[(3, 3)] != 1.0 {
+        return Err(NotRigid::BottomRow);
+    }
+    let r: Matrix3<f64> = m.fixed_view::<3, 3>(0, 0).into_owned();
+    let err = (r.transpose() * r - Matrix3::identity()).amax();
+    if err > RIGID_TOLERANCE {
+        return Err(NotRigid::NotOrthonormal(err));
+    }
+    if r.determinant() < 0.0 {
+        return Err(NotRigid::Reflection);
+    }
+    let rot = if err == 0.0 {
+        Rotation3::from_matrix_unchecked(r)
+    } else {
+        Rotation3::from_matrix_eps(&r, 1e-15, 100, Rotation3::identity())
+    };
+    let t = Translation3::new(m[(0, 3)], m[(1, 3)], m[(2, 3)]);
+    Ok(Pose::from_parts(t, rot))
+}
+
+/// Row-major nested arrays `T[row][col]` of a pose, as in the JSON outputs.
+pub fn pose_to_rows(p: &Pose) -> [[f64; 4]; 4] {
+    let m = p.to_homogeneous();
+    let mut out = [[0.0; 4]; 4];
+    for (r, row) in out.iter_mut().enumerate() {
+        for (c, v) in row.iter_mut().enumerate() {
+            *v = m[(r, c)];
+        }
+    }
+    out
+}
+
+/// The matrix of row-major nested arrays.
+pub fn matrix_from_rows(rows: &[[f64; 4]; 4]) -> Matrix4<f64> {
+    Matrix4::from_fn(|r, c| rows[r][c])
+}

@@ -1,0 +1,567 @@
+//! The robot: a tree of joints (revolute, prismatic, fixed) with couplings and end-effectors.
+//!
+//! Every joint is lowered to one elementary sequence `pre * M(value) * post` (M a rotation about
+//! or a translation along the joint axis), whether it came from a standard or modified DH row or
+//! from a URDF origin and axis, so forward kinematics and Jacobians are shared by all sources
+//! (the Robotics Toolbox's ETS idea). The DH rows are kept as the source of truth for editing and
+//! calibration.
+
+use super::dh::{Convention, DhRow};
+use super::error::ModelError;
+use super::pose::{Pose, rot_x, rot_z, trans_x, trans_z};
+use nalgebra::{Unit, Vector3};
+
+/// Index of a joint in [`Robot::joints`].
+pub type JointId = usize;
+
+/// The kind of a joint.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum JointKind {
+    /// Rotation about the joint axis; its variable is an angle (rad).
+    Revolute,
+    /// Translation along the joint axis; its variable is a displacement (m).
+    Prismatic,
+    /// No motion: a constant transform.
+    Fixed,
+}
+
+impl JointKind {
+    /// Lower-case name, as in model files.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            JointKind::Revolute => "revolute",
+            JointKind::Prismatic => "prismatic",
+            JointKind::Fixed => "fixed",
+        }
+    }
+}
+
+/// Where a joint's geometry comes from.
+#[derive(Debug, Clone, PartialEq)]
+pub enum JointGeometry {
+    /// A DH row in the given convention; the motion is about/along the z axis of that row.
+    Dh {
+        /// The row's parameters.
+        row: DhRow,
+        /// Its convention.
+        convention: Convention,
+    },
+    /// A URDF-style joint: `parent_from_joint` at zero, motion about/along `axis` (joint frame).
+    Origin {
+        /// The joint frame in its parent's frame at zero joint value.
+        parent_from_joint: Pose,
+        /// Unit axis in the joint frame.
+        axis: Unit<Vector3<f64>>,
+    },
+}
+
+/// How a joint's value is obtained from the joint vector q.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Drive {
+    /// The joint is driven by its own component `q[dof]`.
+    Actuated(usize),
+    /// The joint follows others: value = sum of `coef * value(joint)` over the terms, where each
+    /// term names an actuated joint (e.g. theta4 = -theta2 - theta3 of the humanoid torso, Sect.
+    /// 2.9, or a URDF mimic joint).
+    Coupled(Vec<(JointId, f64)>),
+    /// A fixed joint (no variable).
+    None,
+}
+
+/// One joint of the tree.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Joint {
+    /// Human-readable name, unique in the robot.
+    pub name: String,
+    /// Revolute, prismatic or fixed.
+    pub kind: JointKind,
+    /// The joint whose frame this one is attached to; `None` = the robot base.
+    pub parent: Option<JointId>,
+    /// A constant transform applied before the joint's own geometry, in the parent frame (e.g.
+    /// the torso-to-arm base `T_r^t` of (2.78)). Identity for an ordinary DH chain.
+    pub pre: Pose,
+    /// DH row or URDF origin.
+    pub geometry: JointGeometry,
+    /// Added to the joint value: theta = value + offset (revolute), d = value + offset
+    /// (prismatic). rad or m.
+    pub offset: f64,
+    /// How the joint's value is obtained.
+    pub drive: Drive,
+    /// Joint-variable limits `[lower, upper]` (rad or m) of an actuated joint.
+    pub limits: [f64; 2],
+}
+
+/// An end-effector: a tool frame rigidly attached to a joint's frame.
+#[derive(Debug, Clone, PartialEq)]
+pub struct EndEffector {
+    /// Name (e.g. "tool", "right hand").
+    pub name: String,
+    /// Joint whose output frame carries the tool.
+    pub parent: JointId,
+    /// `frame_from_tool`: the tool frame in the parent joint's output frame.
+    pub tool: Pose,
+}
+
+/// A named joint configuration (e.g. "zero", "ready", the pose of a textbook figure).
+#[derive(Debug, Clone, PartialEq)]
+pub struct NamedConfig {
+    /// Name.
+    pub name: String,
+    /// Joint vector (rad or m).
+    pub q: Vec<f64>,
+}
+
+/// The joint motion after lowering.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Motion {
+    /// Rotation about local z.
+    RotZ,
+    /// Translation along local z.
+    TransZ,
+    /// Rotation about an arbitrary unit axis.
+    Rot(Unit<Vector3<f64>>),
+    /// Translation along an arbitrary unit axis.
+    Trans(Unit<Vector3<f64>>),
+    /// No motion.
+    Fixed,
+}
+
+/// A joint lowered to `pre * M(value + offset) * post`.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Lowered {
+    pub(crate) parent: Option<JointId>,
+    pub(crate) pre: Pose,
+    pub(crate) pre_is_identity: bool,
+    pub(crate) motion: Motion,
+    pub(crate) post: Pose,
+    pub(crate) offset: f64,
+}
+
+/// A manipulator: base transform, joint tree, end-effectors and named configurations.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Robot {
+    /// Display name.
+    pub name: String,
+    /// One-paragraph description with the textbook section and where numbers were chosen.
+    pub description: String,
+    /// `world_from_base`: the base frame in world coordinates.
+    pub base: Pose,
+    joints: Vec<Joint>,
+    end_effectors: Vec<EndEffector>,
+    /// Named configurations; every one has `dof()` entries.
+    pub configurations: Vec<NamedConfig>,
+    pub(crate) lowered: Vec<Lowered>,
+    /// `dof_joint[k]` = joint driven by `q[k]`.
+    pub(crate) dof_joint: Vec<JointId>,
+    /// For every joint, the chain of ancestors from the base to it (inclusive).
+    pub(crate) chains: Vec<Vec<JointId>>,
+}
+
+impl Robot {
+    /// Builds a robot, validating the tree, couplings, parameters and transforms.
+    ///
+    /// `joints` must be in topological order (a parent before its children). If
+    /// `end_effectors` is empty one end-effector named "tool" is placed on the last joint.
+    pub fn new(
+        name: impl Into<String>,
+        base: Pose,
+        joints: Vec<Joint>,
+        mut end_effectors: Vec<EndEffector>,
+    ) -> Result<Self, ModelError> {
+        if joints.is_empty() {
+            return Err(ModelError::Structure("a robot needs at least one joint"));
+        }
+        let mut dof_joint = Vec::new();
+        for (i, j) in joints.iter().enumerate() {
+            validate_joint(i, j, &joints)?;
+            if let Drive::Actuated(k) = j.drive {
+                if k != dof_joint.len() {
+                    return Err(ModelError::Structure(
+                        "actuated joints must take q components in order 0, 1, 2, ...",
+                    ));
+                }
+                dof_joint.push(i);
+            }
+        }
+        if dof_joint.is_empty() {
+            return Err(ModelError::Structure(
+                "a robot needs at least one actuated joint",
+            ));
+        }
+        if end_effectors.is_empty() {
+            end_effectors.push(EndEffector {
+                name: "tool".into(),
+                parent: joints.len() - 1,
+                tool: Pose::identity(),
+            });
+        }
+        for ee in &end_effectors {
+            if ee.parent >= joints.len() {
+                return Err(ModelError::Structure(
+                    "an end-effector names a joint that does not exist",
+                ));
+            }
+        }
+        let lowered = joints.iter().map(lower).collect();
+        let chains = (0..joints.len())
+            .map(|i| {
+                let mut c = vec![i];
+                let mut p = joints[i].parent;
+                while let Some(k) = p {
+                    c.push(k);
+                    p = joints[k].parent;
+                }
+                c.reverse();
+                c
+            })
+            .collect();
+        let n = dof_joint.len();
+        Ok(Self {
+            name: name.into(),
+            description: String::new(),
+            base,
+            joints,
+            end_effectors,
+            configurations: vec![NamedConfig {
+                name: "zero".into(),
+                q: vec![0.0; n],
+            }],
+            lowered,
+            dof_joint,
+            chains,
+        })
+    }
+
+    /// A serial DH chain: joint i's parent is joint i-1, one end-effector with `tool`.
+    ///
+    /// `rows[i] = (kind, row, offset, limits)`.
+    pub fn from_dh(
+        name: impl Into<String>,
+        convention: Convention,
+        rows: &[(JointKind, DhRow, f64, [f64; 2])],
+        base: Pose,
+        tool: Pose,
+    ) -> Result<Self, ModelError> {
+        let mut dof = 0;
+        let joints: Vec<Joint> = rows
+            .iter()
+            .enumerate()
+            .map(|(i, &(kind, row, offset, limits))| {
+                let drive = if kind == JointKind::Fixed {
+                    Drive::None
+                } else {
+                    dof += 1;
+                    Drive::Actuated(dof - 1)
+                };
+                Joint {
+                    name: format!("q{}", i + 1),
+                    kind,
+                    parent: i.checked_sub(1),
+                    pre: Pose::identity(),
+                    geometry: JointGeometry::Dh { row, convention },
+                    offset,
+                    drive,
+                    limits,
+                }
+            })
+            .collect();
+        let last = joints.len().saturating_sub(1);
+        Self::new(
+            name,
+            base,
+            joints,
+            vec![EndEffector {
+                name: "tool".into(),
+                parent: last,
+                tool,
+            }],
+        )
+    }
+
+    /// Sets the description (builder style).
+    pub fn with_description(mut self, d: impl Into<String>) -> Self {
+        self.description = d.into();
+        self
+    }
+
+    /// Adds a named configuration (builder style). Panics in debug builds on a wrong length.
+    pub fn with_config(mut self, name: &str, q: Vec<f64>) -> Self {
+        debug_assert_eq!(q.len(), self.dof(), "configuration {name}");
+        self.configurations.retain(|c| c.name != name);
+        self.configurations.push(NamedConfig {
+            name: name.into(),
+            q,
+        });
+        self
+    }
+
+    /// Number of degrees of freedom (length of q).
+    pub fn dof(&self) -> usize {
+        self.dof_joint.len()
+    }
+
+    /// All joints, actuated, coupled and fixed, in topological order.
+    pub fn joints(&self) -> &[Joint] {
+        &self.joints
+    }
+
+    /// The end-effectors.
+    pub fn end_effectors(&self) -> &[EndEffector] {
+        &self.end_effectors
+    }
+
+    /// The joint driven by `q[k]`.
+    pub fn dof_joint(&self, k: usize) -> &Joint {
+        &self.joints[self.dof_joint[k]]
+    }
+
+    /// Joint ids of the actuated joints, in q order.
+    pub fn actuated_joints(&self) -> &[JointId] {
+        &self.dof_joint
+    }
+
+    /// The ancestors of joint `j` from the base to `j` inclusive.
+    pub fn chain_to(&self, j: JointId) -> &[JointId] {
+        &self.chains[j]
+    }
+
+    /// Limits of every component of q, `[lower, upper]` (rad or m).
+    pub fn limits(&self) -> Vec<[f64; 2]> {
+        self.dof_joint
+            .iter()
+            .map(|&j| self.joints[j].limits)
+            .collect()
+    }
+
+    /// Whether `q` lies inside the limits (inclusive, with `tol` slack).
+    pub fn within_limits(&self, q: &[f64], tol: f64) -> bool {
+        q.len() == self.dof()
+            && self.dof_joint.iter().zip(q).all(|(&j, &v)| {
+                v >= self.joints[j].limits[0] - tol && v <= self.joints[j].limits[1] + tol
+            })
+    }
+
+    /// A named configuration, if the robot has one by that name.
+    pub fn config(&self, name: &str) -> Option<&[f64]> {
+        self.configurations
+            .iter()
+            .find(|c| c.name == name)
+            .map(|c| c.q.as_slice())
+    }
+
+    /// The DH rows of a serial chain with one convention, if the robot is one (all joints DH,
+    /// each the child of the previous, no `pre` transforms).
+    pub fn dh_table(&self) -> Option<(Convention, Vec<(JointKind, DhRow, f64)>)> {
+        let mut conv = None;
+        let mut out = Vec::new();
+        for (i, j) in self.joints.iter().enumerate() {
+            let JointGeometry::Dh { row, convention } = j.geometry else {
+                return None;
+            };
+            if j.parent != i.checked_sub(1) || j.pre != Pose::identity() {
+                return None;
+            }
+            if *conv.get_or_insert(convention) != convention {
+                return None;
+            }
+            out.push((j.kind, row, j.offset));
+        }
+        conv.map(|c| (c, out))
+    }
+
+    /// Replaces joint `j`'s DH row (live editing, calibration); the robot is re-lowered.
+    pub fn set_dh_row(&mut self, j: JointId, row: DhRow) -> Result<(), ModelError> {
+        let mut joint = self.joints[j].clone();
+        let JointGeometry::Dh { convention, .. } = joint.geometry else {
+            return Err(ModelError::Structure(
+                "this joint is not described by a DH row",
+            ));
+        };
+        joint.geometry = JointGeometry::Dh { row, convention };
+        validate_joint(j, &joint, &self.joints)?;
+        self.lowered[j] = lower(&joint);
+        self.joints[j] = joint;
+        Ok(())
+    }
+
+    /// Replaces joint `j`'s offset and limits (live editing); validated.
+    pub fn set_offset_limits(
+        &mut self,
+        j: JointId,
+        offset: f64,
+        limits: [f64; 2],
+    ) -> Result<(), ModelError> {
+        let mut joint = self.joints[j].clone();
+        joint.offset = offset;
+        joint.limits = limits;
+        validate_joint(j, &joint, &self.joints)?;
+        self.lowered[j] = lower(&joint);
+        self.joints[j] = joint;
+        Ok(())
+    }
+}
+
+fn check_finite(joint: usize, field: &'static str, value: f64) -> Result<(), ModelError> {
+    if value.is_finite() {
+        Ok(())
+    } else {
+        Err(ModelError::NonFiniteParameter {
+            joint,
+            field,
+            value,
+        })
+    }
+}
+
+fn check_pose(joint: usize, what: &str, p: &Pose) -> Result<(), ModelError> {
+    let m = p.to_homogeneous();
+    if m.iter().all(|v| v.is_finite()) {
+        Ok(())
+    } else {
+        Err(ModelError::NotRigid {
+            what: format!("joint {joint} {what}"),
+            reason: "non-finite element".into(),
+        })
+    }
+}
+
+fn validate_joint(i: usize, j: &Joint, all: &[Joint]) -> Result<(), ModelError> {
+    if let Some(p) = j.parent
+        && p >= i
+    {
+        return Err(ModelError::BadParent {
+            joint: i,
+            parent: p,
+        });
+    }
+    check_finite(i, "offset", j.offset)?;
+    check_pose(i, "pre", &j.pre)?;
+    match &j.geometry {
+        JointGeometry::Dh { row, .. } => {
+            check_finite(i, "a", row.a)?;
+            check_finite(i, "alpha", row.alpha)?;
+            check_finite(i, "d", row.d)?;
+            check_finite(i, "theta", row.theta)?;
+        }
+        JointGeometry::Origin {
+            parent_from_joint,
+            axis,
+        } => {
+            check_pose(i, "origin", parent_from_joint)?;
+            if !axis.iter().all(|v| v.is_finite()) || axis.norm() < 0.5 {
+                return Err(ModelError::ZeroAxis { joint: i });
+            }
+        }
+    }
+    if j.kind != JointKind::Fixed && matches!(j.drive, Drive::Actuated(_)) {
+        let [lo, hi] = j.limits;
+        if !(lo.is_finite() && hi.is_finite() && lo <= hi) {
+            return Err(ModelError::BadLimits {
+                joint: i,
+                lower: lo,
+                upper: hi,
+            });
+        }
+    }
+    match &j.drive {
+        Drive::None if j.kind != JointKind::Fixed => {
+            return Err(ModelError::Structure(
+                "a revolute or prismatic joint needs a drive",
+            ));
+        }
+        Drive::Actuated(_) | Drive::Coupled(_) if j.kind == JointKind::Fixed => {
+            return Err(ModelError::Structure(
+                "a fixed joint cannot be actuated or coupled",
+            ));
+        }
+        Drive::Coupled(terms) => {
+            if terms.is_empty() {
+                return Err(ModelError::Structure(
+                    "a coupled joint needs at least one term",
+                ));
+            }
+            for &(src, coef) in terms {
+                let reason = if src >= i {
+                    Some("it must name an earlier joint")
+                } else if !matches!(all[src].drive, Drive::Actuated(_)) {
+                    Some("it must name an actuated joint")
+                } else if !coef.is_finite() {
+                    Some("the factor is not finite")
+                } else {
+                    None
+                };
+                if let Some(reason) = reason {
+                    return Err(ModelError::BadCoupling {
+                        joint: i,
+                        source_joint: src,
+                        reason,
+                    });
+                }
+            }
+        }
+        _ => {}
+    }
+    Ok(())
+}
+
+fn lower(j: &Joint) -> Lowered {
+    let (geo_pre, motion, post) = match (&j.geometry, j.kind) {
+        (JointGeometry::Dh { row, convention }, kind) => match (convention, kind) {
+            // A_i = Rz(theta) Tz(d) Tx(a) Rx(alpha), (2.52)
+            (Convention::Standard, JointKind::Revolute) => (
+                Pose::identity(),
+                Motion::RotZ,
+                trans_z(row.d) * trans_x(row.a) * rot_x(row.alpha),
+            ),
+            (Convention::Standard, JointKind::Prismatic) => (
+                rot_z(row.theta),
+                Motion::TransZ,
+                trans_x(row.a) * rot_x(row.alpha),
+            ),
+            (Convention::Standard, JointKind::Fixed) => (
+                Pose::identity(),
+                Motion::Fixed,
+                rot_z(row.theta) * trans_z(row.d) * trans_x(row.a) * rot_x(row.alpha),
+            ),
+            // A_i = Rx(alpha_{i-1}) Tx(a_{i-1}) Rz(theta_i) Tz(d_i)
+            (Convention::Modified, JointKind::Revolute) => (
+                rot_x(row.alpha) * trans_x(row.a),
+                Motion::RotZ,
+                trans_z(row.d),
+            ),
+            (Convention::Modified, JointKind::Prismatic) => (
+                rot_x(row.alpha) * trans_x(row.a) * rot_z(row.theta),
+                Motion::TransZ,
+                Pose::identity(),
+            ),
+            (Convention::Modified, JointKind::Fixed) => (
+                Pose::identity(),
+                Motion::Fixed,
+                rot_x(row.alpha) * trans_x(row.a) * rot_z(row.theta) * trans_z(row.d),
+            ),
+        },
+        (
+            JointGeometry::Origin {
+                parent_from_joint,
+                axis,
+            },
+            kind,
+        ) => {
+            let m = match kind {
+                JointKind::Revolute => Motion::Rot(*axis),
+                JointKind::Prismatic => Motion::Trans(*axis),
+                JointKind::Fixed => Motion::Fixed,
+            };
+            (*parent_from_joint, m, Pose::identity())
+        }
+    };
+    let pre = j.pre * geo_pre;
+    Lowered {
+        parent: j.parent,
+        pre_is_identity: pre == Pose::identity(),
+        pre,
+        motion,
+        post,
+        offset: j.offset,
+    }
+}

@@ -1,0 +1,6 @@
+//! armlab: robot-manipulator kinematics for learning, teaching and making figures.
+//!
+//! Layers, with one-way dependencies: [`kinematics`] (pure f64 math) → [`model_file`] and
+//! [`urdf`] (text formats into robots) → [`cli`] (the scriptable command line). See the README.
+
+pub mod kinematics;
