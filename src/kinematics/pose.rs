@@ -1,6 +1,6 @@
 //! Rigid transforms: the elementary rotations and translations of chapter 2, and checks.
 
-use nalgebra::{Matrix3, Matrix4, Rotation3, Translation3, Vector3};
+use nalgebra::{Matrix3, Matrix4, Rotation3, Translation3};
 
 /// A rigid transform stored as rotation matrix + translation (metres).
 ///
@@ -12,7 +12,7 @@ pub type Pose = nalgebra::IsometryMatrix3<f64>;
 pub fn rot_x(angle: f64) -> Pose {
     Pose::from_parts(
         Translation3::identity(),
-        Rotation3::from_axis_angle(&Vector3::x_axis(), angle),
+        crate::kinematics::orientation::rx(angle),
     )
 }
 
@@ -20,18 +20,13 @@ pub fn rot_x(angle: f64) -> Pose {
 pub fn rot_y(angle: f64) -> Pose {
     Pose::from_parts(
         Translation3::identity(),
-        Rotation3::from_axis_angle(&Vector3::y_axis(), angle),
+        crate::kinematics::orientation::ry(angle),
     )
 }
 
 /// Elementary rotation about z by `angle` (rad), eq. (2.8). Built from sin/cos directly.
 pub fn rot_z(angle: f64) -> Pose {
-    let (s, c) = angle.sin_cos();
-    let m = Matrix3::new(c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0);
-    Pose::from_parts(
-        Translation3::identity(),
-        Rotation3::from_matrix_unchecked(m),
-    )
+    Pose::from_parts(Translation3::identity(), crate::kinematics::orientation::rz(angle))
 }
 
 /// Translation by `d` metres along x.

@@ -1,0 +1,109 @@
+//! Inverse kinematics (Sect. 2.12): closed-form solvers chosen from the structure of the DH table,
+//! returning every solution labelled with its posture, and a numerical solver for any chain.
+
+pub mod closed_form;
+pub mod numerical;
+
+use super::pose::Pose;
+use nalgebra::Vector3;
+use thiserror::Error;
+
+/// What the end-effector must reach, in the world frame (metres, radians).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Target {
+    /// A full pose `world_from_tool`.
+    Pose(Pose),
+    /// A position only; orientation is free.
+    Position(Vector3<f64>),
+    /// A planar target (px, py, phi) for an arm moving in the base's x-y plane; phi is the angle
+    /// of the end-effector x axis from x0 (2.83).
+    Planar {
+        /// x (m).
+        px: f64,
+        /// y (m).
+        py: f64,
+        /// Orientation angle (rad).
+        phi: f64,
+    },
+}
+
+/// A joint the closed form cannot determine (a degenerate family of solutions).
+#[derive(Debug, Clone, PartialEq)]
+pub struct FreeJoint {
+    /// Zero-based index into q.
+    pub index: usize,
+    /// Why it is free, e.g. "wrist centre on the axis of joint 1 (p_Wx = p_Wy = 0)".
+    pub reason: &'static str,
+}
+
+/// One inverse-kinematics solution.
+#[derive(Debug, Clone, PartialEq)]
+pub struct IkSolution {
+    /// Joint vector (rad or m), angles wrapped into the joint limits where a 2*pi shift allows,
+    /// otherwise into (-pi, pi].
+    pub q: Vec<f64>,
+    /// Posture label, e.g. "shoulder right, elbow up, wrist no flip", "elbow down", or
+    /// "numerical".
+    pub posture: String,
+    /// Whether q lies inside the joint limits.
+    pub within_limits: bool,
+    /// |p(FK(q)) - p_target| (m).
+    pub position_error: f64,
+    /// Rotation angle of R(FK(q))^T R_target (rad); 0 for position-only targets.
+    pub orientation_error: f64,
+    /// Joints that are free at this target (a representative value was chosen for them).
+    pub free_joints: Vec<FreeJoint>,
+}
+
+/// Overall outcome for one target.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum IkStatus {
+    /// Solutions were found.
+    Ok,
+    /// The target is outside the workspace by `distance` metres (or, for an orientation that cannot
+    /// be reached, by the angle in rad); `solutions` then holds the closest reachable configuration
+    /// if one was computed.
+    Unreachable {
+        /// How far outside (m, or rad for orientation-only failures).
+        distance: f64,
+    },
+    /// The target lies on a singularity with infinitely many solutions; each solution lists its
+    /// free joints.
+    Singular,
+}
+
+/// The result of an IK query: status and every solution found.
+#[derive(Debug, Clone, PartialEq)]
+pub struct IkResult {
+    /// Overall status.
+    pub status: IkStatus,
+    /// Every distinct solution (closed form) or the converged one(s) (numerical).
+    pub solutions: Vec<IkSolution>,
+}
+
+/// Invalid IK input (a solver that fails to converge is not an error: see the reports).
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum IkError {
+    /// A target with NaN or infinite numbers.
+    #[error("the target contains a non-finite number")]
+    NonFiniteTarget,
+    /// A target kind the solver cannot use (e.g. a planar target for a spatial arm).
+    #[error("{0}")]
+    TargetKind(String),
+    /// No closed form exists for this arm's structure.
+    #[error("no closed-form solver matches this arm's structure ({0})")]
+    NoClosedForm(String),
+    /// Bad joint vector (seed).
+    #[error(transparent)]
+    Kinematics(#[from] super::error::KinematicsError),
+}
+
+/// Checks that a target has only finite numbers.
+pub fn check_target(t: &Target) -> Result<(), IkError> {
+    let ok = match t {
+        Target::Pose(p) => p.to_homogeneous().iter().all(|v| v.is_finite()),
+        Target::Position(p) => p.iter().all(|v| v.is_finite()),
+        Target::Planar { px, py, phi } => px.is_finite() && py.is_finite() && phi.is_finite(),
+    };
+    if ok { Ok(()) } else { Err(IkError::NonFiniteTarget) }
+}
