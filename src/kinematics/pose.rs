@@ -26,7 +26,10 @@ pub fn rot_y(angle: f64) -> Pose {
 
 /// Elementary rotation about z by `angle` (rad), eq. (2.8). Built from sin/cos directly.
 pub fn rot_z(angle: f64) -> Pose {
-    Pose::from_parts(Translation3::identity(), crate::kinematics::orientation::rz(angle))
+    Pose::from_parts(
+        Translation3::identity(),
+        crate::kinematics::orientation::rz(angle),
+    )
 }
 
 /// Translation by `d` metres along x.

@@ -105,5 +105,9 @@ pub fn check_target(t: &Target) -> Result<(), IkError> {
         Target::Position(p) => p.iter().all(|v| v.is_finite()),
         Target::Planar { px, py, phi } => px.is_finite() && py.is_finite() && phi.is_finite(),
     };
-    if ok { Ok(()) } else { Err(IkError::NonFiniteTarget) }
+    if ok {
+        Ok(())
+    } else {
+        Err(IkError::NonFiniteTarget)
+    }
 }
