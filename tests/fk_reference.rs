@@ -53,7 +53,10 @@ fn puma560() {
 }
 #[test]
 fn anthropomorphic_spherical_wrist() {
-    check("fk_anthropomorphic_spherical_wrist.json", "anthropomorphic_spherical_wrist");
+    check(
+        "fk_anthropomorphic_spherical_wrist.json",
+        "anthropomorphic_spherical_wrist",
+    );
 }
 #[test]
 fn panda_modified_dh_with_tool() {
@@ -76,10 +79,16 @@ fn tables_match_models_json() {
         for (i, (r, ref_row)) in rows.iter().zip(dh).enumerate() {
             let f = |k: &str| ref_row[k].as_f64().unwrap();
             assert!((r.1.a - f("a")).abs() < 1e-12, "{key} row {i} a");
-            assert!((r.1.alpha - f("alpha")).abs() < 1e-12, "{key} row {i} alpha");
+            assert!(
+                (r.1.alpha - f("alpha")).abs() < 1e-12,
+                "{key} row {i} alpha"
+            );
             let lim = vec_f64(&ref_row["qlim"]);
             let ours = robot.limits()[i];
-            assert!((ours[0] - lim[0]).abs() < 1e-9 && (ours[1] - lim[1]).abs() < 1e-9, "{key} row {i} limits");
+            assert!(
+                (ours[0] - lim[0]).abs() < 1e-9 && (ours[1] - lim[1]).abs() < 1e-9,
+                "{key} row {i} limits"
+            );
         }
     }
 }

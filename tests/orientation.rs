@@ -116,13 +116,24 @@ fn rpy_singular_cases() {
 fn angle_axis_singular_cases() {
     let aa = angle_axis_from_rotation(&Rotation3::identity());
     assert!(aa.singular && aa.angle == 0.0 && aa.axis.into_inner() == Vector3::z());
-    for axis in [Vector3::x(), Vector3::y(), Vector3::z(), Vector3::new(1.0, -1.0, 1.0), Vector3::new(0.0, -3.0, 4.0)] {
+    for axis in [
+        Vector3::x(),
+        Vector3::y(),
+        Vector3::z(),
+        Vector3::new(1.0, -1.0, 1.0),
+        Vector3::new(0.0, -3.0, 4.0),
+    ] {
         let u = Unit::new_normalize(axis);
         let r = Rotation3::from_axis_angle(&u, PI);
         let aa = angle_axis_from_rotation(&r);
         assert!((aa.angle - PI).abs() < 1e-15);
-        assert!((aa.axis.into_inner() - u.into_inner()).amax() < 1e-15 || (aa.axis.into_inner() + u.into_inner()).amax() < 1e-15);
-        let k = (0..3).max_by(|&a, &b| aa.axis[a].abs().total_cmp(&aa.axis[b].abs())).unwrap();
+        assert!(
+            (aa.axis.into_inner() - u.into_inner()).amax() < 1e-15
+                || (aa.axis.into_inner() + u.into_inner()).amax() < 1e-15
+        );
+        let k = (0..3)
+            .max_by(|&a, &b| aa.axis[a].abs().total_cmp(&aa.axis[b].abs()))
+            .unwrap();
         assert!(aa.axis[k] > 0.0, "largest component positive at pi");
         assert!(close(&rotation_from_angle_axis(aa.angle, &aa.axis), &r) < 1e-15);
     }
@@ -132,17 +143,30 @@ fn angle_axis_singular_cases() {
 #[test]
 fn quaternion_sign_choices() {
     use nalgebra::Matrix3;
-    let half_x = Rotation3::from_matrix_unchecked(Matrix3::new(1.0, 0.0, 0.0, 0.0, -1.0, 0.0, 0.0, 0.0, -1.0));
+    let half_x = Rotation3::from_matrix_unchecked(Matrix3::new(
+        1.0, 0.0, 0.0, 0.0, -1.0, 0.0, 0.0, 0.0, -1.0,
+    ));
     let q = quaternion_from_rotation(&half_x);
     assert_eq!(q.w, 0.0);
     assert!(q.i > 0.0);
-    let half_y = Rotation3::from_matrix_unchecked(Matrix3::new(-1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, -1.0));
+    let half_y = Rotation3::from_matrix_unchecked(Matrix3::new(
+        -1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, -1.0,
+    ));
     let q = quaternion_from_rotation(&half_y);
     assert!(q.w == 0.0 && q.j > 0.0);
     let q = quaternion_from_rotation(&Rotation3::identity());
     assert_eq!(q, UnitQuaternion::identity());
     let e = quaternion(0.5, Vector3::new(0.5, 0.5, 0.5));
-    assert!((rotation_from_quaternion(&e).matrix() - Rotation3::from_axis_angle(&Unit::new_normalize(Vector3::new(1.0, 1.0, 1.0)), 2.0 * PI / 3.0).matrix()).amax() < 1e-15);
+    assert!(
+        (rotation_from_quaternion(&e).matrix()
+            - Rotation3::from_axis_angle(
+                &Unit::new_normalize(Vector3::new(1.0, 1.0, 1.0)),
+                2.0 * PI / 3.0
+            )
+            .matrix())
+        .amax()
+            < 1e-15
+    );
 }
 
 #[test]

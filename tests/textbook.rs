@@ -7,7 +7,10 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
 fn random_q(r: &Robot, rng: &mut ChaCha8Rng) -> Vec<f64> {
-    r.limits().iter().map(|l| rng.random_range(l[0]..=l[1])).collect()
+    r.limits()
+        .iter()
+        .map(|l| rng.random_range(l[0]..=l[1]))
+        .collect()
 }
 
 /// (2.83): x_e = [a1 c1 + a2 c12 + a3 c123, a1 s1 + a2 s12 + a3 s123, theta1 + theta2 + theta3].
@@ -110,25 +113,39 @@ fn dh_conversions_preserve_fk() {
     let mut rng = ChaCha8Rng::seed_from_u64(6);
     for b in BUILT_INS {
         let r = (b.build)();
-        let Some((conv, rows)) = r.dh_table() else { continue };
-        let spec: Vec<_> = rows.iter().map(|(k, row, off)| (*k, *row, *off, [-1.0, 1.0])).collect();
+        let Some((conv, rows)) = r.dh_table() else {
+            continue;
+        };
+        let spec: Vec<_> = rows
+            .iter()
+            .map(|(k, row, off)| (*k, *row, *off, [-1.0, 1.0]))
+            .collect();
         let dh: Vec<_> = rows.iter().map(|x| x.1).collect();
         let tool = r.end_effectors()[0].tool;
         let other = match conv {
             Convention::Standard => {
                 let (m, extra) = standard_to_modified(&dh);
-                let spec: Vec<_> = spec.iter().zip(m).map(|(s, row)| (s.0, row, s.2, s.3)).collect();
+                let spec: Vec<_> = spec
+                    .iter()
+                    .zip(m)
+                    .map(|(s, row)| (s.0, row, s.2, s.3))
+                    .collect();
                 Robot::from_dh("m", Convention::Modified, &spec, r.base, extra * tool).unwrap()
             }
             Convention::Modified => {
                 let (extra, s) = modified_to_standard(&dh);
-                let spec: Vec<_> = spec.iter().zip(s).map(|(s, row)| (s.0, row, s.2, s.3)).collect();
+                let spec: Vec<_> = spec
+                    .iter()
+                    .zip(s)
+                    .map(|(s, row)| (s.0, row, s.2, s.3))
+                    .collect();
                 Robot::from_dh("s", Convention::Standard, &spec, r.base * extra, tool).unwrap()
             }
         };
         for _ in 0..100 {
             let q = random_q(&r, &mut rng);
-            let d = (r.fk(&q).unwrap().to_homogeneous() - other.fk(&q).unwrap().to_homogeneous()).amax();
+            let d = (r.fk(&q).unwrap().to_homogeneous() - other.fk(&q).unwrap().to_homogeneous())
+                .amax();
             assert!(d < 1e-14, "{}: {d:e}", b.name);
         }
     }
@@ -147,7 +164,12 @@ fn built_ins_are_complete() {
         for c in &r.configurations {
             assert_eq!(c.q.len(), r.dof(), "{} {}", b.name, c.name);
             if c.name != "zero" {
-                assert!(r.within_limits(&c.q, 1e-12), "{} {} outside limits", b.name, c.name);
+                assert!(
+                    r.within_limits(&c.q, 1e-12),
+                    "{} {} outside limits",
+                    b.name,
+                    c.name
+                );
             }
             assert!(r.fk(&c.q).is_ok());
         }
@@ -158,9 +180,22 @@ fn built_ins_are_complete() {
 #[test]
 fn bad_joint_vectors_are_errors() {
     let r = built_in("puma560").unwrap();
-    assert!(r.fk(&[0.0; 5]).unwrap_err().to_string().contains("expected 6 joint values, got 5"));
-    let e = r.fk(&[0.0, f64::NAN, 0.0, 0.0, 0.0, 0.0]).unwrap_err().to_string();
+    assert!(
+        r.fk(&[0.0; 5])
+            .unwrap_err()
+            .to_string()
+            .contains("expected 6 joint values, got 5")
+    );
+    let e = r
+        .fk(&[0.0, f64::NAN, 0.0, 0.0, 0.0, 0.0])
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("joint value 1") && e.contains("NaN"), "{e}");
     assert!(r.jacobian(&[f64::INFINITY; 6], 0).is_err());
-    assert!(r.fk_ee(&[0.0; 6], 3).unwrap_err().to_string().contains("end-effector"));
+    assert!(
+        r.fk_ee(&[0.0; 6], 3)
+            .unwrap_err()
+            .to_string()
+            .contains("end-effector")
+    );
 }

@@ -8,7 +8,9 @@ use std::path::PathBuf;
 
 /// Path of a file under tests/data/reference (copied verbatim from shared/reference).
 pub fn reference_path(name: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data/reference").join(name)
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/reference")
+        .join(name)
 }
 
 /// Parsed JSON of a reference file.
@@ -19,7 +21,11 @@ pub fn reference(name: &str) -> Value {
 
 /// A JSON array of numbers.
 pub fn vec_f64(v: &Value) -> Vec<f64> {
-    v.as_array().expect("array").iter().map(|x| x.as_f64().expect("number")).collect()
+    v.as_array()
+        .expect("array")
+        .iter()
+        .map(|x| x.as_f64().expect("number"))
+        .collect()
 }
 
 /// A JSON 4x4 row-major matrix.
