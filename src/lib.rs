@@ -3,4 +3,7 @@
 //! Layers, with one-way dependencies: [`kinematics`] (pure f64 math) → [`model_file`] and
 //! [`urdf`] (text formats into robots) → [`cli`] (the scriptable command line). See the README.
 
+pub mod cli;
 pub mod kinematics;
+pub mod model_file;
+pub mod urdf;

@@ -110,7 +110,7 @@ pub(crate) fn local(l: &Lowered, var: f64) -> Pose {
     let moved = match l.motion {
         Motion::RotZ => {
             // Rz(theta) * post, written out: only the first two rows mix (2.8).
-            let (s, c) = v.sin_cos();
+            let (s, c) = super::trig::sin_cos(v);
             let r = l.post.rotation.matrix();
             let t = &l.post.translation.vector;
             let m = Matrix3::new(

@@ -13,6 +13,7 @@ pub mod models;
 pub mod orientation;
 pub mod pose;
 pub mod robot;
+pub mod trig;
 
 pub use dh::{Convention, DhRow};
 pub use error::{KinematicsError, ModelError};

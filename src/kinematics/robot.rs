@@ -137,6 +137,9 @@ pub(crate) struct Lowered {
     pub(crate) offset: f64,
 }
 
+/// A serial DH table: convention and, per joint, kind, row and offset.
+pub type DhTable = (Convention, Vec<(JointKind, DhRow, f64)>);
+
 /// A manipulator: base transform, joint tree, end-effectors and named configurations.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Robot {
@@ -351,7 +354,7 @@ impl Robot {
 
     /// The DH rows of a serial chain with one convention, if the robot is one (all joints DH,
     /// each the child of the previous, no `pre` transforms).
-    pub fn dh_table(&self) -> Option<(Convention, Vec<(JointKind, DhRow, f64)>)> {
+    pub fn dh_table(&self) -> Option<DhTable> {
         let mut conv = None;
         let mut out = Vec::new();
         for (i, j) in self.joints.iter().enumerate() {

@@ -1,0 +1,203 @@
+//! The scriptable command line: subcommands, their arguments, and dispatch. `main.rs` only
+//! parses and reports errors; everything here returns typed errors.
+
+mod fk;
+mod info;
+pub mod input;
+
+use crate::kinematics::{KinematicsError, Robot};
+use clap::{Parser, Subcommand, ValueEnum};
+use std::path::PathBuf;
+use thiserror::Error;
+
+/// armlab: robot-manipulator kinematics (Siciliano et al., chapter 2).
+#[derive(Debug, Parser)]
+#[command(name = "armlab", version, about, long_about = None)]
+pub struct Cli {
+    /// What to do; without one, `info` on the default robot.
+    #[command(subcommand)]
+    pub command: Option<Command>,
+}
+
+/// Output format of a subcommand.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
+pub enum Format {
+    /// Human-readable text.
+    #[default]
+    Text,
+    /// JSON (shortest round-trip doubles).
+    Json,
+}
+
+/// Minimal orientation representation to print.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum EulerArg {
+    /// ZYZ Euler angles (2.18).
+    Zyz,
+    /// Roll-pitch-yaw (2.21).
+    Rpy,
+}
+
+impl From<EulerArg> for crate::kinematics::EulerKind {
+    fn from(e: EulerArg) -> Self {
+        match e {
+            EulerArg::Zyz => Self::Zyz,
+            EulerArg::Rpy => Self::Rpy,
+        }
+    }
+}
+
+/// Joint vectors: one of `--q`, `--q-deg`, `--config` or `--input`.
+#[derive(Debug, Default, clap::Args)]
+#[group(required = false, multiple = false)]
+pub struct JointInput {
+    /// Joint vector "q1,q2,..." in radians (revolute) and metres (prismatic).
+    #[arg(long, allow_hyphen_values = true)]
+    pub q: Option<String>,
+    /// Joint vector with revolute joints in degrees (prismatic still in metres).
+    #[arg(long, allow_hyphen_values = true)]
+    pub q_deg: Option<String>,
+    /// A named configuration of the model (e.g. zero, ready, figure).
+    #[arg(long)]
+    pub config: Option<String>,
+    /// File with one joint vector per line (comma-separated, # comments); `-` for stdin.
+    #[arg(long)]
+    pub input: Option<PathBuf>,
+}
+
+/// The subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// List the built-in models with their DOF and a line of description.
+    Robots {
+        /// Output format.
+        #[arg(long, value_enum, default_value_t)]
+        format: Format,
+    },
+    /// Describe a model: DH table, limits, configurations, and its pose, Jacobian rank and
+    /// manipulability at one configuration.
+    Info {
+        /// Built-in name or path to a .toml / .urdf model (default: the anthropomorphic arm with
+        /// spherical wrist).
+        model: Option<String>,
+        /// Joint vector to evaluate (default: the "ready" configuration).
+        #[command(flatten)]
+        joints: JointInput,
+        /// Output format.
+        #[arg(long, value_enum, default_value_t)]
+        format: Format,
+    },
+    /// Direct kinematics: the end-effector pose of each joint vector, eq. (2.50).
+    Fk {
+        /// Built-in name or path to a .toml / .urdf model.
+        model: String,
+        /// Joint vectors.
+        #[command(flatten)]
+        joints: JointInput,
+        /// Add every joint frame T_i^0.
+        #[arg(long)]
+        frames: bool,
+        /// Add the orientation phi in this representation.
+        #[arg(long, value_enum)]
+        euler: Option<EulerArg>,
+        /// Output format.
+        #[arg(long, value_enum, default_value_t)]
+        format: Format,
+    },
+}
+
+/// Everything a subcommand can report (all are bad input: the binary exits with code 2).
+#[derive(Debug, Error)]
+pub enum CliError {
+    /// A model that cannot be loaded.
+    #[error(transparent)]
+    Model(#[from] crate::model_file::LoadError),
+    /// A bad joint vector or input file.
+    #[error(transparent)]
+    Input(#[from] input::InputError),
+    /// Input the kinematics rejected.
+    #[error(transparent)]
+    Kinematics(#[from] KinematicsError),
+    /// An unknown named configuration.
+    #[error("model {model:?} has no configuration {name:?} (it has: {available})")]
+    UnknownConfig {
+        /// Model name.
+        model: String,
+        /// Name asked for.
+        name: String,
+        /// The names it has.
+        available: String,
+    },
+    /// Several input options where one is allowed, or none where one is needed.
+    #[error("{0}")]
+    Usage(&'static str),
+    /// Writing the output failed.
+    #[error("cannot write output: {0}")]
+    Output(#[from] std::io::Error),
+}
+
+/// Runs the command line; output goes to `out`.
+pub fn run(cli: Cli, out: &mut dyn std::io::Write) -> Result<(), CliError> {
+    match cli.command {
+        None => info::run(None, &JointInput::default(), Format::Text, out),
+        Some(Command::Robots { format }) => info::robots(format, out),
+        Some(Command::Info {
+            model,
+            joints,
+            format,
+        }) => info::run(model.as_deref(), &joints, format, out),
+        Some(Command::Fk {
+            model,
+            joints,
+            frames,
+            euler,
+            format,
+        }) => fk::run(&model, &joints, frames, euler.map(Into::into), format, out),
+    }
+}
+
+/// The joint vectors an input option asks for; `fallback` names a configuration used when no
+/// option is given (None: an error).
+pub(crate) fn joint_vectors(
+    robot: &Robot,
+    model: &str,
+    j: &JointInput,
+    fallback: Option<&str>,
+) -> Result<Vec<Vec<f64>>, CliError> {
+    let n = robot.dof();
+    if let Some(text) = &j.q {
+        return Ok(vec![input::parse_row(text, "--q", n, "joint values")?]);
+    }
+    if let Some(text) = &j.q_deg {
+        let mut q = input::parse_row(text, "--q-deg", n, "joint values")?;
+        for (k, v) in q.iter_mut().enumerate() {
+            if robot.dof_joint(k).kind == crate::kinematics::JointKind::Revolute {
+                *v = v.to_radians();
+            }
+        }
+        return Ok(vec![q]);
+    }
+    if let Some(path) = &j.input {
+        return Ok(input::read_rows(path, n, "joint values")?);
+    }
+    let name = match (&j.config, fallback) {
+        (Some(c), _) => c.as_str(),
+        (None, Some(f)) => f,
+        (None, None) => {
+            return Err(CliError::Usage(
+                "give the joint values with --q, --q-deg, --config or --input",
+            ));
+        }
+    };
+    let q = robot.config(name).ok_or_else(|| CliError::UnknownConfig {
+        model: model.into(),
+        name: name.into(),
+        available: robot
+            .configurations
+            .iter()
+            .map(|c| c.name.as_str())
+            .collect::<Vec<_>>()
+            .join(", "),
+    })?;
+    Ok(vec![q.to_vec()])
+}

@@ -1,0 +1,479 @@
+//! URDF files into robots, through `urdf-rs`.
+//!
+//! Every URDF joint becomes a [`Joint`] with [`JointGeometry::Origin`]: `parent_from_joint` is the
+//! joint's `<origin>` (`xyz` in metres, `rpy` in radians with URDF's `R = Rz(yaw) Ry(pitch)
+//! Rx(roll)`), and the joint moves about/along its unit `<axis>` in the joint frame. So the
+//! robot's joint frames are the URDF *child link* frames.
+//!
+//! - `revolute` -> revolute with the `<limit>` bounds (an infinite bound, as URDF 1.2 writes an
+//!   omitted one, becomes ±2 pi);
+//! - `continuous` -> revolute with [`CONTINUOUS_LIMITS`] = [-2 pi, 2 pi], wide enough that a
+//!   full turn either way from zero is inside the box;
+//! - `prismatic` -> prismatic (finite `<limit>` bounds required, metres);
+//! - `fixed` -> fixed;
+//! - `floating`, `planar` and `spherical` are rejected with an error naming the joint.
+//!
+//! `<mimic joint="j" multiplier="m" offset="o"/>` gives `Drive::Coupled(vec![(j, m)])` and
+//! `offset = o`, i.e. value = m * q_j + o; `j` must be actuated.
+//!
+//! Joints are ordered depth-first from the root link, children in file order, except that a
+//! mimic joint is moved after the joint it mimics when needed; actuated joints take `q`
+//! components in that order. Every leaf link (a link that is no joint's parent) gets an
+//! end-effector named after the link, with an identity tool.
+
+use crate::kinematics::pose::{Pose, rot_x, rot_y, rot_z};
+use crate::kinematics::{Drive, EndEffector, Joint, JointGeometry, JointKind, ModelError, Robot};
+use nalgebra::{Unit, Vector3};
+use std::collections::{HashMap, HashSet};
+use std::f64::consts::TAU;
+use std::fmt;
+use std::path::{Path, PathBuf};
+use thiserror::Error;
+use urdf_rs::JointType;
+
+/// Limits given to a `continuous` joint (rad): one full turn either way.
+pub const CONTINUOUS_LIMITS: [f64; 2] = [-TAU, TAU];
+
+/// Why a `<mimic>` element is rejected.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MimicProblem {
+    /// No joint has the mimicked name.
+    NoSuchJoint,
+    /// The mimicked joint is fixed or itself a mimic joint.
+    NotActuated,
+    /// The mimicking joint is fixed.
+    FixedJoint,
+    /// The mimicked joint lies below the mimicking one in the tree, so no order has it first.
+    Descendant,
+}
+
+impl fmt::Display for MimicProblem {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            MimicProblem::NoSuchJoint => "there is no joint by that name",
+            MimicProblem::NotActuated => {
+                "the mimicked joint must be actuated (not fixed, not a mimic joint)"
+            }
+            MimicProblem::FixedJoint => "a fixed joint cannot mimic another joint",
+            MimicProblem::Descendant => "the mimicked joint must not lie below the mimic joint",
+        })
+    }
+}
+
+/// Everything that can go wrong reading a URDF file; every message ends with `(file)`.
+#[derive(Debug, Error)]
+#[non_exhaustive]
+pub enum UrdfError {
+    /// The file could not be read.
+    #[error("cannot read the URDF file: {source} ({})", path.display())]
+    Read {
+        /// The file.
+        path: PathBuf,
+        /// The I/O error.
+        #[source]
+        source: std::io::Error,
+    },
+    /// Not valid XML, or not valid URDF as far as `urdf-rs` is concerned.
+    #[error("invalid URDF: {source} ({})", path.display())]
+    Parse {
+        /// The file.
+        path: PathBuf,
+        /// The parser's error.
+        #[source]
+        source: urdf_rs::UrdfError,
+    },
+    /// A `floating`, `planar` or `spherical` joint.
+    #[error(
+        "joint \"{joint}\": type {kind} is not supported (only revolute, continuous, prismatic and fixed) ({})",
+        path.display()
+    )]
+    UnsupportedJoint {
+        /// The file.
+        path: PathBuf,
+        /// The joint's name.
+        joint: String,
+        /// Its URDF type.
+        kind: &'static str,
+    },
+    /// A joint's parent or child link that no `<link>` declares.
+    #[error("joint \"{joint}\": link \"{link}\" is not declared ({})", path.display())]
+    UnknownLink {
+        /// The file.
+        path: PathBuf,
+        /// The joint's name.
+        joint: String,
+        /// The undeclared link.
+        link: String,
+    },
+    /// A link that is the child of two joints.
+    #[error(
+        "link \"{link}\" is the child of both joint \"{first}\" and joint \"{second}\" ({})",
+        path.display()
+    )]
+    TwoParents {
+        /// The file.
+        path: PathBuf,
+        /// The link.
+        link: String,
+        /// The first joint.
+        first: String,
+        /// The second joint.
+        second: String,
+    },
+    /// Not exactly one root link (a link that is no joint's child).
+    #[error(
+        "expected exactly one root link (a link that is no joint's child), found [{}] ({})",
+        roots.join(", "), path.display()
+    )]
+    Roots {
+        /// The file.
+        path: PathBuf,
+        /// The root links found.
+        roots: Vec<String>,
+    },
+    /// A joint that cannot be reached from the root link (the links form a cycle).
+    #[error("joint \"{joint}\" is not connected to the root link (a cycle?) ({})", path.display())]
+    Unreachable {
+        /// The file.
+        path: PathBuf,
+        /// The joint's name.
+        joint: String,
+    },
+    /// The URDF has no joints.
+    #[error("the URDF has no joints, so there is nothing to move ({})", path.display())]
+    NoJoints {
+        /// The file.
+        path: PathBuf,
+    },
+    /// A `<mimic>` that cannot be honoured.
+    #[error("joint \"{joint}\" mimics \"{mimicked}\": {problem} ({})", path.display())]
+    Mimic {
+        /// The file.
+        path: PathBuf,
+        /// The mimicking joint.
+        joint: String,
+        /// The joint it names.
+        mimicked: String,
+        /// Why it is rejected.
+        problem: MimicProblem,
+    },
+    /// Limits that are not a finite interval.
+    #[error(
+        "joint \"{joint}\": limits [{lower}, {upper}] are not an interval (need finite lower <= upper) ({})",
+        path.display()
+    )]
+    BadLimits {
+        /// The file.
+        path: PathBuf,
+        /// The joint's name.
+        joint: String,
+        /// Lower limit (rad or m).
+        lower: f64,
+        /// Upper limit (rad or m).
+        upper: f64,
+    },
+    /// NaN or an infinity in an origin, axis or mimic factor.
+    #[error("joint \"{joint}\": {field} is not finite ({})", path.display())]
+    NonFinite {
+        /// The file.
+        path: PathBuf,
+        /// The joint's name.
+        joint: String,
+        /// Which element (`origin xyz`, `origin rpy`, `axis`, `mimic`).
+        field: &'static str,
+    },
+    /// A moving joint whose axis is the zero vector.
+    #[error("joint \"{joint}\": axis has zero length ({})", path.display())]
+    ZeroAxis {
+        /// The file.
+        path: PathBuf,
+        /// The joint's name.
+        joint: String,
+    },
+    /// The kinematics layer rejected the assembled robot.
+    #[error("{source} ({})", path.display())]
+    Model {
+        /// The file.
+        path: PathBuf,
+        /// The kinematics layer's error.
+        #[source]
+        source: ModelError,
+    },
+}
+
+/// Reads a URDF file into a [`Robot`] (see the module documentation for the mapping).
+pub fn load_urdf(path: &Path) -> Result<Robot, UrdfError> {
+    let text = std::fs::read_to_string(path).map_err(|source| UrdfError::Read {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    parse_urdf(&text, path)
+}
+
+/// Reads URDF text into a [`Robot`]; `path` is only used in messages and the description.
+pub fn parse_urdf(text: &str, path: &Path) -> Result<Robot, UrdfError> {
+    let p = || path.to_path_buf();
+    let urdf =
+        urdf_rs::read_from_string(text).map_err(|source| UrdfError::Parse { path: p(), source })?;
+    let uj = &urdf.joints;
+    if uj.is_empty() {
+        return Err(UrdfError::NoJoints { path: p() });
+    }
+    let links: HashSet<&str> = urdf.links.iter().map(|l| l.name.as_str()).collect();
+    let mut child_of: HashMap<&str, usize> = HashMap::new();
+    let mut children: HashMap<&str, Vec<usize>> = HashMap::new();
+    for (i, j) in uj.iter().enumerate() {
+        let kind = match j.joint_type {
+            JointType::Floating => Some("floating"),
+            JointType::Planar => Some("planar"),
+            JointType::Spherical => Some("spherical"),
+            _ => None,
+        };
+        if let Some(kind) = kind {
+            let joint = j.name.clone();
+            return Err(UrdfError::UnsupportedJoint {
+                path: p(),
+                joint,
+                kind,
+            });
+        }
+        for link in [&j.parent.link, &j.child.link] {
+            if !links.contains(link.as_str()) {
+                let (joint, link) = (j.name.clone(), link.clone());
+                return Err(UrdfError::UnknownLink {
+                    path: p(),
+                    joint,
+                    link,
+                });
+            }
+        }
+        if let Some(&first) = child_of.get(j.child.link.as_str()) {
+            return Err(UrdfError::TwoParents {
+                path: p(),
+                link: j.child.link.clone(),
+                first: uj[first].name.clone(),
+                second: j.name.clone(),
+            });
+        }
+        child_of.insert(&j.child.link, i);
+        children.entry(&j.parent.link).or_default().push(i);
+    }
+    let roots: Vec<String> = (urdf.links.iter())
+        .filter(|l| !child_of.contains_key(l.name.as_str()))
+        .map(|l| l.name.clone())
+        .collect();
+    if roots.len() != 1 {
+        return Err(UrdfError::Roots { path: p(), roots });
+    }
+    let order = joint_order(uj, &roots[0], &children, &child_of, path)?;
+    let mut new_id = vec![usize::MAX; uj.len()];
+    for (k, &i) in order.iter().enumerate() {
+        new_id[i] = k;
+    }
+    let mut joints = Vec::with_capacity(uj.len());
+    let mut ees = Vec::new();
+    for &i in &order {
+        let j = convert(&uj[i], &joints, path, |name| {
+            uj.iter().position(|x| x.name == name).map(|s| new_id[s])
+        })?;
+        let parent = child_of.get(uj[i].parent.link.as_str()).map(|&s| new_id[s]);
+        joints.push(Joint { parent, ..j });
+        if !children.contains_key(uj[i].child.link.as_str()) {
+            ees.push(EndEffector {
+                name: uj[i].child.link.clone(),
+                parent: joints.len() - 1,
+                tool: Pose::identity(),
+            });
+        }
+    }
+    let name = if urdf.name.is_empty() {
+        path.file_stem()
+            .map_or("URDF robot".into(), |s| s.to_string_lossy().into_owned())
+    } else {
+        urdf.name.clone()
+    };
+    let count = joints.len();
+    let robot = Robot::new(name, Pose::identity(), joints, ees)
+        .map_err(|source| UrdfError::Model { path: p(), source })?;
+    let description = format!(
+        "Read from the URDF file {}: {count} joints, {} degrees of freedom; joint frames are the \
+         URDF child-link frames.",
+        path.display(),
+        robot.dof()
+    );
+    Ok(robot.with_description(description))
+}
+
+/// Depth-first order from `root`, children in file order, with each mimic joint moved after
+/// the joint it mimics.
+fn joint_order(
+    uj: &[urdf_rs::Joint],
+    root: &str,
+    children: &HashMap<&str, Vec<usize>>,
+    child_of: &HashMap<&str, usize>,
+    path: &Path,
+) -> Result<Vec<usize>, UrdfError> {
+    let mut dfs = Vec::with_capacity(uj.len());
+    let mut stack: Vec<usize> = children.get(root).map_or(Vec::new(), |c| c.clone());
+    stack.reverse();
+    while let Some(i) = stack.pop() {
+        dfs.push(i);
+        if let Some(c) = children.get(uj[i].child.link.as_str()) {
+            stack.extend(c.iter().rev());
+        }
+    }
+    if let Some(j) = uj.iter().enumerate().find(|(i, _)| !dfs.contains(i)) {
+        let joint = j.1.name.clone();
+        return Err(UrdfError::Unreachable {
+            path: path.to_path_buf(),
+            joint,
+        });
+    }
+    let mimicked = |i: usize| -> Result<Option<usize>, UrdfError> {
+        let Some(m) = &uj[i].mimic else {
+            return Ok(None);
+        };
+        let err = |problem| UrdfError::Mimic {
+            path: path.to_path_buf(),
+            joint: uj[i].name.clone(),
+            mimicked: m.joint.clone(),
+            problem,
+        };
+        if uj[i].joint_type == JointType::Fixed {
+            return Err(err(MimicProblem::FixedJoint));
+        }
+        let src = uj.iter().position(|x| x.name == m.joint);
+        match src {
+            None => Err(err(MimicProblem::NoSuchJoint)),
+            Some(s) if uj[s].joint_type == JointType::Fixed || uj[s].mimic.is_some() => {
+                Err(err(MimicProblem::NotActuated))
+            }
+            Some(s) => Ok(Some(s)),
+        }
+    };
+    let deps: Vec<Option<usize>> = (0..uj.len()).map(mimicked).collect::<Result<_, _>>()?;
+    let mut done = vec![false; uj.len()];
+    let mut order = Vec::with_capacity(uj.len());
+    while order.len() < uj.len() {
+        let ready = dfs.iter().copied().find(|&i| {
+            let parent_done = child_of
+                .get(uj[i].parent.link.as_str())
+                .is_none_or(|&p| done[p]);
+            !done[i] && parent_done && deps[i].is_none_or(|s| done[s])
+        });
+        let Some(i) = ready else {
+            // Only a mimic joint waiting for one of its own descendants can block.
+            let i = dfs.iter().copied().find(|&i| !done[i] && deps[i].is_some());
+            let i = i.unwrap_or(dfs[0]);
+            return Err(UrdfError::Mimic {
+                path: path.to_path_buf(),
+                joint: uj[i].name.clone(),
+                mimicked: uj[i]
+                    .mimic
+                    .as_ref()
+                    .map_or(String::new(), |m| m.joint.clone()),
+                problem: MimicProblem::Descendant,
+            });
+        };
+        done[i] = true;
+        order.push(i);
+    }
+    Ok(order)
+}
+
+/// One URDF joint as a [`Joint`] (parent filled in by the caller). `earlier` are the joints
+/// already converted; `id_of` maps a URDF joint name to its new index.
+fn convert(
+    j: &urdf_rs::Joint,
+    earlier: &[Joint],
+    path: &Path,
+    id_of: impl Fn(&str) -> Option<usize>,
+) -> Result<Joint, UrdfError> {
+    let name = || j.name.clone();
+    let p = || path.to_path_buf();
+    let finite = |v: &[f64], field| {
+        if v.iter().all(|x| x.is_finite()) {
+            Ok(())
+        } else {
+            Err(UrdfError::NonFinite {
+                path: p(),
+                joint: name(),
+                field,
+            })
+        }
+    };
+    let (xyz, rpy) = (j.origin.xyz.0, j.origin.rpy.0);
+    finite(&xyz, "origin xyz")?;
+    finite(&rpy, "origin rpy")?;
+    finite(&j.axis.xyz.0, "axis")?;
+    let parent_from_joint =
+        Pose::translation(xyz[0], xyz[1], xyz[2]) * rot_z(rpy[2]) * rot_y(rpy[1]) * rot_x(rpy[0]);
+    let kind = match j.joint_type {
+        JointType::Prismatic => JointKind::Prismatic,
+        JointType::Fixed => JointKind::Fixed,
+        _ => JointKind::Revolute,
+    };
+    let axis = match Unit::try_new(Vector3::from(j.axis.xyz.0), 1e-12) {
+        Some(a) => a,
+        None if kind == JointKind::Fixed => Vector3::z_axis(),
+        None => {
+            return Err(UrdfError::ZeroAxis {
+                path: p(),
+                joint: name(),
+            });
+        }
+    };
+    let (lo, hi) = (j.limit.lower, j.limit.upper);
+    let limits = match j.joint_type {
+        JointType::Continuous => CONTINUOUS_LIMITS,
+        JointType::Fixed => [0.0, 0.0],
+        JointType::Revolute => [
+            if lo == f64::NEG_INFINITY { -TAU } else { lo },
+            if hi == f64::INFINITY { TAU } else { hi },
+        ],
+        _ => [lo, hi],
+    };
+    if !(limits[0].is_finite() && limits[1].is_finite() && limits[0] <= limits[1]) {
+        let (lower, upper) = (lo, hi);
+        return Err(UrdfError::BadLimits {
+            path: p(),
+            joint: name(),
+            lower,
+            upper,
+        });
+    }
+    let (drive, offset) = match (&j.mimic, kind) {
+        (_, JointKind::Fixed) => (Drive::None, 0.0),
+        (Some(m), _) => {
+            let (factor, offset) = (m.multiplier.unwrap_or(1.0), m.offset.unwrap_or(0.0));
+            finite(&[factor, offset], "mimic")?;
+            let src = id_of(&m.joint).ok_or_else(|| UrdfError::Mimic {
+                path: p(),
+                joint: name(),
+                mimicked: m.joint.clone(),
+                problem: MimicProblem::NoSuchJoint,
+            })?;
+            (Drive::Coupled(vec![(src, factor)]), offset)
+        }
+        (None, _) => {
+            let dof = earlier
+                .iter()
+                .filter(|e| matches!(e.drive, Drive::Actuated(_)))
+                .count();
+            (Drive::Actuated(dof), 0.0)
+        }
+    };
+    Ok(Joint {
+        name: name(),
+        kind,
+        parent: None,
+        pre: Pose::identity(),
+        geometry: JointGeometry::Origin {
+            parent_from_joint,
+            axis,
+        },
+        offset,
+        drive,
+        limits,
+    })
+}

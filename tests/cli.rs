@@ -1,0 +1,204 @@
+//! The command line as a script uses it: outputs, JSON shape, and bad input exiting with code 2
+//! and one clear line on stderr (never a panic, never a partial result).
+
+use std::io::Write;
+use std::process::{Command, Output, Stdio};
+
+fn armlab(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_armlab"))
+        .args(args)
+        .output()
+        .expect("run armlab")
+}
+
+fn armlab_stdin(args: &[&str], input: &str) -> Output {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_armlab"))
+        .args(args)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("spawn");
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(input.as_bytes())
+        .unwrap();
+    child.wait_with_output().unwrap()
+}
+
+fn json(o: &Output) -> serde_json::Value {
+    assert!(
+        o.status.success(),
+        "stderr: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    serde_json::from_slice(&o.stdout).expect("JSON on stdout")
+}
+
+/// Exit code 2, nothing on stdout, one line on stderr containing `needle`.
+fn bad(o: &Output, needle: &str) {
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "stderr: {err}");
+    assert!(
+        o.stdout.is_empty(),
+        "partial output: {}",
+        String::from_utf8_lossy(&o.stdout)
+    );
+    assert_eq!(
+        err.trim_end().lines().count(),
+        1,
+        "one line expected: {err}"
+    );
+    assert!(err.contains(needle), "{needle:?} not in {err:?}");
+    assert!(!err.contains("panicked"));
+}
+
+#[test]
+fn robots_lists_every_built_in() {
+    let v = json(&armlab(&["robots", "--format", "json"]));
+    let list = v.as_array().unwrap();
+    assert_eq!(list.len(), armlab::kinematics::models::BUILT_INS.len());
+    let puma = list.iter().find(|r| r["name"] == "puma560").unwrap();
+    assert_eq!(puma["dof"], 6);
+    let text = String::from_utf8(armlab(&["robots"]).stdout).unwrap();
+    assert!(text.contains("humanoid") && text.contains("17"));
+}
+
+#[test]
+fn fk_json_is_exact_and_shaped() {
+    let v = json(&armlab(&[
+        "fk",
+        "puma560",
+        "--q",
+        "0.1,0.2,0.3,0.4,0.5,0.6",
+        "--format",
+        "json",
+        "--euler",
+        "zyz",
+        "--frames",
+    ]));
+    let row = &v.as_array().unwrap()[0];
+    assert_eq!(row["q"], serde_json::json!([0.1, 0.2, 0.3, 0.4, 0.5, 0.6]));
+    let robot = armlab::kinematics::models::built_in("puma560").unwrap();
+    let t = robot
+        .fk(&[0.1, 0.2, 0.3, 0.4, 0.5, 0.6])
+        .unwrap()
+        .to_homogeneous();
+    for r in 0..4 {
+        for c in 0..4 {
+            // Shortest round-trip doubles: the printed number parses to the same double.
+            assert_eq!(row["T"][r][c].as_f64().unwrap(), t[(r, c)]);
+        }
+    }
+    assert_eq!(row["phi"].as_array().unwrap().len(), 3);
+    assert_eq!(row["frames"].as_array().unwrap().len(), 6);
+}
+
+#[test]
+fn fk_many_rows_from_a_file_and_stdin() {
+    let dir = std::env::temp_dir().join(format!("armlab-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let f = dir.join("q.txt");
+    std::fs::write(&f, "# two-link arm\n0, 0\n\n0.5,-0.25  # elbow\n").unwrap();
+    let v = json(&armlab(&[
+        "fk",
+        "planar2",
+        "--input",
+        f.to_str().unwrap(),
+        "--format",
+        "json",
+    ]));
+    assert_eq!(v.as_array().unwrap().len(), 2);
+    assert_eq!(v[0]["T"][0][3], 2.0);
+    let v = json(&armlab_stdin(
+        &["fk", "planar2", "--input", "-", "--format", "json"],
+        "0,0\n",
+    ));
+    assert_eq!(v.as_array().unwrap().len(), 1);
+    // The humanoid reports both hands.
+    let v = json(&armlab(&[
+        "fk", "humanoid", "--config", "ready", "--format", "json",
+    ]));
+    assert_eq!(v[0]["end_effectors"].as_array().unwrap().len(), 2);
+    // Degrees only in flags named *_deg.
+    let a = json(&armlab(&[
+        "fk", "planar2", "--q-deg", "90,0", "--format", "json",
+    ]));
+    let b = json(&armlab(&[
+        "fk",
+        "planar2",
+        "--q",
+        &format!("{},0", std::f64::consts::FRAC_PI_2),
+        "--format",
+        "json",
+    ]));
+    assert_eq!(a[0]["T"], b[0]["T"]);
+}
+
+#[test]
+fn bad_input_exits_2_with_one_clear_line() {
+    bad(
+        &armlab(&["fk", "nosuch", "--q", "1"]),
+        "unknown robot model \"nosuch\"",
+    );
+    bad(
+        &armlab(&["fk", "puma560", "--q", "1,2,3"]),
+        "expected 6 joint values, got 3",
+    );
+    bad(
+        &armlab(&["fk", "planar2", "--q", "1,NaN"]),
+        "value 2 (\"NaN\") is not a finite number",
+    );
+    bad(&armlab(&["fk", "planar2", "--q", "1,abc"]), "value 2");
+    bad(
+        &armlab(&["fk", "planar2", "--input", "/nonexistent/q.txt"]),
+        "/nonexistent/q.txt",
+    );
+    bad(
+        &armlab(&["fk", "planar2", "--config", "nosuch"]),
+        "has no configuration \"nosuch\"",
+    );
+    bad(&armlab(&["fk", "planar2"]), "give the joint values");
+    bad(
+        &armlab(&["fk", "/nonexistent/robot.toml", "--q", "1"]),
+        "/nonexistent/robot.toml",
+    );
+    // A bad row anywhere in a file: no pose is printed for the good rows before it.
+    bad(
+        &armlab_stdin(&["fk", "planar2", "--input", "-"], "0,0\n0,0\n1,2,3\n"),
+        "-:3: expected 2 joint values, got 3",
+    );
+    bad(
+        &armlab_stdin(&["fk", "planar2", "--input", "-"], "# nothing\n"),
+        "no data rows",
+    );
+    // A malformed model file names file, line, column and field.
+    let dir = std::env::temp_dir().join(format!("armlab-cli-bad-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let f = dir.join("arm.toml");
+    std::fs::write(&f, "name = \"x\"\nconvention = \"standard\"\n[[joints]]\ntype = \"revolute\"\na = 1.0\nalpha = true\nd = 0.0\n").unwrap();
+    let o = armlab(&["fk", f.to_str().unwrap(), "--q", "0"]);
+    bad(&o, "arm.toml:6");
+    assert!(String::from_utf8_lossy(&o.stderr).contains("alpha"));
+}
+
+#[test]
+fn info_runs_on_the_default_robot() {
+    let o = armlab(&[]);
+    assert!(o.status.success());
+    let text = String::from_utf8(o.stdout).unwrap();
+    assert!(text.contains("Anthropomorphic arm with spherical wrist"));
+    assert!(text.contains("Jacobian rank 6"));
+    let v = json(&armlab(&[
+        "info",
+        "puma560",
+        "--q",
+        "0,0,0,0,0,0",
+        "--format",
+        "json",
+    ]));
+    // q5 = 0: wrist singularity, rank 5.
+    assert_eq!(v["end_effectors"][0]["jacobian_rank"], 5);
+}

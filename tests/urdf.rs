@@ -1,0 +1,254 @@
+//! URDF import: the planar2 URDF equals the built-in planar2, origins use URDF's roll-pitch-yaw,
+//! mimic joints become couplings, and bad URDFs give errors naming the file and the joint.
+
+use armlab::kinematics::models::built_in;
+use armlab::kinematics::{Drive, JointKind, Robot};
+use armlab::urdf::{CONTINUOUS_LIMITS, MimicProblem, UrdfError, load_urdf, parse_urdf};
+use nalgebra::{Rotation3, Vector3};
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use std::path::Path;
+
+fn asset(name: &str) -> Robot {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("assets/robots")
+        .join(name);
+    load_urdf(&path).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn joint_id(r: &Robot, name: &str) -> usize {
+    r.joints()
+        .iter()
+        .position(|j| j.name == name)
+        .unwrap_or_else(|| panic!("no joint {name}"))
+}
+
+#[test]
+fn planar2_urdf_equals_built_in() {
+    let urdf = asset("planar2.urdf");
+    let built = built_in("planar2").expect("planar2");
+    assert_eq!(urdf.dof(), 2);
+    assert_eq!(urdf.end_effectors().len(), 1);
+    assert_eq!(urdf.end_effectors()[0].name, "tool");
+    assert_eq!(urdf.limits(), built.limits());
+    let mut rng = ChaCha8Rng::seed_from_u64(11);
+    for _ in 0..200 {
+        let q: Vec<f64> = (0..2).map(|_| rng.random_range(-3.2..3.2)).collect();
+        let a = urdf.fk(&q).expect("fk").to_homogeneous();
+        let b = built.fk(&q).expect("fk").to_homogeneous();
+        assert!((a - b).amax() <= 1e-12, "q = {q:?}\n{a}\n{b}");
+    }
+}
+
+#[test]
+fn origin_uses_urdf_roll_pitch_yaw() {
+    let text = r#"<robot name="rpy">
+      <link name="a"/><link name="b"/>
+      <joint name="j" type="continuous">
+        <parent link="a"/><child link="b"/>
+        <origin xyz="1 2 3" rpy="0.1 0.2 0.3"/>
+        <axis xyz="0 0 2"/>
+      </joint>
+    </robot>"#;
+    let r = parse_urdf(text, Path::new("rpy.urdf")).expect("valid URDF");
+    assert_eq!(r.limits(), vec![CONTINUOUS_LIMITS]);
+    assert_eq!(r.end_effectors()[0].name, "b");
+    // URDF: R = Rz(yaw) Ry(pitch) Rx(roll), which is nalgebra's from_euler_angles(r, p, y).
+    let rot = Rotation3::from_euler_angles(0.1, 0.2, 0.3);
+    for q in [0.0, 0.7, -2.0] {
+        let t = r.fk(&[q]).expect("fk");
+        let want = rot * Rotation3::from_axis_angle(&Vector3::z_axis(), q);
+        assert!((t.rotation.matrix() - want.matrix()).amax() < 1e-14);
+        assert!((t.translation.vector - Vector3::new(1.0, 2.0, 3.0)).amax() < 1e-15);
+    }
+}
+
+#[test]
+fn mimic_gripper_fingers_move_symmetrically() {
+    let r = asset("mimic_gripper.urdf");
+    assert_eq!(r.dof(), 3);
+    let names: Vec<&str> = r
+        .actuated_joints()
+        .iter()
+        .map(|&j| r.joints()[j].name.as_str())
+        .collect();
+    assert_eq!(names, ["shoulder", "elbow", "left_finger_joint"]);
+    let left = joint_id(&r, "left_finger_joint");
+    let right = &r.joints()[joint_id(&r, "right_finger_joint")];
+    assert_eq!(right.kind, JointKind::Prismatic);
+    assert_eq!(right.drive, Drive::Coupled(vec![(left, -1.0)]));
+    let ees: Vec<&str> = r.end_effectors().iter().map(|e| e.name.as_str()).collect();
+    assert_eq!(ees, ["left_finger", "right_finger"]);
+    let mut rng = ChaCha8Rng::seed_from_u64(12);
+    for _ in 0..100 {
+        let (q1, q2, s): (f64, f64, f64) = (
+            rng.random_range(-3.0..3.0),
+            rng.random_range(-2.5..2.5),
+            rng.random_range(0.0..0.04),
+        );
+        let (c12, s12) = ((q1 + q2).cos(), (q1 + q2).sin());
+        let palm = Vector3::new(q1.cos() + c12, q1.sin() + s12, 0.0);
+        for (ee, sign) in [(0, 1.0), (1, -1.0)] {
+            let t = r.fk_ee(&[q1, q2, s], ee).expect("fk");
+            // finger = palm + R(q1 + q2) * (0.05, ±s, 0)
+            let local = Vector3::new(0.05, sign * s, 0.0);
+            let want = palm
+                + Vector3::new(
+                    c12 * local.x - s12 * local.y,
+                    s12 * local.x + c12 * local.y,
+                    0.0,
+                );
+            assert!((t.translation.vector - want).amax() < 1e-12, "ee {ee}");
+        }
+    }
+}
+
+/// Two branches from the base; the first declared joint mimics one in the other branch, with a
+/// multiplier and an offset, so it must be moved after its source.
+const MIMIC_ACROSS_BRANCHES: &str = r#"<robot name="branches">
+  <link name="base"/><link name="a"/><link name="b"/>
+  <joint name="follower" type="revolute">
+    <parent link="base"/><child link="a"/>
+    <origin xyz="0 0 0"/><axis xyz="0 0 1"/>
+    <limit lower="-3" upper="3" effort="1" velocity="1"/>
+    <mimic joint="leader" multiplier="2" offset="0.25"/>
+  </joint>
+  <joint name="leader" type="revolute">
+    <parent link="base"/><child link="b"/>
+    <origin xyz="0 1 0"/><axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/>
+  </joint>
+</robot>"#;
+
+#[test]
+fn mimic_source_is_ordered_first_and_offset_applies() {
+    let r = parse_urdf(MIMIC_ACROSS_BRANCHES, Path::new("branches.urdf")).expect("valid");
+    assert_eq!(r.dof(), 1);
+    assert_eq!(r.joints()[0].name, "leader");
+    assert_eq!(r.joints()[1].name, "follower");
+    assert_eq!(r.joints()[1].offset, 0.25);
+    let ee = r
+        .end_effectors()
+        .iter()
+        .position(|e| e.name == "a")
+        .expect("ee a");
+    for q in [-0.8, 0.0, 0.3] {
+        let t = r.fk_ee(&[q], ee).expect("fk");
+        let angle = t.rotation.matrix()[(1, 0)].atan2(t.rotation.matrix()[(0, 0)]);
+        assert!((angle - (2.0 * q + 0.25)).abs() < 1e-12, "q = {q}");
+    }
+}
+
+fn bad(text: &str) -> UrdfError {
+    match parse_urdf(text, Path::new("robots/bad.urdf")) {
+        Ok(_) => panic!("accepted:\n{text}"),
+        Err(e) => {
+            assert!(e.to_string().ends_with("(robots/bad.urdf)"), "{e}");
+            e
+        }
+    }
+}
+
+fn two_links(joint: &str) -> String {
+    format!(r#"<robot name="x"><link name="a"/><link name="b"/>{joint}</robot>"#)
+}
+
+#[test]
+fn bad_urdfs_give_clear_errors() {
+    let e = bad(&two_links(
+        r#"<joint name="free" type="floating"><parent link="a"/><child link="b"/></joint>"#,
+    ));
+    assert!(
+        matches!(&e, UrdfError::UnsupportedJoint { joint, kind: "floating", .. } if joint == "free"),
+        "{e}"
+    );
+    assert!(
+        e.to_string()
+            .contains("joint \"free\": type floating is not supported"),
+        "{e}"
+    );
+
+    let e = bad(r#"<robot name="x"><link name="a"/><joint name="j" type="revolute">"#);
+    assert!(matches!(e, UrdfError::Parse { .. }), "{e}");
+    assert!(e.to_string().starts_with("invalid URDF"), "{e}");
+
+    let e = bad(&two_links(
+        r#"<joint name="j" type="revolute"><parent link="a"/><child link="c"/></joint>"#,
+    ));
+    assert!(
+        e.to_string()
+            .contains("joint \"j\": link \"c\" is not declared"),
+        "{e}"
+    );
+
+    let e = bad(&two_links(
+        r#"<joint name="j" type="revolute"><parent link="a"/><child link="b"/>
+           <limit lower="-1" upper="1" effort="1" velocity="1"/>
+           <mimic joint="ghost"/></joint>"#,
+    ));
+    assert!(
+        matches!(
+            &e,
+            UrdfError::Mimic {
+                problem: MimicProblem::NoSuchJoint,
+                ..
+            }
+        ),
+        "{e}"
+    );
+    assert!(
+        e.to_string().contains("joint \"j\" mimics \"ghost\""),
+        "{e}"
+    );
+
+    let e = bad(
+        r#"<robot name="x"><link name="a"/><link name="b"/><link name="c"/>
+        <joint name="f" type="fixed"><parent link="a"/><child link="b"/></joint>
+        <joint name="m" type="revolute"><parent link="b"/><child link="c"/>
+          <limit lower="-1" upper="1" effort="1" velocity="1"/><mimic joint="f"/></joint>
+        </robot>"#,
+    );
+    assert!(
+        matches!(
+            &e,
+            UrdfError::Mimic {
+                problem: MimicProblem::NotActuated,
+                ..
+            }
+        ),
+        "{e}"
+    );
+
+    let e = bad(
+        r#"<robot name="x"><link name="a"/><link name="b"/><link name="c"/>
+        <joint name="j" type="revolute"><parent link="a"/><child link="b"/>
+          <limit lower="-1" upper="1" effort="1" velocity="1"/></joint></robot>"#,
+    );
+    assert!(e.to_string().contains("found [a, c]"), "{e}");
+
+    let e = bad(
+        r#"<robot name="x" version="1.2"><link name="a"/><link name="b"/>
+        <joint name="slide" type="prismatic"><parent link="a"/><child link="b"/>
+          <axis xyz="1 0 0"/><limit effort="1" velocity="1"/></joint></robot>"#,
+    );
+    assert!(
+        matches!(&e, UrdfError::BadLimits { joint, .. } if joint == "slide"),
+        "{e}"
+    );
+
+    let e = bad(&two_links(
+        r#"<joint name="j" type="revolute"><parent link="a"/><child link="b"/>
+           <axis xyz="0 0 0"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>"#,
+    ));
+    assert!(matches!(e, UrdfError::ZeroAxis { .. }), "{e}");
+
+    let e = bad(r#"<robot name="x"><link name="a"/></robot>"#);
+    assert!(matches!(e, UrdfError::NoJoints { .. }), "{e}");
+}
+
+#[test]
+fn missing_urdf_file_is_reported() {
+    let e = load_urdf(Path::new("no/such/robot.urdf")).expect_err("missing");
+    assert!(matches!(e, UrdfError::Read { .. }));
+    assert!(e.to_string().contains("no/such/robot.urdf"), "{e}");
+}
