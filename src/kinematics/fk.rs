@@ -1,6 +1,7 @@
 //! Direct kinematics, eq. (2.50): the pose of every joint frame and of each end-effector.
 
 use super::error::KinematicsError;
+use super::frame::Frame;
 use super::pose::Pose;
 use super::robot::{Drive, Lowered, Motion, Robot};
 use nalgebra::{Matrix3, Rotation3, Translation3, Vector3};
@@ -42,6 +43,14 @@ impl Robot {
         }
     }
 
+    #[inline(always)]
+    fn variable_of(&self, j: usize, l: &Lowered, q: &[f64]) -> f64 {
+        match l.dof {
+            Some(k) => q[k],
+            None => self.joint_variable(j, q),
+        }
+    }
+
     /// `world_from_frame_j` for every joint j into `frames` (length `joints().len()`), with no
     /// allocation. Frame j is the joint's output frame (DH frame j for a DH chain).
     pub fn fk_frames_into(&self, q: &[f64], frames: &mut [Pose]) -> Result<(), KinematicsError> {
@@ -52,11 +61,12 @@ impl Robot {
             "frames buffer has the wrong length"
         );
         for (j, l) in self.lowered.iter().enumerate() {
-            let parent = match l.parent {
+            let mut f = Frame::from_pose(&match l.parent {
                 Some(p) => frames[p],
                 None => self.base,
-            };
-            frames[j] = parent * local(l, self.joint_variable(j, q));
+            });
+            f.apply(l, self.variable_of(j, l, q));
+            frames[j] = f.to_pose();
         }
         Ok(())
     }
@@ -80,10 +90,12 @@ impl Robot {
                 index: ee,
                 count: self.end_effectors().len(),
             })?;
-        let mut t = self.base;
+        let mut f = Frame::from_pose(&self.base);
         for &j in &self.chains[e.parent] {
-            t *= local(&self.lowered[j], self.joint_variable(j, q));
+            let l = &self.lowered[j];
+            f.apply(l, self.variable_of(j, l, q));
         }
+        let t = f.to_pose();
         Ok(t * e.tool)
     }
 

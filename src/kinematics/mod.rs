@@ -7,6 +7,7 @@
 pub mod dh;
 pub mod error;
 pub mod fk;
+mod frame;
 pub mod ik;
 pub mod jacobian;
 pub mod models;

@@ -135,6 +135,19 @@ pub(crate) struct Lowered {
     pub(crate) motion: Motion,
     pub(crate) post: Pose,
     pub(crate) offset: f64,
+    /// `Some(k)` when the joint is driven by `q[k]` alone (the FK fast path).
+    pub(crate) dof: Option<usize>,
+    /// A revolute DH row with no extra `pre`, evaluated by the specialised product.
+    pub(crate) fast: Option<FastDh>,
+}
+
+/// The constants of a revolute DH row: `cos alpha`, `sin alpha`, `a`, `d`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum FastDh {
+    /// Standard: `T * Rz(theta) * Tz(d) * Tx(a) * Rx(alpha)`.
+    Standard([f64; 4]),
+    /// Modified: `T * Rx(alpha) * Tx(a) * Rz(theta) * Tz(d)`.
+    Modified([f64; 4]),
 }
 
 /// A serial DH table: convention and, per joint, kind, row and offset.
@@ -566,5 +579,22 @@ fn lower(j: &Joint) -> Lowered {
         motion,
         post,
         offset: j.offset,
+        dof: match j.drive {
+            Drive::Actuated(k) => Some(k),
+            _ => None,
+        },
+        fast: match (&j.geometry, j.kind) {
+            (JointGeometry::Dh { row, convention }, JointKind::Revolute)
+                if j.pre == Pose::identity() =>
+            {
+                let (sa, ca) = super::trig::sin_cos(row.alpha);
+                let k = [ca, sa, row.a, row.d];
+                Some(match convention {
+                    Convention::Standard => FastDh::Standard(k),
+                    Convention::Modified => FastDh::Modified(k),
+                })
+            }
+            _ => None,
+        },
     }
 }
