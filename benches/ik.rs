@@ -61,5 +61,36 @@ fn numerical(c: &mut Criterion) {
     }
 }
 
-criterion_group!(benches, numerical);
+criterion_group!(benches, closed_form, numerical);
 criterion_main!(benches);
+
+fn closed_form(c: &mut Criterion) {
+    use armlab::kinematics::ik::ClosedForm;
+    use armlab::kinematics::ik::closed_form::RawSolutions;
+    for name in ["puma560", "anthropomorphic_spherical_wrist"] {
+        let robot = built_in(name).expect("built-in");
+        let cf = ClosedForm::detect(&robot).expect("closed form");
+        let poses: Vec<_> = targets(name, 2000)
+            .into_iter()
+            .map(|t| match t {
+                Target::Pose(p) => p,
+                _ => unreachable!(),
+            })
+            .collect();
+        let mut out = RawSolutions::default();
+        let mut i = 0;
+        c.bench_function(&format!("ik/closed_form_all/{name}"), |b| {
+            b.iter(|| {
+                i = (i + 1) % poses.len();
+                cf.solve_raw(black_box(&poses[i]), &mut out).expect("valid pose")
+            })
+        });
+        let mut i = 0;
+        c.bench_function(&format!("ik/closed_form_all_verified/{name}"), |b| {
+            b.iter(|| {
+                i = (i + 1) % poses.len();
+                cf.solve(&robot, black_box(&Target::Pose(poses[i]))).expect("valid pose")
+            })
+        });
+    }
+}

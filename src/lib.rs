@@ -4,6 +4,8 @@
 //! [`urdf`] (text formats into robots) → [`cli`] (the scriptable command line). See the README.
 
 pub mod cli;
+pub mod camera;
 pub mod kinematics;
 pub mod model_file;
+pub mod scene;
 pub mod urdf;

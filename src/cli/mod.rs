@@ -2,6 +2,7 @@
 //! parses and reports errors; everything here returns typed errors.
 
 mod fk;
+mod ik;
 mod info;
 pub mod input;
 
@@ -104,6 +105,9 @@ pub enum Command {
         #[arg(long, value_enum, default_value_t)]
         format: Format,
     },
+    /// Inverse kinematics: every closed-form solution with its posture (Sect. 2.12), or the
+    /// numerical solver for arms without one.
+    Ik(ik::IkArgs),
 }
 
 /// Everything a subcommand can report (all are bad input: the binary exits with code 2).
@@ -131,6 +135,30 @@ pub enum CliError {
     /// Several input options where one is allowed, or none where one is needed.
     #[error("{0}")]
     Usage(&'static str),
+    /// A target that is not usable (e.g. a pose that is not rigid).
+    #[error("{source_name}: {reason}")]
+    BadTarget {
+        /// Where the target came from.
+        source_name: String,
+        /// What is wrong.
+        reason: String,
+    },
+    /// Invalid input the IK solver rejected.
+    #[error("{source_name}: {source}")]
+    Ik {
+        /// Where the target came from.
+        source_name: String,
+        /// The solver's error.
+        source: crate::kinematics::ik::IkError,
+    },
+    /// An end-effector the robot does not have.
+    #[error("no end-effector {name:?} (the robot has: {available})")]
+    UnknownEndEffector {
+        /// Name or index asked for.
+        name: String,
+        /// Names it has.
+        available: String,
+    },
     /// Writing the output failed.
     #[error("cannot write output: {0}")]
     Output(#[from] std::io::Error),
@@ -153,6 +181,7 @@ pub fn run(cli: Cli, out: &mut dyn std::io::Write) -> Result<(), CliError> {
             euler,
             format,
         }) => fk::run(&model, &joints, frames, euler.map(Into::into), format, out),
+        Some(Command::Ik(args)) => ik::run(&args, out),
     }
 }
 

@@ -1,1 +1,547 @@
-//! Closed-form IK.
+//! Closed-form inverse kinematics (Sect. 2.12): every solution, labelled with its posture and
+//! flagged inside or outside the joint limits.
+//!
+//! [`ClosedForm::detect`] recognises a family from the structure of the DH table (joint kinds,
+//! twists, which lengths vanish), never from the robot's name, and extracts once the numbers the
+//! formulas need; base and tool transforms and joint offsets are handled (the formulas work on
+//! `base^-1 * T * tool^-1`, and `theta = q + offset`), and a modified (Craig) DH table is converted
+//! exactly to the standard one first. The families:
+//!
+//! | family | structure | solutions for a generic target |
+//! |---|---|---|
+//! | [`Family::Planar2`] | R-R, all twists 0 or pi | 2 (elbow down: s2 > 0, elbow up) |
+//! | [`Family::Planar3`] | R-R-R, all twists 0 or pi | 2 (same labels) |
+//! | [`Family::Scara`] | three R and one P, all twists 0 or pi | 2 (same labels) |
+//! | [`Family::Anthropomorphic`] | R-R-R, alpha1 = +-pi/2, alpha2 = 0 or pi | 4 (shoulder right/left x elbow up/down) |
+//! | [`Family::SphericalArm`] | R-R-P, alpha1, alpha2 = +-pi/2 | 2 (shoulder right/left, d3 >= 0) |
+//! | [`Family::Cylindrical`] | R-P-P, alpha1 = 0 or pi, alpha2 = +-pi/2 | 1 (d3 >= 0) |
+//! | [`Family::SphericalWrist`] | R-R-R, a1 = a2 = d2 = 0, alpha1, alpha2 = +-pi/2 | 2 (wrist no flip/flip) |
+//! | [`Family::Decoupled6`] | one of the three arms + a spherical wrist | arm count x 2 (8 for the Puma 560) |
+//!
+//! The spherical and cylindrical arms also have the mirror solution with the opposite extension
+//! of the prismatic joint (d3 < 0 for the textbook arm); [`ClosedForm::solve`] returns it only when
+//! it lies inside that joint's limits (never for the built-in models), the raw path always.
+//!
+//! Degenerate targets are reported, not hidden: where a joint is free (wrist point on the axis of
+//! joint 1, wrist singularity sin(theta5) = 0, ...) or a posture pair merges (elbow stretched,
+//! s3 = 0), one representative per family is returned, its [`IkSolution::free_joints`] say which
+//! joints are free, and the status is [`IkStatus::Singular`]. A target outside the workspace gives
+//! [`IkStatus::Unreachable`] with the distance to the workspace and no solutions. Cosines are
+//! clamped only within [`COS_TOL`] of +-1; [`ClosedForm::solve`] never returns NaN and never panics.
+
+mod arm;
+mod chain;
+mod family;
+mod planar;
+mod posture;
+mod wrist;
+
+pub use family::{ArmKind, Family};
+pub use posture::{Elbow, Extension, FreeReason, Posture, Shoulder, WristFlip};
+
+use super::{IkError, IkResult, IkSolution, IkStatus, Target, check_target};
+use crate::kinematics::orientation::{angle_axis_from_rotation, wrap_angle};
+use crate::kinematics::pose::{Pose, rot_z};
+use crate::kinematics::robot::Robot;
+use arm::{ArmSol, SpatialArm};
+use nalgebra::{Point3, Rotation3, Translation3, Vector3};
+use planar::ParallelArm;
+use std::f64::consts::TAU;
+use wrist::Wrist;
+
+/// A cosine within this distance of +-1 is clamped (the pair of postures merges); beyond it the
+/// target is unreachable.
+pub const COS_TOL: f64 = 1e-12;
+/// How far (m) a target may lie off the plane of a planar arm.
+pub const PLANE_TOL: f64 = 1e-9;
+/// How far (rad) the z axis of a target may be tilted from z0 for planar arms and the SCARA.
+pub const TILT_TOL: f64 = 1e-9;
+/// Slack on the joint limits when flagging `within_limits` and wrapping angles into them.
+pub const LIMIT_TOL: f64 = 1e-12;
+/// Two solutions closer than this (modulo 2 pi for revolute joints) are the same.
+pub const DUPLICATE_TOL: f64 = 1e-9;
+/// Largest number of joints of a closed-form family.
+pub const MAX_DOF: usize = 6;
+/// Largest number of raw solutions (6-DOF arm with spherical wrist: 4 arm x 2 wrist).
+pub const MAX_SOLUTIONS: usize = 8;
+
+/// Solutions of the allocation-free core ([`ClosedForm::solve_raw`]).
+///
+/// `q[k][..dof]` is solution k (offsets removed, so it is the joint vector; angles straight from
+/// atan2, not wrapped into the limits; no duplicates removal, no limit filtering, mirror
+/// extensions included).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RawSolutions {
+    /// Joint vectors; entries beyond the robot's dof are 0.
+    pub q: [[f64; MAX_DOF]; MAX_SOLUTIONS],
+    /// Posture of each solution.
+    pub postures: [Posture; MAX_SOLUTIONS],
+    /// Number of solutions written.
+    pub len: usize,
+    /// `Some(distance)` when the target is outside the workspace (then `len` = 0).
+    pub unreachable: Option<f64>,
+}
+
+impl Default for RawSolutions {
+    fn default() -> Self {
+        Self {
+            q: [[0.0; MAX_DOF]; MAX_SOLUTIONS],
+            postures: [Posture::default(); MAX_SOLUTIONS],
+            len: 0,
+            unreachable: None,
+        }
+    }
+}
+
+impl RawSolutions {
+    /// Solutions written, as slices of length `dof`.
+    pub fn iter(&self, dof: usize) -> impl Iterator<Item = (&[f64], &Posture)> {
+        self.q[..self.len]
+            .iter()
+            .map(move |q| &q[..dof])
+            .zip(&self.postures[..self.len])
+    }
+}
+
+/// What the core solves for, in the normalised base frame.
+enum Goal {
+    /// Pose of DH frame n (tool removed).
+    Frame(Pose),
+    /// Position of the tool point.
+    Point(Vector3<f64>),
+}
+
+/// The world target, for the honest errors.
+enum World {
+    Pose(Pose),
+    Point(Vector3<f64>),
+}
+
+impl World {
+    fn errors(&self, fk: &Pose) -> (f64, f64) {
+        match self {
+            World::Pose(t) => (
+                (fk.translation.vector - t.translation.vector).norm(),
+                angle_axis_from_rotation(&(fk.rotation.inverse() * t.rotation)).angle,
+            ),
+            World::Point(p) => ((fk.translation.vector - p).norm(), 0.0),
+        }
+    }
+}
+
+#[derive(Debug, Clone)]
+enum Geometry {
+    Parallel(ParallelArm),
+    Arm(SpatialArm),
+    Wrist(Wrist),
+    Decoupled {
+        arm: SpatialArm,
+        wrist: Wrist,
+        /// The wrist centre in frame 6: `A_6^-1` applied to the origin of frame 5.
+        w6: Vector3<f64>,
+    },
+}
+
+/// A closed-form solver for one robot: the family and the numbers its formulas need, extracted
+/// once from the DH table.
+#[derive(Debug, Clone)]
+pub struct ClosedForm {
+    family: Family,
+    dof: usize,
+    base: Pose,
+    base_inv: Pose,
+    tool_inv: Pose,
+    base_is_identity: bool,
+    tool_is_identity: bool,
+    offsets: [f64; MAX_DOF],
+    revolute: [bool; MAX_DOF],
+    /// q index of the prismatic joint whose mirror extension is filtered by the limits.
+    mirror_joint: Option<usize>,
+    geometry: Geometry,
+}
+
+impl ClosedForm {
+    /// Detects the family from the structure of the DH table (`robot.dh_table()`, joint kinds,
+    /// twists, vanishing lengths; base and tool are allowed), never from the robot's name. `None`
+    /// if the robot is not a serial DH chain with one actuated variable per joint or no family
+    /// matches (parallelogram, DLR, humanoid, LWR, Panda).
+    pub fn detect(robot: &Robot) -> Option<ClosedForm> {
+        let chain = chain::normalize(robot)?;
+        let rows = &chain.rows;
+        let n = rows.len();
+        let tol = 1e-12 * chain.scale();
+        let (family, geometry) = match n {
+            2..=4 => {
+                if let Some(p) = ParallelArm::detect(&chain, tol) {
+                    let family = match (p.m, p.prismatic.is_some(), n) {
+                        (2, false, 2) => Family::Planar2,
+                        (3, false, 3) => Family::Planar3,
+                        (3, true, 4) => Family::Scara,
+                        _ => return None,
+                    };
+                    (family, Geometry::Parallel(p))
+                } else if n != 3 {
+                    return None;
+                } else if let Some(a) =
+                    SpatialArm::detect(rows, &chain.tool.translation.vector, tol)
+                {
+                    let family = match a.kind {
+                        ArmKind::Anthropomorphic => Family::Anthropomorphic,
+                        ArmKind::Spherical => Family::SphericalArm,
+                        ArmKind::Cylindrical => Family::Cylindrical,
+                    };
+                    (family, Geometry::Arm(a))
+                } else {
+                    let w = Wrist::detect(rows, tol)?;
+                    (Family::SphericalWrist, Geometry::Wrist(w))
+                }
+            }
+            6 => {
+                let wrist = Wrist::detect(&rows[3..], tol)?;
+                // Wrist centre W = origin of frame 4 = (0, 0, d4) in frame 3 (a4 = 0).
+                let w3 = Vector3::new(0.0, 0.0, rows[3].d);
+                let arm = SpatialArm::detect(&rows[..3], &w3, tol)?;
+                let r6 = rows[5];
+                let w6 = Vector3::new(-r6.a, -r6.sa * r6.d, -r6.ca * r6.d);
+                (
+                    Family::Decoupled6 { arm: arm.kind },
+                    Geometry::Decoupled { arm, wrist, w6 },
+                )
+            }
+            _ => return None,
+        };
+        let mirror_joint = match &geometry {
+            Geometry::Arm(a) | Geometry::Decoupled { arm: a, .. }
+                if a.kind != ArmKind::Anthropomorphic =>
+            {
+                Some(2)
+            }
+            _ => None,
+        };
+        let mut offsets = [0.0; MAX_DOF];
+        let mut revolute = [false; MAX_DOF];
+        for (i, r) in rows.iter().enumerate() {
+            offsets[i] = r.offset;
+            revolute[i] = r.revolute;
+        }
+        Some(ClosedForm {
+            family,
+            dof: n,
+            base: chain.base,
+            base_inv: chain.base.inverse(),
+            tool_inv: chain.tool.inverse(),
+            base_is_identity: chain.base == Pose::identity(),
+            tool_is_identity: chain.tool == Pose::identity(),
+            offsets,
+            revolute,
+            mirror_joint,
+            geometry,
+        })
+    }
+
+    /// The family.
+    pub fn family(&self) -> &Family {
+        &self.family
+    }
+
+    /// Human-readable name of the family.
+    pub fn name(&self) -> &'static str {
+        self.family.name()
+    }
+
+    /// Number of joints.
+    pub fn dof(&self) -> usize {
+        self.dof
+    }
+
+    /// Every solution for the target, each labelled with its posture, revolute angles wrapped
+    /// modulo 2 pi into the limits where possible (otherwise into (-pi, pi]), with
+    /// `within_limits`, `position_error` and `orientation_error` computed by forward kinematics
+    /// of `robot` (so they are honest), duplicates (modulo 2 pi, [`DUPLICATE_TOL`]) removed.
+    ///
+    /// Targets: planar arms take a [`Target::Planar`] (x, y and phi in the base frame's x-y
+    /// plane), a [`Target::Pose`] whose z axis is along z0 or a [`Target::Position`] (two-link
+    /// arm only) in the arm's plane (otherwise [`IkError::TargetKind`]); the three-DOF spatial arms
+    /// take a position, or the position of a pose; the SCARA, the wrist and the six-DOF arms a
+    /// pose. Where a target asks more than the family controls (phi for a two-link arm, the
+    /// orientation of a pose for a positioning arm, the position for the wrist alone), the
+    /// controlled part is solved and the error of the rest is reported honestly in
+    /// `position_error` / `orientation_error`.
+    ///
+    /// Unreachable targets give [`IkStatus::Unreachable`] with no solutions; the distance is the
+    /// gap to the workspace in the plane of the arm (|p_W| - (a2 + a3) for the anthropomorphic
+    /// arm, the gap to the annulus for planar arms, the gap to the cylinder of the lateral offset
+    /// for a Puma-like shoulder), or the tilt angle (rad) of a pose a SCARA cannot orient.
+    pub fn solve(&self, robot: &Robot, target: &Target) -> Result<IkResult, IkError> {
+        check_target(target)?;
+        if robot.dof() != self.dof {
+            return Err(IkError::NoClosedForm(format!(
+                "this closed form is for a {}-DOF {}, the robot has {} DOF",
+                self.dof,
+                self.name(),
+                robot.dof()
+            )));
+        }
+        let (goal, world) = self.prepare(target)?;
+        let mut raw = RawSolutions::default();
+        self.core(&goal, &mut raw)?;
+        if let Some(d) = raw.unreachable {
+            let distance = if d.is_nan() {
+                f64::INFINITY
+            } else {
+                d.max(0.0)
+            };
+            return Ok(IkResult {
+                status: IkStatus::Unreachable { distance },
+                solutions: Vec::new(),
+            });
+        }
+        let limits = robot.limits();
+        let mut solutions: Vec<IkSolution> = Vec::with_capacity(raw.len);
+        let mut singular = false;
+        for (q_raw, posture) in raw.iter(self.dof) {
+            if q_raw.iter().any(|v| !v.is_finite()) {
+                continue;
+            }
+            let q: Vec<f64> = q_raw
+                .iter()
+                .zip(&limits)
+                .zip(&self.revolute)
+                .map(|((&v, &lim), &rev)| if rev { wrap_into_limits(v, lim) } else { v })
+                .collect();
+            if posture.extension == Some(Extension::Reversed)
+                && let Some(j) = self.mirror_joint
+                && !(q[j] >= limits[j][0] - LIMIT_TOL && q[j] <= limits[j][1] + LIMIT_TOL)
+            {
+                continue;
+            }
+            if solutions
+                .iter()
+                .any(|s| same_configuration(&s.q, &q, &self.revolute))
+            {
+                continue;
+            }
+            let fk = robot.fk(&q)?;
+            let (position_error, orientation_error) = world.errors(&fk);
+            singular |= posture.is_degenerate();
+            solutions.push(IkSolution {
+                within_limits: robot.within_limits(&q, LIMIT_TOL),
+                posture: posture.label(),
+                position_error,
+                orientation_error,
+                free_joints: posture.free_joints(),
+                q,
+            });
+        }
+        let status = if solutions.is_empty() {
+            IkStatus::Unreachable {
+                distance: f64::INFINITY,
+            }
+        } else if singular {
+            IkStatus::Singular
+        } else {
+            IkStatus::Ok
+        };
+        Ok(IkResult { status, solutions })
+    }
+
+    /// The allocation-free core for a pose target `world_from_tool`: every solution (up to 8)
+    /// with its posture into `out`, returning the count. No wrapping into the limits, no
+    /// duplicate removal, no FK check (see [`RawSolutions`]). For position-only families the
+    /// position of the pose is used.
+    pub fn solve_raw(
+        &self,
+        world_from_tool: &Pose,
+        out: &mut RawSolutions,
+    ) -> Result<usize, IkError> {
+        let goal = self.goal_of_pose(world_from_tool);
+        self.core(&goal, out)?;
+        Ok(out.len)
+    }
+
+    fn goal_of_pose(&self, t: &Pose) -> Goal {
+        if self.family.uses_frame() {
+            let mut f = *t;
+            if !self.base_is_identity {
+                f = self.base_inv * f;
+            }
+            if !self.tool_is_identity {
+                f *= self.tool_inv;
+            }
+            Goal::Frame(f)
+        } else {
+            Goal::Point((self.base_inv * Point3::from(t.translation.vector)).coords)
+        }
+    }
+
+    fn prepare(&self, target: &Target) -> Result<(Goal, World), IkError> {
+        match *target {
+            Target::Pose(t) => Ok((self.goal_of_pose(&t), World::Pose(t))),
+            Target::Position(p) => {
+                if self.family.uses_frame() {
+                    return Err(IkError::TargetKind(format!(
+                        "a position target does not determine the {}: {}",
+                        self.name(),
+                        match self.family {
+                            Family::Planar3 => {
+                                "the three-link planar arm is redundant for a position; give a \
+                                 planar target (px, py, phi) or a pose whose z axis is along z0"
+                            }
+                            Family::SphericalWrist => "the wrist needs an orientation: give a pose",
+                            _ => "give a pose target",
+                        }
+                    )));
+                }
+                let local = self.base_inv * Point3::from(p);
+                Ok((Goal::Point(local.coords), World::Point(p)))
+            }
+            Target::Planar { px, py, phi } => {
+                let Geometry::Parallel(arm) = &self.geometry else {
+                    return Err(IkError::TargetKind(format!(
+                        "a planar target (px, py, phi) needs a planar arm, not a {}",
+                        self.name()
+                    )));
+                };
+                if arm.prismatic.is_some() {
+                    return Err(IkError::TargetKind(format!(
+                        "a planar target has no z: give the {} a pose target",
+                        self.name()
+                    )));
+                }
+                // The tool pose in the base frame with psi_n = phi - phi0.
+                let r0 = arm.tool_rot0;
+                let (cx, cy) = (r0[(0, 0)], r0[(1, 0)]);
+                if cx.hypot(cy) < 1e-9 {
+                    return Err(IkError::TargetKind(
+                        "the tool x axis is perpendicular to the arm plane, so phi is undefined: \
+                         give a pose target"
+                            .into(),
+                    ));
+                }
+                let rot = rot_z(phi - cy.atan2(cx)).rotation.matrix() * r0;
+                let local = Pose::from_parts(
+                    Translation3::new(px, py, arm.z_tool),
+                    Rotation3::from_matrix_unchecked(rot),
+                );
+                let t = self.base * local;
+                Ok((self.goal_of_pose(&t), World::Pose(t)))
+            }
+        }
+    }
+
+    fn core(&self, goal: &Goal, out: &mut RawSolutions) -> Result<(), IkError> {
+        out.len = 0;
+        out.unreachable = None;
+        match (&self.geometry, goal) {
+            (Geometry::Parallel(p), g) => p.solve(g, out)?,
+            (Geometry::Arm(a), Goal::Point(p)) => {
+                let mut sols = [ArmSol::default(); 4];
+                match a.solve(p, &mut sols) {
+                    Ok(n) => {
+                        for (k, s) in sols[..n].iter().enumerate() {
+                            out.q[k] = [s.v[0], s.v[1], s.v[2], 0.0, 0.0, 0.0];
+                            out.postures[k] = s.posture;
+                        }
+                        out.len = n;
+                    }
+                    Err(d) => out.unreachable = Some(d),
+                }
+            }
+            (Geometry::Wrist(w), Goal::Frame(t)) => {
+                let mut ws = [[0.0; 3]; 2];
+                let (n, singular) = w.solve(t.rotation.matrix(), &mut ws);
+                for (k, v) in ws[..n].iter().enumerate() {
+                    out.q[k] = [v[0], v[1], v[2], 0.0, 0.0, 0.0];
+                    let mut posture = Posture {
+                        wrist: Some(wrist_posture(singular, k)),
+                        ..Posture::default()
+                    };
+                    if singular {
+                        posture.free[0] = Some(FreeReason::WristAligned);
+                    }
+                    out.postures[k] = posture;
+                }
+                out.len = n;
+            }
+            (Geometry::Decoupled { arm, wrist, w6 }, Goal::Frame(t)) => {
+                let r6 = t.rotation.matrix();
+                // p_W = p_e - d6 a_e (2.93), generalised to a6, alpha6.
+                let pw = t.translation.vector + r6 * w6;
+                let mut arms = [ArmSol::default(); 4];
+                let na = match arm.solve(&pw, &mut arms) {
+                    Ok(n) => n,
+                    Err(d) => {
+                        out.unreachable = Some(d);
+                        return Ok(());
+                    }
+                };
+                for a in &arms[..na] {
+                    // R_6^3 = (R_3^0)^T R_e
+                    let r36 = arm.rotation(&a.v).transpose() * r6;
+                    let mut ws = [[0.0; 3]; 2];
+                    let (nw, singular) = wrist.solve(&r36, &mut ws);
+                    for (i, w) in ws[..nw].iter().enumerate() {
+                        let k = out.len;
+                        out.q[k] = [a.v[0], a.v[1], a.v[2], w[0], w[1], w[2]];
+                        let mut posture = a.posture;
+                        posture.wrist = Some(wrist_posture(singular, i));
+                        if singular {
+                            posture.free[3] = Some(FreeReason::WristAligned);
+                        }
+                        out.postures[k] = posture;
+                        out.len += 1;
+                    }
+                }
+            }
+            _ => {
+                return Err(IkError::TargetKind(format!(
+                    "this target kind does not fit the {}",
+                    self.name()
+                )));
+            }
+        }
+        for q in &mut out.q[..out.len] {
+            for (v, off) in q.iter_mut().zip(&self.offsets) {
+                *v -= off;
+            }
+        }
+        Ok(())
+    }
+}
+
+fn wrist_posture(singular: bool, k: usize) -> WristFlip {
+    if singular {
+        WristFlip::Singular
+    } else if k == 0 {
+        WristFlip::NoFlip
+    } else {
+        WristFlip::Flip
+    }
+}
+
+/// `q + 2 pi k` inside `[lo, hi]` (with [`LIMIT_TOL`] slack), the one nearest to 0 if several;
+/// `q` wrapped into (-pi, pi] when no shift fits.
+pub fn wrap_into_limits(q: f64, [lo, hi]: [f64; 2]) -> f64 {
+    let w = wrap_angle(q);
+    let (lo, hi) = (lo - LIMIT_TOL, hi + LIMIT_TOL);
+    if w >= lo && w <= hi {
+        return w;
+    }
+    let k_lo = ((lo - w) / TAU).ceil();
+    let k_hi = ((hi - w) / TAU).floor();
+    if k_lo > k_hi || !k_lo.is_finite() || !k_hi.is_finite() {
+        return w;
+    }
+    let c = w + 0f64.clamp(k_lo, k_hi) * TAU;
+    if c >= lo && c <= hi { c } else { w }
+}
+
+/// Whether two joint vectors are the same configuration: every revolute joint equal modulo
+/// 2 pi, every prismatic joint equal, within [`DUPLICATE_TOL`].
+pub fn same_configuration(a: &[f64], b: &[f64], revolute: &[bool]) -> bool {
+    a.len() == b.len()
+        && a.iter().zip(b).zip(revolute).all(|((&x, &y), &rev)| {
+            let d = if rev { wrap_angle(x - y) } else { x - y };
+            d.abs() < DUPLICATE_TOL
+        })
+}

@@ -3,6 +3,9 @@
 
 pub mod closed_form;
 pub mod numerical;
+pub mod solver;
+
+pub use closed_form::{ClosedForm, Family};
 
 use super::pose::Pose;
 use nalgebra::Vector3;

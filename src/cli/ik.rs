@@ -1,0 +1,309 @@
+//! `armlab ik`: every closed-form solution with its posture, or the numerical solver.
+
+use super::fk::fmt_vec;
+use super::input::{InputError, parse_row, read_rows};
+use super::{CliError, Format};
+use crate::kinematics::ik::numerical::{Method, NumericalOptions};
+use crate::kinematics::ik::solver::{self, SolverChoice};
+use crate::kinematics::ik::{IkResult, IkSolution, IkStatus, Target};
+use crate::kinematics::pose::pose_from_matrix;
+use crate::kinematics::{JointKind, Robot};
+use clap::ValueEnum;
+use nalgebra::{Matrix4, Vector3};
+use serde_json::{Value, json};
+use std::io::Write;
+use std::path::PathBuf;
+
+/// Layout of the targets in `--input`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum TargetKind {
+    /// 16 numbers: a row-major 4x4 pose.
+    Pose,
+    /// x, y, z (m).
+    Position,
+    /// px, py, phi (m, m, rad).
+    Planar,
+}
+
+/// Which solver.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
+pub enum SolverArg {
+    /// Closed form when the arm's structure has one, numerical otherwise.
+    #[default]
+    Auto,
+    /// Closed form only.
+    ClosedForm,
+    /// Numerical only.
+    Numerical,
+}
+
+/// Numerical update rule.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
+pub enum MethodArg {
+    /// Levenberg-Marquardt.
+    #[default]
+    Lm,
+    /// Damped least squares.
+    Dls,
+    /// Pseudo-inverse.
+    Pinv,
+    /// Jacobian transpose.
+    Transpose,
+}
+
+/// Arguments of `armlab ik`.
+#[derive(Debug, clap::Args)]
+#[command(group(clap::ArgGroup::new("target_source").required(true).args(["pose", "position", "planar", "input"])))]
+pub struct IkArgs {
+    /// Built-in name or path to a .toml / .urdf model.
+    pub model: String,
+    /// Target pose: 16 numbers, a row-major 4x4 homogeneous transform (m).
+    #[arg(long, allow_hyphen_values = true)]
+    pub pose: Option<String>,
+    /// Target position x,y,z (m); the orientation is free. A planar arm's position has z = 0.
+    #[arg(long, allow_hyphen_values = true)]
+    pub position: Option<String>,
+    /// Planar target px,py,phi (m, m, rad) for an arm in the x-y plane.
+    #[arg(long, allow_hyphen_values = true)]
+    pub planar: Option<String>,
+    /// File with one target per line (comma-separated, # comments); `-` for stdin.
+    #[arg(long, requires = "target")]
+    pub input: Option<PathBuf>,
+    /// Layout of the targets in --input.
+    #[arg(long, value_enum)]
+    pub target: Option<TargetKind>,
+    /// Print every solution (default: the one closest to --seed-q, or to zero).
+    #[arg(long)]
+    pub all: bool,
+    /// Print the solution with this posture (e.g. "shoulder right, elbow up, wrist no flip").
+    #[arg(long, conflicts_with = "all")]
+    pub posture: Option<String>,
+    /// Joint vector that seeds the numerical solver and picks the closest solution.
+    #[arg(long, allow_hyphen_values = true)]
+    pub seed_q: Option<String>,
+    /// End-effector, by name or 0-based index (the humanoid has two hands).
+    #[arg(long)]
+    pub ee: Option<String>,
+    /// Which solver.
+    #[arg(long, value_enum, default_value_t)]
+    pub solver: SolverArg,
+    /// Numerical update rule.
+    #[arg(long, value_enum, default_value_t)]
+    pub method: MethodArg,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t)]
+    pub format: Format,
+}
+
+fn target_from(values: &[f64], kind: TargetKind, source: &str) -> Result<Target, CliError> {
+    Ok(match kind {
+        TargetKind::Pose => {
+            let m = Matrix4::from_row_slice(values);
+            let p = pose_from_matrix(&m).map_err(|e| CliError::BadTarget { source_name: source.into(), reason: e.to_string() })?;
+            Target::Pose(p)
+        }
+        TargetKind::Position => Target::Position(Vector3::new(values[0], values[1], values[2])),
+        TargetKind::Planar => Target::Planar { px: values[0], py: values[1], phi: values[2] },
+    })
+}
+
+fn count(kind: TargetKind) -> usize {
+    if kind == TargetKind::Pose { 16 } else { 3 }
+}
+
+fn targets(args: &IkArgs) -> Result<Vec<(String, Target)>, CliError> {
+    let one = |text: &str, kind: TargetKind, flag: &str| -> Result<Vec<(String, Target)>, CliError> {
+        let what = if kind == TargetKind::Pose { "numbers (a row-major 4x4 pose)" } else { "numbers" };
+        let v = parse_row(text, flag, count(kind), what)?;
+        Ok(vec![(flag.to_string(), target_from(&v, kind, flag)?)])
+    };
+    if let Some(t) = &args.pose {
+        return one(t, TargetKind::Pose, "--pose");
+    }
+    if let Some(t) = &args.position {
+        return one(t, TargetKind::Position, "--position");
+    }
+    if let Some(t) = &args.planar {
+        return one(t, TargetKind::Planar, "--planar");
+    }
+    let (Some(path), Some(kind)) = (&args.input, args.target) else {
+        return Err(CliError::Usage("give a target with --pose, --position, --planar or --input with --target"));
+    };
+    let what = if kind == TargetKind::Pose { "numbers (a row-major 4x4 pose)" } else { "numbers" };
+    let rows = read_rows(path, count(kind), what)?;
+    // Row numbers for messages: re-derive the line of each data row.
+    let text_lines: Vec<usize> = line_numbers(path)?;
+    rows.iter()
+        .zip(text_lines)
+        .map(|(v, line)| {
+            let src = format!("{}:{line}", path.display());
+            Ok((src.clone(), target_from(v, kind, &src)?))
+        })
+        .collect()
+}
+
+/// 1-based line numbers of the data rows of an input file (stdin cannot be re-read: rows are
+/// numbered in order there).
+fn line_numbers(path: &std::path::Path) -> Result<Vec<usize>, CliError> {
+    if path == std::path::Path::new("-") {
+        return Ok((1..).take(100_000_000).collect());
+    }
+    let text = std::fs::read_to_string(path).map_err(|source| InputError::Read { path: path.to_path_buf(), source })?;
+    Ok(text
+        .lines()
+        .enumerate()
+        .filter(|(_, l)| !l.split('#').next().unwrap_or("").trim().is_empty())
+        .map(|(i, _)| i + 1)
+        .collect())
+}
+
+fn end_effector(robot: &Robot, spec: Option<&str>) -> Result<usize, CliError> {
+    let Some(s) = spec else { return Ok(0) };
+    let names = || robot.end_effectors().iter().map(|e| e.name.clone()).collect::<Vec<_>>().join(", ");
+    if let Ok(i) = s.parse::<usize>() {
+        if i < robot.end_effectors().len() {
+            return Ok(i);
+        }
+    } else if let Some(i) = robot.end_effectors().iter().position(|e| e.name == s) {
+        return Ok(i);
+    }
+    Err(CliError::UnknownEndEffector { name: s.into(), available: names() })
+}
+
+/// Runs `ik`. All targets are parsed before anything is solved or printed.
+pub(super) fn run(args: &IkArgs, out: &mut dyn Write) -> Result<(), CliError> {
+    let robot = crate::model_file::load_model(&args.model)?;
+    let targets = targets(args)?;
+    let ee = end_effector(&robot, args.ee.as_deref())?;
+    let seed = match &args.seed_q {
+        Some(t) => Some(parse_row(t, "--seed-q", robot.dof(), "joint values")?),
+        None => None,
+    };
+    let choice = match args.solver {
+        SolverArg::Auto => SolverChoice::Auto,
+        SolverArg::ClosedForm => SolverChoice::ClosedForm,
+        SolverArg::Numerical => SolverChoice::Numerical,
+    };
+    let method = match args.method {
+        MethodArg::Lm => Method::LevenbergMarquardt,
+        MethodArg::Dls => Method::DampedLeastSquares,
+        MethodArg::Pinv => Method::PseudoInverse,
+        MethodArg::Transpose => Method::Transpose,
+    };
+    let opts = NumericalOptions { method, ..Default::default() };
+    let reference = seed.clone().unwrap_or_else(|| vec![0.0; robot.dof()]);
+    let mut answers = Vec::with_capacity(targets.len());
+    for (src, t) in &targets {
+        let (result, used) = solver::solve(&robot, ee, t, seed.as_deref(), choice, &opts)
+            .map_err(|e| CliError::Ik { source_name: src.clone(), source: e })?;
+        let (picked, note) = pick(&robot, &result, args, &reference);
+        answers.push((t, result, used, picked, note));
+    }
+    match args.format {
+        Format::Json => {
+            let arr: Vec<Value> = answers
+                .iter()
+                .map(|(t, result, used, picked, note)| {
+                    let mut o = json!({
+                        "status": status_name(&result.status),
+                        "solutions": picked.iter().map(solution_json).collect::<Vec<_>>(),
+                        "solver": used.to_string(),
+                        "target": target_json(t),
+                    });
+                    if let IkStatus::Unreachable { distance } = result.status {
+                        o["distance"] = if distance.is_finite() { json!(distance) } else { Value::Null };
+                    }
+                    o["solution_count"] = json!(result.solutions.len());
+                    if let Some(n) = note {
+                        o["note"] = json!(n);
+                    }
+                    o
+                })
+                .collect();
+            serde_json::to_writer_pretty(&mut *out, &arr).map_err(std::io::Error::from)?;
+            writeln!(out)?;
+        }
+        Format::Text => {
+            for (i, (_, result, used, picked, note)) in answers.iter().enumerate() {
+                if i > 0 {
+                    writeln!(out)?;
+                }
+                let status = match result.status {
+                    IkStatus::Unreachable { distance } => format!("unreachable: outside the workspace by {distance:.6} (m, or rad for an orientation)"),
+                    s => status_name(&s).to_string(),
+                };
+                writeln!(out, "{status}; {}; {} solution(s)", used, result.solutions.len())?;
+                if let Some(n) = note {
+                    writeln!(out, "  {n}")?;
+                }
+                for s in picked {
+                    write_solution(&robot, s, out)?;
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+fn pick(robot: &Robot, result: &IkResult, args: &IkArgs, reference: &[f64]) -> (Vec<IkSolution>, Option<String>) {
+    if args.all {
+        return (result.solutions.clone(), None);
+    }
+    if let Some(name) = &args.posture {
+        return match solver::by_posture(&result.solutions, name) {
+            Some(s) => (vec![s.clone()], None),
+            None if result.solutions.is_empty() => (Vec::new(), None),
+            None => {
+                let have: Vec<&str> = result.solutions.iter().map(|s| s.posture.as_str()).collect();
+                (Vec::new(), Some(format!("no solution with posture {name:?}; postures here: {}", have.join("; "))))
+            }
+        };
+    }
+    (solver::closest(robot, &result.solutions, reference).into_iter().cloned().collect(), None)
+}
+
+fn status_name(s: &IkStatus) -> &'static str {
+    match s {
+        IkStatus::Ok => "ok",
+        IkStatus::Unreachable { .. } => "unreachable",
+        IkStatus::Singular => "singular",
+    }
+}
+
+fn solution_json(s: &IkSolution) -> Value {
+    json!({
+        "q": s.q,
+        "posture": s.posture,
+        "within_limits": s.within_limits,
+        "position_error": s.position_error,
+        "orientation_error": s.orientation_error,
+        "free_joints": s.free_joints.iter().map(|f| json!({"index": f.index, "reason": f.reason})).collect::<Vec<_>>(),
+    })
+}
+
+fn target_json(t: &Target) -> Value {
+    match t {
+        Target::Pose(p) => json!({ "pose": crate::kinematics::pose::pose_to_rows(p) }),
+        Target::Position(p) => json!({ "position": p.as_slice() }),
+        Target::Planar { px, py, phi } => json!({ "planar": [px, py, phi] }),
+    }
+}
+
+fn write_solution(robot: &Robot, s: &IkSolution, out: &mut dyn Write) -> std::io::Result<()> {
+    let deg: Vec<f64> = s
+        .q
+        .iter()
+        .enumerate()
+        .map(|(k, &v)| if robot.dof_joint(k).kind == JointKind::Revolute { v.to_degrees() } else { v })
+        .collect();
+    let limits = if s.within_limits { "within limits" } else { "OUTSIDE the joint limits" };
+    writeln!(out, "  {}: {limits}", s.posture)?;
+    writeln!(out, "    q = {} (rad, m)", fmt_vec(&s.q))?;
+    writeln!(out, "    q = {} (deg, m)", fmt_vec(&deg))?;
+    writeln!(out, "    errors: position {:.2e} m, orientation {:.2e} rad", s.position_error, s.orientation_error)?;
+    for f in &s.free_joints {
+        writeln!(out, "    joint {} is free: {}", f.index + 1, f.reason)?;
+    }
+    Ok(())
+}
+

@@ -1,0 +1,92 @@
+//! The closed-form families of Sect. 2.12.
+
+/// The positioning arm of a six-DOF arm with spherical wrist.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ArmKind {
+    /// Anthropomorphic arm R-R-R (Sect. 2.12.4), with the shoulder offsets of a Puma 560.
+    Anthropomorphic,
+    /// Spherical arm R-R-P (Sect. 2.12.3), e.g. the Stanford manipulator.
+    Spherical,
+    /// Cylindrical arm R-P-P (Problem 2.19).
+    Cylindrical,
+}
+
+/// Which closed-form family an arm belongs to, detected from its DH table.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Family {
+    /// Two-link planar arm (Sect. 2.12.1 without the third link).
+    Planar2,
+    /// Three-link planar arm (Sect. 2.12.1), target (px, py, phi).
+    Planar3,
+    /// SCARA R-R-P-R (Problem 2.20), target position and rotation about the vertical.
+    Scara,
+    /// Anthropomorphic arm (Sect. 2.12.4), position target.
+    Anthropomorphic,
+    /// Spherical arm (Sect. 2.12.3), position target.
+    SphericalArm,
+    /// Cylindrical arm (Problem 2.19), position target.
+    Cylindrical,
+    /// Spherical wrist alone (Sect. 2.12.5), orientation target.
+    SphericalWrist,
+    /// Six-DOF arm with a spherical wrist, solved by kinematic decoupling (Sect. 2.12.2).
+    Decoupled6 {
+        /// The positioning arm.
+        arm: ArmKind,
+    },
+}
+
+impl Family {
+    /// Human-readable name.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Family::Planar2 => "two-link planar arm",
+            Family::Planar3 => "three-link planar arm",
+            Family::Scara => "SCARA manipulator",
+            Family::Anthropomorphic => "anthropomorphic arm",
+            Family::SphericalArm => "spherical arm",
+            Family::Cylindrical => "cylindrical arm",
+            Family::SphericalWrist => "spherical wrist",
+            Family::Decoupled6 {
+                arm: ArmKind::Anthropomorphic,
+            } => "anthropomorphic arm with spherical wrist",
+            Family::Decoupled6 {
+                arm: ArmKind::Spherical,
+            } => "spherical arm with spherical wrist (Stanford type)",
+            Family::Decoupled6 {
+                arm: ArmKind::Cylindrical,
+            } => "cylindrical arm with spherical wrist",
+        }
+    }
+
+    /// Number of distinct solutions [`ClosedForm::solve`] returns for a generic reachable target
+    /// (no singularity, mirror extensions outside the limits): the theory implemented here.
+    pub fn generic_solution_count(&self) -> usize {
+        match self {
+            Family::Planar2 | Family::Planar3 | Family::Scara => 2,
+            Family::Anthropomorphic => 4,
+            Family::SphericalArm => 2,
+            Family::Cylindrical => 1,
+            Family::SphericalWrist => 2,
+            Family::Decoupled6 { arm } => match arm {
+                ArmKind::Anthropomorphic => 8,
+                ArmKind::Spherical => 4,
+                ArmKind::Cylindrical => 2,
+            },
+        }
+    }
+
+    /// Whether the family solves a full pose of frame n (otherwise the position of the tool
+    /// point).
+    pub(super) fn uses_frame(&self) -> bool {
+        matches!(
+            self,
+            Family::Planar3 | Family::Scara | Family::SphericalWrist | Family::Decoupled6 { .. }
+        )
+    }
+}
+
+impl std::fmt::Display for Family {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}

@@ -1,0 +1,181 @@
+//! Posture labels of the closed-form solutions (Sect. 2.12): shoulder right/left, elbow up/down,
+//! wrist flip/no flip, and the degenerate members of each pair.
+
+use crate::kinematics::ik::FreeJoint;
+
+/// Which of the two solutions for theta1, (2.109)-(2.110), generalised to a lateral shoulder offset
+/// (Puma 560, Stanford arm).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Shoulder {
+    /// theta1 of (2.109): the wrist point lies ahead of the shoulder along x1 (Paul's right arm).
+    Right,
+    /// theta1 of (2.110): the arm reaches over its back (Paul's left arm).
+    Left,
+    /// The wrist point is on the axis of joint 1 (p_Wx = p_Wy = 0): theta1 is free.
+    OnAxis,
+    /// The wrist point is on the cylinder of radius equal to the lateral shoulder offset: the two
+    /// theta1 solutions coincide.
+    Boundary,
+}
+
+/// Elbow posture.
+///
+/// Planar arms follow Siciliano's naming (Sect. 2.12.1): "elbow down" is s2 > 0, "elbow up" is
+/// s2 < 0 (the reference data `ik_planar2_closed_form.json` says "s2>0 (elbow-down in Siciliano's
+/// naming)"). For spatial arms (anthropomorphic arm, Puma) "up" means the elbow lies on the +z0
+/// side of the shoulder-wrist line for the shoulder-right solution (and the mirrored posture for
+/// shoulder left), which is the Robotics Toolbox's `u`/`d` convention for the Puma 560.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Elbow {
+    /// Elbow up.
+    Up,
+    /// Elbow down.
+    Down,
+    /// Arm fully stretched (s3 = 0, c3 = 1): the up/down pair merges.
+    Stretched,
+    /// Arm fully folded (s3 = 0, c3 = -1): the up/down pair merges.
+    Folded,
+}
+
+/// Sign of the extension of a prismatic joint that positions the wrist (spherical and
+/// cylindrical arms).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Extension {
+    /// The textbook's choice (d3 >= 0 in Sect. 2.12.3).
+    Forward,
+    /// The mirror solution with the opposite extension (returned by `solve` only when it lies
+    /// inside the prismatic joint's limits).
+    Reversed,
+    /// Zero extension: the two solutions coincide.
+    Zero,
+}
+
+/// Wrist posture: which of the two ZYZ-like solutions (2.111)-(2.112).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum WristFlip {
+    /// The solution of (2.111), the middle ZYZ angle in (0, pi). For the textbook wrist
+    /// (alpha4 = -pi/2) this is theta5 in (0, pi); with alpha4 = +pi/2 (Puma 560) theta5 < 0 (the
+    /// Robotics Toolbox's `n`).
+    NoFlip,
+    /// The solution of (2.112) (theta4 + pi, -theta5, theta6 + pi).
+    Flip,
+    /// sin(theta5) = 0: only theta4 + theta6 (or theta4 - theta6) is determined.
+    Singular,
+}
+
+/// Why a joint is free (infinitely many solutions).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FreeReason {
+    /// Wrist point on the axis of joint 1.
+    ShoulderAxis,
+    /// Wrist point at the shoulder of an arm with equal links, elbow folded.
+    ElbowAtShoulder,
+    /// Target at the base of a planar two-link arm with a1 = a2.
+    PlanarOrigin,
+    /// Spherical arm with zero extension: the wrist point is on the axis of joint 2.
+    ExtensionZero,
+    /// Wrist singularity, sin(theta5) = 0.
+    WristAligned,
+}
+
+impl FreeReason {
+    /// A sentence for [`FreeJoint::reason`].
+    pub fn text(self) -> &'static str {
+        match self {
+            FreeReason::ShoulderAxis => {
+                "wrist point on the axis of joint 1 (p_Wx = p_Wy = 0): theta1 is free (the value \
+                 shown is one representative)"
+            }
+            FreeReason::ElbowAtShoulder => {
+                "wrist point at the shoulder with a2 = a3 (elbow folded): theta2 is free"
+            }
+            FreeReason::PlanarOrigin => {
+                "target at the base of a two-link arm with a1 = a2 (elbow folded): theta1 is free"
+            }
+            FreeReason::ExtensionZero => {
+                "zero extension d3: the wrist point is on the axis of joint 2, theta2 is free"
+            }
+            FreeReason::WristAligned => {
+                "wrist singularity (sin theta5 = 0): only theta4 + theta6 (or theta4 - theta6) is \
+                 determined; theta4 (with its offset) is set to 0"
+            }
+        }
+    }
+}
+
+/// The posture of one closed-form solution: allocation-free, turned into a label by
+/// [`Posture::label`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Posture {
+    /// Shoulder solution, for arms with a shoulder.
+    pub shoulder: Option<Shoulder>,
+    /// Elbow solution, for arms with an elbow.
+    pub elbow: Option<Elbow>,
+    /// Sign of the positioning prismatic joint's extension (spherical and cylindrical arms).
+    pub extension: Option<Extension>,
+    /// Wrist solution, for arms with a spherical wrist.
+    pub wrist: Option<WristFlip>,
+    /// `free[i]` says why `q[i]` is free, if it is.
+    pub free: [Option<FreeReason>; 6],
+}
+
+impl Posture {
+    /// Human-readable label, e.g. "shoulder right, elbow up, wrist no flip".
+    pub fn label(&self) -> String {
+        let mut parts: Vec<&str> = Vec::with_capacity(4);
+        if let Some(s) = self.shoulder {
+            parts.push(match s {
+                Shoulder::Right => "shoulder right",
+                Shoulder::Left => "shoulder left",
+                Shoulder::OnAxis => "shoulder on axis",
+                Shoulder::Boundary => "shoulder boundary",
+            });
+        }
+        if let Some(e) = self.elbow {
+            parts.push(match e {
+                Elbow::Up => "elbow up",
+                Elbow::Down => "elbow down",
+                Elbow::Stretched => "elbow stretched",
+                Elbow::Folded => "elbow folded",
+            });
+        }
+        if let Some(x) = self.extension {
+            parts.push(match x {
+                Extension::Forward => "extension forward",
+                Extension::Reversed => "extension reversed",
+                Extension::Zero => "extension zero",
+            });
+        }
+        if let Some(w) = self.wrist {
+            parts.push(match w {
+                WristFlip::NoFlip => "wrist no flip",
+                WristFlip::Flip => "wrist flip",
+                WristFlip::Singular => "wrist singular",
+            });
+        }
+        parts.join(", ")
+    }
+
+    /// True on a degenerate solution: a free joint or a merged pair of postures.
+    pub fn is_degenerate(&self) -> bool {
+        self.free.iter().any(Option::is_some)
+            || matches!(self.shoulder, Some(Shoulder::OnAxis | Shoulder::Boundary))
+            || matches!(self.elbow, Some(Elbow::Stretched | Elbow::Folded))
+            || self.extension == Some(Extension::Zero)
+            || self.wrist == Some(WristFlip::Singular)
+    }
+
+    /// The free joints as [`FreeJoint`]s.
+    pub fn free_joints(&self) -> Vec<FreeJoint> {
+        self.free
+            .iter()
+            .enumerate()
+            .filter_map(|(index, r)| {
+                r.map(|r| FreeJoint {
+                    index,
+                    reason: r.text(),
+                })
+            })
+            .collect()
+    }
+}

@@ -1,0 +1,331 @@
+//! Draw lists in f32: the one place where f64 kinematics becomes f32 geometry. A [`Scene`] is
+//! what the renderer draws (meshes, thick lines, points) plus the 3D labels an overlay writes.
+//! [`arm_scene`] builds the arm of a robot at q: links as a stick figure along the DH geometry,
+//! joint bodies (a cylinder along z for a revolute joint, a box for a prismatic one), DH frame
+//! triads with labels, the ground grid and the end-effector.
+
+use crate::kinematics::pose::{Pose, rot_x, trans_x};
+use crate::kinematics::{Convention, JointGeometry, JointKind, KinematicsError, Robot};
+use nalgebra::{Matrix4, Point3, Rotation3, Unit, Vector3};
+
+/// RGBA colour, each channel in [0, 1] (linear).
+pub type Rgba = [f32; 4];
+
+/// The unit shapes the renderer knows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Shape {
+    /// Radius 1, z in [-0.5, 0.5].
+    Cylinder,
+    /// The cube [-0.5, 0.5]^3.
+    Cube,
+    /// Radius 1.
+    Sphere,
+    /// Base radius 1 at z = 0, apex at z = 1.
+    Cone,
+}
+
+/// One shape placed in the world: `world_from_unit` maps the unit shape (column-major 4x4).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MeshInstance {
+    /// The unit shape.
+    pub shape: Shape,
+    /// `world_from_unit`, column-major (may scale non-uniformly).
+    pub world_from_unit: [[f32; 4]; 4],
+    /// Colour; alpha < 1 is drawn translucent after the opaque meshes.
+    pub color: Rgba,
+}
+
+/// A segment drawn `width_px` pixels wide whatever the zoom.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Line {
+    /// Start (world, m).
+    pub a: [f32; 3],
+    /// End (world, m).
+    pub b: [f32; 3],
+    /// Colour.
+    pub color: Rgba,
+    /// Width (pixels).
+    pub width_px: f32,
+}
+
+/// A round dot of `size_px` pixels.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Dot {
+    /// Position (world, m).
+    pub p: [f32; 3],
+    /// Colour.
+    pub color: Rgba,
+    /// Diameter (pixels).
+    pub size_px: f32,
+}
+
+/// Text anchored at a world point (drawn by the overlay, not the renderer).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Label {
+    /// Anchor (world, m).
+    pub p: [f32; 3],
+    /// Text.
+    pub text: String,
+    /// Colour.
+    pub color: Rgba,
+}
+
+/// Everything to draw in one view.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Scene {
+    /// Lit meshes.
+    pub meshes: Vec<MeshInstance>,
+    /// Thick lines (unlit).
+    pub lines: Vec<Line>,
+    /// Dots (unlit).
+    pub dots: Vec<Dot>,
+    /// Labels for the overlay.
+    pub labels: Vec<Label>,
+}
+
+impl Scene {
+    /// Appends another scene.
+    pub fn extend(&mut self, other: Scene) {
+        self.meshes.extend(other.meshes);
+        self.lines.extend(other.lines);
+        self.dots.extend(other.dots);
+        self.labels.extend(other.labels);
+    }
+
+    /// Centre and radius (m) of a sphere holding every mesh origin, line end and dot.
+    pub fn bounds(&self) -> (Point3<f32>, f32) {
+        let mut pts: Vec<Point3<f32>> = Vec::new();
+        pts.extend(self.meshes.iter().map(|m| Point3::new(m.world_from_unit[3][0], m.world_from_unit[3][1], m.world_from_unit[3][2])));
+        pts.extend(self.lines.iter().flat_map(|l| [Point3::from(l.a), Point3::from(l.b)]));
+        pts.extend(self.dots.iter().map(|d| Point3::from(d.p)));
+        if pts.is_empty() {
+            return (Point3::origin(), 1.0);
+        }
+        let (mut lo, mut hi) = (pts[0], pts[0]);
+        for p in &pts {
+            lo = lo.inf(p);
+            hi = hi.sup(p);
+        }
+        let c = nalgebra::center(&lo, &hi);
+        let r = pts.iter().map(|p| (p - c).norm()).fold(0.0, f32::max);
+        (c, r)
+    }
+}
+
+/// Colours and sizes of the arm drawing.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ArmStyle {
+    /// Link colour.
+    pub link: Rgba,
+    /// Revolute joint body colour.
+    pub revolute: Rgba,
+    /// Prismatic joint body colour.
+    pub prismatic: Rgba,
+    /// End-effector colour.
+    pub tool: Rgba,
+    /// Draw the DH frame triads.
+    pub frames: bool,
+    /// Label the frames (x_i, z_i and the frame number).
+    pub frame_labels: bool,
+    /// Draw the ground grid.
+    pub grid: bool,
+    /// Multiplies every colour's alpha (ghost arms use < 1).
+    pub alpha: f32,
+    /// Link radius as a fraction of the robot's size.
+    pub link_radius: f32,
+}
+
+impl Default for ArmStyle {
+    fn default() -> Self {
+        Self {
+            link: [0.93, 0.55, 0.15, 1.0],
+            revolute: [0.20, 0.35, 0.75, 1.0],
+            prismatic: [0.30, 0.60, 0.35, 1.0],
+            tool: [0.35, 0.35, 0.38, 1.0],
+            frames: true,
+            frame_labels: true,
+            grid: true,
+            alpha: 1.0,
+            link_radius: 0.018,
+        }
+    }
+}
+
+/// Axis colours: x red, y green, z blue.
+pub const AXIS_COLORS: [Rgba; 3] = [[0.85, 0.15, 0.15, 1.0], [0.15, 0.65, 0.2, 1.0], [0.15, 0.3, 0.9, 1.0]];
+
+fn v32(v: &Vector3<f64>) -> [f32; 3] {
+    [v.x as f32, v.y as f32, v.z as f32]
+}
+
+fn col_major(m: &Matrix4<f64>) -> [[f32; 4]; 4] {
+    std::array::from_fn(|c| std::array::from_fn(|r| m[(r, c)] as f32))
+}
+
+/// `world_from_unit` of a cylinder/cube from `a` to `b` with the given cross-section radius.
+fn segment_transform(a: &Vector3<f64>, b: &Vector3<f64>, radius: f64) -> Option<Matrix4<f64>> {
+    let d = b - a;
+    let len = d.norm();
+    if len < 1e-9 {
+        return None;
+    }
+    let rot = Rotation3::rotation_between(&Vector3::z(), &d).unwrap_or_else(|| Rotation3::from_axis_angle(&Vector3::x_axis(), std::f64::consts::PI));
+    let mut m = rot.to_homogeneous() * Matrix4::new_nonuniform_scaling(&Vector3::new(radius, radius, len));
+    let mid = (a + b) * 0.5;
+    m[(0, 3)] = mid.x;
+    m[(1, 3)] = mid.y;
+    m[(2, 3)] = mid.z;
+    Some(m)
+}
+
+/// A characteristic length of the robot (m): the sum of its DH lengths and offsets, at least
+/// 0.2 m. Sizes joint bodies, triads and the grid.
+pub fn robot_scale(robot: &Robot) -> f64 {
+    let s: f64 = robot
+        .joints()
+        .iter()
+        .map(|j| match &j.geometry {
+            JointGeometry::Dh { row, .. } => row.a.abs() + row.d.abs() + if j.kind == JointKind::Prismatic { j.limits[1].abs() } else { 0.0 },
+            JointGeometry::Origin { parent_from_joint, .. } => parent_from_joint.translation.vector.norm(),
+        })
+        .sum();
+    s.max(0.2)
+}
+
+/// For joint `j`: the frame whose z (DH) or `axis` (URDF) is the joint axis, in the world.
+fn axis_frame(robot: &Robot, frames: &[Pose], j: usize) -> (Pose, Unit<Vector3<f64>>) {
+    let joint = &robot.joints()[j];
+    let parent = joint.parent.map_or(robot.base, |p| frames[p]);
+    let f = parent * joint.pre;
+    match &joint.geometry {
+        JointGeometry::Dh { row, convention: Convention::Modified } => (f * rot_x(row.alpha) * trans_x(row.a), Vector3::z_axis()),
+        JointGeometry::Dh { .. } => (f, Vector3::z_axis()),
+        JointGeometry::Origin { parent_from_joint, axis } => (f * parent_from_joint, *axis),
+    }
+}
+
+/// The arm of `robot` at `q`, in world coordinates.
+pub fn arm_scene(robot: &Robot, q: &[f64], style: &ArmStyle) -> Result<Scene, KinematicsError> {
+    let frames = robot.fk_frames(q)?;
+    let scale = robot_scale(robot);
+    let r_link = scale * style.link_radius as f64;
+    let fade = |c: Rgba| [c[0], c[1], c[2], c[3] * style.alpha];
+    let mut s = Scene::default();
+    let cylinder = |s: &mut Scene, a: &Vector3<f64>, b: &Vector3<f64>, r: f64, color: Rgba, shape: Shape| {
+        if let Some(m) = segment_transform(a, b, r) {
+            s.meshes.push(MeshInstance { shape, world_from_unit: col_major(&m), color: fade(color) });
+        }
+    };
+    // Base pedestal.
+    let base_o = robot.base.translation.vector;
+    let base_z = robot.base.rotation * Vector3::z();
+    cylinder(&mut s, &(base_o - base_z * r_link * 2.0), &base_o, r_link * 3.5, style.tool, Shape::Cylinder);
+    for (j, joint) in robot.joints().iter().enumerate() {
+        let parent_o = joint.parent.map_or(base_o, |p| frames[p].translation.vector);
+        let (af, axis) = axis_frame(robot, &frames, j);
+        let ao = af.translation.vector;
+        let z = af.rotation * axis.into_inner();
+        let out_o = frames[j].translation.vector;
+        // Link polyline: parent origin -> axis origin -> (standard DH: along z by d) -> output origin.
+        let mut pts = vec![parent_o, ao];
+        if let JointGeometry::Dh { row, convention: Convention::Standard } = joint.geometry {
+            let d = if joint.kind == JointKind::Prismatic { robot.joint_variable(j, q) + joint.offset } else { row.d };
+            pts.push(ao + z * d);
+        }
+        pts.push(out_o);
+        for w in pts.windows(2) {
+            cylinder(&mut s, &w[0], &w[1], r_link, style.link, Shape::Cylinder);
+        }
+        s.dots.push(Dot { p: v32(&out_o), color: fade(style.link), size_px: 0.0 });
+        // Joint body at the axis origin.
+        let h = scale * 0.08;
+        match joint.kind {
+            JointKind::Revolute => cylinder(&mut s, &(ao - z * h * 0.5), &(ao + z * h * 0.5), r_link * 1.9, style.revolute, Shape::Cylinder),
+            JointKind::Prismatic => {
+                let d = robot.joint_variable(j, q) + joint.offset;
+                let start = ao + z * (d - h).min(0.0);
+                cylinder(&mut s, &start, &(ao + z * d.max(h * 0.5)), r_link * 1.6, style.prismatic, Shape::Cube);
+            }
+            JointKind::Fixed => {}
+        }
+    }
+    s.dots.retain(|d| d.size_px > 0.0);
+    // End-effectors: a small two-finger gripper along the tool z.
+    for e in robot.end_effectors() {
+        let t = frames[e.parent] * e.tool;
+        let o = t.translation.vector;
+        let (x, z) = (t.rotation * Vector3::x(), t.rotation * Vector3::z());
+        let w = scale * 0.03;
+        cylinder(&mut s, &(o - z * w * 1.5), &o, r_link * 1.2, style.tool, Shape::Cylinder);
+        for side in [-1.0, 1.0] {
+            let a = o + x * (side * w);
+            cylinder(&mut s, &(o - z * w * 0.3), &a, r_link * 0.6, style.tool, Shape::Cylinder);
+            cylinder(&mut s, &a, &(a + z * w * 1.2), r_link * 0.6, style.tool, Shape::Cylinder);
+        }
+    }
+    if style.frames {
+        let len = (scale * 0.12) as f32;
+        let triad = |s: &mut Scene, t: &Pose, name: &str| {
+            let o = v32(&t.translation.vector);
+            for (k, color) in AXIS_COLORS.iter().enumerate() {
+                let dir = t.rotation * Vector3::ith(k, 1.0);
+                let tip = [o[0] + dir.x as f32 * len, o[1] + dir.y as f32 * len, o[2] + dir.z as f32 * len];
+                s.lines.push(Line { a: o, b: tip, color: fade(*color), width_px: 2.5 });
+                if style.frame_labels && k != 1 {
+                    let axis = ["x", "y", "z"][k];
+                    s.labels.push(Label { p: tip, text: format!("{axis}{name}"), color: fade(*color) });
+                }
+            }
+        };
+        triad(&mut s, &robot.base, "0");
+        for (j, f) in frames.iter().enumerate() {
+            triad(&mut s, f, &(j + 1).to_string());
+        }
+    }
+    if style.grid {
+        s.lines.extend(ground_grid(scale as f32));
+    }
+    Ok(s)
+}
+
+/// Grid lines in the plane z = 0 around the origin, spaced 0.1 m (or 0.5 m for big robots).
+pub fn ground_grid(scale: f32) -> Vec<Line> {
+    let step = if scale > 3.0 { 0.5 } else { 0.1 };
+    let n = ((scale * 1.2 / step).ceil() as i32).clamp(2, 40);
+    let ext = n as f32 * step;
+    let mut out = Vec::new();
+    for i in -n..=n {
+        let c = i as f32 * step;
+        let major = i % 5 == 0;
+        let color = if major { [0.55, 0.55, 0.58, 1.0] } else { [0.78, 0.78, 0.8, 1.0] };
+        let width_px = if major { 1.5 } else { 1.0 };
+        out.push(Line { a: [c, -ext, 0.0], b: [c, ext, 0.0], color, width_px });
+        out.push(Line { a: [-ext, c, 0.0], b: [ext, c, 0.0], color, width_px });
+    }
+    out
+}
+
+/// The world point `p` (m, f64) as the renderer's f32.
+pub fn point32(p: &Vector3<f64>) -> Point3<f32> {
+    Point3::from(v32(p))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::kinematics::models::BUILT_INS;
+
+    #[test]
+    fn every_built_in_makes_a_finite_scene() {
+        for b in BUILT_INS {
+            let r = (b.build)();
+            let q = r.config("ready").unwrap().to_vec();
+            let s = arm_scene(&r, &q, &ArmStyle::default()).unwrap();
+            assert!(s.meshes.len() >= r.joints().len(), "{}", b.name);
+            assert!(s.meshes.iter().all(|m| m.world_from_unit.iter().flatten().all(|v| v.is_finite())));
+            assert!(s.labels.iter().any(|l| l.text == "z1"));
+            let (_, radius) = s.bounds();
+            assert!(radius > 0.0 && radius.is_finite());
+        }
+    }
+}
