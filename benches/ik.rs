@@ -82,14 +82,16 @@ fn closed_form(c: &mut Criterion) {
         c.bench_function(&format!("ik/closed_form_all/{name}"), |b| {
             b.iter(|| {
                 i = (i + 1) % poses.len();
-                cf.solve_raw(black_box(&poses[i]), &mut out).expect("valid pose")
+                cf.solve_raw(black_box(&poses[i]), &mut out)
+                    .expect("valid pose")
             })
         });
         let mut i = 0;
         c.bench_function(&format!("ik/closed_form_all_verified/{name}"), |b| {
             b.iter(|| {
                 i = (i + 1) % poses.len();
-                cf.solve(&robot, black_box(&Target::Pose(poses[i]))).expect("valid pose")
+                cf.solve(&robot, black_box(&Target::Pose(poses[i])))
+                    .expect("valid pose")
             })
         });
     }

@@ -61,7 +61,9 @@ impl Default for Camera {
             distance: 3.0,
             yaw: 0.0,
             pitch: 0.0,
-            projection: Projection::Perspective { fov_y: 35f32.to_radians() },
+            projection: Projection::Perspective {
+                fov_y: 35f32.to_radians(),
+            },
         };
         c.set_preset(Preset::Iso);
         c
@@ -70,7 +72,9 @@ impl Default for Camera {
 
 /// wgpu clip space has depth in [0, 1]; nalgebra's projections are OpenGL's [-1, 1].
 fn gl_to_wgpu() -> Matrix4<f32> {
-    Matrix4::new(1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.5, 0.5, 0.0, 0.0, 0.0, 1.0)
+    Matrix4::new(
+        1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.5, 0.5, 0.0, 0.0, 0.0, 1.0,
+    )
 }
 
 impl Camera {
@@ -134,7 +138,10 @@ impl Camera {
             return None;
         }
         let (x, y) = (clip.x / clip.w, clip.y / clip.w);
-        Some([(x + 1.0) * 0.5 * width as f32, (1.0 - y) * 0.5 * height as f32])
+        Some([
+            (x + 1.0) * 0.5 * width as f32,
+            (1.0 - y) * 0.5 * height as f32,
+        ])
     }
 
     /// Frames a bounding sphere (centre, radius in m) so it fills the view with a margin.
@@ -150,6 +157,46 @@ impl Camera {
                 *height = 2.0 * r / aspect.min(1.0);
                 self.distance = 3.0 * r;
             }
+        }
+    }
+
+    /// Frames a set of points tightly: after [`Self::fit`] on their bounding sphere, moves the
+    /// target to the centre of their projection and scales the distance (or orthographic height)
+    /// so they fill `fill` (e.g. 0.8) of the view. A few fixed-point iterations, deterministic.
+    pub fn fit_points(&mut self, points: &[Point3<f32>], width: u32, height: u32, fill: f32) {
+        if points.is_empty() {
+            return;
+        }
+        let (mut lo, mut hi) = (points[0], points[0]);
+        for p in points {
+            lo = lo.inf(p);
+            hi = hi.sup(p);
+        }
+        let c = nalgebra::center(&lo, &hi);
+        let r = points.iter().map(|p| (p - c).norm()).fold(0.0, f32::max);
+        self.fit(c, r, width as f32 / height.max(1) as f32);
+        for _ in 0..4 {
+            let vp = self.view_proj(width, height);
+            let (mut nlo, mut nhi) = ([f32::MAX; 2], [f32::MIN; 2]);
+            for p in points {
+                let clip = vp * Vector4::new(p.x, p.y, p.z, 1.0);
+                if clip.w <= 1e-6 {
+                    return;
+                }
+                for k in 0..2 {
+                    let v = clip[k] / clip.w;
+                    nlo[k] = nlo[k].min(v);
+                    nhi[k] = nhi[k].max(v);
+                }
+            }
+            let extent = ((nhi[0] - nlo[0]) * 0.5)
+                .max((nhi[1] - nlo[1]) * 0.5)
+                .max(1e-4);
+            // Re-centre: the NDC centre offset, as a pan by fractions of the view height.
+            let aspect = width as f32 / height.max(1) as f32;
+            let (cx, cy) = ((nhi[0] + nlo[0]) * 0.5, (nhi[1] + nlo[1]) * 0.5);
+            self.pan(-cx * aspect * 0.5, cy * 0.5);
+            self.zoom(extent / fill);
         }
     }
 
@@ -190,13 +237,22 @@ mod tests {
             let mut c = Camera::default();
             c.set_preset(preset);
             let p = c.project(&c.target, 800, 600).unwrap();
-            assert!((p[0] - 400.0).abs() < 1e-3 && (p[1] - 300.0).abs() < 1e-3, "{preset:?}");
+            assert!(
+                (p[0] - 400.0).abs() < 1e-3 && (p[1] - 300.0).abs() < 1e-3,
+                "{preset:?}"
+            );
         }
-        let mut c = Camera { target: Point3::origin(), ..Default::default() };
+        let mut c = Camera {
+            target: Point3::origin(),
+            ..Default::default()
+        };
         c.set_preset(Preset::Front);
         let x = c.project(&Point3::new(0.1, 0.0, 0.0), 800, 600).unwrap();
         let z = c.project(&Point3::new(0.0, 0.0, 0.1), 800, 600).unwrap();
-        assert!(x[0] > 400.0 && (x[1] - 300.0).abs() < 1e-3, "x to the right");
+        assert!(
+            x[0] > 400.0 && (x[1] - 300.0).abs() < 1e-3,
+            "x to the right"
+        );
         assert!(z[1] < 300.0, "z up");
         c.set_preset(Preset::Top);
         let y = c.project(&Point3::new(0.0, 0.1, 0.0), 800, 600).unwrap();

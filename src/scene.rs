@@ -95,8 +95,18 @@ impl Scene {
     /// Centre and radius (m) of a sphere holding every mesh origin, line end and dot.
     pub fn bounds(&self) -> (Point3<f32>, f32) {
         let mut pts: Vec<Point3<f32>> = Vec::new();
-        pts.extend(self.meshes.iter().map(|m| Point3::new(m.world_from_unit[3][0], m.world_from_unit[3][1], m.world_from_unit[3][2])));
-        pts.extend(self.lines.iter().flat_map(|l| [Point3::from(l.a), Point3::from(l.b)]));
+        pts.extend(self.meshes.iter().map(|m| {
+            Point3::new(
+                m.world_from_unit[3][0],
+                m.world_from_unit[3][1],
+                m.world_from_unit[3][2],
+            )
+        }));
+        pts.extend(
+            self.lines
+                .iter()
+                .flat_map(|l| [Point3::from(l.a), Point3::from(l.b)]),
+        );
         pts.extend(self.dots.iter().map(|d| Point3::from(d.p)));
         if pts.is_empty() {
             return (Point3::origin(), 1.0);
@@ -152,7 +162,11 @@ impl Default for ArmStyle {
 }
 
 /// Axis colours: x red, y green, z blue.
-pub const AXIS_COLORS: [Rgba; 3] = [[0.85, 0.15, 0.15, 1.0], [0.15, 0.65, 0.2, 1.0], [0.15, 0.3, 0.9, 1.0]];
+pub const AXIS_COLORS: [Rgba; 3] = [
+    [0.85, 0.15, 0.15, 1.0],
+    [0.15, 0.65, 0.2, 1.0],
+    [0.15, 0.3, 0.9, 1.0],
+];
 
 fn v32(v: &Vector3<f64>) -> [f32; 3] {
     [v.x as f32, v.y as f32, v.z as f32]
@@ -169,8 +183,10 @@ fn segment_transform(a: &Vector3<f64>, b: &Vector3<f64>, radius: f64) -> Option<
     if len < 1e-9 {
         return None;
     }
-    let rot = Rotation3::rotation_between(&Vector3::z(), &d).unwrap_or_else(|| Rotation3::from_axis_angle(&Vector3::x_axis(), std::f64::consts::PI));
-    let mut m = rot.to_homogeneous() * Matrix4::new_nonuniform_scaling(&Vector3::new(radius, radius, len));
+    let rot = Rotation3::rotation_between(&Vector3::z(), &d)
+        .unwrap_or_else(|| Rotation3::from_axis_angle(&Vector3::x_axis(), std::f64::consts::PI));
+    let mut m =
+        rot.to_homogeneous() * Matrix4::new_nonuniform_scaling(&Vector3::new(radius, radius, len));
     let mid = (a + b) * 0.5;
     m[(0, 3)] = mid.x;
     m[(1, 3)] = mid.y;
@@ -178,18 +194,37 @@ fn segment_transform(a: &Vector3<f64>, b: &Vector3<f64>, radius: f64) -> Option<
     Some(m)
 }
 
-/// A characteristic length of the robot (m): the sum of its DH lengths and offsets, at least
-/// 0.2 m. Sizes joint bodies, triads and the grid.
+/// A characteristic length of the robot (m): the longest sum of DH lengths and offsets (and
+/// prismatic strokes) along a chain from the base to an end-effector, at least 0.2 m. Sizes
+/// joint bodies, triads and the grid.
 pub fn robot_scale(robot: &Robot) -> f64 {
-    let s: f64 = robot
-        .joints()
+    let len = |j: &crate::kinematics::Joint| match &j.geometry {
+        JointGeometry::Dh { row, .. } => {
+            row.a.abs()
+                + row.d.abs()
+                + if j.kind == JointKind::Prismatic {
+                    j.limits[1].abs()
+                } else {
+                    0.0
+                }
+        }
+        JointGeometry::Origin {
+            parent_from_joint, ..
+        } => parent_from_joint.translation.vector.norm(),
+    };
+    let longest = robot
+        .end_effectors()
         .iter()
-        .map(|j| match &j.geometry {
-            JointGeometry::Dh { row, .. } => row.a.abs() + row.d.abs() + if j.kind == JointKind::Prismatic { j.limits[1].abs() } else { 0.0 },
-            JointGeometry::Origin { parent_from_joint, .. } => parent_from_joint.translation.vector.norm(),
+        .map(|e| {
+            let chain: f64 = robot
+                .chain_to(e.parent)
+                .iter()
+                .map(|&j| len(&robot.joints()[j]) + robot.joints()[j].pre.translation.vector.norm())
+                .sum();
+            chain + e.tool.translation.vector.norm()
         })
-        .sum();
-    s.max(0.2)
+        .fold(0.0, f64::max);
+    longest.max(0.2)
 }
 
 /// For joint `j`: the frame whose z (DH) or `axis` (URDF) is the joint axis, in the world.
@@ -198,9 +233,15 @@ fn axis_frame(robot: &Robot, frames: &[Pose], j: usize) -> (Pose, Unit<Vector3<f
     let parent = joint.parent.map_or(robot.base, |p| frames[p]);
     let f = parent * joint.pre;
     match &joint.geometry {
-        JointGeometry::Dh { row, convention: Convention::Modified } => (f * rot_x(row.alpha) * trans_x(row.a), Vector3::z_axis()),
+        JointGeometry::Dh {
+            row,
+            convention: Convention::Modified,
+        } => (f * rot_x(row.alpha) * trans_x(row.a), Vector3::z_axis()),
         JointGeometry::Dh { .. } => (f, Vector3::z_axis()),
-        JointGeometry::Origin { parent_from_joint, axis } => (f * parent_from_joint, *axis),
+        JointGeometry::Origin {
+            parent_from_joint,
+            axis,
+        } => (f * parent_from_joint, *axis),
     }
 }
 
@@ -211,40 +252,80 @@ pub fn arm_scene(robot: &Robot, q: &[f64], style: &ArmStyle) -> Result<Scene, Ki
     let r_link = scale * style.link_radius as f64;
     let fade = |c: Rgba| [c[0], c[1], c[2], c[3] * style.alpha];
     let mut s = Scene::default();
-    let cylinder = |s: &mut Scene, a: &Vector3<f64>, b: &Vector3<f64>, r: f64, color: Rgba, shape: Shape| {
-        if let Some(m) = segment_transform(a, b, r) {
-            s.meshes.push(MeshInstance { shape, world_from_unit: col_major(&m), color: fade(color) });
-        }
-    };
+    let cylinder =
+        |s: &mut Scene, a: &Vector3<f64>, b: &Vector3<f64>, r: f64, color: Rgba, shape: Shape| {
+            if let Some(m) = segment_transform(a, b, r) {
+                s.meshes.push(MeshInstance {
+                    shape,
+                    world_from_unit: col_major(&m),
+                    color: fade(color),
+                });
+            }
+        };
     // Base pedestal.
     let base_o = robot.base.translation.vector;
     let base_z = robot.base.rotation * Vector3::z();
-    cylinder(&mut s, &(base_o - base_z * r_link * 2.0), &base_o, r_link * 3.5, style.tool, Shape::Cylinder);
+    cylinder(
+        &mut s,
+        &(base_o - base_z * r_link * 2.0),
+        &base_o,
+        r_link * 3.5,
+        style.tool,
+        Shape::Cylinder,
+    );
     for (j, joint) in robot.joints().iter().enumerate() {
-        let parent_o = joint.parent.map_or(base_o, |p| frames[p].translation.vector);
+        let parent_o = joint
+            .parent
+            .map_or(base_o, |p| frames[p].translation.vector);
         let (af, axis) = axis_frame(robot, &frames, j);
         let ao = af.translation.vector;
         let z = af.rotation * axis.into_inner();
         let out_o = frames[j].translation.vector;
         // Link polyline: parent origin -> axis origin -> (standard DH: along z by d) -> output origin.
         let mut pts = vec![parent_o, ao];
-        if let JointGeometry::Dh { row, convention: Convention::Standard } = joint.geometry {
-            let d = if joint.kind == JointKind::Prismatic { robot.joint_variable(j, q) + joint.offset } else { row.d };
+        if let JointGeometry::Dh {
+            row,
+            convention: Convention::Standard,
+        } = joint.geometry
+        {
+            let d = if joint.kind == JointKind::Prismatic {
+                robot.joint_variable(j, q) + joint.offset
+            } else {
+                row.d
+            };
             pts.push(ao + z * d);
         }
         pts.push(out_o);
         for w in pts.windows(2) {
             cylinder(&mut s, &w[0], &w[1], r_link, style.link, Shape::Cylinder);
         }
-        s.dots.push(Dot { p: v32(&out_o), color: fade(style.link), size_px: 0.0 });
+        s.dots.push(Dot {
+            p: v32(&out_o),
+            color: fade(style.link),
+            size_px: 0.0,
+        });
         // Joint body at the axis origin.
-        let h = scale * 0.08;
+        let h = scale * 0.07;
         match joint.kind {
-            JointKind::Revolute => cylinder(&mut s, &(ao - z * h * 0.5), &(ao + z * h * 0.5), r_link * 1.9, style.revolute, Shape::Cylinder),
+            JointKind::Revolute => cylinder(
+                &mut s,
+                &(ao - z * h * 0.5),
+                &(ao + z * h * 0.5),
+                r_link * 1.9,
+                style.revolute,
+                Shape::Cylinder,
+            ),
             JointKind::Prismatic => {
                 let d = robot.joint_variable(j, q) + joint.offset;
                 let start = ao + z * (d - h).min(0.0);
-                cylinder(&mut s, &start, &(ao + z * d.max(h * 0.5)), r_link * 1.6, style.prismatic, Shape::Cube);
+                cylinder(
+                    &mut s,
+                    &start,
+                    &(ao + z * d.max(h * 0.5)),
+                    r_link * 1.6,
+                    style.prismatic,
+                    Shape::Cube,
+                );
             }
             JointKind::Fixed => {}
         }
@@ -256,11 +337,32 @@ pub fn arm_scene(robot: &Robot, q: &[f64], style: &ArmStyle) -> Result<Scene, Ki
         let o = t.translation.vector;
         let (x, z) = (t.rotation * Vector3::x(), t.rotation * Vector3::z());
         let w = scale * 0.03;
-        cylinder(&mut s, &(o - z * w * 1.5), &o, r_link * 1.2, style.tool, Shape::Cylinder);
+        cylinder(
+            &mut s,
+            &(o - z * w * 1.5),
+            &o,
+            r_link * 1.2,
+            style.tool,
+            Shape::Cylinder,
+        );
         for side in [-1.0, 1.0] {
             let a = o + x * (side * w);
-            cylinder(&mut s, &(o - z * w * 0.3), &a, r_link * 0.6, style.tool, Shape::Cylinder);
-            cylinder(&mut s, &a, &(a + z * w * 1.2), r_link * 0.6, style.tool, Shape::Cylinder);
+            cylinder(
+                &mut s,
+                &(o - z * w * 0.3),
+                &a,
+                r_link * 0.6,
+                style.tool,
+                Shape::Cylinder,
+            );
+            cylinder(
+                &mut s,
+                &a,
+                &(a + z * w * 1.2),
+                r_link * 0.6,
+                style.tool,
+                Shape::Cylinder,
+            );
         }
     }
     if style.frames {
@@ -269,11 +371,24 @@ pub fn arm_scene(robot: &Robot, q: &[f64], style: &ArmStyle) -> Result<Scene, Ki
             let o = v32(&t.translation.vector);
             for (k, color) in AXIS_COLORS.iter().enumerate() {
                 let dir = t.rotation * Vector3::ith(k, 1.0);
-                let tip = [o[0] + dir.x as f32 * len, o[1] + dir.y as f32 * len, o[2] + dir.z as f32 * len];
-                s.lines.push(Line { a: o, b: tip, color: fade(*color), width_px: 2.5 });
+                let tip = [
+                    o[0] + dir.x as f32 * len,
+                    o[1] + dir.y as f32 * len,
+                    o[2] + dir.z as f32 * len,
+                ];
+                s.lines.push(Line {
+                    a: o,
+                    b: tip,
+                    color: fade(*color),
+                    width_px: 2.5,
+                });
                 if style.frame_labels && k != 1 {
                     let axis = ["x", "y", "z"][k];
-                    s.labels.push(Label { p: tip, text: format!("{axis}{name}"), color: fade(*color) });
+                    s.labels.push(Label {
+                        p: tip,
+                        text: format!("{axis}{name}"),
+                        color: fade(*color),
+                    });
                 }
             }
         };
@@ -291,18 +406,78 @@ pub fn arm_scene(robot: &Robot, q: &[f64], style: &ArmStyle) -> Result<Scene, Ki
 /// Grid lines in the plane z = 0 around the origin, spaced 0.1 m (or 0.5 m for big robots).
 pub fn ground_grid(scale: f32) -> Vec<Line> {
     let step = if scale > 3.0 { 0.5 } else { 0.1 };
-    let n = ((scale * 1.2 / step).ceil() as i32).clamp(2, 40);
+    let n = ((scale * 0.9 / step).ceil() as i32).clamp(2, 40);
     let ext = n as f32 * step;
     let mut out = Vec::new();
     for i in -n..=n {
         let c = i as f32 * step;
         let major = i % 5 == 0;
-        let color = if major { [0.55, 0.55, 0.58, 1.0] } else { [0.78, 0.78, 0.8, 1.0] };
+        let color = if major {
+            [0.55, 0.55, 0.58, 1.0]
+        } else {
+            [0.78, 0.78, 0.8, 1.0]
+        };
         let width_px = if major { 1.5 } else { 1.0 };
-        out.push(Line { a: [c, -ext, 0.0], b: [c, ext, 0.0], color, width_px });
-        out.push(Line { a: [-ext, c, 0.0], b: [ext, c, 0.0], color, width_px });
+        out.push(Line {
+            a: [c, -ext, 0.0],
+            b: [c, ext, 0.0],
+            color,
+            width_px,
+        });
+        out.push(Line {
+            a: [-ext, c, 0.0],
+            b: [ext, c, 0.0],
+            color,
+            width_px,
+        });
     }
     out
+}
+
+/// Points a camera should frame to show the arm at `q`: base, joint frame origins and tools,
+/// each padded by the size of the joint bodies along the three axes (world, m).
+pub fn arm_points(robot: &Robot, q: &[f64]) -> Result<Vec<Point3<f32>>, KinematicsError> {
+    let frames = robot.fk_frames(q)?;
+    let pad = robot_scale(robot) * 0.1;
+    let mut out = Vec::new();
+    let centres = std::iter::once(robot.base.translation.vector)
+        .chain(frames.iter().map(|f| f.translation.vector))
+        .chain(
+            robot
+                .end_effectors()
+                .iter()
+                .map(|e| (frames[e.parent] * e.tool).translation.vector),
+        );
+    for c in centres {
+        for k in 0..3 {
+            for s in [-1.0, 1.0] {
+                out.push(point32(&(c + Vector3::ith(k, s * pad))));
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// Centre and radius (m) of a sphere around the arm at `q` (base, every joint frame and tool,
+/// plus a margin for the joint bodies): what a camera should frame.
+pub fn arm_bounds(robot: &Robot, q: &[f64]) -> Result<(Point3<f32>, f32), KinematicsError> {
+    let frames = robot.fk_frames(q)?;
+    let mut pts: Vec<Vector3<f64>> = vec![robot.base.translation.vector];
+    pts.extend(frames.iter().map(|f| f.translation.vector));
+    pts.extend(
+        robot
+            .end_effectors()
+            .iter()
+            .map(|e| (frames[e.parent] * e.tool).translation.vector),
+    );
+    let (mut lo, mut hi) = (pts[0], pts[0]);
+    for p in &pts {
+        lo = lo.inf(p);
+        hi = hi.sup(p);
+    }
+    let c = (lo + hi) * 0.5;
+    let r = pts.iter().map(|p| (p - c).norm()).fold(0.0, f64::max) + robot_scale(robot) * 0.08;
+    Ok((point32(&c), r as f32))
 }
 
 /// The world point `p` (m, f64) as the renderer's f32.
@@ -322,7 +497,11 @@ mod tests {
             let q = r.config("ready").unwrap().to_vec();
             let s = arm_scene(&r, &q, &ArmStyle::default()).unwrap();
             assert!(s.meshes.len() >= r.joints().len(), "{}", b.name);
-            assert!(s.meshes.iter().all(|m| m.world_from_unit.iter().flatten().all(|v| v.is_finite())));
+            assert!(
+                s.meshes
+                    .iter()
+                    .all(|m| m.world_from_unit.iter().flatten().all(|v| v.is_finite()))
+            );
             assert!(s.labels.iter().any(|l| l.text == "z1"));
             let (_, radius) = s.bounds();
             assert!(radius > 0.0 && radius.is_finite());

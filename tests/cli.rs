@@ -205,13 +205,21 @@ fn info_runs_on_the_default_robot() {
 
 fn puma_pose_arg(q: &str) -> String {
     let v = json(&armlab(&["fk", "puma560", "--q", q, "--format", "json"]));
-    v[0]["T"].as_array().unwrap().iter().flat_map(|r| r.as_array().unwrap().iter().map(|x| x.to_string())).collect::<Vec<_>>().join(",")
+    v[0]["T"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .flat_map(|r| r.as_array().unwrap().iter().map(|x| x.to_string()))
+        .collect::<Vec<_>>()
+        .join(",")
 }
 
 #[test]
 fn ik_all_postures_of_a_puma_pose() {
     let pose = puma_pose_arg("0.3,0.5,-1.2,0.4,0.8,-0.6");
-    let v = json(&armlab(&["ik", "puma560", "--pose", &pose, "--all", "--format", "json"]));
+    let v = json(&armlab(&[
+        "ik", "puma560", "--pose", &pose, "--all", "--format", "json",
+    ]));
     let t = &v[0];
     assert_eq!(t["status"], "ok");
     assert!(t["solver"].as_str().unwrap().starts_with("closed form"));
@@ -219,25 +227,57 @@ fn ik_all_postures_of_a_puma_pose() {
     assert_eq!(sols.len(), 8);
     let robot = armlab::kinematics::models::built_in("puma560").unwrap();
     for s in sols {
-        let q: Vec<f64> = s["q"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+        let q: Vec<f64> = s["q"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect();
         assert!(s["position_error"].as_f64().unwrap() < 1e-12);
         assert_eq!(s["within_limits"], robot.within_limits(&q, 1e-9));
         assert!(!s["posture"].as_str().unwrap().is_empty());
     }
     // Default: the solution closest to --seed-q.
-    let v = json(&armlab(&["ik", "puma560", "--pose", &pose, "--seed-q", "0.3,0.5,-1.2,0.4,0.8,-0.6", "--format", "json"]));
+    let v = json(&armlab(&[
+        "ik",
+        "puma560",
+        "--pose",
+        &pose,
+        "--seed-q",
+        "0.3,0.5,-1.2,0.4,0.8,-0.6",
+        "--format",
+        "json",
+    ]));
     let q = &v[0]["solutions"][0]["q"];
     assert!((q[3].as_f64().unwrap() - 0.4).abs() < 1e-9);
     // --posture picks one by name, in any case and punctuation.
-    let name = sols[3]["posture"].as_str().unwrap().to_uppercase().replace(", ", "_");
-    let v = json(&armlab(&["ik", "puma560", "--pose", &pose, "--posture", &name, "--format", "json"]));
+    let name = sols[3]["posture"]
+        .as_str()
+        .unwrap()
+        .to_uppercase()
+        .replace(", ", "_");
+    let v = json(&armlab(&[
+        "ik",
+        "puma560",
+        "--pose",
+        &pose,
+        "--posture",
+        &name,
+        "--format",
+        "json",
+    ]));
     assert_eq!(v[0]["solutions"][0]["posture"], sols[3]["posture"]);
 }
 
 #[test]
 fn ik_batch_targets_planar_and_unreachable() {
     let input = "# px, py, phi\n0.7, 0.2, 0.3\n\n5, 0, 0   # too far\n";
-    let v = json(&armlab_stdin(&["ik", "planar3", "--input", "-", "--target", "planar", "--all", "--format", "json"], input));
+    let v = json(&armlab_stdin(
+        &[
+            "ik", "planar3", "--input", "-", "--target", "planar", "--all", "--format", "json",
+        ],
+        input,
+    ));
     let arr = v.as_array().unwrap();
     assert_eq!(arr.len(), 2);
     assert_eq!(arr[0]["status"], "ok");
@@ -245,23 +285,83 @@ fn ik_batch_targets_planar_and_unreachable() {
     assert_eq!(arr[1]["status"], "unreachable");
     assert!((arr[1]["distance"].as_f64().unwrap() - 4.0).abs() < 0.5);
     // A redundant arm with no closed form goes numerical.
-    let v = json(&armlab(&["ik", "panda", "--position", "0.4,0.2,0.5", "--format", "json"]));
+    let v = json(&armlab(&[
+        "ik",
+        "panda",
+        "--position",
+        "0.4,0.2,0.5",
+        "--format",
+        "json",
+    ]));
     assert_eq!(v[0]["status"], "ok");
     assert!(v[0]["solver"].as_str().unwrap().starts_with("numerical"));
     // The humanoid's left hand.
-    let v = json(&armlab(&["ik", "humanoid", "--ee", "left hand", "--position", "0.3,0.3,0.5", "--format", "json"]));
+    let v = json(&armlab(&[
+        "ik",
+        "humanoid",
+        "--ee",
+        "left hand",
+        "--position",
+        "0.3,0.3,0.5",
+        "--format",
+        "json",
+    ]));
     assert!(v[0]["solutions"].as_array().unwrap().len() == 1);
 }
 
 #[test]
 fn ik_bad_input_exits_2() {
-    bad(&armlab(&["ik", "puma560", "--pose", "1,0,0"]), "expected 16 numbers");
-    bad(&armlab(&["ik", "puma560", "--pose", "1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,2"]), "bottom row");
-    bad(&armlab(&["ik", "puma560", "--pose", "2,0,0,0,0,1,0,0,0,0,1,0,0,0,0,1"]), "orthonormal");
-    bad(&armlab(&["ik", "puma560", "--position", "nan,0,0"]), "not a finite number");
-    bad(&armlab_stdin(&["ik", "planar2", "--input", "-", "--target", "position"], "1,0,0\n1,0\n"), "-:2: expected 3 numbers");
-    bad(&armlab(&["ik", "planar2", "--position", "1,0,0.5"]), "--position");
-    bad(&armlab(&["ik", "humanoid", "--ee", "tail", "--position", "0,0,1"]), "no end-effector \"tail\"");
-    bad(&armlab(&["ik", "dlr", "--solver", "closed-form", "--position", "0.3,0,0.5"]), "no closed-form");
-    bad(&armlab(&["ik", "puma560", "--position", "0.3,0,0.5", "--seed-q", "1,2"]), "--seed-q: expected 6 joint values");
+    bad(
+        &armlab(&["ik", "puma560", "--pose", "1,0,0"]),
+        "expected 16 numbers",
+    );
+    bad(
+        &armlab(&["ik", "puma560", "--pose", "1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,2"]),
+        "bottom row",
+    );
+    bad(
+        &armlab(&["ik", "puma560", "--pose", "2,0,0,0,0,1,0,0,0,0,1,0,0,0,0,1"]),
+        "orthonormal",
+    );
+    bad(
+        &armlab(&["ik", "puma560", "--position", "nan,0,0"]),
+        "not a finite number",
+    );
+    bad(
+        &armlab_stdin(
+            &["ik", "planar2", "--input", "-", "--target", "position"],
+            "1,0,0\n1,0\n",
+        ),
+        "-:2: expected 3 numbers",
+    );
+    bad(
+        &armlab(&["ik", "planar2", "--position", "1,0,0.5"]),
+        "--position",
+    );
+    bad(
+        &armlab(&["ik", "humanoid", "--ee", "tail", "--position", "0,0,1"]),
+        "no end-effector \"tail\"",
+    );
+    bad(
+        &armlab(&[
+            "ik",
+            "dlr",
+            "--solver",
+            "closed-form",
+            "--position",
+            "0.3,0,0.5",
+        ]),
+        "no closed-form",
+    );
+    bad(
+        &armlab(&[
+            "ik",
+            "puma560",
+            "--position",
+            "0.3,0,0.5",
+            "--seed-q",
+            "1,2",
+        ]),
+        "--seed-q: expected 6 joint values",
+    );
 }

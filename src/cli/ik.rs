@@ -99,11 +99,18 @@ fn target_from(values: &[f64], kind: TargetKind, source: &str) -> Result<Target,
     Ok(match kind {
         TargetKind::Pose => {
             let m = Matrix4::from_row_slice(values);
-            let p = pose_from_matrix(&m).map_err(|e| CliError::BadTarget { source_name: source.into(), reason: e.to_string() })?;
+            let p = pose_from_matrix(&m).map_err(|e| CliError::BadTarget {
+                source_name: source.into(),
+                reason: e.to_string(),
+            })?;
             Target::Pose(p)
         }
         TargetKind::Position => Target::Position(Vector3::new(values[0], values[1], values[2])),
-        TargetKind::Planar => Target::Planar { px: values[0], py: values[1], phi: values[2] },
+        TargetKind::Planar => Target::Planar {
+            px: values[0],
+            py: values[1],
+            phi: values[2],
+        },
     })
 }
 
@@ -112,11 +119,16 @@ fn count(kind: TargetKind) -> usize {
 }
 
 fn targets(args: &IkArgs) -> Result<Vec<(String, Target)>, CliError> {
-    let one = |text: &str, kind: TargetKind, flag: &str| -> Result<Vec<(String, Target)>, CliError> {
-        let what = if kind == TargetKind::Pose { "numbers (a row-major 4x4 pose)" } else { "numbers" };
-        let v = parse_row(text, flag, count(kind), what)?;
-        Ok(vec![(flag.to_string(), target_from(&v, kind, flag)?)])
-    };
+    let one =
+        |text: &str, kind: TargetKind, flag: &str| -> Result<Vec<(String, Target)>, CliError> {
+            let what = if kind == TargetKind::Pose {
+                "numbers (a row-major 4x4 pose)"
+            } else {
+                "numbers"
+            };
+            let v = parse_row(text, flag, count(kind), what)?;
+            Ok(vec![(flag.to_string(), target_from(&v, kind, flag)?)])
+        };
     if let Some(t) = &args.pose {
         return one(t, TargetKind::Pose, "--pose");
     }
@@ -127,9 +139,15 @@ fn targets(args: &IkArgs) -> Result<Vec<(String, Target)>, CliError> {
         return one(t, TargetKind::Planar, "--planar");
     }
     let (Some(path), Some(kind)) = (&args.input, args.target) else {
-        return Err(CliError::Usage("give a target with --pose, --position, --planar or --input with --target"));
+        return Err(CliError::Usage(
+            "give a target with --pose, --position, --planar or --input with --target",
+        ));
     };
-    let what = if kind == TargetKind::Pose { "numbers (a row-major 4x4 pose)" } else { "numbers" };
+    let what = if kind == TargetKind::Pose {
+        "numbers (a row-major 4x4 pose)"
+    } else {
+        "numbers"
+    };
     let rows = read_rows(path, count(kind), what)?;
     // Row numbers for messages: re-derive the line of each data row.
     let text_lines: Vec<usize> = line_numbers(path)?;
@@ -148,7 +166,10 @@ fn line_numbers(path: &std::path::Path) -> Result<Vec<usize>, CliError> {
     if path == std::path::Path::new("-") {
         return Ok((1..).take(100_000_000).collect());
     }
-    let text = std::fs::read_to_string(path).map_err(|source| InputError::Read { path: path.to_path_buf(), source })?;
+    let text = std::fs::read_to_string(path).map_err(|source| InputError::Read {
+        path: path.to_path_buf(),
+        source,
+    })?;
     Ok(text
         .lines()
         .enumerate()
@@ -159,7 +180,14 @@ fn line_numbers(path: &std::path::Path) -> Result<Vec<usize>, CliError> {
 
 fn end_effector(robot: &Robot, spec: Option<&str>) -> Result<usize, CliError> {
     let Some(s) = spec else { return Ok(0) };
-    let names = || robot.end_effectors().iter().map(|e| e.name.clone()).collect::<Vec<_>>().join(", ");
+    let names = || {
+        robot
+            .end_effectors()
+            .iter()
+            .map(|e| e.name.clone())
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
     if let Ok(i) = s.parse::<usize>() {
         if i < robot.end_effectors().len() {
             return Ok(i);
@@ -167,7 +195,10 @@ fn end_effector(robot: &Robot, spec: Option<&str>) -> Result<usize, CliError> {
     } else if let Some(i) = robot.end_effectors().iter().position(|e| e.name == s) {
         return Ok(i);
     }
-    Err(CliError::UnknownEndEffector { name: s.into(), available: names() })
+    Err(CliError::UnknownEndEffector {
+        name: s.into(),
+        available: names(),
+    })
 }
 
 /// Runs `ik`. All targets are parsed before anything is solved or printed.
@@ -190,12 +221,20 @@ pub(super) fn run(args: &IkArgs, out: &mut dyn Write) -> Result<(), CliError> {
         MethodArg::Pinv => Method::PseudoInverse,
         MethodArg::Transpose => Method::Transpose,
     };
-    let opts = NumericalOptions { method, ..Default::default() };
+    let opts = NumericalOptions {
+        method,
+        ..Default::default()
+    };
     let reference = seed.clone().unwrap_or_else(|| vec![0.0; robot.dof()]);
     let mut answers = Vec::with_capacity(targets.len());
     for (src, t) in &targets {
-        let (result, used) = solver::solve(&robot, ee, t, seed.as_deref(), choice, &opts)
-            .map_err(|e| CliError::Ik { source_name: src.clone(), source: e })?;
+        let (result, used) =
+            solver::solve(&robot, ee, t, seed.as_deref(), choice, &opts).map_err(|e| {
+                CliError::Ik {
+                    source_name: src.clone(),
+                    source: e,
+                }
+            })?;
         let (picked, note) = pick(&robot, &result, args, &reference);
         answers.push((t, result, used, picked, note));
     }
@@ -211,7 +250,11 @@ pub(super) fn run(args: &IkArgs, out: &mut dyn Write) -> Result<(), CliError> {
                         "target": target_json(t),
                     });
                     if let IkStatus::Unreachable { distance } = result.status {
-                        o["distance"] = if distance.is_finite() { json!(distance) } else { Value::Null };
+                        o["distance"] = if distance.is_finite() {
+                            json!(distance)
+                        } else {
+                            Value::Null
+                        };
                     }
                     o["solution_count"] = json!(result.solutions.len());
                     if let Some(n) = note {
@@ -229,10 +272,17 @@ pub(super) fn run(args: &IkArgs, out: &mut dyn Write) -> Result<(), CliError> {
                     writeln!(out)?;
                 }
                 let status = match result.status {
-                    IkStatus::Unreachable { distance } => format!("unreachable: outside the workspace by {distance:.6} (m, or rad for an orientation)"),
+                    IkStatus::Unreachable { distance } => format!(
+                        "unreachable: outside the workspace by {distance:.6} (m, or rad for an orientation)"
+                    ),
                     s => status_name(&s).to_string(),
                 };
-                writeln!(out, "{status}; {}; {} solution(s)", used, result.solutions.len())?;
+                writeln!(
+                    out,
+                    "{status}; {}; {} solution(s)",
+                    used,
+                    result.solutions.len()
+                )?;
                 if let Some(n) = note {
                     writeln!(out, "  {n}")?;
                 }
@@ -245,7 +295,12 @@ pub(super) fn run(args: &IkArgs, out: &mut dyn Write) -> Result<(), CliError> {
     Ok(())
 }
 
-fn pick(robot: &Robot, result: &IkResult, args: &IkArgs, reference: &[f64]) -> (Vec<IkSolution>, Option<String>) {
+fn pick(
+    robot: &Robot,
+    result: &IkResult,
+    args: &IkArgs,
+    reference: &[f64],
+) -> (Vec<IkSolution>, Option<String>) {
     if args.all {
         return (result.solutions.clone(), None);
     }
@@ -254,12 +309,28 @@ fn pick(robot: &Robot, result: &IkResult, args: &IkArgs, reference: &[f64]) -> (
             Some(s) => (vec![s.clone()], None),
             None if result.solutions.is_empty() => (Vec::new(), None),
             None => {
-                let have: Vec<&str> = result.solutions.iter().map(|s| s.posture.as_str()).collect();
-                (Vec::new(), Some(format!("no solution with posture {name:?}; postures here: {}", have.join("; "))))
+                let have: Vec<&str> = result
+                    .solutions
+                    .iter()
+                    .map(|s| s.posture.as_str())
+                    .collect();
+                (
+                    Vec::new(),
+                    Some(format!(
+                        "no solution with posture {name:?}; postures here: {}",
+                        have.join("; ")
+                    )),
+                )
             }
         };
     }
-    (solver::closest(robot, &result.solutions, reference).into_iter().cloned().collect(), None)
+    (
+        solver::closest(robot, &result.solutions, reference)
+            .into_iter()
+            .cloned()
+            .collect(),
+        None,
+    )
 }
 
 fn status_name(s: &IkStatus) -> &'static str {
@@ -290,20 +361,32 @@ fn target_json(t: &Target) -> Value {
 }
 
 fn write_solution(robot: &Robot, s: &IkSolution, out: &mut dyn Write) -> std::io::Result<()> {
-    let deg: Vec<f64> = s
-        .q
-        .iter()
-        .enumerate()
-        .map(|(k, &v)| if robot.dof_joint(k).kind == JointKind::Revolute { v.to_degrees() } else { v })
-        .collect();
-    let limits = if s.within_limits { "within limits" } else { "OUTSIDE the joint limits" };
+    let deg: Vec<f64> =
+        s.q.iter()
+            .enumerate()
+            .map(|(k, &v)| {
+                if robot.dof_joint(k).kind == JointKind::Revolute {
+                    v.to_degrees()
+                } else {
+                    v
+                }
+            })
+            .collect();
+    let limits = if s.within_limits {
+        "within limits"
+    } else {
+        "OUTSIDE the joint limits"
+    };
     writeln!(out, "  {}: {limits}", s.posture)?;
     writeln!(out, "    q = {} (rad, m)", fmt_vec(&s.q))?;
     writeln!(out, "    q = {} (deg, m)", fmt_vec(&deg))?;
-    writeln!(out, "    errors: position {:.2e} m, orientation {:.2e} rad", s.position_error, s.orientation_error)?;
+    writeln!(
+        out,
+        "    errors: position {:.2e} m, orientation {:.2e} rad",
+        s.position_error, s.orientation_error
+    )?;
     for f in &s.free_joints {
         writeln!(out, "    joint {} is free: {}", f.index + 1, f.reason)?;
     }
     Ok(())
 }
-

@@ -1,6 +1,7 @@
 //! The scriptable command line: subcommands, their arguments, and dispatch. `main.rs` only
 //! parses and reports errors; everything here returns typed errors.
 
+mod figures;
 mod fk;
 mod ik;
 mod info;
@@ -108,6 +109,10 @@ pub enum Command {
     /// Inverse kinematics: every closed-form solution with its posture (Sect. 2.12), or the
     /// numerical solver for arms without one.
     Ik(ik::IkArgs),
+    /// Render a snapshot of the arm to PNG, headlessly, with the app's renderer.
+    Render(figures::RenderArgs),
+    /// Compute the workspace (Sect. 2.10.1) and draw it to PNG, headlessly.
+    Workspace(figures::WorkspaceArgs),
 }
 
 /// Everything a subcommand can report (all are bad input: the binary exits with code 2).
@@ -159,6 +164,12 @@ pub enum CliError {
         /// Names it has.
         available: String,
     },
+    /// Making a figure failed (no GPU adapter, device error).
+    #[error(transparent)]
+    Figure(#[from] crate::figure::FigureError),
+    /// Writing a PNG failed.
+    #[error(transparent)]
+    Headless(#[from] crate::headless::HeadlessError),
     /// Writing the output failed.
     #[error("cannot write output: {0}")]
     Output(#[from] std::io::Error),
@@ -181,6 +192,8 @@ pub fn run(cli: Cli, out: &mut dyn std::io::Write) -> Result<(), CliError> {
             euler,
             format,
         }) => fk::run(&model, &joints, frames, euler.map(Into::into), format, out),
+        Some(Command::Workspace(args)) => figures::workspace(&args, out),
+        Some(Command::Render(args)) => figures::render(&args, out),
         Some(Command::Ik(args)) => ik::run(&args, out),
     }
 }

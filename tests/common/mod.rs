@@ -1,6 +1,8 @@
 //! Helpers shared by the integration tests: reading the reference data.
 #![allow(dead_code)]
 
+pub mod golden;
+
 use armlab::kinematics::Pose;
 use nalgebra::Matrix4;
 use serde_json::Value;

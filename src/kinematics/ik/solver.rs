@@ -54,28 +54,41 @@ pub fn solve(
     opts: &NumericalOptions,
 ) -> Result<(IkResult, SolverUsed), IkError> {
     super::check_target(target)?;
-    let cf = if ee == 0 && robot.end_effectors().len() == 1 { ClosedForm::detect(robot) } else { None };
+    let cf = if ee == 0 && robot.end_effectors().len() == 1 {
+        ClosedForm::detect(robot)
+    } else {
+        None
+    };
     match (choice, cf) {
-        (SolverChoice::ClosedForm, None) => {
-            Err(IkError::NoClosedForm("no closed-form family matches this arm's structure".into()))
-        }
+        (SolverChoice::ClosedForm, None) => Err(IkError::NoClosedForm(
+            "no closed-form family matches this arm's structure".into(),
+        )),
         (SolverChoice::Auto | SolverChoice::ClosedForm, Some(cf)) => {
             let mut result = cf.solve(robot, target)?;
             polish(robot, target, &mut result, opts)?;
             Ok((result, SolverUsed::ClosedForm(cf.name())))
         }
         (_, _) => {
-            let default_seed = robot.config("ready").map_or_else(|| vec![0.0; robot.dof()], <[f64]>::to_vec);
+            let default_seed = robot
+                .config("ready")
+                .map_or_else(|| vec![0.0; robot.dof()], <[f64]>::to_vec);
             let seed = seed_q.unwrap_or(&default_seed);
             let rep = numerical::solve(robot, ee, target, seed, opts)?;
             let within_limits = robot.within_limits(&rep.q, 1e-12);
             let status = if rep.converged {
                 IkStatus::Ok
             } else {
-                IkStatus::Unreachable { distance: rep.position_error.max(rep.orientation_error) }
+                IkStatus::Unreachable {
+                    distance: rep.position_error.max(rep.orientation_error),
+                }
             };
-            let posture = if rep.converged { "numerical" } else { "numerical (not converged)" };
-            let (position_error, orientation_error) = numerical::pose_errors(robot, ee, &rep.q, target)?;
+            let posture = if rep.converged {
+                "numerical"
+            } else {
+                "numerical (not converged)"
+            };
+            let (position_error, orientation_error) =
+                numerical::pose_errors(robot, ee, &rep.q, target)?;
             let solution = IkSolution {
                 q: rep.q,
                 posture: posture.into(),
@@ -90,7 +103,13 @@ pub fn solve(
                 numerical::Method::PseudoInverse => "pseudo-inverse",
                 numerical::Method::Transpose => "Jacobian transpose",
             };
-            Ok((IkResult { status, solutions: vec![solution] }, SolverUsed::Numerical(name)))
+            Ok((
+                IkResult {
+                    status,
+                    solutions: vec![solution],
+                },
+                SolverUsed::Numerical(name),
+            ))
         }
     }
 }
@@ -101,19 +120,33 @@ pub fn solve(
 ///
 /// Only full-pose targets of arms with at least six joints are polished: a positioning arm
 /// handed a pose reports its orientation mismatch honestly, and LM would trade position for it.
-fn polish(robot: &Robot, target: &Target, result: &mut IkResult, opts: &NumericalOptions) -> Result<(), IkError> {
+fn polish(
+    robot: &Robot,
+    target: &Target,
+    result: &mut IkResult,
+    opts: &NumericalOptions,
+) -> Result<(), IkError> {
     if !matches!(target, Target::Pose(_)) || robot.dof() < 6 {
         return Ok(());
     }
-    let local = NumericalOptions { restarts: 0, max_iterations: 20, enforce_limits: false, ..*opts };
+    let local = NumericalOptions {
+        restarts: 0,
+        max_iterations: 20,
+        enforce_limits: false,
+        ..*opts
+    };
     for s in &mut result.solutions {
-        if s.position_error.max(s.orientation_error) <= POLISH_THRESHOLD || !s.free_joints.is_empty() {
+        if s.position_error.max(s.orientation_error) <= POLISH_THRESHOLD
+            || !s.free_joints.is_empty()
+        {
             continue;
         }
         let rep = numerical::solve(robot, 0, target, &s.q, &local)?;
         let (pe, oe) = numerical::pose_errors(robot, 0, &rep.q, target)?;
         let within = robot.within_limits(&rep.q, 1e-12);
-        let better = pe <= s.position_error && oe <= s.orientation_error && pe.max(oe) < s.position_error.max(s.orientation_error);
+        let better = pe <= s.position_error
+            && oe <= s.orientation_error
+            && pe.max(oe) < s.position_error.max(s.orientation_error);
         if better && within == s.within_limits {
             s.q = rep.q;
             s.position_error = pe;
@@ -129,7 +162,11 @@ pub fn joint_distance(robot: &Robot, a: &[f64], b: &[f64]) -> f64 {
         .zip(b)
         .enumerate()
         .map(|(k, (x, y))| {
-            let d = if robot.dof_joint(k).kind == JointKind::Revolute { wrap_angle(x - y) } else { x - y };
+            let d = if robot.dof_joint(k).kind == JointKind::Revolute {
+                wrap_angle(x - y)
+            } else {
+                x - y
+            };
             d * d
         })
         .sum::<f64>()
@@ -137,7 +174,11 @@ pub fn joint_distance(robot: &Robot, a: &[f64], b: &[f64]) -> f64 {
 }
 
 /// The solution closest to `q` (within-limits solutions first).
-pub fn closest<'a>(robot: &Robot, solutions: &'a [IkSolution], q: &[f64]) -> Option<&'a IkSolution> {
+pub fn closest<'a>(
+    robot: &Robot,
+    solutions: &'a [IkSolution],
+    q: &[f64],
+) -> Option<&'a IkSolution> {
     solutions.iter().min_by(|a, b| {
         (!a.within_limits, joint_distance(robot, &a.q, q))
             .partial_cmp(&(!b.within_limits, joint_distance(robot, &b.q, q)))

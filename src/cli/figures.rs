@@ -1,0 +1,328 @@
+//! `armlab render` (a snapshot of the arm) and `armlab workspace` (workspace figures): PNGs made
+//! headlessly with the app's renderer.
+
+use super::fk::fmt_vec;
+use super::{CliError, JointInput, joint_vectors};
+use crate::camera::{Camera, Preset, Projection};
+use crate::figure::Theme;
+use crate::figure::figures::{Figures, Scene3d};
+use crate::headless::write_png;
+use crate::kinematics::JointKind;
+use crate::scene::{ArmStyle, arm_scene};
+use clap::ValueEnum;
+use std::path::PathBuf;
+
+/// A figure size `WxH` in pixels.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Size(pub [u32; 2]);
+
+impl std::str::FromStr for Size {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        let (w, h) = s
+            .split_once(['x', 'X'])
+            .ok_or_else(|| format!("{s:?} is not WIDTHxHEIGHT, e.g. 1600x1200"))?;
+        let parse = |t: &str| {
+            t.trim()
+                .parse::<u32>()
+                .ok()
+                .filter(|v| (16..=8192).contains(v))
+        };
+        match (parse(w), parse(h)) {
+            (Some(w), Some(h)) => Ok(Size([w, h])),
+            _ => Err(format!(
+                "{s:?}: width and height must be whole numbers from 16 to 8192"
+            )),
+        }
+    }
+}
+
+/// Light or dark figure.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
+pub enum ThemeArg {
+    /// Dark on white.
+    #[default]
+    Light,
+    /// Light on dark.
+    Dark,
+}
+
+impl From<ThemeArg> for Theme {
+    fn from(t: ThemeArg) -> Self {
+        match t {
+            ThemeArg::Light => Theme::Light,
+            ThemeArg::Dark => Theme::Dark,
+        }
+    }
+}
+
+/// Viewpoint of a 3D snapshot.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
+pub enum ViewpointArg {
+    /// Isometric-like.
+    #[default]
+    Iso,
+    /// From above.
+    Top,
+    /// From -y (the x-z plane).
+    Front,
+    /// From +x (the y-z plane).
+    Side,
+}
+
+impl From<ViewpointArg> for Preset {
+    fn from(v: ViewpointArg) -> Self {
+        match v {
+            ViewpointArg::Iso => Preset::Iso,
+            ViewpointArg::Top => Preset::Top,
+            ViewpointArg::Front => Preset::Front,
+            ViewpointArg::Side => Preset::Side,
+        }
+    }
+}
+
+/// Arguments of `armlab render`.
+#[derive(Debug, clap::Args)]
+pub struct RenderArgs {
+    /// Built-in name or path to a .toml / .urdf model.
+    pub model: String,
+    /// Joint vector (default: the "ready" configuration).
+    #[command(flatten)]
+    pub joints: JointInput,
+    /// Output PNG file.
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Image size in pixels, WIDTHxHEIGHT.
+    #[arg(long, default_value = "1200x900")]
+    pub size: Size,
+    /// Draw the DH frames with labels.
+    #[arg(long)]
+    pub frames: bool,
+    /// Viewpoint.
+    #[arg(long, value_enum, default_value_t)]
+    pub view: ViewpointArg,
+    /// Orthographic instead of perspective projection.
+    #[arg(long)]
+    pub orthographic: bool,
+    /// Colours.
+    #[arg(long, value_enum, default_value_t)]
+    pub theme: ThemeArg,
+}
+
+/// A camera at `preset` framing `points` (leaving room for the title at the top).
+pub(crate) fn framing_camera(
+    preset: Preset,
+    points: &[nalgebra::Point3<f32>],
+    size: [u32; 2],
+    orthographic: bool,
+) -> Camera {
+    let mut camera = Camera::default();
+    if orthographic {
+        camera.projection = Projection::Orthographic { height: 1.0 };
+    }
+    camera.set_preset(preset);
+    camera.fit_points(points, size[0], size[1], 0.75);
+    // Shift the picture down a little, below the title.
+    camera.pan(0.0, 0.04);
+    camera
+}
+
+/// Runs `render`.
+pub(super) fn render(args: &RenderArgs, out: &mut dyn std::io::Write) -> Result<(), CliError> {
+    let robot = crate::model_file::load_model(&args.model)?;
+    let fallback = if robot.config("ready").is_some() {
+        "ready"
+    } else {
+        "zero"
+    };
+    let q = joint_vectors(&robot, &args.model, &args.joints, Some(fallback))?.remove(0);
+    let style = ArmStyle {
+        frames: args.frames,
+        frame_labels: args.frames,
+        ..ArmStyle::default()
+    };
+    let scene = arm_scene(&robot, &q, &style)?;
+    let camera = framing_camera(
+        args.view.into(),
+        &crate::scene::arm_points(&robot, &q)?,
+        args.size.0,
+        args.orthographic,
+    );
+    let shown: Vec<f64> = q
+        .iter()
+        .enumerate()
+        .map(|(k, &v)| {
+            if robot.dof_joint(k).kind == JointKind::Revolute {
+                v.to_degrees()
+            } else {
+                v
+            }
+        })
+        .collect();
+    let fig = Scene3d {
+        title: robot.name.clone(),
+        subtitle: format!(
+            "q = {} (deg; m for prismatic joints)",
+            fmt_vec(&shown).replace(".000000", "")
+        ),
+        scene: &scene,
+        camera,
+        legend: Vec::new(),
+    };
+    let mut figures = Figures::new()?;
+    let img = figures.scene(args.size.0, args.theme.into(), &fig)?;
+    write_png(&img, &args.out)?;
+    writeln!(
+        out,
+        "wrote {} ({}x{})",
+        args.out.display(),
+        img.width(),
+        img.height()
+    )?;
+    Ok(())
+}
+
+/// Workspace view.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum WsViewArg {
+    /// The arm plane (planar arms); top view otherwise.
+    Plane,
+    /// World x-y, from above.
+    Top,
+    /// World x-z, from the side.
+    Side,
+    /// 3D point cloud with the arm.
+    #[value(name = "3d")]
+    ThreeD,
+    /// The joint-space rectangle of Fig. 2.29 (two-link arms).
+    JointSpace,
+}
+
+/// Workspace colouring.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
+pub enum ColorByArg {
+    /// Regions reached by each posture, and by several.
+    #[default]
+    Posture,
+    /// Manipulability.
+    Manipulability,
+    /// One colour.
+    None,
+}
+
+/// Arguments of `armlab workspace`.
+#[derive(Debug, clap::Args)]
+pub struct WorkspaceArgs {
+    /// Built-in name or path to a .toml / .urdf model.
+    pub model: String,
+    /// Output PNG file.
+    #[arg(long)]
+    pub out: PathBuf,
+    /// View (default: plane for planar arms, top otherwise).
+    #[arg(long, value_enum)]
+    pub view: Option<WsViewArg>,
+    /// Colouring.
+    #[arg(long, value_enum, default_value_t)]
+    pub color_by: ColorByArg,
+    /// Joint-space samples.
+    #[arg(long, default_value_t = 200_000)]
+    pub samples: usize,
+    /// Sampler seed: the same inputs give the same PNG bytes.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Image size in pixels, WIDTHxHEIGHT.
+    #[arg(long, default_value = "1200x900")]
+    pub size: Size,
+    /// Colours.
+    #[arg(long, value_enum, default_value_t)]
+    pub theme: ThemeArg,
+    /// Print the statistics as JSON (area, bounds, reach, ...) instead of a summary line.
+    #[arg(long, value_enum, default_value_t)]
+    pub format: super::Format,
+}
+
+/// Runs `workspace`.
+pub(super) fn workspace(
+    args: &WorkspaceArgs,
+    out: &mut dyn std::io::Write,
+) -> Result<(), CliError> {
+    use crate::figure::workspace::{ColorBy, WsFigureOptions, WsView, workspace_figure};
+    let robot = crate::model_file::load_model(&args.model)?;
+    if args.samples == 0 || args.samples > 100_000_000 {
+        return Err(CliError::Usage("--samples must be between 1 and 100000000"));
+    }
+    let planar = crate::workspace::planar_frame(&robot, 0).is_some();
+    let view = match args.view {
+        Some(WsViewArg::Plane) | None if planar => WsView::Plane,
+        Some(WsViewArg::Plane) | Some(WsViewArg::Top) | None => WsView::Top,
+        Some(WsViewArg::Side) => WsView::Side,
+        Some(WsViewArg::ThreeD) => WsView::ThreeD,
+        Some(WsViewArg::JointSpace) => WsView::JointSpace,
+    };
+    let opts = WsFigureOptions {
+        view,
+        color_by: match args.color_by {
+            ColorByArg::Posture => ColorBy::Posture,
+            ColorByArg::Manipulability => ColorBy::Manipulability,
+            ColorByArg::None => ColorBy::None,
+        },
+        samples: args.samples,
+        seed: args.seed,
+        size: args.size.0,
+        theme: args.theme.into(),
+        end_effector: 0,
+    };
+    let bar = crate::headless::Progress::new(1000, "workspace");
+    let mut figures = Figures::new()?;
+    let title = robot.name.to_lowercase();
+    let fig = workspace_figure(&mut figures, &robot, &title, &opts, &|f| {
+        bar.set((f * 1000.0) as u64)
+    })?;
+    bar.finish();
+    write_png(&fig.image, &args.out)?;
+    let s = &fig.stats;
+    match args.format {
+        super::Format::Json => {
+            let mut v = serde_json::json!({
+                "model": robot.name,
+                "out": args.out.display().to_string(),
+                "samples": args.samples,
+                "seed": args.seed,
+                "bbox": { "min": s.bounds.min, "max": s.bounds.max },
+                "max_reach": s.max_reach,
+                "min_reach": s.min_reach,
+                "reach_exact": s.reach_exact,
+                "resolution": s.resolution,
+                "cell_size": s.cell_size,
+                "dexterous": s.dexterous_measure,
+                "classes": s.classes.iter().map(|c| serde_json::json!({"name": c.name, "with": c.with, "only": c.only})).collect::<Vec<_>>(),
+            });
+            if let Some(a) = s.area {
+                v["area"] = serde_json::json!(a);
+            }
+            if let Some(a) = s.area_both_postures {
+                v["area_both_postures"] = serde_json::json!(a);
+            }
+            if let Some(vol) = s.volume {
+                v["volume"] = serde_json::json!(vol);
+            }
+            serde_json::to_writer_pretty(&mut *out, &v).map_err(std::io::Error::from)?;
+            writeln!(out)?;
+        }
+        super::Format::Text => {
+            let measure = match (s.area, s.volume) {
+                (Some(a), _) => format!("area {a:.6} m^2"),
+                (_, Some(v)) => format!("volume {v:.6} m^3"),
+                _ => String::new(),
+            };
+            writeln!(
+                out,
+                "wrote {}: {measure}, reach {:.4}-{:.4} m",
+                args.out.display(),
+                s.min_reach,
+                s.max_reach
+            )?;
+        }
+    }
+    Ok(())
+}

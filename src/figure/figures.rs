@@ -1,0 +1,169 @@
+//! [`Figures`]: one GPU device, the scene renderer and the egui offscreen renderer, making PNG
+//! figures of plots and of 3D scenes with their titles, legends and labels.
+
+use super::offscreen::Offscreen;
+use super::plot2d::{self, Plot2d};
+use super::{FigureError, Theme, apply_style, pixels_per_point};
+use crate::camera::Camera;
+use crate::render::{Gpu, RenderSettings, RenderTarget, Renderer, ViewUniforms};
+use crate::scene::Scene;
+use egui::Color32;
+
+/// Multisampling of 3D figures (4x: smooth edges; lavapipe renders it deterministically).
+pub const FIGURE_MSAA: u32 = 4;
+
+/// A 3D figure: a scene seen by a camera, with a title and legend drawn over it.
+#[derive(Debug, Clone)]
+pub struct Scene3d<'a> {
+    /// Title at the top.
+    pub title: String,
+    /// One line under the title.
+    pub subtitle: String,
+    /// What to draw.
+    pub scene: &'a Scene,
+    /// From where.
+    pub camera: Camera,
+    /// Legend swatches (name, colour).
+    pub legend: Vec<(String, Color32)>,
+}
+
+/// Makes figures headlessly with the app's renderer.
+pub struct Figures {
+    /// The device.
+    pub gpu: Gpu,
+    offscreen: Offscreen,
+    renderer: Renderer,
+}
+
+impl Figures {
+    /// Opens the GPU (software adapter on machines without one) and builds both renderers.
+    pub fn new() -> Result<Self, FigureError> {
+        let gpu = Gpu::new_headless()?;
+        let offscreen = Offscreen::new(&gpu.device);
+        let renderer = Renderer::new(&gpu, FIGURE_MSAA)?;
+        Ok(Self {
+            gpu,
+            offscreen,
+            renderer,
+        })
+    }
+
+    /// A 2D plot figure of `size` pixels; `raster` (an image covering `plot.bounds`) is shown
+    /// under the curves.
+    pub fn plot(
+        &mut self,
+        size: [u32; 2],
+        theme: Theme,
+        plot: &Plot2d,
+        raster: Option<egui::ColorImage>,
+    ) -> Result<image::RgbaImage, FigureError> {
+        apply_style(&self.offscreen.ctx, theme);
+        let tex = raster.map(|img| {
+            self.offscreen
+                .ctx
+                .load_texture("raster", img, egui::TextureOptions::NEAREST)
+        });
+        let id = tex.as_ref().map(egui::TextureHandle::id);
+        let ppp = pixels_per_point(size[0]);
+        self.offscreen
+            .render(&self.gpu.device, &self.gpu.queue, size, ppp, |ui| {
+                egui::CentralPanel::default().show(ui, |ui| plot2d::show(ui, plot, id));
+            })
+    }
+
+    /// A 3D figure: the scene rendered by the app's renderer at full size, with title, legend
+    /// and the scene's labels drawn over it by egui.
+    pub fn scene(
+        &mut self,
+        size: [u32; 2],
+        theme: Theme,
+        fig: &Scene3d<'_>,
+    ) -> Result<image::RgbaImage, FigureError> {
+        apply_style(&self.offscreen.ctx, theme);
+        let [w, h] = size;
+        let target = RenderTarget::new(&self.gpu, w, h, FIGURE_MSAA)?;
+        let mut settings = RenderSettings::default();
+        if theme == Theme::Dark {
+            settings.clear = [0.02, 0.022, 0.026, 1.0];
+        } else {
+            settings.clear = [1.0, 1.0, 1.0, 1.0];
+        }
+        let view = ViewUniforms::from_camera(&fig.camera, w, h);
+        self.renderer
+            .render(&self.gpu, &target, fig.scene, &view, &settings)?;
+        let id = self
+            .offscreen
+            .register_texture(&self.gpu.device, &target.egui_view());
+        let ppp = pixels_per_point(w);
+        let labels: Vec<(egui::Pos2, &str, Color32)> = fig
+            .scene
+            .labels
+            .iter()
+            .filter_map(|l| {
+                let p = fig.camera.project(&l.p.into(), w, h)?;
+                let c = l.color.map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8);
+                Some((
+                    egui::pos2(p[0] / ppp, p[1] / ppp),
+                    l.text.as_str(),
+                    Color32::from_rgb(c[0], c[1], c[2]),
+                ))
+            })
+            .collect();
+        let result = self
+            .offscreen
+            .render(&self.gpu.device, &self.gpu.queue, size, ppp, |ui| {
+                let rect = ui.max_rect();
+                let painter = ui.painter();
+                painter.image(
+                    id,
+                    rect,
+                    egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0)),
+                    Color32::WHITE,
+                );
+                for (p, text, color) in &labels {
+                    painter.text(
+                        *p + egui::vec2(3.0, -3.0),
+                        egui::Align2::LEFT_BOTTOM,
+                        *text,
+                        egui::FontId::proportional(13.0),
+                        *color,
+                    );
+                }
+                let text = ui.visuals().text_color();
+                painter.text(
+                    rect.center_top() + egui::vec2(0.0, 8.0),
+                    egui::Align2::CENTER_TOP,
+                    &fig.title,
+                    egui::FontId::proportional(20.0),
+                    text,
+                );
+                if !fig.subtitle.is_empty() {
+                    painter.text(
+                        rect.center_top() + egui::vec2(0.0, 34.0),
+                        egui::Align2::CENTER_TOP,
+                        &fig.subtitle,
+                        egui::FontId::proportional(12.0),
+                        text,
+                    );
+                }
+                let mut y = rect.top() + 60.0;
+                for (name, color) in &fig.legend {
+                    let swatch = egui::Rect::from_min_size(
+                        egui::pos2(rect.right() - 190.0, y),
+                        egui::vec2(14.0, 14.0),
+                    );
+                    painter.rect_filled(swatch, 2.0, *color);
+                    painter.text(
+                        swatch.right_center() + egui::vec2(6.0, 0.0),
+                        egui::Align2::LEFT_CENTER,
+                        name,
+                        egui::FontId::proportional(13.0),
+                        text,
+                    );
+                    y += 20.0;
+                }
+            });
+        self.offscreen.free_texture(id);
+        result
+    }
+}

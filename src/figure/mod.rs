@@ -1,0 +1,71 @@
+//! Figures: egui layouts (titles, axes, legends) rendered offscreen through egui-wgpu, with the
+//! 3D scenes drawn by [`crate::render`] shown inside them. Used by the headless CLI and, through
+//! the same code, by the app.
+
+pub mod figures;
+pub mod offscreen;
+pub mod plot2d;
+pub mod raster;
+pub mod workspace;
+
+use thiserror::Error;
+
+/// What can go wrong while making a figure.
+#[derive(Debug, Error)]
+pub enum FigureError {
+    /// The GPU layer failed (no adapter, device lost, readback).
+    #[error(transparent)]
+    Render(#[from] crate::render::RenderError),
+    /// A size of zero or above 8192 pixels.
+    #[error("figure size {width}x{height} is not between 1x1 and 8192x8192 pixels")]
+    Size {
+        /// Width asked for.
+        width: u32,
+        /// Height asked for.
+        height: u32,
+    },
+    /// The workspace computation failed.
+    #[error(transparent)]
+    Workspace(#[from] crate::workspace::WorkspaceError),
+    /// Bad robot input (wrong joint count, NaN).
+    #[error(transparent)]
+    Kinematics(#[from] crate::kinematics::KinematicsError),
+}
+
+/// Light or dark colours.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Theme {
+    /// Dark text on white (print, projector).
+    #[default]
+    Light,
+    /// Light text on dark grey.
+    Dark,
+}
+
+/// Sets egui's visuals and text sizes for figures: the layout is made for an 800-point-wide
+/// canvas, and `pixels_per_point` scales it to the requested size.
+pub fn apply_style(ctx: &egui::Context, theme: Theme) {
+    ctx.set_visuals(match theme {
+        Theme::Light => egui::Visuals::light(),
+        Theme::Dark => egui::Visuals::dark(),
+    });
+    ctx.global_style_mut(|s| {
+        use egui::{FontId, TextStyle};
+        s.text_styles
+            .insert(TextStyle::Heading, FontId::proportional(20.0));
+        s.text_styles
+            .insert(TextStyle::Body, FontId::proportional(14.0));
+        s.text_styles
+            .insert(TextStyle::Small, FontId::proportional(12.0));
+        s.text_styles
+            .insert(TextStyle::Button, FontId::proportional(14.0));
+        s.text_styles
+            .insert(TextStyle::Monospace, FontId::monospace(13.0));
+        s.animation_time = 0.0;
+    });
+}
+
+/// Pixels per egui point for a figure `width` pixels wide (layouts are designed at 800).
+pub fn pixels_per_point(width: u32) -> f32 {
+    (width as f32 / 800.0).max(0.25)
+}

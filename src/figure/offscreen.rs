@@ -1,0 +1,160 @@
+//! egui rendered offscreen through egui-wgpu into a texture and read back: the same widgets,
+//! fonts and plots the app shows, written to PNG with no window and no display.
+
+use super::FigureError;
+use egui::epaint::textures::TexturesDelta;
+
+/// Output format of figures: egui prefers a non-sRGB target (it blends in gamma space).
+pub const FIGURE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
+
+/// An egui context and its wgpu renderer, reused across figures.
+pub struct Offscreen {
+    /// The egui context (fonts, style, memory).
+    pub ctx: egui::Context,
+    renderer: egui_wgpu::Renderer,
+}
+
+impl Offscreen {
+    /// A context with the light or dark theme and a renderer set for predictable output.
+    pub fn new(device: &wgpu::Device) -> Self {
+        let ctx = egui::Context::default();
+        let options = egui_wgpu::RendererOptions::PREDICTABLE;
+        Self {
+            ctx,
+            renderer: egui_wgpu::Renderer::new(device, FIGURE_FORMAT, options),
+        }
+    }
+
+    /// Makes a wgpu texture view (format `Rgba8Unorm`, gamma-encoded bytes) available to egui
+    /// widgets as an image.
+    pub fn register_texture(
+        &mut self,
+        device: &wgpu::Device,
+        view: &wgpu::TextureView,
+    ) -> egui::TextureId {
+        self.renderer
+            .register_native_texture(device, view, wgpu::FilterMode::Linear)
+    }
+
+    /// Forgets a texture registered with [`Self::register_texture`].
+    pub fn free_texture(&mut self, id: egui::TextureId) {
+        self.renderer.free_texture(&id);
+    }
+
+    /// Lays out `ui` on a `size` pixel canvas with `pixels_per_point` pixels per egui point, and
+    /// returns the RGBA pixels. The layout runs twice so that sizes measured in the first pass
+    /// (plots, legends, text) are settled in the second; only the second is painted.
+    pub fn render(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        size: [u32; 2],
+        pixels_per_point: f32,
+        mut ui: impl FnMut(&mut egui::Ui),
+    ) -> Result<image::RgbaImage, FigureError> {
+        let [w, h] = size;
+        if w == 0 || h == 0 || w > 8192 || h > 8192 {
+            return Err(FigureError::Size {
+                width: w,
+                height: h,
+            });
+        }
+        let mut input = egui::RawInput {
+            screen_rect: Some(egui::Rect::from_min_size(
+                egui::Pos2::ZERO,
+                egui::vec2(w as f32, h as f32) / pixels_per_point,
+            )),
+            max_texture_side: Some(device.limits().max_texture_dimension_2d as usize),
+            time: Some(0.0),
+            ..Default::default()
+        };
+        input
+            .viewports
+            .entry(egui::ViewportId::ROOT)
+            .or_default()
+            .native_pixels_per_point = Some(pixels_per_point);
+        let mut deltas = TexturesDelta::default();
+        let mut output = None;
+        for _ in 0..2 {
+            let o = self.ctx.run_ui(input.clone(), &mut ui);
+            let mut o = o;
+            deltas.append(std::mem::take(&mut o.textures_delta));
+            output = Some(o);
+        }
+        let Some(output) = output else {
+            deltas.clear();
+            return Err(FigureError::Size {
+                width: w,
+                height: h,
+            });
+        };
+        for (id, list) in &deltas.set {
+            for delta in list {
+                self.renderer.update_texture(device, queue, *id, delta);
+            }
+        }
+        let prims = self.ctx.tessellate(output.shapes, output.pixels_per_point);
+        let screen = egui_wgpu::ScreenDescriptor {
+            size_in_pixels: [w, h],
+            pixels_per_point: output.pixels_per_point,
+        };
+        let texture = device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("figure"),
+            size: wgpu::Extent3d {
+                width: w,
+                height: h,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: FIGURE_FORMAT,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+            view_formats: &[],
+        });
+        let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
+        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("figure"),
+        });
+        let user = self
+            .renderer
+            .update_buffers(device, queue, &mut encoder, &prims, &screen);
+        let bg = self
+            .ctx
+            .global_style()
+            .visuals
+            .panel_fill
+            .to_normalized_gamma_f32();
+        {
+            let pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("figure"),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: &view,
+                    resolve_target: None,
+                    depth_slice: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(wgpu::Color {
+                            r: bg[0] as f64,
+                            g: bg[1] as f64,
+                            b: bg[2] as f64,
+                            a: 1.0,
+                        }),
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                depth_stencil_attachment: None,
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            let mut pass = pass.forget_lifetime();
+            self.renderer.render(&mut pass, &prims, &screen);
+        }
+        queue.submit(user.into_iter().chain(std::iter::once(encoder.finish())));
+        for id in &deltas.free {
+            self.renderer.free_texture(id);
+        }
+        deltas.clear();
+        crate::render::read_texture_rgba(device, queue, &texture).map_err(FigureError::Render)
+    }
+}

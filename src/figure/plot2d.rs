@@ -1,0 +1,153 @@
+//! A 2D figure drawn with egui_plot: title, axes with ticks and units, a legend, curves, point
+//! labels, and a large point set shown as one image. The app's plot tab draws the same thing.
+
+use egui::Color32;
+use egui_plot::{Corner, Legend, Line, LineStyle, Plot, PlotImage, PlotPoint, Points, Text};
+
+/// A polyline in plot coordinates.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Curve {
+    /// Legend name, or `None` to keep it out of the legend.
+    pub name: Option<String>,
+    /// Points (plot units).
+    pub points: Vec<[f64; 2]>,
+    /// Colour.
+    pub color: Color32,
+    /// Width (points).
+    pub width: f32,
+    /// Dashed line.
+    pub dashed: bool,
+}
+
+/// A filled polygon in plot coordinates (drawn under the curves).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Area {
+    /// Legend name.
+    pub name: String,
+    /// Vertices (the polygon closes itself).
+    pub points: Vec<[f64; 2]>,
+    /// Fill colour (alpha is respected).
+    pub fill: Color32,
+}
+
+/// Everything a 2D figure shows.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Plot2d {
+    /// Title above the plot.
+    pub title: String,
+    /// One line under the title (data source, resolution, statistics).
+    pub subtitle: String,
+    /// x axis label with unit, e.g. "x [m]".
+    pub x_label: String,
+    /// y axis label with unit.
+    pub y_label: String,
+    /// Visible bounds `[x_min, x_max, y_min, y_max]`.
+    pub bounds: [f64; 4],
+    /// Keep one unit in x as long as one unit in y.
+    pub equal_aspect: bool,
+    /// Filled areas.
+    pub areas: Vec<Area>,
+    /// Curves.
+    pub curves: Vec<Curve>,
+    /// Text labels at points (e.g. the letters of Fig. 2.30).
+    pub labels: Vec<(String, [f64; 2])>,
+    /// Legend swatches: name and colour (for the raster's classes).
+    pub legend: Vec<(String, Color32)>,
+}
+
+/// Shows `plot` in `ui`, with `image` (a raster covering exactly `plot.bounds`) under the curves.
+pub fn show(ui: &mut egui::Ui, plot: &Plot2d, image: Option<egui::TextureId>) {
+    ui.vertical_centered(|ui| {
+        ui.add_space(4.0);
+        ui.heading(&plot.title);
+        if !plot.subtitle.is_empty() {
+            ui.label(egui::RichText::new(&plot.subtitle).small());
+        }
+    });
+    let [x0, x1, y0, y1] = plot.bounds;
+    let text_color = ui.visuals().text_color();
+    let p = Plot::new(("figure", plot.title.as_str()))
+        .x_axis_label(plot.x_label.clone())
+        .y_axis_label(plot.y_label.clone())
+        .legend(
+            Legend::default()
+                .position(Corner::RightTop)
+                .background_alpha(0.85),
+        )
+        .show_grid(true)
+        .allow_drag(false)
+        .allow_zoom(false)
+        .allow_scroll(false)
+        .allow_boxed_zoom(false)
+        .show_x(false)
+        .show_y(false)
+        .default_x_bounds(x0, x1)
+        .default_y_bounds(y0, y1)
+        .set_margin_fraction(egui::vec2(0.0, 0.0));
+    let equal = plot.equal_aspect;
+    p.show(ui, |pui| {
+        if equal {
+            // One metre as long in x as in y: grow the shorter side of the bounds to the frame's
+            // aspect (egui_plot's data_aspect would crop instead).
+            let frame = *pui.transform().frame();
+            let aspect = (frame.width() / frame.height().max(1.0)) as f64;
+            let (w, h) = (x1 - x0, y1 - y0);
+            let (cx, cy) = (0.5 * (x0 + x1), 0.5 * (y0 + y1));
+            let (w, h) = if w / h < aspect {
+                (h * aspect, h)
+            } else {
+                (w, w / aspect)
+            };
+            pui.set_plot_bounds(egui_plot::PlotBounds::from_min_max(
+                [cx - 0.5 * w, cy - 0.5 * h],
+                [cx + 0.5 * w, cy + 0.5 * h],
+            ));
+        }
+        if let Some(id) = image {
+            let c = PlotPoint::new(0.5 * (x0 + x1), 0.5 * (y0 + y1));
+            pui.image(PlotImage::new(
+                "",
+                id,
+                c,
+                egui::vec2((x1 - x0) as f32, (y1 - y0) as f32),
+            ));
+        }
+        for a in &plot.areas {
+            pui.polygon(
+                egui_plot::Polygon::new(a.name.clone(), a.points.clone())
+                    .fill_color(a.fill)
+                    .stroke(egui::Stroke::new(0.0, a.fill)),
+            );
+        }
+        for (name, color) in &plot.legend {
+            // A swatch in the legend: one invisible point of the class colour.
+            pui.points(
+                Points::new(name.clone(), vec![[x0, y0]])
+                    .color(*color)
+                    .radius(0.0),
+            );
+        }
+        for c in &plot.curves {
+            let mut line = Line::new(c.name.clone().unwrap_or_default(), c.points.clone())
+                .color(c.color)
+                .width(c.width);
+            if c.dashed {
+                line = line.style(LineStyle::dashed_loose());
+            }
+            if c.name.is_none() {
+                line = line.allow_hover(false);
+            }
+            pui.line(line);
+        }
+        for (text, at) in &plot.labels {
+            pui.text(
+                Text::new(
+                    "",
+                    PlotPoint::new(at[0], at[1]),
+                    egui::RichText::new(text).strong().size(15.0),
+                )
+                .color(text_color),
+            );
+        }
+    });
+}

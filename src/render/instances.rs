@@ -1,0 +1,268 @@
+//! The CPU side of a frame: the scene's draw lists as GPU instances, in draw order.
+
+use super::geometry::shape_index;
+use super::gpu_types::{DotGpu, LineGpu, MeshInstanceGpu};
+use crate::scene::{Dot, Line, MeshInstance, Scene};
+use std::ops::Range;
+
+/// One instanced mesh draw.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct MeshDraw {
+    /// Drawn blended, after the opaque pass.
+    pub translucent: bool,
+    /// The transform mirrors (negative determinant): triangles wind clockwise.
+    pub mirrored: bool,
+    /// Index of the unit shape.
+    pub shape: usize,
+    /// Range in [`DrawLists::meshes`].
+    pub instances: Range<u32>,
+}
+
+/// A frame's instances in draw order; kept between frames to reuse the allocations.
+#[derive(Debug, Default)]
+pub(crate) struct DrawLists {
+    /// Opaque instances by `shape * 2 + mirrored`.
+    opaque: [Vec<MeshInstanceGpu>; 8],
+    /// Translucent instances with their squared distance to the eye and `shape * 2 + mirrored`.
+    translucent: Vec<(f32, usize, MeshInstanceGpu)>,
+    /// Opaque meshes grouped by shape and winding, then translucent ones back to front.
+    pub meshes: Vec<MeshInstanceGpu>,
+    /// The draws over `meshes`, in order.
+    pub mesh_draws: Vec<MeshDraw>,
+    /// Opaque lines, then translucent ones.
+    pub lines: Vec<LineGpu>,
+    /// Number of opaque lines.
+    pub lines_opaque: u32,
+    /// Opaque dots, then translucent ones.
+    pub dots: Vec<DotGpu>,
+    /// Number of opaque dots.
+    pub dots_opaque: u32,
+}
+
+fn sub3(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn cross3(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn dot3(a: [f32; 3], b: [f32; 3]) -> f32 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// The GPU form of a mesh instance and whether its transform mirrors (negative determinant).
+///
+/// The normal matrix is the inverse-transpose of the 3x3 part up to a positive factor: the
+/// cofactor matrix (columns b x c, c x a, a x b = det * M^-T) times sign(det), divided by its
+/// largest entry. It stays defined when a scale is zero and is exact under non-uniform scale.
+pub(crate) fn mesh_instance_gpu(m: &MeshInstance) -> (MeshInstanceGpu, bool) {
+    let col = |k: usize| {
+        [
+            m.world_from_unit[k][0],
+            m.world_from_unit[k][1],
+            m.world_from_unit[k][2],
+        ]
+    };
+    let (a, b, c) = (col(0), col(1), col(2));
+    let cof = [cross3(b, c), cross3(c, a), cross3(a, b)];
+    let det = dot3(a, cof[0]);
+    let largest = cof.iter().flatten().fold(0.0f32, |acc, v| acc.max(v.abs()));
+    let k = if largest > 0.0 && largest.is_finite() {
+        det.signum() / largest
+    } else {
+        0.0
+    };
+    let normal_from_unit = cof.map(|n| [n[0] * k, n[1] * k, n[2] * k, 0.0]);
+    (
+        MeshInstanceGpu {
+            world_from_unit: m.world_from_unit,
+            normal_from_unit,
+            color: m.color,
+        },
+        det < 0.0,
+    )
+}
+
+fn line_gpu(l: &Line) -> LineGpu {
+    LineGpu {
+        a: l.a,
+        width_px: l.width_px,
+        b: l.b,
+        pad: 0.0,
+        color: l.color,
+    }
+}
+
+fn dot_gpu(d: &Dot) -> DotGpu {
+    DotGpu {
+        p: d.p,
+        size_px: d.size_px,
+        color: d.color,
+    }
+}
+
+/// Clears `out`, appends the items with alpha >= 1 and then those with 0 < alpha < 1; returns (opaque, all).
+fn partition<T, G>(
+    out: &mut Vec<G>,
+    items: &[T],
+    alpha: impl Fn(&T) -> f32,
+    convert: impl Fn(&T) -> G,
+) -> (u32, u32) {
+    out.clear();
+    out.extend(items.iter().filter(|i| alpha(i) >= 1.0).map(&convert));
+    let opaque = out.len() as u32;
+    out.extend(
+        items
+            .iter()
+            .filter(|i| alpha(i) > 0.0 && alpha(i) < 1.0)
+            .map(&convert),
+    );
+    (opaque, out.len() as u32)
+}
+
+impl DrawLists {
+    /// Rebuilds every list for `scene` seen from `eye`. Items with alpha <= 0 (or a
+    /// non-positive width or size) are left out.
+    pub(crate) fn build(&mut self, scene: &Scene, eye: [f32; 3]) {
+        self.build_meshes(scene, eye);
+        let line_alpha = |l: &Line| if l.width_px > 0.0 { l.color[3] } else { 0.0 };
+        let dot_alpha = |d: &Dot| if d.size_px > 0.0 { d.color[3] } else { 0.0 };
+        (self.lines_opaque, _) = partition(&mut self.lines, &scene.lines, line_alpha, line_gpu);
+        (self.dots_opaque, _) = partition(&mut self.dots, &scene.dots, dot_alpha, dot_gpu);
+    }
+
+    /// The lines of one pass (an instance range).
+    pub(crate) fn line_range(&self, translucent: bool) -> Range<u32> {
+        if translucent {
+            self.lines_opaque..self.lines.len() as u32
+        } else {
+            0..self.lines_opaque
+        }
+    }
+
+    /// The dots of one pass (an instance range).
+    pub(crate) fn dot_range(&self, translucent: bool) -> Range<u32> {
+        if translucent {
+            self.dots_opaque..self.dots.len() as u32
+        } else {
+            0..self.dots_opaque
+        }
+    }
+
+    /// Fills `meshes` (opaque grouped by shape and winding, then translucent back to front) and
+    /// `mesh_draws`.
+    fn build_meshes(&mut self, scene: &Scene, eye: [f32; 3]) {
+        self.opaque.iter_mut().for_each(Vec::clear);
+        self.translucent.clear();
+        self.meshes.clear();
+        self.mesh_draws.clear();
+        for m in &scene.meshes {
+            let alpha = m.color[3];
+            // Invisible (or NaN) alpha: nothing to draw.
+            if alpha.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+                continue;
+            }
+            let (gpu, mirrored) = mesh_instance_gpu(m);
+            let key = shape_index(m.shape) * 2 + mirrored as usize;
+            if alpha >= 1.0 {
+                self.opaque[key].push(gpu);
+            } else {
+                let o = [
+                    m.world_from_unit[3][0],
+                    m.world_from_unit[3][1],
+                    m.world_from_unit[3][2],
+                ];
+                let d = sub3(o, eye);
+                self.translucent.push((dot3(d, d), key, gpu));
+            }
+        }
+        for (key, group) in self.opaque.iter().enumerate() {
+            if !group.is_empty() {
+                let start = self.meshes.len() as u32;
+                self.meshes.extend_from_slice(group);
+                let instances = start..self.meshes.len() as u32;
+                self.mesh_draws.push(MeshDraw {
+                    translucent: false,
+                    mirrored: key % 2 == 1,
+                    shape: key / 2,
+                    instances,
+                });
+            }
+        }
+        // Farthest first; the sort is stable, so equal distances keep scene order.
+        self.translucent.sort_by(|a, b| b.0.total_cmp(&a.0));
+        for &(_, key, gpu) in &self.translucent {
+            let i = self.meshes.len() as u32;
+            self.meshes.push(gpu);
+            match self.mesh_draws.last_mut() {
+                Some(last)
+                    if last.translucent && last.shape * 2 + last.mirrored as usize == key =>
+                {
+                    last.instances.end = i + 1
+                }
+                _ => self.mesh_draws.push(MeshDraw {
+                    translucent: true,
+                    mirrored: key % 2 == 1,
+                    shape: key / 2,
+                    instances: i..i + 1,
+                }),
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::Shape;
+
+    #[test]
+    fn normal_matrix_is_the_inverse_transpose_up_to_a_positive_factor() {
+        // world_from_unit = diag(2, 0.5, 3) then a translation; mirrored copy with x negated.
+        let mut m = MeshInstance {
+            shape: Shape::Cube,
+            world_from_unit: [
+                [2.0, 0.0, 0.0, 0.0],
+                [0.0, 0.5, 0.0, 0.0],
+                [0.0, 0.0, 3.0, 0.0],
+                [1.0, 2.0, 3.0, 1.0],
+            ],
+            color: [1.0; 4],
+        };
+        let (g, mirrored) = mesh_instance_gpu(&m);
+        assert!(!mirrored);
+        // M^-T = diag(0.5, 2, 1/3); the largest entry is scaled to 1.
+        let expect = [0.25, 1.0, 1.0 / 6.0];
+        for (k, e) in expect.iter().enumerate() {
+            assert!(
+                (g.normal_from_unit[k][k] - e).abs() < 1e-6,
+                "{:?}",
+                g.normal_from_unit
+            );
+        }
+        m.world_from_unit[0][0] = -2.0;
+        let (g, mirrored) = mesh_instance_gpu(&m);
+        assert!(mirrored);
+        assert!(
+            g.normal_from_unit[0][0] < 0.0 && g.normal_from_unit[1][1] > 0.0,
+            "outward normals stay outward"
+        );
+        m.world_from_unit[2][2] = 0.0;
+        let (g, _) = mesh_instance_gpu(&m);
+        assert!(g.normal_from_unit.iter().flatten().all(|v| v.is_finite()));
+    }
+
+    #[test]
+    fn partition_puts_opaque_first_and_drops_invisible() {
+        let mut out = Vec::new();
+        let alphas = [0.5f32, 1.0, 0.0, 1.0, 0.2];
+        let (opaque, all) = partition(&mut out, &alphas, |a| *a, |a| *a);
+        assert_eq!((opaque, all), (2, 4));
+        assert_eq!(out, vec![1.0, 1.0, 0.5, 0.2]);
+    }
+}

@@ -1,0 +1,182 @@
+//! The texture the renderer draws into, and reading it back.
+
+use super::{COLOR_FORMAT, DEPTH_FORMAT, Gpu, RenderError, SAMPLE_COUNTS, read_texture_rgba};
+
+/// A colour texture ([`COLOR_FORMAT`]) with its depth buffer and, for MSAA, a multisampled colour
+/// texture that is resolved into it at the end of each frame.
+#[derive(Debug)]
+pub struct RenderTarget {
+    color: wgpu::Texture,
+    /// [`EGUI_FORMAT`] where the device can alias it, else [`COLOR_FORMAT`].
+    egui_format: wgpu::TextureFormat,
+    color_view: wgpu::TextureView,
+    msaa_view: Option<wgpu::TextureView>,
+    depth_view: wgpu::TextureView,
+    width: u32,
+    height: u32,
+    sample_count: u32,
+}
+
+/// The non-sRGB view format under which egui samples the colour texture.
+pub const EGUI_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
+
+impl RenderTarget {
+    /// A `width` x `height` target drawn with `sample_count` (1 or 4) samples per pixel.
+    ///
+    /// Errors on a zero side, a side above the device's limit, or another sample count.
+    pub fn new(gpu: &Gpu, width: u32, height: u32, sample_count: u32) -> Result<Self, RenderError> {
+        gpu.check_size(width, height)?;
+        if !SAMPLE_COUNTS.contains(&sample_count) {
+            return Err(RenderError::UnsupportedSampleCount {
+                count: sample_count,
+            });
+        }
+        // Errors while creating the textures (e.g. out of memory, or a view format the backend
+        // cannot alias) come back as values, not as the device's panic.
+        let oom = gpu.device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
+        let invalid = gpu.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let size = wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        };
+        let texture = |label, format, samples, usage, view_formats: &[wgpu::TextureFormat]| {
+            gpu.device.create_texture(&wgpu::TextureDescriptor {
+                label: Some(label),
+                size,
+                mip_level_count: 1,
+                sample_count: samples,
+                dimension: wgpu::TextureDimension::D2,
+                format,
+                usage,
+                view_formats,
+            })
+        };
+        let color_usage = wgpu::TextureUsages::RENDER_ATTACHMENT
+            | wgpu::TextureUsages::COPY_SRC
+            | wgpu::TextureUsages::TEXTURE_BINDING;
+        // The non-sRGB alias for egui needs view-format support, which some GL drivers lack;
+        // there the texture is made without it and `egui_view` falls back to the sRGB view.
+        let alias = gpu.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let aliased = texture(
+            "armlab colour",
+            COLOR_FORMAT,
+            1,
+            color_usage,
+            &[EGUI_FORMAT],
+        );
+        let (color, egui_format) = match pollster::block_on(alias.pop()) {
+            None => (aliased, EGUI_FORMAT),
+            Some(_) => (
+                texture("armlab colour", COLOR_FORMAT, 1, color_usage, &[]),
+                COLOR_FORMAT,
+            ),
+        };
+        let color_view = color.create_view(&wgpu::TextureViewDescriptor::default());
+        let msaa_view = (sample_count > 1).then(|| {
+            texture(
+                "armlab colour msaa",
+                COLOR_FORMAT,
+                sample_count,
+                wgpu::TextureUsages::RENDER_ATTACHMENT,
+                &[],
+            )
+            .create_view(&wgpu::TextureViewDescriptor::default())
+        });
+        let depth_view = texture(
+            "armlab depth",
+            DEPTH_FORMAT,
+            sample_count,
+            wgpu::TextureUsages::RENDER_ATTACHMENT,
+            &[],
+        )
+        .create_view(&wgpu::TextureViewDescriptor::default());
+        for scope in [invalid, oom] {
+            if let Some(e) = pollster::block_on(scope.pop()) {
+                return Err(e.into());
+            }
+        }
+        Ok(Self {
+            color,
+            egui_format,
+            color_view,
+            msaa_view,
+            depth_view,
+            width,
+            height,
+            sample_count,
+        })
+    }
+
+    /// The resolved colour texture (what the app shows and [`Self::read_rgba`] reads).
+    pub fn color_texture(&self) -> &wgpu::Texture {
+        &self.color
+    }
+
+    /// A view of [`Self::color_texture`].
+    pub fn color_view(&self) -> &wgpu::TextureView {
+        &self.color_view
+    }
+
+    /// A view of the colour texture as `Rgba8Unorm`: the same sRGB-encoded bytes, read without
+    /// conversion, which is what egui-wgpu expects of a native texture (egui blends in gamma
+    /// space). The app and the figures show the 3D view through it. On a device that cannot
+    /// alias texture formats (some GL drivers) it is the plain sRGB view.
+    pub fn egui_view(&self) -> wgpu::TextureView {
+        self.color.create_view(&wgpu::TextureViewDescriptor {
+            format: Some(self.egui_format),
+            ..Default::default()
+        })
+    }
+
+    /// (width, height) in pixels.
+    pub fn size(&self) -> (u32, u32) {
+        (self.width, self.height)
+    }
+
+    /// Samples per pixel (1 or 4).
+    pub fn sample_count(&self) -> u32 {
+        self.sample_count
+    }
+
+    /// The colour attachment of a render pass: the MSAA texture resolved into the colour
+    /// texture, or the colour texture itself.
+    pub(crate) fn color_attachment(
+        &self,
+        clear: wgpu::Color,
+    ) -> wgpu::RenderPassColorAttachment<'_> {
+        let (view, resolve_target, store) = match &self.msaa_view {
+            Some(msaa) => (msaa, Some(&self.color_view), wgpu::StoreOp::Discard),
+            None => (&self.color_view, None, wgpu::StoreOp::Store),
+        };
+        wgpu::RenderPassColorAttachment {
+            view,
+            depth_slice: None,
+            resolve_target,
+            ops: wgpu::Operations {
+                load: wgpu::LoadOp::Clear(clear),
+                store,
+            },
+        }
+    }
+
+    /// The depth attachment, cleared to the far plane.
+    pub(crate) fn depth_attachment(&self) -> wgpu::RenderPassDepthStencilAttachment<'_> {
+        wgpu::RenderPassDepthStencilAttachment {
+            view: &self.depth_view,
+            depth_ops: Some(wgpu::Operations {
+                load: wgpu::LoadOp::Clear(1.0),
+                store: wgpu::StoreOp::Discard,
+            }),
+            stencil_ops: None,
+        }
+    }
+
+    /// Copies the colour texture to the CPU (blocking): sRGB-encoded RGBA8, top row first.
+    ///
+    /// Rows are copied with `bytes_per_row` padded to 256 bytes and the padding is stripped, so
+    /// any width reads back without shear.
+    pub fn read_rgba(&self, gpu: &Gpu) -> Result<image::RgbaImage, RenderError> {
+        read_texture_rgba(&gpu.device, &gpu.queue, &self.color)
+    }
+}
