@@ -3,6 +3,7 @@
 //! Layers, with one-way dependencies: [`kinematics`] (pure f64 math) → [`model_file`] and
 //! [`urdf`] (text formats into robots) → [`cli`] (the scriptable command line). See the README.
 
+pub mod app;
 pub mod camera;
 pub mod cli;
 pub mod figure;

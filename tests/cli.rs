@@ -56,6 +56,17 @@ fn bad(o: &Output, needle: &str) {
 }
 
 #[test]
+fn the_app_without_a_display_says_what_to_do() {
+    let o = Command::new(env!("CARGO_BIN_EXE_armlab"))
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .env_remove("WAYLAND_SOCKET")
+        .output()
+        .unwrap();
+    bad(&o, "--screenshot");
+}
+
+#[test]
 fn robots_lists_every_built_in() {
     let v = json(&armlab(&["robots", "--format", "json"]));
     let list = v.as_array().unwrap();
@@ -186,7 +197,7 @@ fn bad_input_exits_2_with_one_clear_line() {
 
 #[test]
 fn info_runs_on_the_default_robot() {
-    let o = armlab(&[]);
+    let o = armlab(&["info"]);
     assert!(o.status.success());
     let text = String::from_utf8(o.stdout).unwrap();
     assert!(text.contains("Anthropomorphic arm with spherical wrist"));

@@ -16,6 +16,13 @@ use std::path::PathBuf;
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Size(pub [u32; 2]);
 
+impl Default for Size {
+    /// 1280x800, the app's default window.
+    fn default() -> Self {
+        Size([1280, 800])
+    }
+}
+
 impl std::str::FromStr for Size {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, String> {

@@ -6,6 +6,7 @@ mod fk;
 mod ik;
 mod info;
 pub mod input;
+mod view;
 
 use crate::kinematics::{KinematicsError, Robot};
 use clap::{Parser, Subcommand, ValueEnum};
@@ -16,7 +17,7 @@ use thiserror::Error;
 #[derive(Debug, Parser)]
 #[command(name = "armlab", version, about, long_about = None)]
 pub struct Cli {
-    /// What to do; without one, `info` on the default robot.
+    /// What to do; without one, the app on the default robot.
     #[command(subcommand)]
     pub command: Option<Command>,
 }
@@ -70,6 +71,8 @@ pub struct JointInput {
 /// The subcommands.
 #[derive(Debug, Subcommand)]
 pub enum Command {
+    /// Open the interactive app on a model (or render its window to PNG with --screenshot).
+    View(view::ViewArgs),
     /// List the built-in models with their DOF and a line of description.
     Robots {
         /// Output format.
@@ -167,6 +170,9 @@ pub enum CliError {
     /// Making a figure failed (no GPU adapter, device error).
     #[error(transparent)]
     Figure(#[from] crate::figure::FigureError),
+    /// The app could not run.
+    #[error(transparent)]
+    App(crate::app::AppError),
     /// Writing a PNG failed.
     #[error(transparent)]
     Headless(#[from] crate::headless::HeadlessError),
@@ -178,7 +184,8 @@ pub enum CliError {
 /// Runs the command line; output goes to `out`.
 pub fn run(cli: Cli, out: &mut dyn std::io::Write) -> Result<(), CliError> {
     match cli.command {
-        None => info::run(None, &JointInput::default(), Format::Text, out),
+        None => view::run(&view::ViewArgs::default(), out),
+        Some(Command::View(args)) => view::run(&args, out),
         Some(Command::Robots { format }) => info::robots(format, out),
         Some(Command::Info {
             model,

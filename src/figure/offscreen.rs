@@ -15,10 +15,16 @@ pub struct Offscreen {
 }
 
 impl Offscreen {
-    /// A context with the light or dark theme and a renderer set for predictable output.
+    /// A context and a renderer set for predictable output (no dithering, texture filtering
+    /// done in the shader): the same bytes on every run, for figures and golden images.
     pub fn new(device: &wgpu::Device) -> Self {
+        Self::with_options(device, egui_wgpu::RendererOptions::PREDICTABLE)
+    }
+
+    /// A context and a renderer with the given options. The default options filter textures in
+    /// hardware, much faster on a software rasterizer; the live app renders like this.
+    pub fn with_options(device: &wgpu::Device, options: egui_wgpu::RendererOptions) -> Self {
         let ctx = egui::Context::default();
-        let options = egui_wgpu::RendererOptions::PREDICTABLE;
         Self {
             ctx,
             renderer: egui_wgpu::Renderer::new(device, FIGURE_FORMAT, options),
@@ -34,6 +40,11 @@ impl Offscreen {
     ) -> egui::TextureId {
         self.renderer
             .register_native_texture(device, view, wgpu::FilterMode::Linear)
+    }
+
+    /// The egui-wgpu renderer (to register native textures through the app's viewport).
+    pub fn renderer_mut(&mut self) -> &mut egui_wgpu::Renderer {
+        &mut self.renderer
     }
 
     /// Forgets a texture registered with [`Self::register_texture`].

@@ -347,20 +347,29 @@ pub fn workspace_figure(
             // Exact (IK per cell) rasters at about the plot's pixel size; sampled ones at a few
             // samples per cell so regions read as areas.
             let exact_regions = opts.color_by == ColorBy::Posture && view == View::Plane && planar;
-            let dims = if exact_regions {
-                raster_dims(opts.size, bounds, 1.5e6)
+            // A redundant planar arm scans phi per cell: keep its IK count near 2 million.
+            const PHI_SCAN: usize = 24;
+            let tester = if exact_regions {
+                workspace::ReachTester::new(robot, PHI_SCAN)
             } else {
-                raster_dims(opts.size, bounds, (n as f64 / 3.0).max(1e4))
+                None
             };
+            let cells = match &tester {
+                Some(t) if t.orientations() > 1 => 2.0e6 / t.orientations() as f64,
+                Some(_) => 4.0e5,
+                None => (n as f64 / 3.0).max(1e4),
+            };
+            let dims = raster_dims(opts.size, bounds, cells);
             let mut raster = ClassRaster::new(dims[0], dims[1], bounds);
             let mut legend = Vec::new();
             let image = match opts.color_by {
                 ColorBy::Posture if exact_regions => {
                     // Exact regions: closed-form IK at every raster cell centre.
-                    let tester = workspace::ReachTester::new(robot, 48);
-                    if let Some(t) = tester {
+                    if let Some(t) = &tester {
                         let (w, h) = (dims[0] as usize, dims[1] as usize);
+                        use rayon::prelude::*;
                         let masks: Vec<u32> = (0..w * h)
+                            .into_par_iter()
                             .map(|i| {
                                 let (u, v) = ((i % w) as f64 + 0.5, (i / w) as f64 + 0.5);
                                 let x = bounds[0] + u / w as f64 * (bounds[1] - bounds[0]);

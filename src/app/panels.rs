@@ -1,0 +1,307 @@
+//! The side panels: model and joints (left), readouts and inverse kinematics (right).
+
+use super::state::{AppState, DhField, Level};
+use super::ui::AppUi;
+use crate::kinematics::models::BUILT_INS;
+use crate::kinematics::pose::Pose;
+use egui::{Color32, RichText};
+
+const ERROR_BG: Color32 = Color32::from_rgb(255, 215, 215);
+
+/// Left panel: model, joint sliders, configurations, the DH table.
+pub fn left(app: &mut AppUi, ui: &mut egui::Ui) {
+    egui::ScrollArea::vertical().show(ui, |ui| {
+        ui.heading("Model");
+        let current = app.state.spec().to_string();
+        egui::ComboBox::from_id_salt("model")
+            .selected_text(current.clone())
+            .width(ui.available_width() - 8.0)
+            .show_ui(ui, |ui| {
+                for b in BUILT_INS {
+                    if ui
+                        .selectable_label(current == b.name, b.name)
+                        .on_hover_text(b.summary)
+                        .clicked()
+                    {
+                        app.load(b.name);
+                    }
+                }
+            });
+        ui.horizontal(|ui| {
+            ui.add(
+                egui::TextEdit::singleline(&mut app.load_path)
+                    .hint_text("path/to/robot.toml or .urdf")
+                    .desired_width(ui.available_width() - 60.0),
+            );
+            if ui
+                .button("Open")
+                .on_hover_text("Load a .toml or .urdf model file (or drop one on the window)")
+                .clicked()
+            {
+                let p = app.load_path.clone();
+                app.load(&p);
+            }
+        });
+        ui.label(RichText::new(&app.state.robot().description).small());
+        ui.separator();
+        ui.heading("Joints");
+        let unit = app.state.angle_unit();
+        for k in 0..app.state.robot().dof() {
+            let name = app.state.robot().dof_joint(k).name.clone();
+            let (Ok(v), Ok([lo, hi]), Ok(quantity)) = (
+                app.state.joint_display(k),
+                app.state.joint_display_limits(k),
+                app.state.joint_quantity(k),
+            ) else {
+                continue;
+            };
+            let mut value = v;
+            let slider = egui::Slider::new(&mut value, lo..=hi)
+                .text(format!("{name} [{}]", quantity.symbol(unit)))
+                .max_decimals(2);
+            if ui.add(slider).changed() {
+                let si = quantity.from_display(value, unit);
+                if let Err(e) = app.state.set_joint(k, si) {
+                    app.state.push_message(Level::Warning, e.to_string());
+                }
+            }
+        }
+        ui.horizontal_wrapped(|ui| {
+            ui.label("Configuration:");
+            let names: Vec<String> = app
+                .state
+                .robot()
+                .configurations
+                .iter()
+                .map(|c| c.name.clone())
+                .collect();
+            for n in names {
+                if ui.button(&n).clicked()
+                    && let Err(e) = app.state.reset_to(&n)
+                {
+                    app.state.push_message(Level::Error, e.to_string());
+                }
+            }
+        });
+        ui.separator();
+        egui::CollapsingHeader::new("DH table (editable)")
+            .default_open(!app.projector)
+            .show(ui, |ui| dh_table(&mut app.state, ui));
+    });
+}
+
+fn dh_table(state: &mut AppState, ui: &mut egui::Ui) {
+    let unit = state.angle_unit();
+    egui::Grid::new("dh")
+        .striped(true)
+        .spacing([4.0, 2.0])
+        .show(ui, |ui| {
+            ui.label("");
+            for f in DhField::ALL {
+                let q = f.quantity(crate::kinematics::JointKind::Revolute);
+                let sym = if matches!(f, DhField::A | DhField::D) {
+                    "mm"
+                } else {
+                    q.symbol(unit)
+                };
+                ui.label(RichText::new(format!("{} [{sym}]", f.name())).small());
+            }
+            ui.end_row();
+            let rows = state.dh_cells().len();
+            for j in 0..rows {
+                ui.label(state.robot().joints()[j].name.clone());
+                for f in DhField::ALL {
+                    let Some(cell) = state.dh_cell(j, f).cloned() else {
+                        continue;
+                    };
+                    if !cell.editable {
+                        ui.label(RichText::new(cell.text).small().weak());
+                        continue;
+                    }
+                    let mut text = cell.text.clone();
+                    let mut edit = egui::TextEdit::singleline(&mut text).desired_width(52.0);
+                    if cell.error.is_some() {
+                        edit = edit
+                            .background_color(ERROR_BG)
+                            .text_color(Color32::from_rgb(150, 0, 0));
+                    }
+                    let r = ui.add(edit);
+                    let r = match &cell.error {
+                        Some(e) => r.on_hover_text(format!(
+                            "not applied: {e}; the arm keeps its last valid shape"
+                        )),
+                        None => r,
+                    };
+                    if r.changed() {
+                        let _ = state.edit_dh(j, f, &text);
+                    }
+                }
+                ui.end_row();
+            }
+        });
+    if state.dh_has_errors() {
+        ui.colored_label(
+            Color32::from_rgb(170, 0, 0),
+            "Red cells are not applied (hover for the reason).",
+        );
+    }
+}
+
+fn matrix_grid(ui: &mut egui::Ui, id: &str, m: &nalgebra::Matrix4<f64>) {
+    egui::Grid::new(id).spacing([10.0, 1.0]).show(ui, |ui| {
+        for r in 0..4 {
+            for c in 0..4 {
+                let v = m[(r, c)];
+                ui.monospace(format!("{:>8.4}", if v.abs() < 5e-5 { 0.0 } else { v }));
+            }
+            ui.end_row();
+        }
+    });
+}
+
+/// Right panel: pose readouts, Jacobian and singularity, the IK target and its solutions.
+pub fn right(app: &mut AppUi, ui: &mut egui::Ui) {
+    egui::ScrollArea::vertical().show(ui, |ui| {
+        let n_ee = app.state.robot().end_effectors().len();
+        if n_ee > 1 {
+            ui.horizontal(|ui| {
+                ui.label("End-effector:");
+                for e in 0..n_ee {
+                    let name = app.state.robot().end_effectors()[e].name.clone();
+                    ui.selectable_value(&mut app.ee, e, name);
+                }
+            });
+        }
+        let ee = app.ee.min(n_ee.saturating_sub(1));
+        ui.heading("Pose");
+        if let Ok(r) = app.state.readouts(ee) {
+            ui.label("T (world from tool):");
+            matrix_grid(ui, "T", &r.t);
+            ui.monospace(format!(
+                "p = [{:.1}, {:.1}, {:.1}] mm",
+                r.p.x * 1e3,
+                r.p.y * 1e3,
+                r.p.z * 1e3
+            ));
+            let kind = r.phi_kind.as_str().to_uppercase();
+            let sing = if r.phi_singular {
+                "  (representation singular)"
+            } else {
+                ""
+            };
+            ui.monospace(format!(
+                "phi {kind} = [{:.2}, {:.2}, {:.2}] deg{sing}",
+                r.phi.x.to_degrees(),
+                r.phi.y.to_degrees(),
+                r.phi.z.to_degrees()
+            ));
+            ui.horizontal(|ui| {
+                ui.radio_value(
+                    &mut app.state.orientation,
+                    crate::kinematics::EulerKind::Zyz,
+                    "ZYZ",
+                );
+                ui.radio_value(
+                    &mut app.state.orientation,
+                    crate::kinematics::EulerKind::Rpy,
+                    "RPY",
+                );
+            });
+            ui.separator();
+            ui.heading("Jacobian");
+            ui.monospace(format!("rank {} of {}", r.rank, r.task_rank));
+            ui.monospace(format!("manipulability {:.5}", r.manipulability));
+            ui.monospace(format!("smallest singular value {:.2e}", r.min_sv));
+            if let Some(s) = &r.singularity {
+                ui.colored_label(
+                    Color32::from_rgb(200, 60, 0),
+                    RichText::new(format!("⚠ {}", s.message())).strong(),
+                );
+            }
+        }
+        ui.separator();
+        ui.heading("Inverse kinematics");
+        let mut lock = app.state.lock();
+        if ui
+            .checkbox(&mut lock, "Lock posture while dragging (L)")
+            .changed()
+        {
+            app.state.set_lock(lock);
+        }
+        if ui
+            .button("Target = tool pose")
+            .on_hover_text("Put the target on the current tool pose")
+            .clicked()
+            && let Ok(t) = app.state.robot().fk_ee(app.state.q(), ee)
+        {
+            let _ = app.state.set_target(ee, t);
+        }
+        target_editor(app, ui, ee);
+        let Ok(target) = app.state.target(ee).cloned() else {
+            return;
+        };
+        if let Some(msg) = target.reach.message() {
+            ui.colored_label(Color32::from_rgb(200, 0, 0), msg);
+        }
+        if let Some(result) = &target.result {
+            ui.label(format!("{} solution(s):", result.solutions.len()));
+            for (i, s) in result.solutions.iter().enumerate() {
+                let selected = target.selected == Some(i);
+                let mut text = RichText::new(format!("{}. {}", i + 1, s.posture));
+                if !s.within_limits {
+                    text = text.color(Color32::GRAY).italics();
+                }
+                let r = ui.selectable_label(selected, text).on_hover_text(format!(
+                    "q = {:?} ({})",
+                    s.q.iter()
+                        .map(|v| (v.to_degrees() * 10.0).round() / 10.0)
+                        .collect::<Vec<_>>(),
+                    if s.within_limits {
+                        "within limits"
+                    } else {
+                        "outside the joint limits"
+                    }
+                ));
+                if r.clicked()
+                    && let Err(e) = app.state.select_solution(ee, i)
+                {
+                    app.state.push_message(Level::Warning, e.to_string());
+                }
+            }
+        }
+    });
+}
+
+fn target_editor(app: &mut AppUi, ui: &mut egui::Ui, ee: usize) {
+    let Ok(target) = app.state.target(ee) else {
+        return;
+    };
+    let t = target.world_from_tool;
+    let mut p = t.translation.vector * 1e3;
+    let rpy = crate::kinematics::orientation::rpy_from_rotation(&t.rotation).angles;
+    let mut a = rpy.map(f64::to_degrees);
+    let mut changed = false;
+    ui.horizontal(|ui| {
+        ui.label("target [mm]");
+        for k in 0..3 {
+            changed |= ui
+                .add(egui::DragValue::new(&mut p[k]).speed(1.0).max_decimals(1))
+                .changed();
+        }
+    });
+    ui.horizontal(|ui| {
+        ui.label("RPY [deg]");
+        for k in 0..3 {
+            changed |= ui
+                .add(egui::DragValue::new(&mut a[k]).speed(0.5).max_decimals(1))
+                .changed();
+        }
+    });
+    if changed {
+        let r = crate::kinematics::orientation::rotation_from_rpy(&a.map(f64::to_radians));
+        let pose = Pose::from_parts(nalgebra::Translation3::from(p / 1e3), r);
+        if let Err(e) = app.state.set_target(ee, pose) {
+            app.state.push_message(Level::Warning, e.to_string());
+        }
+    }
+}

@@ -1,0 +1,68 @@
+//! The whole app window rendered offscreen, with no display: the same layout and the same 3D
+//! renderer as the live app, written to PNG by `armlab view MODEL --screenshot FILE.png`.
+
+use super::AppError;
+use super::state::AppState;
+use super::ui::AppUi;
+use super::viewport::Viewport3d;
+use crate::figure::offscreen::Offscreen;
+use crate::render::Gpu;
+
+/// What to show in a screenshot.
+#[derive(Debug, Clone, Default)]
+pub struct ScreenshotOptions {
+    /// Joint vector (default: the model's ready configuration).
+    pub q: Option<Vec<f64>>,
+    /// Put the IK target on the tool and draw every closed-form solution.
+    pub all_postures: bool,
+    /// A target position (m) to move the IK target to (e.g. outside the workspace).
+    pub target_position: Option<[f64; 3]>,
+    /// Projector mode.
+    pub projector: bool,
+}
+
+/// Renders the app for `state` at `size` pixels.
+pub fn screenshot(
+    state: AppState,
+    size: [u32; 2],
+    opts: &ScreenshotOptions,
+) -> Result<image::RgbaImage, AppError> {
+    let gpu = Gpu::new_headless().map_err(crate::figure::FigureError::from)?;
+    let mut offscreen = Offscreen::new(&gpu.device);
+    let vp_gpu = Gpu::from_parts(
+        gpu.device.clone(),
+        gpu.queue.clone(),
+        gpu.adapter_info.clone(),
+    );
+    let mut vp = Viewport3d::new(vp_gpu).map_err(crate::figure::FigureError::from)?;
+    let mut app = AppUi::new(state);
+    app.projector = opts.projector;
+    if let Some(q) = &opts.q {
+        app.state
+            .set_q(q)
+            .map_err(|e| AppError::Input(e.to_string()))?;
+    }
+    if opts.all_postures || opts.target_position.is_some() {
+        let mut t = app
+            .state
+            .robot()
+            .fk_ee(app.state.q(), 0)
+            .map_err(|e| AppError::Input(e.to_string()))?;
+        if let Some(p) = opts.target_position {
+            t.translation.vector = nalgebra::Vector3::from(p);
+        }
+        app.state
+            .set_target(0, t)
+            .map_err(|e| AppError::Input(e.to_string()))?;
+        app.state.display.ghosts = true;
+    }
+    app.state.clear_trails();
+    // Pass 1 lays the window out to learn the viewport size; pass 2 paints with the 3D view.
+    offscreen.render(&gpu.device, &gpu.queue, size, 1.0, |ui| app.show(ui, None))?;
+    app.fit();
+    let texture = app.render_viewport(&mut vp, offscreen.renderer_mut(), false);
+    let img = offscreen.render(&gpu.device, &gpu.queue, size, 1.0, |ui| {
+        app.show(ui, texture)
+    })?;
+    Ok(img)
+}

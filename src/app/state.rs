@@ -1,0 +1,507 @@
+//! The interactive app's state, free of any GUI type so that it can be unit-tested: the model,
+//! the joint vector q, one IK target per end-effector with its last result and selected posture,
+//! the posture lock, the DH table editor, display toggles, the end-effector trail and status
+//! messages. Every method takes `&mut self` and does its work at once (the app calls them from
+//! its frame loop).
+//!
+//! Units: q and every stored value are in rad and m; the UI works in the [`AngleUnit`] (degrees by
+//! default) and millimetres, through the `*_display` methods and the DH cells.
+//!
+//! Invariants: q always has `robot().dof()` finite entries inside the joint limits; the robot
+//! always is the last valid model (a failed load or an invalid DH entry changes nothing); a
+//! target that cannot be reached leaves q unchanged.
+//!
+//! # Targets and the posture lock
+//!
+//! Moving a slider, resetting or editing the DH table puts every target whose end-effector moved
+//! at its end-effector (and, for closed-form arms, selects the posture the arm is in). Moving a
+//! target ([`AppState::set_target`], [`AppState::move_target_by`]) solves IK at once:
+//!
+//! - arms with a closed form keep every solution (drawn as [`Ghost`]s); unlocked, the arm takes
+//!   the within-limits solution closest in joint space to its q; locked ([`AppState::set_lock`]),
+//!   the one with the selected posture label, except near a singularity, where a label can change
+//!   meaning (theta5 crossing 0 turns "wrist no flip" into "wrist flip"): there the closest
+//!   solution is taken if it is closer by more than [`BRANCH_SWITCH_MARGIN`] and the lock follows
+//!   its label, with an info message. Degenerate solutions keep their free joints at the current
+//!   values, so the arm never jumps more than the motion warrants;
+//! - other arms use the numerical solver seeded with q; with several end-effectors the joints on
+//!   the other end-effectors' chains (the humanoid's torso) are held;
+//! - a target that cannot be reached (outside the workspace, only outside the limits, solver not
+//!   converged) leaves q as it is and is flagged with a [`Reach`] saying how far out it is.
+
+mod dh;
+mod select;
+mod track;
+mod types;
+mod units;
+
+pub use dh::{DH_FIELDS, DhCell, DhField, DhRowCells};
+pub use track::{
+    BRANCH_SWITCH_MARGIN, BRANCH_SWITCH_MEASURE, is_degenerate_label, tracking_options,
+};
+pub use types::{
+    DisplayToggles, EeTarget, Ghost, Level, Reach, Readouts, StateError, StatusMessage,
+};
+pub use units::{AngleUnit, EntryError, MM_PER_M, Quantity, format_entry, parse_entry};
+
+use super::singularity::SingularityAnalyzer;
+use crate::kinematics::orientation::angle_axis_from_rotation;
+use crate::kinematics::pose::Pose;
+use crate::kinematics::{EulerKind, Robot};
+use nalgebra::{Rotation3, Translation3, Vector3};
+use std::collections::VecDeque;
+
+/// Most positions kept in each end-effector trail.
+pub const TRAIL_CAPACITY: usize = 2000;
+/// A trail point is added only when the end-effector moved more than this (m).
+pub const TRAIL_MIN_STEP: f64 = 1e-6;
+/// Most status messages kept.
+pub const MESSAGE_CAPACITY: usize = 64;
+
+/// The app's state.
+#[derive(Debug, Clone)]
+pub struct AppState {
+    spec: String,
+    robot: Robot,
+    q: Vec<f64>,
+    targets: Vec<EeTarget>,
+    lock: bool,
+    dh: Vec<DhRowCells>,
+    /// What to draw.
+    pub display: DisplayToggles,
+    angle_unit: AngleUnit,
+    /// Orientation representation of the readouts (ZYZ or RPY).
+    pub orientation: EulerKind,
+    trails: Vec<VecDeque<Vector3<f64>>>,
+    messages: VecDeque<StatusMessage>,
+    analyzer: SingularityAnalyzer,
+}
+
+impl AppState {
+    /// The state for `robot` (loaded from `spec`, a built-in name or a path): q at the "ready"
+    /// configuration if the robot has one (else zero), clamped into the limits; each target at
+    /// its end-effector; lock off; degrees.
+    pub fn new(robot: Robot, spec: impl Into<String>) -> Self {
+        let analyzer = SingularityAnalyzer::new(&robot);
+        let dh = dh::build_cells(&robot, AngleUnit::default());
+        let mut me = Self {
+            spec: spec.into(),
+            q: Vec::new(),
+            targets: Vec::new(),
+            lock: false,
+            dh,
+            display: DisplayToggles::default(),
+            angle_unit: AngleUnit::default(),
+            orientation: EulerKind::Zyz,
+            trails: Vec::new(),
+            messages: VecDeque::new(),
+            analyzer,
+            robot,
+        };
+        me.install_q();
+        me
+    }
+
+    /// Loads a model by built-in name or `.toml`/`.urdf` path (see
+    /// [`crate::model_file::load_model`]).
+    pub fn from_spec(spec: &str) -> Result<Self, StateError> {
+        crate::model_file::load_model(spec)
+            .map(|r| Self::new(r, spec))
+            .map_err(|source| StateError::Load {
+                spec: spec.to_string(),
+                source: Box::new(source),
+            })
+    }
+
+    /// Replaces the model. On error the previous model, q and targets are kept and the error is
+    /// also put in the status messages. Display settings, units and the lock flag are kept.
+    pub fn load_model(&mut self, spec: &str) -> Result<(), StateError> {
+        match crate::model_file::load_model(spec) {
+            Ok(robot) => {
+                self.spec = spec.to_string();
+                self.analyzer = SingularityAnalyzer::new(&robot);
+                self.dh = dh::build_cells(&robot, self.angle_unit);
+                self.robot = robot;
+                self.trails.clear();
+                self.install_q();
+                let msg = format!("loaded {} ({} DOF)", self.robot.name, self.robot.dof());
+                self.push_message(Level::Info, msg);
+                Ok(())
+            }
+            Err(source) => {
+                let err = StateError::Load {
+                    spec: spec.to_string(),
+                    source: Box::new(source),
+                };
+                self.push_message(Level::Error, format!("{err}; keeping {}", self.robot.name));
+                Err(err)
+            }
+        }
+    }
+
+    /// q at "ready" (or zero), targets synced, trails started.
+    fn install_q(&mut self) {
+        let n = self.robot.dof();
+        let mut q = self
+            .robot
+            .config("ready")
+            .filter(|c| c.len() == n)
+            .map_or_else(|| vec![0.0; n], <[f64]>::to_vec);
+        clamp_into(&mut q, &self.robot.limits());
+        self.q = q;
+        self.targets = self
+            .robot
+            .end_effectors()
+            .iter()
+            .map(|e| EeTarget {
+                name: e.name.clone(),
+                world_from_tool: Pose::identity(),
+                result: None,
+                selected: None,
+                posture: None,
+                reach: Reach::Reached,
+            })
+            .collect();
+        self.trails = vec![VecDeque::new(); self.targets.len()];
+        for ee in 0..self.targets.len() {
+            self.sync_target(ee);
+        }
+        self.push_trail();
+    }
+
+    /// The model spec (built-in name or path) the robot came from.
+    pub fn spec(&self) -> &str {
+        &self.spec
+    }
+
+    /// The robot (its last valid shape).
+    pub fn robot(&self) -> &Robot {
+        &self.robot
+    }
+
+    /// The joint vector (rad or m).
+    pub fn q(&self) -> &[f64] {
+        &self.q
+    }
+
+    /// The singularity classifier of the current robot.
+    pub fn analyzer(&self) -> &SingularityAnalyzer {
+        &self.analyzer
+    }
+
+    /// Every target, one per end-effector.
+    pub fn targets(&self) -> &[EeTarget] {
+        &self.targets
+    }
+
+    /// Target of end-effector `ee`.
+    pub fn target(&self, ee: usize) -> Result<&EeTarget, StateError> {
+        self.targets.get(ee).ok_or(StateError::NoSuchEndEffector {
+            index: ee,
+            count: self.targets.len(),
+        })
+    }
+
+    /// Whether the posture lock is on.
+    pub fn lock(&self) -> bool {
+        self.lock
+    }
+
+    /// The angle display unit.
+    pub fn angle_unit(&self) -> AngleUnit {
+        self.angle_unit
+    }
+
+    /// Changes the angle display unit; DH cells without errors are re-formatted.
+    pub fn set_angle_unit(&mut self, unit: AngleUnit) {
+        self.angle_unit = unit;
+        self.refresh_dh_cells();
+    }
+
+    /// The status messages, oldest first (at most [`MESSAGE_CAPACITY`]).
+    pub fn messages(&self) -> &VecDeque<StatusMessage> {
+        &self.messages
+    }
+
+    /// The newest status message.
+    pub fn last_message(&self) -> Option<&StatusMessage> {
+        self.messages.back()
+    }
+
+    /// Adds a status message (an identical newest message is not repeated).
+    pub fn push_message(&mut self, level: Level, text: impl Into<String>) {
+        let m = StatusMessage {
+            level,
+            text: text.into(),
+        };
+        if self.messages.back() == Some(&m) {
+            return;
+        }
+        if self.messages.len() == MESSAGE_CAPACITY {
+            self.messages.pop_front();
+        }
+        self.messages.push_back(m);
+    }
+
+    /// Removes every status message.
+    pub fn clear_messages(&mut self) {
+        self.messages.clear();
+    }
+
+    /// Recent positions (m, world) of end-effector `ee`, oldest first.
+    pub fn trail(&self, ee: usize) -> Option<&VecDeque<Vector3<f64>>> {
+        self.trails.get(ee)
+    }
+
+    /// Empties every trail.
+    pub fn clear_trails(&mut self) {
+        for t in &mut self.trails {
+            t.clear();
+        }
+    }
+
+    fn push_trail(&mut self) {
+        for (ee, trail) in self.trails.iter_mut().enumerate() {
+            let Ok(t) = self.robot.fk_ee(&self.q, ee) else {
+                continue;
+            };
+            let p = t.translation.vector;
+            if trail
+                .back()
+                .is_some_and(|b| (b - p).norm() <= TRAIL_MIN_STEP)
+            {
+                continue;
+            }
+            if trail.len() == TRAIL_CAPACITY {
+                trail.pop_front();
+            }
+            trail.push_back(p);
+        }
+    }
+
+    fn check_dof(&self, k: usize) -> Result<(), StateError> {
+        if k < self.robot.dof() {
+            Ok(())
+        } else {
+            Err(StateError::NoSuchDof {
+                index: k,
+                count: self.robot.dof(),
+            })
+        }
+    }
+
+    /// What `q[k]` measures: an angle (revolute) or a length (prismatic).
+    pub fn joint_quantity(&self, k: usize) -> Result<Quantity, StateError> {
+        self.check_dof(k)?;
+        Ok(match self.robot.dof_joint(k).kind {
+            crate::kinematics::JointKind::Prismatic => Quantity::Length,
+            _ => Quantity::Angle,
+        })
+    }
+
+    /// `q[k]` in display units (the angle unit, or mm).
+    pub fn joint_display(&self, k: usize) -> Result<f64, StateError> {
+        Ok(self
+            .joint_quantity(k)?
+            .to_display(self.q[k], self.angle_unit))
+    }
+
+    /// The limits of `q[k]` in display units (the slider's range).
+    pub fn joint_display_limits(&self, k: usize) -> Result<[f64; 2], StateError> {
+        let quantity = self.joint_quantity(k)?;
+        let [lo, hi] = self.robot.dof_joint(k).limits;
+        Ok([
+            quantity.to_display(lo, self.angle_unit),
+            quantity.to_display(hi, self.angle_unit),
+        ])
+    }
+
+    /// Sets `q[k]` (rad or m), clamped into its limits; targets follow the end-effectors.
+    /// Returns the value applied.
+    pub fn set_joint(&mut self, k: usize, value: f64) -> Result<f64, StateError> {
+        self.check_dof(k)?;
+        if !value.is_finite() {
+            return Err(StateError::InvalidJointEntry {
+                dof: k,
+                reason: EntryError::NonFinite(value.to_string()),
+            });
+        }
+        let [lo, hi] = self.robot.dof_joint(k).limits;
+        let v = value.clamp(lo, hi);
+        if v != self.q[k] {
+            let mut q = self.q.clone();
+            q[k] = v;
+            self.apply_q(q, None);
+        }
+        Ok(v)
+    }
+
+    /// Sets `q[k]` from typed text in display units (degrees or radians, millimetres; explicit
+    /// units accepted, see [`parse_entry`]). A value outside the limits is clamped and a warning
+    /// says so. Returns the value applied (rad or m).
+    pub fn set_joint_display(&mut self, k: usize, text: &str) -> Result<f64, StateError> {
+        let quantity = self.joint_quantity(k)?;
+        let v = parse_entry(text, quantity, self.angle_unit)
+            .map_err(|reason| StateError::InvalidJointEntry { dof: k, reason })?;
+        let applied = self.set_joint(k, v)?;
+        if applied != v {
+            let unit = self.angle_unit;
+            let sym = quantity.symbol(unit);
+            let [lo, hi] = self.joint_display_limits(k)?;
+            let msg = format!(
+                "q{} = {} {sym} is outside [{}, {}] {sym}; set to {} {sym}",
+                k + 1,
+                format_entry(v, quantity, unit),
+                format_entry(quantity.from_display(lo, unit), quantity, unit),
+                format_entry(quantity.from_display(hi, unit), quantity, unit),
+                format_entry(applied, quantity, unit),
+            );
+            self.push_message(Level::Warning, msg);
+        }
+        Ok(applied)
+    }
+
+    /// Sets the whole joint vector (rad or m), clamped into the limits.
+    pub fn set_q(&mut self, q: &[f64]) -> Result<(), StateError> {
+        self.robot.check_q(q)?;
+        let mut q = q.to_vec();
+        clamp_into(&mut q, &self.robot.limits());
+        self.apply_q(q, None);
+        Ok(())
+    }
+
+    /// Moves the arm to a named configuration ("zero", "ready", "figure", ...), clamped into the
+    /// limits; targets follow.
+    pub fn reset_to(&mut self, name: &str) -> Result<(), StateError> {
+        let q = self
+            .robot
+            .config(name)
+            .ok_or_else(|| StateError::UnknownConfiguration {
+                name: name.to_string(),
+                available: self
+                    .robot
+                    .configurations
+                    .iter()
+                    .map(|c| c.name.as_str())
+                    .collect::<Vec<_>>()
+                    .join(", "),
+            })?
+            .to_vec();
+        self.set_q(&q)?;
+        self.push_message(Level::Info, format!("reset to \"{name}\""));
+        Ok(())
+    }
+
+    /// Sets q, extends the trails, and re-syncs every target other than `solved` whose
+    /// end-effector moved.
+    fn apply_q(&mut self, q: Vec<f64>, solved: Option<usize>) {
+        self.q = q;
+        self.push_trail();
+        for ee in 0..self.targets.len() {
+            if Some(ee) == solved {
+                continue;
+            }
+            let Ok(fk) = self.robot.fk_ee(&self.q, ee) else {
+                continue;
+            };
+            let t = &self.targets[ee].world_from_tool;
+            let moved = (fk.translation.vector - t.translation.vector).norm() > 1e-9
+                || angle_axis_from_rotation(&(fk.rotation.inverse() * t.rotation)).angle > 1e-9;
+            if moved {
+                self.sync_target(ee);
+            }
+        }
+    }
+
+    /// Puts target `ee` at its end-effector; for closed-form arms also lists every solution for
+    /// that pose and selects the one the arm is at (its label becomes the selected posture).
+    fn sync_target(&mut self, ee: usize) {
+        let Ok(fk) = self.robot.fk_ee(&self.q, ee) else {
+            return;
+        };
+        let result = if self.uses_closed_form(ee) {
+            self.closed_form_solutions(&fk).ok()
+        } else {
+            None
+        };
+        let selected = result.as_ref().and_then(|r| {
+            r.solutions
+                .iter()
+                .enumerate()
+                .map(|(i, s)| {
+                    (
+                        i,
+                        crate::kinematics::ik::solver::joint_distance(&self.robot, &s.q, &self.q),
+                    )
+                })
+                .filter(|&(_, d)| d < 1e-6)
+                .min_by(|a, b| a.1.total_cmp(&b.1))
+                .map(|(i, _)| i)
+        });
+        let t = &mut self.targets[ee];
+        if let (Some(r), Some(i)) = (&result, selected) {
+            let label = &r.solutions[i].posture;
+            if !is_degenerate_label(label) {
+                t.posture = Some(label.clone());
+            }
+        }
+        t.world_from_tool = fk;
+        t.result = result;
+        t.selected = selected;
+        t.reach = Reach::Reached;
+    }
+
+    /// After a successful DH edit: q clamped into the (maybe new) limits, solvers rebuilt,
+    /// targets synced.
+    fn after_model_edit(&mut self) {
+        self.analyzer = SingularityAnalyzer::new(&self.robot);
+        let mut q = self.q.clone();
+        clamp_into(&mut q, &self.robot.limits());
+        self.q = q;
+        for ee in 0..self.targets.len() {
+            self.sync_target(ee);
+        }
+        self.push_trail();
+    }
+
+    /// Sets the target of end-effector `ee` (`world_from_tool`, m) and solves IK at once: the
+    /// arm moves to the chosen solution, or stays put with the target flagged (see [`Reach`]).
+    /// Planar arms keep the target in their plane and turn it only about the base z axis; the
+    /// SCARA only turns it about z.
+    pub fn set_target(&mut self, ee: usize, world_from_tool: Pose) -> Result<&Reach, StateError> {
+        self.target(ee)?;
+        if !world_from_tool
+            .to_homogeneous()
+            .iter()
+            .all(|v| v.is_finite())
+        {
+            return Err(StateError::NonFiniteTarget);
+        }
+        let pose = self.constrain_target(ee, world_from_tool);
+        self.targets[ee].world_from_tool = pose;
+        self.solve_target(ee);
+        Ok(&self.targets[ee].reach)
+    }
+
+    /// Moves the target of `ee` by `translation` (m, world frame) and turns it by `rotation`
+    /// (world frame, about the target's origin), then solves as [`AppState::set_target`].
+    pub fn move_target_by(
+        &mut self,
+        ee: usize,
+        translation: Vector3<f64>,
+        rotation: Rotation3<f64>,
+    ) -> Result<&Reach, StateError> {
+        let t = self.target(ee)?.world_from_tool;
+        let pose = Pose::from_parts(
+            Translation3::from(t.translation.vector + translation),
+            rotation * t.rotation,
+        );
+        self.set_target(ee, pose)
+    }
+}
+
+fn clamp_into(q: &mut [f64], limits: &[[f64; 2]]) {
+    for (v, [lo, hi]) in q.iter_mut().zip(limits) {
+        *v = v.clamp(*lo, *hi);
+    }
+}

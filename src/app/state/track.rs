@@ -1,0 +1,523 @@
+//! Solving IK for a moved target every frame, and the posture lock.
+//!
+//! Arms with a closed form (a single end-effector and a family of
+//! [`crate::kinematics::ik::closed_form`]) get every solution; one is chosen:
+//!
+//! - **unlocked**: the within-limits solution closest in joint space to the current q
+//!   ([`joint_distance`]: revolute differences wrapped into (-pi, pi]);
+//! - **locked**: the solution with the locked posture label. Labels change meaning only at
+//!   singularities (the wrist passing through sin(theta5) = 0 continues as the "flip" branch, for
+//!   instance), so when the previous q is near a singularity (a singularity measure below
+//!   [`BRANCH_SWITCH_MEASURE`], the conditioning ratio below [`NEAR_RATIO`], or a degenerate
+//!   solution among the new ones) and another within-limits solution is closer by more than
+//!   [`BRANCH_SWITCH_MARGIN`], that one is taken and the lock follows its label (an info
+//!   message says so). Where the locked label is absent
+//!   because the pair merged ("elbow stretched"), the closest within-limits solution is taken and
+//!   the lock keeps its label. If the locked solution is outside the limits, the arm stays put.
+//!
+//! Degenerate solutions (a free joint) are moved along their family to the current values of the
+//! free joints before the choice (the free joints held, a short Levenberg–Marquardt run for the
+//! others), so crossing a
+//! singularity does not snap the free joint to the closed form's representative value. Revolute
+//! angles are shifted by 2 pi towards the current q where the limits allow.
+//!
+//! Other arms use the numerical solver (Levenberg–Marquardt, no restarts) seeded with the current
+//! q, full pose if the task rank is 6, position otherwise. With several end-effectors the joints
+//! on the other end-effectors' chains (the humanoid's torso) are held, so that dragging one hand
+//! does not move the other.
+//!
+//! Whatever the solver, a target it cannot reach leaves q unchanged (no jump, no NaN) and flags
+//! the target with a [`Reach`] that says how far out it is.
+
+use super::{AppState, Level, Reach};
+use crate::app::singularity::NEAR_RATIO;
+use crate::kinematics::ik::closed_form::Family;
+use crate::kinematics::ik::numerical::{self, NumericalOptions};
+use crate::kinematics::ik::solver::{self, SolverChoice, by_posture, joint_distance};
+use crate::kinematics::ik::{IkResult, IkSolution, IkStatus, Target};
+use crate::kinematics::orientation::wrap_angle;
+use crate::kinematics::pose::{Pose, rot_z};
+use crate::kinematics::{Drive, JointGeometry, JointKind, Robot};
+use nalgebra::{Rotation3, Translation3};
+
+/// A geometric singularity measure (see [`crate::app::singularity`]: a sine, or a distance over
+/// the robot's size) below which the previous configuration counts as near a singularity, where
+/// a locked posture label may change meaning. The Jacobian's conditioning ratio below
+/// [`NEAR_RATIO`] counts as well.
+pub const BRANCH_SWITCH_MEASURE: f64 = 0.1;
+/// How much closer (joint-space norm, rad / m) another solution must be than the locked one for
+/// the lock to follow it near a singularity.
+pub const BRANCH_SWITCH_MARGIN: f64 = 0.1;
+/// Slack (rad or m) on the joint limits when shifting angles by 2 pi.
+const LIMIT_SLACK: f64 = 1e-12;
+
+/// Options of the numerical tracking solver: no restarts (a restart could jump to another
+/// branch), 100 iterations, 1e-9 m / rad tolerance.
+pub fn tracking_options() -> NumericalOptions {
+    NumericalOptions {
+        restarts: 0,
+        max_iterations: 100,
+        tolerance: 1e-9,
+        ..NumericalOptions::default()
+    }
+}
+
+/// Whether a posture label names a degenerate member of a pair (merged or with a free joint):
+/// "elbow stretched", "elbow folded", "wrist singular", "shoulder on axis", "shoulder boundary",
+/// "extension zero".
+pub fn is_degenerate_label(label: &str) -> bool {
+    [
+        "stretched",
+        "folded",
+        "singular",
+        "on axis",
+        "boundary",
+        "extension zero",
+    ]
+    .iter()
+    .any(|w| label.contains(w))
+}
+
+/// The decision of one tracking step.
+enum Choice {
+    /// Adopt solution `index`; `follow` = the lock follows its label.
+    Pick { index: usize, follow: bool },
+    /// Stay put.
+    Freeze(Reach),
+}
+
+/// Whether the closed-form family solves a full pose of the last frame (else a point).
+fn solves_frame(family: Option<Family>) -> bool {
+    matches!(
+        family,
+        Some(Family::Planar3 | Family::Scara | Family::SphericalWrist | Family::Decoupled6 { .. })
+    )
+}
+
+impl AppState {
+    /// Whether the closed-form path applies to end-effector `ee`.
+    pub(super) fn uses_closed_form(&self, ee: usize) -> bool {
+        ee == 0 && self.robot.end_effectors().len() == 1 && self.analyzer.family().is_some()
+    }
+
+    /// Solves IK for target `ee` and moves the arm (or freezes it).
+    pub(super) fn solve_target(&mut self, ee: usize) {
+        if self.uses_closed_form(ee) {
+            self.track_closed_form();
+        } else {
+            self.track_numerical(ee);
+        }
+    }
+
+    /// Every closed-form solution for `world_from_tool`, degenerate ones aligned with the current
+    /// q and angles shifted towards it.
+    pub(super) fn closed_form_solutions(&self, world_from_tool: &Pose) -> Result<IkResult, String> {
+        let target = Target::Pose(*world_from_tool);
+        let (mut result, _) = solver::solve(
+            &self.robot,
+            0,
+            &target,
+            Some(&self.q),
+            SolverChoice::ClosedForm,
+            &tracking_options(),
+        )
+        .map_err(|e| e.to_string())?;
+        for s in &mut result.solutions {
+            if !s.free_joints.is_empty() {
+                self.align(s, world_from_tool);
+            }
+            self.shift_towards_q(&mut s.q);
+        }
+        Ok(result)
+    }
+
+    fn track_closed_form(&mut self) {
+        let t = self.targets[0].world_from_tool;
+        let result = match self.closed_form_solutions(&t) {
+            Ok(r) => r,
+            Err(reason) => return self.freeze(0, None, Reach::Invalid { reason }),
+        };
+        if let IkStatus::Unreachable { distance } = result.status {
+            return self.freeze(0, Some(result), Reach::Unreachable { distance });
+        }
+        let degenerate = result
+            .solutions
+            .iter()
+            .any(|s| !s.free_joints.is_empty() || is_degenerate_label(&s.posture));
+        match self.choose(0, &result.solutions, degenerate) {
+            Choice::Pick { index, follow } => self.adopt(0, result, index, follow),
+            Choice::Freeze(reach) => self.freeze(0, Some(result), reach),
+        }
+    }
+
+    fn choose(&self, ee: usize, sols: &[IkSolution], degenerate: bool) -> Choice {
+        let dist = |s: &IkSolution| joint_distance(&self.robot, &s.q, &self.q);
+        let closest_in = sols
+            .iter()
+            .enumerate()
+            .filter(|(_, s)| s.within_limits)
+            .min_by(|a, b| dist(a.1).total_cmp(&dist(b.1)))
+            .map(|(i, _)| i);
+        let locked = if self.lock {
+            self.targets[ee].posture.as_deref()
+        } else {
+            None
+        };
+        let pick = |index| Choice::Pick {
+            index,
+            follow: false,
+        };
+        let outside = |posture: Option<&str>| {
+            Choice::Freeze(Reach::OutsideLimits {
+                posture: posture.map(str::to_string),
+            })
+        };
+        let Some(label) = locked else {
+            return closest_in.map_or_else(|| outside(None), pick);
+        };
+        let same =
+            by_posture(sols, label).and_then(|s| sols.iter().position(|x| std::ptr::eq(x, s)));
+        let Some(i) = same else {
+            return closest_in.map_or_else(|| outside(Some(label)), pick);
+        };
+        let near = degenerate || self.near_singularity(ee);
+        if near
+            && let Some(c) = closest_in
+            && c != i
+            && dist(&sols[c]) + BRANCH_SWITCH_MARGIN < dist(&sols[i])
+        {
+            return Choice::Pick {
+                index: c,
+                follow: true,
+            };
+        }
+        if sols[i].within_limits {
+            pick(i)
+        } else {
+            outside(Some(label))
+        }
+    }
+
+    /// Whether the current q is near a singularity in the sense of [`BRANCH_SWITCH_MEASURE`].
+    fn near_singularity(&self, ee: usize) -> bool {
+        let (robot, q) = (&self.robot, &self.q);
+        let ratio = self.analyzer.conditioning(robot, q, ee).unwrap_or(0.0);
+        let measure = self
+            .analyzer
+            .measures(robot, q, ee)
+            .ok()
+            .and_then(|m| m.first().map(|c| c.measure))
+            .unwrap_or(f64::INFINITY);
+        ratio < NEAR_RATIO || measure < BRANCH_SWITCH_MEASURE
+    }
+
+    /// Moves the arm to solution `index` of `result` for target `ee`.
+    fn adopt(&mut self, ee: usize, result: IkResult, index: usize, follow: bool) {
+        let sol = &result.solutions[index];
+        let q = sol.q.clone();
+        let label = sol.posture.clone();
+        let lock = self.lock;
+        let t = &mut self.targets[ee];
+        let mut note = None;
+        if !is_degenerate_label(&label) {
+            let old = t.posture.replace(label.clone());
+            if follow
+                && lock
+                && let Some(old) = old
+                && old != label
+            {
+                note = Some(format!(
+                    "posture lock: through the singularity the branch continues as \"{label}\" \
+                     (was \"{old}\")"
+                ));
+            }
+        }
+        let was_reached = t.reach.is_reached();
+        t.selected = Some(index);
+        t.result = Some(result);
+        t.reach = Reach::Reached;
+        let name = t.name.clone();
+        if let Some(n) = note {
+            self.push_message(Level::Info, n);
+        }
+        if !was_reached {
+            self.push_message(Level::Info, format!("{name}: target reached again"));
+        }
+        self.apply_q(q, Some(ee));
+    }
+
+    /// Keeps q; flags target `ee`.
+    fn freeze(&mut self, ee: usize, result: Option<IkResult>, reach: Reach) {
+        let t = &mut self.targets[ee];
+        let announce = std::mem::discriminant(&t.reach) != std::mem::discriminant(&reach);
+        t.result = result;
+        t.selected = None;
+        t.reach = reach;
+        if announce && let Some(m) = t.reach.message() {
+            let m = format!("{}: {m}", t.name);
+            self.push_message(Level::Warning, m);
+        }
+    }
+
+    /// Moves the free joints of a degenerate solution to their current values and re-solves the
+    /// other joints (free ones held) by a short Levenberg–Marquardt run; kept only if it still
+    /// reaches the target.
+    fn align(&self, s: &mut IkSolution, world_from_tool: &Pose) {
+        let frame = solves_frame(self.analyzer.family());
+        let target = if frame {
+            Target::Pose(*world_from_tool)
+        } else {
+            Target::Position(world_from_tool.translation.vector)
+        };
+        let mut start = s.q.clone();
+        let mut held = vec![false; start.len()];
+        for f in &s.free_joints {
+            start[f.index] = self.q[f.index];
+            held[f.index] = true;
+        }
+        let Some((reduced, free)) = held_robot(&self.robot, &start, &held) else {
+            return;
+        };
+        let seed: Vec<f64> = free.iter().map(|&k| start[k]).collect();
+        let opts = NumericalOptions {
+            restarts: 0,
+            max_iterations: 50,
+            tolerance: 1e-12,
+            enforce_limits: false,
+            ..NumericalOptions::default()
+        };
+        let Ok(rep) = numerical::solve(&reduced, 0, &target, &seed, &opts) else {
+            return;
+        };
+        let mut q = start;
+        for (i, &k) in free.iter().enumerate() {
+            q[k] = rep.q[i];
+        }
+        let Ok((pe, oe)) = numerical::pose_errors(&self.robot, 0, &q, &target) else {
+            return;
+        };
+        let limit = |e: f64| e.max(1e-9);
+        if pe <= limit(s.position_error) && (!frame || oe <= limit(s.orientation_error)) {
+            let full = Target::Pose(*world_from_tool);
+            if let Ok((pe, oe)) = numerical::pose_errors(&self.robot, 0, &q, &full) {
+                s.position_error = pe;
+                s.orientation_error = oe;
+            }
+            s.within_limits = self.robot.within_limits(&q, LIMIT_SLACK);
+            s.q = q;
+        }
+    }
+
+    /// Shifts every revolute angle by a multiple of 2 pi towards the current q when the shifted
+    /// value stays inside the limits.
+    pub(super) fn shift_towards_q(&self, q: &mut [f64]) {
+        let limits = self.robot.limits();
+        for (k, v) in q.iter_mut().enumerate() {
+            if self.robot.dof_joint(k).kind != JointKind::Revolute {
+                continue;
+            }
+            let cand = self.q[k] + wrap_angle(*v - self.q[k]);
+            let [lo, hi] = limits[k];
+            if cand >= lo - LIMIT_SLACK && cand <= hi + LIMIT_SLACK {
+                *v = cand;
+            }
+        }
+    }
+
+    fn track_numerical(&mut self, ee: usize) {
+        let t = self.targets[ee].world_from_tool;
+        let target = if self.analyzer.task_rank(ee) >= 6 {
+            Target::Pose(t)
+        } else {
+            Target::Position(t.translation.vector)
+        };
+        let reduced = reduced_robot(&self.robot, &self.q, ee);
+        let (robot, free): (&Robot, Vec<usize>) = match &reduced {
+            Some((r, free)) => (r, free.clone()),
+            None => (&self.robot, (0..self.robot.dof()).collect()),
+        };
+        let seed: Vec<f64> = free.iter().map(|&k| self.q[k]).collect();
+        let rep = match numerical::solve(robot, ee, &target, &seed, &tracking_options()) {
+            Ok(r) => r,
+            Err(e) => {
+                let reason = e.to_string();
+                return self.freeze(ee, None, Reach::Invalid { reason });
+            }
+        };
+        if !rep.converged {
+            let distance = rep.position_error;
+            let result = IkResult {
+                status: IkStatus::Unreachable {
+                    distance: distance.max(rep.orientation_error),
+                },
+                solutions: Vec::new(),
+            };
+            let reach = Reach::NotConverged {
+                distance,
+                angle: rep.orientation_error,
+            };
+            return self.freeze(ee, Some(result), reach);
+        }
+        let mut q = self.q.clone();
+        for (i, &k) in free.iter().enumerate() {
+            q[k] = rep.q[i];
+        }
+        let (position_error, orientation_error) =
+            numerical::pose_errors(&self.robot, ee, &q, &Target::Pose(t)).unwrap_or((0.0, 0.0));
+        let sol = IkSolution {
+            within_limits: self.robot.within_limits(&q, LIMIT_SLACK),
+            q,
+            posture: "numerical".into(),
+            position_error,
+            orientation_error,
+            free_joints: Vec::new(),
+        };
+        let result = IkResult {
+            status: IkStatus::Ok,
+            solutions: vec![sol],
+        };
+        self.adopt(ee, result, 0, false);
+    }
+
+    /// The target the arm can actually follow: planar arms keep the plane and only turn about the
+    /// base z axis, the SCARA only turns about z (other targets would be rejected or unreachable
+    /// by construction).
+    pub(super) fn constrain_target(&self, ee: usize, pose: Pose) -> Pose {
+        let family = if self.uses_closed_form(ee) {
+            self.analyzer.family()
+        } else {
+            None
+        };
+        let (keep_z, yaw_only) = match family {
+            Some(Family::Planar2 | Family::Planar3) => (true, true),
+            Some(Family::Scara) => (false, true),
+            _ => return pose,
+        };
+        let Ok(fk) = self.robot.fk_ee(&self.q, ee) else {
+            return pose;
+        };
+        let base_inv = self.robot.base.inverse();
+        let mut local = base_inv * pose;
+        let now = base_inv * fk;
+        if keep_z {
+            local.translation.vector.z = now.translation.vector.z;
+        }
+        if yaw_only {
+            let rel = (local.rotation * now.rotation.inverse()).into_inner();
+            let psi = (rel[(1, 0)] - rel[(0, 1)]).atan2(rel[(0, 0)] + rel[(1, 1)]);
+            local.rotation = rot_z(psi).rotation * now.rotation;
+        }
+        self.robot.base * local
+    }
+}
+
+/// With several end-effectors: a copy of `robot` in which every actuated joint on another
+/// end-effector's chain is turned into a fixed joint at its value in `q` (coupled joints keep
+/// their live terms, the held ones folded into the offset), and the map from the copy's q
+/// indices to the original's. `None` when nothing is held.
+pub(super) fn reduced_robot(robot: &Robot, q: &[f64], ee: usize) -> Option<(Robot, Vec<usize>)> {
+    let ees = robot.end_effectors();
+    if ees.len() < 2 {
+        return None;
+    }
+    let joints = robot.joints();
+    let mut held_joint = vec![false; joints.len()];
+    for (i, e) in ees.iter().enumerate() {
+        if i != ee {
+            for &j in robot.chain_to(e.parent) {
+                held_joint[j] = true;
+                if let Drive::Coupled(terms) = &joints[j].drive {
+                    for &(src, _) in terms {
+                        held_joint[src] = true;
+                    }
+                }
+            }
+        }
+    }
+    let held: Vec<bool> = robot
+        .actuated_joints()
+        .iter()
+        .map(|&j| held_joint[j])
+        .collect();
+    held_robot(robot, q, &held)
+}
+
+/// A copy of `robot` in which every `q[k]` with `held[k]` is turned into a fixed joint at its
+/// value in `q` (coupled joints keep their live terms, the held ones folded into the offset),
+/// and the map from the copy's q indices to the original's. `None` when nothing is held.
+pub(super) fn held_robot(robot: &Robot, q: &[f64], held: &[bool]) -> Option<(Robot, Vec<usize>)> {
+    if !held.iter().any(|&h| h) {
+        return None;
+    }
+    let joints = robot.joints();
+    let dof_of = |j: usize| match joints[j].drive {
+        Drive::Actuated(k) => Some(k),
+        _ => None,
+    };
+    let mut free = Vec::new();
+    let mut out = Vec::with_capacity(joints.len());
+    for j in joints {
+        let mut nj = j.clone();
+        match &j.drive {
+            Drive::Actuated(k) if held[*k] => hold(&mut nj, q[*k]),
+            Drive::Actuated(k) => {
+                nj.drive = Drive::Actuated(free.len());
+                free.push(*k);
+            }
+            Drive::Coupled(terms) => {
+                let mut constant = 0.0;
+                let mut live = Vec::new();
+                for &(src, c) in terms {
+                    match dof_of(src) {
+                        Some(k) if held[k] => constant += c * q[k],
+                        _ => live.push((src, c)),
+                    }
+                }
+                if live.is_empty() {
+                    hold(&mut nj, constant);
+                } else {
+                    nj.drive = Drive::Coupled(live);
+                    nj.offset += constant;
+                }
+            }
+            Drive::None => {}
+        }
+        out.push(nj);
+    }
+    let ees = robot.end_effectors().to_vec();
+    let r = Robot::new(robot.name.clone(), robot.base, out, ees).ok()?;
+    Some((r, free))
+}
+
+/// Turns a joint into a fixed one at variable `value` (offset included in the geometry).
+fn hold(j: &mut crate::kinematics::Joint, value: f64) {
+    let v = value + j.offset;
+    match (&mut j.geometry, j.kind) {
+        (JointGeometry::Dh { row, .. }, JointKind::Revolute) => row.theta = v,
+        (JointGeometry::Dh { row, .. }, JointKind::Prismatic) => row.d = v,
+        (
+            JointGeometry::Origin {
+                parent_from_joint,
+                axis,
+            },
+            kind,
+        ) => {
+            let m = match kind {
+                JointKind::Revolute => Pose::from_parts(
+                    Translation3::identity(),
+                    Rotation3::from_axis_angle(axis, v),
+                ),
+                JointKind::Prismatic => Pose::from_parts(
+                    Translation3::from(axis.into_inner() * v),
+                    Rotation3::identity(),
+                ),
+                JointKind::Fixed => Pose::identity(),
+            };
+            *parent_from_joint *= m;
+        }
+        _ => {}
+    }
+    j.kind = JointKind::Fixed;
+    j.drive = Drive::None;
+    j.offset = 0.0;
+}

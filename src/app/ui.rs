@@ -1,0 +1,478 @@
+//! The app's layout and interaction: top bar, side panels, the 3D viewport with navigation and
+//! the IK target gizmo, the workspace tab, projector mode and the shortcut help.
+
+use super::state::{AppState, Level};
+use super::viewport::{TextureRegistry, Viewport3d, build_scene};
+use super::workspace_job::WorkspaceJob;
+use crate::camera::{Camera, Preset, Projection};
+use crate::scene::arm_points;
+use egui::{Key, RichText};
+
+/// Which tab the central area shows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Tab {
+    /// The 3D view.
+    View3d,
+    /// The 2D workspace figure.
+    Workspace,
+}
+
+/// The app: its state (no GUI types) plus what only the UI needs.
+pub struct AppUi {
+    /// The kinematic state.
+    pub state: AppState,
+    /// The viewport camera.
+    pub camera: Camera,
+    /// Large fonts and thick lines for a projector.
+    pub projector: bool,
+    /// The shortcut help window.
+    pub show_help: bool,
+    /// Central tab.
+    pub tab: Tab,
+    /// End-effector the readouts and target refer to.
+    pub ee: usize,
+    /// Model path typed in the left panel.
+    pub load_path: String,
+    /// Viewport size in pixels, from the last layout (the 3D render uses it).
+    pub viewport_px: [u32; 2],
+    /// The IK target gizmo.
+    pub gizmo: super::gizmo::Gizmo,
+    /// The workspace computation running or done.
+    pub workspace: Option<WorkspaceJob>,
+    workspace_texture: Option<egui::TextureHandle>,
+    camera_fitted: bool,
+}
+
+impl AppUi {
+    /// The UI around a state.
+    pub fn new(state: AppState) -> Self {
+        Self {
+            state,
+            camera: Camera::default(),
+            projector: false,
+            show_help: false,
+            tab: Tab::View3d,
+            ee: 0,
+            load_path: String::new(),
+            viewport_px: [800, 600],
+            gizmo: super::gizmo::Gizmo::default(),
+            workspace: None,
+            workspace_texture: None,
+            camera_fitted: false,
+        }
+    }
+
+    /// Loads a model; on error the previous model stays and the status says why.
+    pub fn load(&mut self, spec: &str) {
+        match self.state.load_model(spec) {
+            Ok(()) => {
+                self.camera_fitted = false;
+                self.workspace = None;
+                self.workspace_texture = None;
+                self.ee = 0;
+            }
+            Err(e) => self.state.push_message(Level::Error, e.to_string()),
+        }
+    }
+
+    /// Frames the arm in the viewport.
+    pub fn fit(&mut self) {
+        if let Ok(mut pts) = arm_points(self.state.robot(), self.state.q()) {
+            // Keep the IK targets in view too (an unreachable one is the point of interest).
+            pts.extend(
+                self.state
+                    .targets()
+                    .iter()
+                    .map(|t| crate::scene::point32(&t.world_from_tool.translation.vector)),
+            );
+            let [w, h] = self.viewport_px;
+            self.camera.fit_points(&pts, w.max(16), h.max(16), 0.7);
+        }
+        self.camera_fitted = true;
+    }
+
+    /// Renders the 3D scene for the viewport at its last size; returns the texture to show.
+    pub fn render_viewport(
+        &mut self,
+        vp: &mut Viewport3d,
+        registry: &mut dyn TextureRegistry,
+        dark: bool,
+    ) -> Option<egui::TextureId> {
+        if !self.camera_fitted {
+            self.fit();
+        }
+        let dots = self.workspace.as_ref().and_then(|w| w.dots());
+        let scene = build_scene(&self.state, dots, self.projector);
+        match vp.render(registry, &scene, &self.camera, self.viewport_px, dark) {
+            Ok(id) => Some(id),
+            Err(e) => {
+                self.state
+                    .push_message(Level::Error, format!("3D view: {e}"));
+                None
+            }
+        }
+    }
+
+    /// Applies the projector style (large fonts) or the normal one.
+    pub fn apply_style(&self, ctx: &egui::Context) {
+        let scale = if self.projector { 1.45 } else { 1.0 };
+        ctx.global_style_mut(|s| {
+            use egui::{FontId, TextStyle};
+            s.text_styles
+                .insert(TextStyle::Heading, FontId::proportional(18.0 * scale));
+            s.text_styles
+                .insert(TextStyle::Body, FontId::proportional(13.5 * scale));
+            s.text_styles
+                .insert(TextStyle::Button, FontId::proportional(13.5 * scale));
+            s.text_styles
+                .insert(TextStyle::Small, FontId::proportional(11.0 * scale));
+            s.text_styles
+                .insert(TextStyle::Monospace, FontId::monospace(12.5 * scale));
+        });
+        if self.projector {
+            let mut v = egui::Visuals::light();
+            v.override_text_color = Some(egui::Color32::BLACK);
+            ctx.set_visuals(v);
+        } else {
+            ctx.set_visuals(egui::Visuals::light());
+        }
+    }
+
+    fn shortcuts(&mut self, ctx: &egui::Context) {
+        if ctx.egui_wants_keyboard_input() {
+            return;
+        }
+        let pressed = |k: Key| ctx.input(|i| i.key_pressed(k));
+        let presets = [
+            (Key::Num1, Preset::Top),
+            (Key::Num2, Preset::Front),
+            (Key::Num3, Preset::Side),
+            (Key::Num4, Preset::Iso),
+        ];
+        for (k, p) in presets {
+            if pressed(k) {
+                self.camera.set_preset(p);
+                self.fit();
+            }
+        }
+        if pressed(Key::F) {
+            self.fit();
+        }
+        if pressed(Key::O) {
+            self.toggle_projection();
+        }
+        if pressed(Key::G) {
+            self.state.display.grid ^= true;
+        }
+        if pressed(Key::D) {
+            self.state.display.frames ^= true;
+        }
+        if pressed(Key::T) {
+            self.state.display.trail ^= true;
+        }
+        if pressed(Key::P) {
+            self.projector ^= true;
+        }
+        if pressed(Key::H) || pressed(Key::F1) {
+            self.show_help ^= true;
+        }
+        if pressed(Key::L) {
+            let l = self.state.lock();
+            self.state.set_lock(!l);
+        }
+        if pressed(Key::W) {
+            self.toggle_workspace();
+        }
+        if pressed(Key::R) {
+            let name = if self.state.robot().config("ready").is_some() {
+                "ready"
+            } else {
+                "zero"
+            };
+            let _ = self.state.reset_to(name);
+        }
+        if pressed(Key::Space) {
+            self.next_solution();
+        }
+    }
+
+    fn toggle_projection(&mut self) {
+        self.camera.projection = match self.camera.projection {
+            Projection::Perspective { .. } => Projection::Orthographic { height: 1.0 },
+            Projection::Orthographic { .. } => Projection::Perspective {
+                fov_y: 35f32.to_radians(),
+            },
+        };
+        self.fit();
+    }
+
+    fn toggle_workspace(&mut self) {
+        self.state.display.workspace ^= true;
+        if self.state.display.workspace && self.workspace.is_none() {
+            self.workspace = Some(WorkspaceJob::start(
+                self.state.robot().clone(),
+                self.state.spec().to_string(),
+            ));
+        }
+    }
+
+    fn next_solution(&mut self) {
+        let ee = self.ee;
+        if let Ok(t) = self.state.target(ee)
+            && let Some(r) = &t.result
+            && !r.solutions.is_empty()
+        {
+            let next = t.selected.map_or(0, |s| (s + 1) % r.solutions.len());
+            if let Err(e) = self.state.select_solution(ee, next) {
+                self.state.push_message(Level::Warning, e.to_string());
+            }
+        }
+    }
+
+    /// Lays out the whole window in `ui`; `viewport` is the texture of the 3D view.
+    pub fn show(&mut self, ui: &mut egui::Ui, viewport: Option<egui::TextureId>) {
+        let ctx = ui.ctx().clone();
+        self.apply_style(&ctx);
+        self.shortcuts(&ctx);
+        let dropped: Vec<String> = ctx.input(|i| {
+            i.raw
+                .dropped_files
+                .iter()
+                .map(|f| f.path().display().to_string())
+                .filter(|p| !p.is_empty())
+                .collect()
+        });
+        for path in dropped {
+            self.load(&path);
+        }
+        egui::Panel::top("top").show(ui, |ui| self.top_bar(ui));
+        egui::Panel::bottom("status").show(ui, |ui| self.status_bar(ui));
+        let side = if self.projector { 380.0 } else { 300.0 };
+        egui::Panel::left("left")
+            .resizable(true)
+            .default_size(side)
+            .show(ui, |ui| super::panels::left(self, ui));
+        egui::Panel::right("right")
+            .resizable(true)
+            .default_size(side)
+            .show(ui, |ui| super::panels::right(self, ui));
+        egui::CentralPanel::default().show(ui, |ui| match self.tab {
+            Tab::View3d => self.viewport(ui, viewport),
+            Tab::Workspace => self.workspace_tab(ui),
+        });
+        if self.show_help {
+            egui::Window::new("Keyboard shortcuts")
+                .collapsible(false)
+                .show(&ctx, help);
+        }
+    }
+
+    fn top_bar(&mut self, ui: &mut egui::Ui) {
+        ui.horizontal_wrapped(|ui| {
+            ui.strong(RichText::new("armlab").size(if self.projector { 22.0 } else { 16.0 }));
+            ui.label(format!(
+                "{} ({} DOF)",
+                self.state.robot().name,
+                self.state.robot().dof()
+            ));
+            ui.separator();
+            ui.selectable_value(&mut self.tab, Tab::View3d, "3D view");
+            ui.selectable_value(&mut self.tab, Tab::Workspace, "Workspace (2D)");
+            ui.separator();
+            for (label, p) in [
+                ("Top", Preset::Top),
+                ("Front", Preset::Front),
+                ("Side", Preset::Side),
+                ("Iso", Preset::Iso),
+            ] {
+                if ui.button(label).clicked() {
+                    self.camera.set_preset(p);
+                    self.fit();
+                }
+            }
+            if ui.button("Fit").clicked() {
+                self.fit();
+            }
+            let ortho = matches!(self.camera.projection, Projection::Orthographic { .. });
+            if ui.selectable_label(ortho, "Ortho").clicked() {
+                self.toggle_projection();
+            }
+            ui.separator();
+            let d = &mut self.state.display;
+            ui.checkbox(&mut d.frames, "Frames");
+            ui.checkbox(&mut d.labels, "Labels");
+            ui.checkbox(&mut d.grid, "Grid");
+            ui.checkbox(&mut d.trail, "Trail");
+            ui.checkbox(&mut d.ghosts, "All postures");
+            let mut ws = d.workspace;
+            if ui.checkbox(&mut ws, "Workspace").changed() {
+                self.toggle_workspace();
+            }
+            ui.separator();
+            ui.checkbox(&mut self.projector, "Projector");
+            if ui.button("Help (H)").clicked() {
+                self.show_help ^= true;
+            }
+        });
+    }
+
+    fn status_bar(&mut self, ui: &mut egui::Ui) {
+        ui.horizontal(|ui| {
+            if let Some(job) = &self.workspace
+                && let Some(f) = job.progress()
+            {
+                ui.add(egui::ProgressBar::new(f).desired_width(160.0).text("workspace"));
+            }
+            match self.state.last_message() {
+                Some(m) => {
+                    let color = match m.level {
+                        Level::Info => ui.visuals().text_color(),
+                        Level::Warning => egui::Color32::from_rgb(180, 90, 0),
+                        Level::Error => egui::Color32::from_rgb(190, 0, 0),
+                    };
+                    ui.colored_label(color, &m.text);
+                }
+                None => {
+                    ui.label("Drag the gizmo to move the IK target; drag empty space to orbit, right-drag to pan, scroll to zoom. H: help.");
+                }
+            }
+        });
+    }
+
+    fn viewport(&mut self, ui: &mut egui::Ui, texture: Option<egui::TextureId>) {
+        let rect = ui.available_rect_before_wrap();
+        let ppp = ui.ctx().pixels_per_point();
+        self.viewport_px = [
+            ((rect.width() * ppp).round() as u32).max(16),
+            ((rect.height() * ppp).round() as u32).max(16),
+        ];
+        let response = ui.allocate_rect(rect, egui::Sense::click_and_drag());
+        if let Some(id) = texture {
+            ui.painter().image(
+                id,
+                rect,
+                egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0)),
+                egui::Color32::WHITE,
+            );
+        }
+        // Labels of the scene, projected.
+        let scene_labels = build_scene(&self.state, None, self.projector).labels;
+        let [w, h] = self.viewport_px;
+        let font = egui::FontId::proportional(if self.projector { 17.0 } else { 12.5 });
+        for l in &scene_labels {
+            if let Some(p) = self.camera.project(&l.p.into(), w, h) {
+                let pos = rect.min + egui::vec2(p[0], p[1]) / ppp;
+                let c = l.color.map(|v| (v.clamp(0.0, 1.0) * 255.0) as u8);
+                ui.painter().text(
+                    pos + egui::vec2(3.0, -3.0),
+                    egui::Align2::LEFT_BOTTOM,
+                    &l.text,
+                    font.clone(),
+                    egui::Color32::from_rgb(c[0], c[1], c[2]),
+                );
+            }
+        }
+        // The IK target gizmo.
+        let ee = self.ee.min(self.state.targets().len().saturating_sub(1));
+        let mut gizmo_active = false;
+        if let Ok(t) = self.state.target(ee) {
+            let pose = t.world_from_tool;
+            let unreachable = !t.reach.is_reached();
+            let out = self
+                .gizmo
+                .ui(ui, &response, rect, &self.camera, &pose, unreachable);
+            gizmo_active = out.active;
+            if let Some(p) = out.new_pose
+                && let Err(e) = self.state.set_target(ee, p)
+            {
+                self.state.push_message(Level::Warning, e.to_string());
+            }
+        }
+        if !gizmo_active {
+            if response.dragged_by(egui::PointerButton::Primary) {
+                let d = response.drag_delta();
+                self.camera.orbit(-d.x * 0.008, d.y * 0.008);
+            } else if response.dragged_by(egui::PointerButton::Secondary)
+                || response.dragged_by(egui::PointerButton::Middle)
+            {
+                let d = response.drag_delta();
+                self.camera.pan(d.x / rect.height(), d.y / rect.height());
+            }
+        }
+        if response.hovered() {
+            let (scroll, zoom) = ui.input(|i| (i.smooth_scroll_delta.y, i.zoom_delta()));
+            if scroll != 0.0 {
+                self.camera.zoom((-scroll * 0.002).exp());
+            }
+            if zoom != 1.0 {
+                self.camera.zoom(1.0 / zoom);
+            }
+        }
+        if response.double_clicked() {
+            self.fit();
+        }
+    }
+
+    fn workspace_tab(&mut self, ui: &mut egui::Ui) {
+        if self.workspace.is_none() {
+            self.workspace = Some(WorkspaceJob::start(
+                self.state.robot().clone(),
+                self.state.spec().to_string(),
+            ));
+        }
+        let Some(job) = &self.workspace else { return };
+        if let Some(f) = job.progress() {
+            ui.centered_and_justified(|ui| {
+                ui.add(egui::ProgressBar::new(f).text("computing the workspace..."))
+            });
+            ui.ctx().request_repaint();
+            return;
+        }
+        if let Some(err) = job.error() {
+            ui.colored_label(egui::Color32::from_rgb(190, 0, 0), err);
+            return;
+        }
+        if self.workspace_texture.is_none()
+            && let Some(img) = job.figure()
+        {
+            let color = egui::ColorImage::from_rgba_unmultiplied(
+                [img.width() as usize, img.height() as usize],
+                img.as_raw(),
+            );
+            self.workspace_texture = Some(ui.ctx().load_texture(
+                "workspace figure",
+                color,
+                egui::TextureOptions::LINEAR,
+            ));
+        }
+        if let Some(t) = &self.workspace_texture {
+            ui.centered_and_justified(|ui| ui.add(egui::Image::new(t).shrink_to_fit()));
+        }
+    }
+}
+
+fn help(ui: &mut egui::Ui) {
+    egui::Grid::new("help").striped(true).show(ui, |ui| {
+        for (k, what) in [
+            ("1 / 2 / 3 / 4", "top / front / side / iso view"),
+            ("F, double-click", "fit the robot in the view"),
+            ("O", "perspective / orthographic"),
+            ("drag, right-drag, scroll", "orbit, pan, zoom"),
+            (
+                "gizmo arrows / squares / rings",
+                "move and turn the IK target",
+            ),
+            ("Space", "next IK solution (posture)"),
+            ("L", "lock the posture while dragging"),
+            ("R", "reset to the ready configuration"),
+            ("D / G / T", "DH frames / grid / trail"),
+            ("W", "workspace overlay"),
+            ("P", "projector mode (large fonts, high contrast)"),
+            ("H, F1", "this help"),
+        ] {
+            ui.strong(k);
+            ui.label(what);
+            ui.end_row();
+        }
+    });
+}

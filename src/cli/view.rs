@@ -1,0 +1,74 @@
+//! `armlab view` (and `armlab` alone): the interactive app, or with `--screenshot` the whole
+//! window rendered offscreen to PNG.
+
+use super::CliError;
+use super::figures::Size;
+use super::input::parse_row;
+use crate::app::screenshot::{ScreenshotOptions, screenshot};
+use crate::app::state::AppState;
+use crate::kinematics::models::DEFAULT_MODEL;
+use std::path::PathBuf;
+
+/// Arguments of `armlab view`.
+#[derive(Debug, Default, clap::Args)]
+pub struct ViewArgs {
+    /// Built-in name or path to a .toml / .urdf model (default: the anthropomorphic arm with
+    /// spherical wrist).
+    pub model: Option<String>,
+    /// Render the whole app window offscreen to this PNG and exit (no display needed).
+    #[arg(long)]
+    pub screenshot: Option<PathBuf>,
+    /// Window size for --screenshot, WIDTHxHEIGHT.
+    #[arg(long, default_value = "1280x800")]
+    pub size: Size,
+    /// Joint vector (rad, m) to show.
+    #[arg(long, allow_hyphen_values = true)]
+    pub q: Option<String>,
+    /// Put the IK target on the tool and show every closed-form solution.
+    #[arg(long)]
+    pub all_postures: bool,
+    /// Move the IK target to this position x,y,z (m), e.g. outside the workspace.
+    #[arg(long, allow_hyphen_values = true)]
+    pub target_position: Option<String>,
+    /// Projector mode (large fonts, high contrast).
+    #[arg(long)]
+    pub projector: bool,
+}
+
+/// Runs `view`.
+pub(super) fn run(args: &ViewArgs, out: &mut dyn std::io::Write) -> Result<(), CliError> {
+    let spec = args.model.as_deref().unwrap_or(DEFAULT_MODEL);
+    let Some(path) = &args.screenshot else {
+        return crate::app::run(spec).map_err(CliError::App);
+    };
+    let state = AppState::from_spec(spec)
+        .map_err(|e| CliError::App(crate::app::AppError::Model(e.to_string())))?;
+    let dof = state.robot().dof();
+    let q = match &args.q {
+        Some(t) => Some(parse_row(t, "--q", dof, "joint values")?),
+        None => None,
+    };
+    let target_position = match &args.target_position {
+        Some(t) => {
+            let v = parse_row(t, "--target-position", 3, "numbers")?;
+            Some([v[0], v[1], v[2]])
+        }
+        None => None,
+    };
+    let opts = ScreenshotOptions {
+        q,
+        all_postures: args.all_postures,
+        target_position,
+        projector: args.projector,
+    };
+    let img = screenshot(state, args.size.0, &opts).map_err(CliError::App)?;
+    crate::headless::write_png(&img, path)?;
+    writeln!(
+        out,
+        "wrote {} ({}x{})",
+        path.display(),
+        img.width(),
+        img.height()
+    )?;
+    Ok(())
+}

@@ -1,0 +1,83 @@
+//! The whole app window rendered offscreen (the `armlab view --screenshot` path) compared with
+//! golden PNGs: the default robot, every posture of one target, and an unreachable target.
+//! Needs a graphics adapter (Mesa's lavapipe without a GPU); fails without one.
+
+mod common;
+use armlab::app::screenshot::{ScreenshotOptions, screenshot};
+use armlab::app::state::AppState;
+use common::golden::assert_golden;
+
+fn shot(spec: &str, opts: &ScreenshotOptions) -> image::RgbaImage {
+    let state = AppState::from_spec(spec).unwrap();
+    screenshot(state, [1280, 800], opts).unwrap_or_else(|e| panic!("{e}"))
+}
+
+#[test]
+fn default_robot() {
+    let img = shot(
+        "anthropomorphic_spherical_wrist",
+        &ScreenshotOptions::default(),
+    );
+    assert_golden("app_default_robot", &img);
+}
+
+#[test]
+fn all_postures_of_a_puma_pose() {
+    let opts = ScreenshotOptions {
+        q: Some(vec![0.3, 0.5, -1.2, 0.4, 0.8, -0.6]),
+        all_postures: true,
+        ..Default::default()
+    };
+    let img = shot("puma560", &opts);
+    assert_golden("app_puma560_all_postures", &img);
+}
+
+#[test]
+fn unreachable_target() {
+    let opts = ScreenshotOptions {
+        all_postures: true,
+        target_position: Some([2.0, 0.0, 0.5]),
+        ..Default::default()
+    };
+    let img = shot("anthropomorphic_spherical_wrist", &opts);
+    assert_golden("app_unreachable_target", &img);
+    // The status names how far out the target is; the arm did not move (no NaN anywhere).
+    let state = AppState::from_spec("anthropomorphic_spherical_wrist").unwrap();
+    let mut state = state;
+    let q0 = state.q().to_vec();
+    let mut t = state.robot().fk(&q0).unwrap();
+    t.translation.vector = nalgebra::Vector3::new(2.0, 0.0, 0.5);
+    let reach = state.set_target(0, t).unwrap().clone();
+    assert!(!reach.is_reached());
+    let msg = reach.message().unwrap();
+    assert!(msg.contains("mm outside the workspace"), "{msg}");
+    assert_eq!(state.q(), q0.as_slice());
+}
+
+/// The real window opens and runs under a virtual X server (needs `xvfb xauth`, which CI
+/// installs): it must still be running when `timeout` stops it after 6 s (exit 124), not have
+/// failed or crashed.
+#[test]
+fn real_window_runs_under_xvfb() {
+    let o = std::process::Command::new("xvfb-run")
+        .args([
+            "-a",
+            "-s",
+            "-screen 0 1280x900x24",
+            "timeout",
+            "6",
+            env!("CARGO_BIN_EXE_armlab"),
+            "view",
+            "puma560",
+        ])
+        .output()
+        .unwrap_or_else(|e| {
+            panic!("cannot run xvfb-run ({e}): install it with apt-get install xvfb xauth")
+        });
+    assert_eq!(
+        o.status.code(),
+        Some(124),
+        "the app exited early: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+}

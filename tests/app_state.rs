@@ -1,0 +1,513 @@
+//! The interactive app's state logic (no GUI): sliders, DH editing, IK targets with ghosts,
+//! posture selection and lock, unreachable targets, model loading, readouts and the naming of
+//! singularities.
+
+use armlab::app::singularity::{Proximity, SingularityAnalyzer, SingularityKind, classify};
+use armlab::app::state::{
+    AngleUnit, AppState, DhField, EntryError, Level, Quantity, Reach, StateError, TRAIL_CAPACITY,
+};
+use armlab::kinematics::models::{anthropomorphic_spherical_wrist, planar2, puma560};
+use armlab::kinematics::orientation::{angle_axis_from_rotation, wrap_angle};
+use armlab::kinematics::{JointKind, Pose, Robot};
+use nalgebra::{DMatrix, Rotation3, Translation3, Vector3};
+use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI};
+
+#[path = "app_state/singular.rs"]
+mod singular;
+
+const ASW: &str = "anthropomorphic_spherical_wrist";
+
+fn state(spec: &str) -> AppState {
+    AppState::from_spec(spec).expect("built-in model")
+}
+
+/// Largest joint motion between two configurations: revolute differences wrapped into
+/// (-pi, pi] (the physical rotation), prismatic differences as they are.
+fn max_step(robot: &Robot, a: &[f64], b: &[f64]) -> f64 {
+    (0..robot.dof())
+        .map(|k| match robot.dof_joint(k).kind {
+            JointKind::Revolute => wrap_angle(a[k] - b[k]).abs(),
+            _ => (a[k] - b[k]).abs(),
+        })
+        .fold(0.0, f64::max)
+}
+
+fn pose_gap(a: &Pose, b: &Pose) -> f64 {
+    let dp = (a.translation.vector - b.translation.vector).norm();
+    dp.max(angle_axis_from_rotation(&(a.rotation.inverse() * b.rotation)).angle)
+}
+
+fn fk(s: &AppState, ee: usize) -> Pose {
+    s.robot().fk_ee(s.q(), ee).unwrap()
+}
+
+fn smallest_sv(robot: &Robot, q: &[f64]) -> f64 {
+    let j = robot.jacobian(q, 0).unwrap();
+    let m = DMatrix::from_column_slice(6, j.ncols(), j.as_slice());
+    m.svd(false, false).singular_values.min()
+}
+
+#[test]
+fn sliders_clamp_and_convert_units() {
+    let mut s = state(ASW);
+    assert_eq!(s.joint_quantity(1).unwrap(), Quantity::Angle);
+    let v = s.set_joint_display(1, "90").unwrap();
+    assert!((v - FRAC_PI_2).abs() < 1e-15 && s.q()[1] == v);
+    assert!((s.joint_display(1).unwrap() - 90.0).abs() < 1e-12);
+    assert_eq!(s.joint_display_limits(0).unwrap(), [-180.0, 180.0]);
+    // Out of range: clamped, with a warning naming the limits.
+    let v = s.set_joint_display(2, "400").unwrap();
+    assert_eq!(v, PI);
+    let m = s.last_message().unwrap();
+    assert_eq!(m.level, Level::Warning);
+    assert!(
+        m.text.contains("400") && m.text.contains("180"),
+        "{}",
+        m.text
+    );
+    assert_eq!(s.set_joint(0, -10.0).unwrap(), -PI);
+    // Radians, and explicit units whatever the display unit.
+    s.set_angle_unit(AngleUnit::Radians);
+    assert_eq!(s.set_joint_display(3, "0.5").unwrap(), 0.5);
+    assert_eq!(s.set_joint_display(3, "pi/4").unwrap(), FRAC_PI_4);
+    assert!((s.set_joint_display(3, "-30deg").unwrap() + 30f64.to_radians()).abs() < 1e-15);
+    assert!((s.set_joint_display(3, "45°").unwrap() - FRAC_PI_4).abs() < 1e-15);
+    // Invalid entries change nothing.
+    let q = s.q().to_vec();
+    for (text, nan) in [("abc", false), ("NaN", true), ("inf", true), ("", false)] {
+        match s.set_joint_display(3, text) {
+            Err(StateError::InvalidJointEntry { dof: 3, reason }) => {
+                assert_eq!(matches!(reason, EntryError::NonFinite(_)), nan, "{text}");
+            }
+            other => panic!("{text}: {other:?}"),
+        }
+    }
+    assert!(s.set_joint(3, f64::NAN).is_err());
+    assert!(matches!(
+        s.set_joint(6, 0.0),
+        Err(StateError::NoSuchDof { index: 6, .. })
+    ));
+    assert_eq!(s.q(), &q[..]);
+    // The target follows the end-effector.
+    assert!(pose_gap(&s.target(0).unwrap().world_from_tool, &fk(&s, 0)) < 1e-12);
+
+    // Prismatic joint of the Stanford arm: millimetres, limits [300, 1000] mm.
+    let mut s = state("stanford");
+    assert_eq!(s.joint_quantity(2).unwrap(), Quantity::Length);
+    assert_eq!(s.set_joint_display(2, "500").unwrap(), 0.5);
+    assert!((s.joint_display(2).unwrap() - 500.0).abs() < 1e-9);
+    assert_eq!(s.joint_display_limits(2).unwrap(), [300.0, 1000.0]);
+    assert_eq!(s.set_joint_display(2, "0.7 m").unwrap(), 0.7);
+    assert_eq!(s.set_joint_display(2, "2000").unwrap(), 1.0);
+    assert_eq!(s.set_joint_display(2, "25 cm").unwrap(), 0.3);
+    assert!(s.robot().within_limits(s.q(), 0.0));
+}
+
+#[test]
+fn dh_edits_move_the_arm_and_invalid_text_is_kept_with_its_reason() {
+    let mut s = state(ASW);
+    let before = fk(&s, 0);
+    // a2 from 500 mm to 600 mm: the arm follows, the target with it.
+    s.edit_dh(1, DhField::A, "600").unwrap();
+    let after = fk(&s, 0);
+    assert!((after.translation.vector - before.translation.vector).norm() > 0.05);
+    let expected = Robot::from_dh(
+        "check",
+        armlab::kinematics::Convention::Standard,
+        &s.robot()
+            .dh_table()
+            .unwrap()
+            .1
+            .iter()
+            .zip(s.robot().limits())
+            .map(|(&(k, r, o), l)| (k, r, o, l))
+            .collect::<Vec<_>>(),
+        Pose::identity(),
+        Pose::identity(),
+    )
+    .unwrap();
+    assert_eq!(expected.dh_table().unwrap().1[1].1.a, 0.6);
+    assert!(pose_gap(&expected.fk(s.q()).unwrap(), &after) < 1e-12);
+    assert!(pose_gap(&s.target(0).unwrap().world_from_tool, &after) < 1e-12);
+    // Angles in the display unit or with explicit units.
+    s.edit_dh(2, DhField::Alpha, "-90").unwrap();
+    s.edit_dh(2, DhField::Alpha, "pi/2").unwrap();
+    assert_eq!(s.dh_cell(2, DhField::Alpha).unwrap().text, "pi/2");
+
+    // Invalid text: kept, marked, the robot keeps its last valid shape.
+    let robot = s.robot().clone();
+    let q = s.q().to_vec();
+    for (text, want) in [
+        ("0.6.1", EntryError::NotANumber("0.6.1".into())),
+        ("NaN", EntryError::NonFinite("NaN".into())),
+        ("-inf", EntryError::NonFinite("-inf".into())),
+        ("  ", EntryError::Empty),
+    ] {
+        match s.edit_dh(1, DhField::A, text) {
+            Err(StateError::InvalidEntry {
+                joint: 1,
+                field: DhField::A,
+                reason,
+            }) => assert_eq!(reason, want),
+            other => panic!("{text}: {other:?}"),
+        }
+        let cell = s.dh_cell(1, DhField::A).unwrap();
+        assert_eq!(cell.text, text);
+        assert_eq!(cell.error.as_ref(), Some(&want));
+        assert_eq!(s.robot(), &robot);
+        assert_eq!(s.q(), &q[..]);
+        assert!(s.dh_has_errors());
+    }
+    // A valid edit of another cell of the same joint still applies; the bad cell stays bad.
+    s.edit_dh(1, DhField::D, "10").unwrap();
+    assert_eq!(s.robot().dh_table().unwrap().1[1].1.d, 0.01);
+    assert!(s.dh_cell(1, DhField::A).unwrap().error.is_some());
+    s.edit_dh(1, DhField::A, "500").unwrap();
+    assert!(!s.dh_has_errors());
+    // theta is the variable of a revolute joint.
+    assert!(matches!(
+        s.edit_dh(0, DhField::Theta, "10"),
+        Err(StateError::InvalidEntry {
+            reason: EntryError::NotEditable(_),
+            ..
+        })
+    ));
+    assert!(!s.dh_cell(0, DhField::Theta).unwrap().editable);
+    // Offsets move the arm like q does.
+    let p0 = fk(&s, 0);
+    s.edit_dh(0, DhField::Offset, "30").unwrap();
+    let mut q1 = s.q().to_vec();
+    q1[0] += 30f64.to_radians();
+    let mut plain = state(ASW);
+    plain.edit_dh(1, DhField::D, "10").unwrap();
+    assert!(pose_gap(&plain.robot().fk(&q1).unwrap(), &fk(&s, 0)) < 1e-12);
+    assert!(pose_gap(&p0, &fk(&s, 0)) > 0.01);
+}
+
+#[test]
+fn dh_limits_lower_above_upper_are_rejected() {
+    let mut s = state("puma560");
+    let limits = s.robot().limits();
+    let err = s.edit_dh(0, DhField::Lower, "200").unwrap_err();
+    match &err {
+        StateError::InvalidEntry {
+            reason: EntryError::LimitsInverted { lower, upper },
+            ..
+        } => assert!(
+            lower.starts_with("200") && upper.starts_with("160"),
+            "{err}"
+        ),
+        other => panic!("{other:?}"),
+    }
+    assert!(err.to_string().contains("lower limit"), "{err}");
+    assert_eq!(s.robot().limits(), limits);
+    // Raising the upper limit makes the pending lower limit valid: both apply, q is clamped in.
+    s.edit_dh(0, DhField::Upper, "250").unwrap();
+    assert!(!s.dh_has_errors());
+    let l = s.robot().limits()[0];
+    assert!(
+        (l[0] - 200f64.to_radians()).abs() < 1e-12 && (l[1] - 250f64.to_radians()).abs() < 1e-12
+    );
+    assert!(s.robot().within_limits(s.q(), 0.0));
+    // Prismatic limits are in millimetres.
+    let mut s = state("stanford");
+    assert!(s.edit_dh(2, DhField::Upper, "200").is_err());
+    s.edit_dh(2, DhField::Upper, "1200").unwrap();
+    assert_eq!(s.robot().limits()[2], [0.3, 1.2]);
+}
+
+#[test]
+fn model_load_error_keeps_the_previous_model() {
+    let mut s = state(ASW);
+    s.set_joint(0, 0.3).unwrap();
+    let (robot, q) = (s.robot().clone(), s.q().to_vec());
+    for spec in [
+        "no_such_robot",
+        "/definitely/missing/arm.toml",
+        "/missing.urdf",
+    ] {
+        let err = s.load_model(spec).unwrap_err();
+        assert!(matches!(err, StateError::Load { .. }), "{err:?}");
+        assert_eq!(s.robot(), &robot);
+        assert_eq!(s.q(), &q[..]);
+        assert_eq!(s.spec(), ASW);
+        let m = s.last_message().unwrap();
+        assert_eq!(m.level, Level::Error);
+        assert!(m.text.contains(spec), "{}", m.text);
+    }
+    s.load_model("puma560").unwrap();
+    assert_eq!(s.robot().name, "Puma 560");
+    assert_eq!(s.spec(), "puma560");
+    assert_eq!(s.q(), s.robot().config("ready").unwrap());
+    assert_eq!(s.dh_cells().len(), 6);
+    assert!(AppState::from_spec("nope").is_err());
+}
+
+#[test]
+fn reset_to_named_configurations() {
+    let mut s = state(ASW);
+    s.reset_to("figure").unwrap();
+    assert_eq!(s.q(), s.robot().config("figure").unwrap());
+    assert!(pose_gap(&s.target(0).unwrap().world_from_tool, &fk(&s, 0)) < 1e-12);
+    let err = s.reset_to("dance").unwrap_err();
+    assert!(err.to_string().contains("ready"), "{err}");
+}
+
+/// A generic configuration of the anthropomorphic arm with spherical wrist.
+const Q_GENERIC: [f64; 6] = [0.4, 0.5, 0.8, 0.3, 0.9, -0.2];
+
+#[test]
+fn ghosts_list_every_solution_and_selection_moves_the_arm() {
+    let mut s = state(ASW);
+    let robot = s.robot().clone();
+    let target = robot.fk(&Q_GENERIC).unwrap();
+    assert!(s.set_target(0, target).unwrap().is_reached());
+    let ghosts = s.ghosts(0);
+    assert_eq!(ghosts.len(), 8);
+    assert_eq!(ghosts.iter().filter(|g| g.selected).count(), 1);
+    assert!(ghosts.iter().all(|g| g.within_limits));
+    for (i, g) in ghosts.iter().enumerate() {
+        s.select_solution(0, i).unwrap();
+        assert_eq!(s.q(), &g.q[..]);
+        assert!(pose_gap(&fk(&s, 0), &target) < 1e-9);
+        assert_eq!(
+            s.target(0).unwrap().posture.as_deref(),
+            Some(g.posture.as_str())
+        );
+        assert!(s.ghosts(0)[i].selected);
+    }
+    let label = ghosts[5].posture.replace(", ", "_").to_uppercase();
+    s.select_posture(0, &label).unwrap();
+    assert_eq!(s.q(), &ghosts[5].q[..]);
+    assert!(matches!(
+        s.select_posture(0, "elbow sideways"),
+        Err(StateError::NoSuchPosture { .. })
+    ));
+    assert!(matches!(
+        s.select_solution(0, 8),
+        Err(StateError::NoSuchSolution { count: 8, .. })
+    ));
+
+    // The Puma 560's limits exclude some postures: they are greyed and cannot be selected.
+    let mut s = state("puma560");
+    let q = [0.3, 0.6, -2.0, 0.4, 0.7, 0.2];
+    s.set_target(0, s.robot().fk(&q).unwrap()).unwrap();
+    let ghosts = s.ghosts(0);
+    let out = ghosts
+        .iter()
+        .position(|g| !g.within_limits)
+        .expect("a greyed ghost");
+    let before = s.q().to_vec();
+    assert!(matches!(
+        s.select_solution(0, out),
+        Err(StateError::SolutionOutsideLimits { .. })
+    ));
+    assert_eq!(s.q(), &before[..]);
+}
+
+#[test]
+fn posture_lock_keeps_the_branch_when_the_target_jumps() {
+    let mut s = state(ASW);
+    let robot = s.robot().clone();
+    s.set_target(0, robot.fk(&Q_GENERIC).unwrap()).unwrap();
+    let ghosts = s.ghosts(0);
+    // Lock a posture that is not the one the arm would pick by closeness.
+    let chosen = ghosts.iter().position(|g| !g.selected).unwrap();
+    let label = ghosts[chosen].posture.clone();
+    s.select_solution(0, chosen).unwrap();
+    s.set_lock(true);
+    let far = robot.fk(&[-0.9, 1.1, 0.3, -0.6, 1.3, 0.7]).unwrap();
+    assert!(s.set_target(0, far).unwrap().is_reached());
+    assert!(pose_gap(&fk(&s, 0), &far) < 1e-9);
+    let selected = s.ghosts(0).into_iter().find(|g| g.selected).unwrap();
+    assert_eq!(selected.posture, label);
+    assert_eq!(
+        s.target(0).unwrap().posture.as_deref(),
+        Some(label.as_str())
+    );
+
+    // Unlocked, the arm takes the solution closest to where it is.
+    s.set_lock(false);
+    s.set_target(0, robot.fk(&Q_GENERIC).unwrap()).unwrap();
+    let q_before = s.q().to_vec();
+    s.set_target(0, far).unwrap();
+    let d = |q: &[f64]| armlab::kinematics::ik::solver::joint_distance(&robot, q, &q_before);
+    let best = s
+        .ghosts(0)
+        .iter()
+        .map(|g| d(&g.q))
+        .fold(f64::INFINITY, f64::min);
+    assert!((d(s.q()) - best).abs() < 1e-12);
+}
+
+#[test]
+fn unreachable_target_freezes_the_arm_with_a_message() {
+    let mut s = state(ASW);
+    let q = s.q().to_vec();
+    let mut far = fk(&s, 0);
+    far.translation.vector = Vector3::new(2.0, 0.5, 1.0);
+    let reach = s.set_target(0, far).unwrap().clone();
+    // Wrist centre = p - d6 z; the arm reaches |p_W| <= a2 + d4 = 1 m.
+    let pw = far.translation.vector - far.rotation * Vector3::z() * 0.1;
+    match reach {
+        Reach::Unreachable { distance } => assert!((distance - (pw.norm() - 1.0)).abs() < 1e-9),
+        other => panic!("{other:?}"),
+    }
+    assert_eq!(s.q(), &q[..]);
+    assert!(s.ghosts(0).is_empty());
+    let m = s.last_message().unwrap();
+    assert_eq!(m.level, Level::Warning);
+    assert!(m.text.contains("mm outside the workspace"), "{}", m.text);
+    assert!(s.readouts(0).unwrap().p.iter().all(|v| v.is_finite()));
+    // A non-finite target is refused outright.
+    let mut bad = far;
+    bad.translation.vector.x = f64::NAN;
+    assert!(matches!(
+        s.set_target(0, bad),
+        Err(StateError::NonFiniteTarget)
+    ));
+    // Back inside: reached again.
+    let home = s.robot().fk(&Q_GENERIC).unwrap();
+    assert!(s.set_target(0, home).unwrap().is_reached());
+    assert!(s.last_message().unwrap().text.contains("reached again"));
+}
+
+#[test]
+fn humanoid_hands_have_independent_targets() {
+    let mut s = state("humanoid");
+    assert_eq!(s.targets().len(), 2);
+    let (q0, left0) = (s.q().to_vec(), fk(&s, 1));
+    let mut q_prev = q0.clone();
+    for _ in 0..10 {
+        let r = s.move_target_by(0, Vector3::new(0.0, 0.004, -0.003), Rotation3::identity());
+        assert!(r.unwrap().is_reached());
+        assert!(max_step(s.robot(), s.q(), &q_prev) < 0.05);
+        q_prev = s.q().to_vec();
+    }
+    assert!(pose_gap(&fk(&s, 0), &s.target(0).unwrap().world_from_tool) < 1e-8);
+    // The torso (q1-q3) and the left arm (q11-q17) are held: the left hand did not move.
+    assert_eq!(&s.q()[..3], &q0[..3]);
+    assert_eq!(&s.q()[10..], &q0[10..]);
+    assert!(pose_gap(&fk(&s, 1), &left0) < 1e-12);
+    assert_eq!(s.ghosts(0).len(), 1);
+    assert_eq!(s.ghosts(0)[0].posture, "numerical");
+    // The left hand's own target works the same way and leaves the right hand alone.
+    let right = fk(&s, 0);
+    let turn = Rotation3::from_axis_angle(&Vector3::x_axis(), 0.05);
+    assert!(
+        s.move_target_by(1, Vector3::zeros(), turn)
+            .unwrap()
+            .is_reached()
+    );
+    assert!(pose_gap(&fk(&s, 0), &right) < 1e-12);
+    // Far away: frozen, flagged, how far.
+    let q = s.q().to_vec();
+    let r = s
+        .move_target_by(1, Vector3::new(0.0, 0.0, 3.0), Rotation3::identity())
+        .unwrap();
+    assert!(
+        matches!(r, Reach::NotConverged { distance, .. } if *distance > 1.0),
+        "{r:?}"
+    );
+    assert!(r.message().unwrap().contains("mm"));
+    assert_eq!(s.q(), &q[..]);
+    // A slider on the torso moves both hands: both targets follow.
+    s.set_joint(0, 0.2).unwrap();
+    for ee in 0..2 {
+        assert!(pose_gap(&s.target(ee).unwrap().world_from_tool, &fk(&s, ee)) < 1e-12);
+        assert!(s.target(ee).unwrap().reach.is_reached());
+    }
+}
+
+#[test]
+fn numerical_arm_tracks_a_moving_target() {
+    let mut s = state("lwr4");
+    let mut q_prev = s.q().to_vec();
+    for i in 0..20 {
+        let dir = if i < 10 { 1.0 } else { -1.0 };
+        let turn = Rotation3::from_axis_angle(&Vector3::z_axis(), 0.01 * dir);
+        let r = s
+            .move_target_by(0, Vector3::new(0.005 * dir, 0.002, 0.0), turn)
+            .unwrap();
+        assert!(r.is_reached(), "{r:?}");
+        assert!(pose_gap(&fk(&s, 0), &s.target(0).unwrap().world_from_tool) < 1e-8);
+        assert!(max_step(s.robot(), s.q(), &q_prev) < 0.1);
+        assert!(s.robot().within_limits(s.q(), 1e-12));
+        q_prev = s.q().to_vec();
+    }
+}
+
+#[test]
+fn planar_arm_targets_stay_in_the_plane() {
+    let mut s = state("planar2");
+    let mut t = fk(&s, 0);
+    t.translation.vector += Vector3::new(-0.2, 0.1, 0.3);
+    t.rotation = Rotation3::from_axis_angle(&Vector3::x_axis(), 0.4) * t.rotation;
+    assert!(s.set_target(0, t).unwrap().is_reached());
+    let stored = s.target(0).unwrap().world_from_tool;
+    assert_eq!(stored.translation.vector.z, 0.0);
+    assert!((stored.rotation * Vector3::z() - Vector3::z()).norm() < 1e-12);
+    let p = fk(&s, 0).translation.vector;
+    assert!((p - stored.translation.vector).norm() < 1e-9);
+    assert_eq!(s.ghosts(0).len(), 2);
+    // Stretched: one solution ("elbow stretched"), at the singularity.
+    s.set_target(0, Pose::translation(2.0, 0.0, 0.0)).unwrap();
+    let r = s.readouts(0).unwrap();
+    let sing = r.singularity.expect("singular");
+    assert_eq!(sing.kinds(), vec![SingularityKind::PlanarElbow]);
+    assert_eq!((r.rank, r.task_rank), (1, 2));
+    assert!(r.min_sv < 1e-9 && r.manipulability < 1e-9);
+    // Yoshikawa's measure of the two-link arm: |a1 a2 sin theta2| (m^2).
+    s.set_joint(1, 1.0).unwrap();
+    assert!((s.readouts(0).unwrap().manipulability - 1f64.sin()).abs() < 1e-12);
+    assert!(matches!(
+        s.set_target(0, Pose::translation(2.5, 0.0, 0.0)).unwrap(),
+        Reach::Unreachable { distance } if (distance - 0.5).abs() < 1e-12
+    ));
+}
+
+#[test]
+fn readouts_trail_and_toggles() {
+    let mut s = state(ASW);
+    let r = s.readouts(0).unwrap();
+    let t = fk(&s, 0);
+    assert_eq!(r.t, t.to_homogeneous());
+    assert_eq!(r.p, t.translation.vector);
+    assert_eq!(r.rank, 6);
+    assert_eq!(r.task_rank, 6);
+    assert!(r.singularity.is_none() && r.min_sv > 1e-3 && r.manipulability > 0.0);
+    let back = armlab::kinematics::EulerKind::Zyz.to_rotation(&r.phi);
+    assert!((back.matrix() - t.rotation.matrix()).amax() < 1e-12);
+    s.orientation = armlab::kinematics::EulerKind::Rpy;
+    assert_eq!(
+        s.readouts(0).unwrap().phi_kind,
+        armlab::kinematics::EulerKind::Rpy
+    );
+    // At the wrist singularity: rank 5 of 6, smallest singular value 0, named warning.
+    s.set_joint(4, 0.0).unwrap();
+    let r = s.readouts(0).unwrap();
+    assert_eq!(r.rank, 5);
+    assert!(r.min_sv < 1e-12);
+    let w = r.singularity.unwrap();
+    assert_eq!(
+        (w.proximity, w.kinds()),
+        (Proximity::At, vec![SingularityKind::Wrist])
+    );
+    assert!(s.readouts(3).is_err());
+    // The trail records each new end-effector position, and is bounded.
+    let n = s.trail(0).unwrap().len();
+    s.set_joint(0, 0.1).unwrap();
+    assert_eq!(s.trail(0).unwrap().len(), n + 1);
+    assert_eq!(
+        *s.trail(0).unwrap().back().unwrap(),
+        fk(&s, 0).translation.vector
+    );
+    for i in 0..(TRAIL_CAPACITY + 10) {
+        s.set_joint(0, (i % 500) as f64 * 1e-3).unwrap();
+    }
+    assert_eq!(s.trail(0).unwrap().len(), TRAIL_CAPACITY);
+    s.clear_trails();
+    assert!(s.trail(0).unwrap().is_empty());
+    s.display.ghosts = false;
+    assert!(!s.display.ghosts && s.display.grid && !s.display.workspace);
+}
