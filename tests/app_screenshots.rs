@@ -81,3 +81,19 @@ fn real_window_runs_under_xvfb() {
         String::from_utf8_lossy(&o.stderr)
     );
 }
+
+/// The Screenshot button's path: the live app's state and camera rendered offscreen.
+#[test]
+fn screenshot_button_renders_the_current_view() {
+    use armlab::app::screenshot::screenshot_with;
+    use armlab::app::ui::AppUi;
+    let mut app = AppUi::new(AppState::from_spec("planar3").unwrap());
+    app.state.set_q(&[0.2, 0.4, -0.3]).unwrap();
+    let a = screenshot_with(&app, [960, 600], &ScreenshotOptions::default()).unwrap();
+    let mut camera = app.camera;
+    camera.set_preset(armlab::camera::Preset::Top);
+    app.set_camera(camera);
+    let b = screenshot_with(&app, [960, 600], &ScreenshotOptions::default()).unwrap();
+    assert_eq!(a.dimensions(), (960, 600));
+    assert!(a != b, "the camera of the live view is used");
+}

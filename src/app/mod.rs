@@ -33,6 +33,9 @@ impl eframe::App for ArmlabApp {
             _ => None,
         };
         self.ui.show(ui, texture);
+        if std::mem::take(&mut self.ui.screenshot_requested) {
+            self.save_screenshot();
+        }
         if self
             .ui
             .workspace
@@ -40,6 +43,39 @@ impl eframe::App for ArmlabApp {
             .is_some_and(|w| w.progress().is_some())
         {
             ui.ctx().request_repaint();
+        }
+    }
+}
+
+impl ArmlabApp {
+    /// Renders the current state offscreen at the window's size and saves it next to the
+    /// working directory as `armlab-<model>-<n>.png`; the status says where (or why not).
+    fn save_screenshot(&mut self) {
+        let [w, h] = self.ui.window_points.map(|v| v.round().max(64.0) as u32);
+        let stem = self.ui.state.robot().name.to_lowercase().replace(' ', "_");
+        let path = (1..1000)
+            .map(|n| std::path::PathBuf::from(format!("armlab-{stem}-{n}.png")))
+            .find(|p| !p.exists());
+        let opts = screenshot::ScreenshotOptions {
+            projector: self.ui.projector,
+            ..Default::default()
+        };
+        let result = screenshot::screenshot_with(&self.ui, [w, h], &opts)
+            .map_err(|e| e.to_string())
+            .and_then(|img| {
+                let path = path.ok_or_else(|| "no free file name".to_string())?;
+                crate::headless::write_png(&img, &path).map_err(|e| e.to_string())?;
+                Ok(path)
+            });
+        match result {
+            Ok(p) => self
+                .ui
+                .state
+                .push_message(state::Level::Info, format!("saved {}", p.display())),
+            Err(e) => self
+                .ui
+                .state
+                .push_message(state::Level::Error, format!("screenshot failed: {e}")),
         }
     }
 }

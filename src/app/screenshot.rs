@@ -21,6 +21,33 @@ pub struct ScreenshotOptions {
     pub projector: bool,
 }
 
+/// Renders the live app's current view (state, camera, toggles) at `size` pixels: what the
+/// Screenshot button saves.
+pub fn screenshot_with(
+    live: &AppUi,
+    size: [u32; 2],
+    opts: &ScreenshotOptions,
+) -> Result<image::RgbaImage, AppError> {
+    let gpu = Gpu::new_headless().map_err(crate::figure::FigureError::from)?;
+    let mut offscreen = Offscreen::new(&gpu.device);
+    let vp_gpu = Gpu::from_parts(
+        gpu.device.clone(),
+        gpu.queue.clone(),
+        gpu.adapter_info.clone(),
+    );
+    let mut vp = Viewport3d::new(vp_gpu).map_err(crate::figure::FigureError::from)?;
+    let mut app = AppUi::new(live.state.clone());
+    app.projector = opts.projector;
+    app.tab = live.tab;
+    app.ee = live.ee;
+    offscreen.render(&gpu.device, &gpu.queue, size, 1.0, |ui| app.show(ui, None))?;
+    app.set_camera(live.camera);
+    let texture = app.render_viewport(&mut vp, offscreen.renderer_mut(), false);
+    Ok(offscreen.render(&gpu.device, &gpu.queue, size, 1.0, |ui| {
+        app.show(ui, texture)
+    })?)
+}
+
 /// Renders the app for `state` at `size` pixels.
 pub fn screenshot(
     state: AppState,

@@ -41,6 +41,10 @@ pub struct AppUi {
     pub workspace: Option<WorkspaceJob>,
     workspace_texture: Option<egui::TextureHandle>,
     camera_fitted: bool,
+    /// Set by the Screenshot button; the frame loop saves the window and clears it.
+    pub screenshot_requested: bool,
+    /// Window size in points, from the last layout (the screenshot button renders at it).
+    pub window_points: [f32; 2],
 }
 
 impl AppUi {
@@ -59,6 +63,8 @@ impl AppUi {
             workspace: None,
             workspace_texture: None,
             camera_fitted: false,
+            screenshot_requested: false,
+            window_points: [1280.0, 800.0],
         }
     }
 
@@ -73,6 +79,12 @@ impl AppUi {
             }
             Err(e) => self.state.push_message(Level::Error, e.to_string()),
         }
+    }
+
+    /// Uses `camera` as is (no automatic framing).
+    pub fn set_camera(&mut self, camera: Camera) {
+        self.camera = camera;
+        self.camera_fitted = true;
     }
 
     /// Frames the arm in the viewport.
@@ -232,6 +244,8 @@ impl AppUi {
     /// Lays out the whole window in `ui`; `viewport` is the texture of the 3D view.
     pub fn show(&mut self, ui: &mut egui::Ui, viewport: Option<egui::TextureId>) {
         let ctx = ui.ctx().clone();
+        let r = ui.max_rect();
+        self.window_points = [r.width(), r.height()];
         self.apply_style(&ctx);
         self.shortcuts(&ctx);
         let dropped: Vec<String> = ctx.input(|i| {
@@ -310,6 +324,13 @@ impl AppUi {
             }
             ui.separator();
             ui.checkbox(&mut self.projector, "Projector");
+            if ui
+                .button("Screenshot")
+                .on_hover_text("Save the window as armlab-<model>-<n>.png in the current folder")
+                .clicked()
+            {
+                self.screenshot_requested = true;
+            }
             if ui.button("Help (H)").clicked() {
                 self.show_help ^= true;
             }
@@ -410,6 +431,49 @@ impl AppUi {
         }
         if response.double_clicked() {
             self.fit();
+        } else if response.clicked()
+            && !gizmo_active
+            && let Some(pos) = response.interact_pointer_pos()
+        {
+            self.pick_ghost(ee, (pos - rect.min) * ppp);
+        }
+    }
+
+    /// Selects the ghost arm nearest to a click (pixel position in the viewport): the one whose
+    /// elbow or tool projects closest, within 40 px.
+    fn pick_ghost(&mut self, ee: usize, at: egui::Vec2) {
+        let robot = self.state.robot();
+        let [w, h] = self.viewport_px;
+        let chain = robot
+            .chain_to(robot.end_effectors()[ee.min(robot.end_effectors().len() - 1)].parent)
+            .to_vec();
+        let mut best: Option<(f32, usize)> = None;
+        let ghosts = self.state.ghosts(ee);
+        let Ok(target) = self.state.target(ee) else {
+            return;
+        };
+        let Some(result) = &target.result else { return };
+        for g in ghosts.iter().filter(|g| !g.selected) {
+            let Some(index) = result.solutions.iter().position(|s| s.q == g.q) else {
+                continue;
+            };
+            let Ok(frames) = robot.fk_frames(&g.q) else {
+                continue;
+            };
+            for &j in &chain {
+                let p = crate::scene::point32(&frames[j].translation.vector);
+                if let Some(px) = self.camera.project(&p, w, h) {
+                    let d = (egui::vec2(px[0], px[1]) - at).length();
+                    if d < 40.0 && best.is_none_or(|b| d < b.0) {
+                        best = Some((d, index));
+                    }
+                }
+            }
+        }
+        if let Some((_, index)) = best
+            && let Err(e) = self.state.select_solution(ee, index)
+        {
+            self.state.push_message(Level::Warning, e.to_string());
         }
     }
 
