@@ -21,53 +21,31 @@ pub struct ScreenshotOptions {
     pub projector: bool,
 }
 
-/// Renders the live app's current view (state, camera, toggles) at `size` pixels: what the
-/// Screenshot button saves.
+/// Renders the live app's current view (state, camera, tab, end-effector) at `size` pixels:
+/// what the Screenshot button saves.
 pub fn screenshot_with(
     live: &AppUi,
     size: [u32; 2],
     opts: &ScreenshotOptions,
 ) -> Result<image::RgbaImage, AppError> {
-    let gpu = Gpu::new_headless().map_err(crate::figure::FigureError::from)?;
-    let mut offscreen = Offscreen::new(&gpu.device);
-    let vp_gpu = Gpu::from_parts(
-        gpu.device.clone(),
-        gpu.queue.clone(),
-        gpu.adapter_info.clone(),
-    );
-    let mut vp = Viewport3d::new(vp_gpu).map_err(crate::figure::FigureError::from)?;
     let mut app = AppUi::new(live.state.clone());
     app.projector = opts.projector;
     app.tab = live.tab;
     app.ee = live.ee;
-    offscreen.render(&gpu.device, &gpu.queue, size, 1.0, |ui| app.show(ui, None))?;
-    app.set_camera(live.camera);
-    let texture = app.render_viewport(&mut vp, offscreen.renderer_mut(), false);
-    Ok(offscreen.render(&gpu.device, &gpu.queue, size, 1.0, |ui| {
-        app.show(ui, texture)
-    })?)
+    render_window(app, size, Some(live.camera))
 }
 
-/// Renders the app for `state` at `size` pixels.
+/// Renders the app for `state` at `size` pixels, after applying `opts`.
 pub fn screenshot(
     state: AppState,
     size: [u32; 2],
     opts: &ScreenshotOptions,
 ) -> Result<image::RgbaImage, AppError> {
-    let gpu = Gpu::new_headless().map_err(crate::figure::FigureError::from)?;
-    let mut offscreen = Offscreen::new(&gpu.device);
-    let vp_gpu = Gpu::from_parts(
-        gpu.device.clone(),
-        gpu.queue.clone(),
-        gpu.adapter_info.clone(),
-    );
-    let mut vp = Viewport3d::new(vp_gpu).map_err(crate::figure::FigureError::from)?;
+    let input = |e: super::state::StateError| AppError::Input(e.to_string());
     let mut app = AppUi::new(state);
     app.projector = opts.projector;
     if let Some(q) = &opts.q {
-        app.state
-            .set_q(q)
-            .map_err(|e| AppError::Input(e.to_string()))?;
+        app.state.set_q(q).map_err(input)?;
     }
     if opts.all_postures || opts.target_position.is_some() {
         let mut t = app
@@ -78,18 +56,35 @@ pub fn screenshot(
         if let Some(p) = opts.target_position {
             t.translation.vector = nalgebra::Vector3::from(p);
         }
-        app.state
-            .set_target(0, t)
-            .map_err(|e| AppError::Input(e.to_string()))?;
+        app.state.set_target(0, t).map_err(input)?;
         app.state.display.ghosts = true;
     }
     app.state.clear_trails();
-    // Pass 1 lays the window out to learn the viewport size; pass 2 paints with the 3D view.
+    render_window(app, size, None)
+}
+
+/// Lays the window out once to learn the viewport size, renders the 3D view (with `camera`, or
+/// framing the arm), and paints the window with it, all on a headless device.
+fn render_window(
+    mut app: AppUi,
+    size: [u32; 2],
+    camera: Option<crate::camera::Camera>,
+) -> Result<image::RgbaImage, AppError> {
+    let gpu = Gpu::new_headless().map_err(crate::figure::FigureError::from)?;
+    let mut offscreen = Offscreen::new(&gpu.device);
+    let vp_gpu = Gpu::from_parts(
+        gpu.device.clone(),
+        gpu.queue.clone(),
+        gpu.adapter_info.clone(),
+    );
+    let mut vp = Viewport3d::new(vp_gpu).map_err(crate::figure::FigureError::from)?;
     offscreen.render(&gpu.device, &gpu.queue, size, 1.0, |ui| app.show(ui, None))?;
-    app.fit();
+    match camera {
+        Some(c) => app.set_camera(c),
+        None => app.fit(),
+    }
     let texture = app.render_viewport(&mut vp, offscreen.renderer_mut(), false);
-    let img = offscreen.render(&gpu.device, &gpu.queue, size, 1.0, |ui| {
+    Ok(offscreen.render(&gpu.device, &gpu.queue, size, 1.0, |ui| {
         app.show(ui, texture)
-    })?;
-    Ok(img)
+    })?)
 }
