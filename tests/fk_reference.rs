@@ -92,3 +92,27 @@ fn tables_match_models_json() {
         }
     }
 }
+
+/// The position-only path used by workspace sampling equals the full FK, every model and tool.
+#[test]
+fn position_only_fk_matches_full_fk() {
+    use rand::{Rng, SeedableRng};
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(3);
+    for b in armlab::kinematics::models::BUILT_INS {
+        let r = (b.build)();
+        for _ in 0..100 {
+            let q: Vec<f64> = r
+                .limits()
+                .iter()
+                .map(|l| rng.random_range(l[0]..=l[1]))
+                .collect();
+            for ee in 0..r.end_effectors().len() {
+                let p = r.fk_ee_position(&q, ee).unwrap();
+                let t = r.fk_ee(&q, ee).unwrap().translation.vector;
+                let d = (t - nalgebra::Vector3::from(p)).amax();
+                assert!(d < 1e-14, "{} ee {ee}: {d:e}", b.name);
+            }
+        }
+        assert!(r.fk_ee_position(&vec![f64::NAN; r.dof()], 0).is_err());
+    }
+}

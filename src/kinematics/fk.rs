@@ -99,6 +99,32 @@ impl Robot {
         Ok(t * e.tool)
     }
 
+    /// Position of end-effector `ee` (world, m): the workspace-sampling hot path. Same checks as
+    /// [`Self::fk_ee`], but the tool's rotation is never multiplied out.
+    pub fn fk_ee_position(&self, q: &[f64], ee: usize) -> Result<[f64; 3], KinematicsError> {
+        self.check_q(q)?;
+        if ee >= self.end_effectors().len() {
+            return Err(KinematicsError::NoSuchEndEffector {
+                index: ee,
+                count: self.end_effectors().len(),
+            });
+        }
+        Ok(self.fk_ee_position_prechecked(q, ee))
+    }
+
+    /// [`Self::fk_ee_position`] for a `q` already known to have `dof()` finite entries and an
+    /// existing `ee` (samplers that draw q inside the limits). Panics on a bad index.
+    #[inline]
+    pub fn fk_ee_position_prechecked(&self, q: &[f64], ee: usize) -> [f64; 3] {
+        let e = &self.end_effectors()[ee];
+        let mut f = Frame::from_pose(&self.base);
+        for &j in &self.chains[e.parent] {
+            let l = &self.lowered[j];
+            f.apply(l, self.variable_of(j, l, q));
+        }
+        f.point_of(&e.tool)
+    }
+
     /// `world_from_tool` of the first end-effector.
     pub fn fk(&self, q: &[f64]) -> Result<Pose, KinematicsError> {
         self.fk_ee(q, 0)

@@ -37,6 +37,14 @@ impl Frame {
         }
     }
 
+    /// The origin of `self * tool` (world, m) without forming the rotation product.
+    #[inline(always)]
+    pub(crate) fn point_of(&self, tool: &Pose) -> [f64; 3] {
+        let v = &tool.translation.vector;
+        let [c0, c1, c2] = self.r;
+        std::array::from_fn(|k| self.t[k] + c0[k] * v.x + c1[k] * v.y + c2[k] * v.z)
+    }
+
     /// Back to a pose.
     #[inline(always)]
     pub(crate) fn to_pose(self) -> Pose {

@@ -180,6 +180,11 @@ impl PostureClassifier {
         self.names.iter().position(|n| n == name).map(|i| i as u8)
     }
 
+    /// Whether [`Self::classify`] uses the pose (closed-form rules) or only q.
+    pub fn needs_pose(&self) -> bool {
+        matches!(self.rule, Rule::ClosedForm { .. })
+    }
+
     /// The class of configuration `q` (rad or m) whose end-effector pose is `world_from_tool`
     /// (world frame, from [`Robot::fk`]); [`UNCLASSIFIED`] for a degenerate posture. Allocation
     /// free.

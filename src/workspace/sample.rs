@@ -232,6 +232,8 @@ pub fn sample(
     let n = opts.samples;
     let dof = robot.dof();
     let classifier = PostureClassifier::for_end_effector(robot, ee);
+    // Only closed-form posture rules need the whole pose; otherwise the position suffices.
+    let needs_pose = classifier.needs_pose();
     let task = Task::of(robot, ee);
     let limits = robot.limits();
     let mut positions = vec![[0.0; 3]; n];
@@ -266,11 +268,17 @@ pub fn sample(
             let mut jac = Matrix6xX::zeros(dof);
             for i in 0..c.pos.len() {
                 uniform_q(&mut rng, &limits, &mut q);
-                let t = robot.fk_ee(&q, ee)?;
-                let p = t.translation.vector;
-                c.pos[i] = [p.x, p.y, p.z];
-                if let Some(cls) = c.cls.as_deref_mut() {
+                if let Some(cls) = c.cls.as_deref_mut().filter(|_| needs_pose) {
+                    let t = robot.fk_ee(&q, ee)?;
+                    let p = t.translation.vector;
+                    c.pos[i] = [p.x, p.y, p.z];
                     cls[i] = classifier.classify(&q, &t);
+                } else {
+                    // q is drawn inside the (finite) limits and ee was checked above.
+                    c.pos[i] = robot.fk_ee_position_prechecked(&q, ee);
+                    if let Some(cls) = c.cls.as_deref_mut() {
+                        cls[i] = classifier.classify(&q, &Pose::identity());
+                    }
                 }
                 if let (Some(man), Some(frames)) = (c.man.as_deref_mut(), frames.as_mut()) {
                     robot.jacobian_into(&q, ee, frames, &mut jac)?;
