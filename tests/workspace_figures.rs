@@ -140,3 +140,35 @@ fn same_inputs_same_png_bytes() {
         assert!(va.get(key).is_some(), "missing {key}");
     }
 }
+
+/// The dexterous workspace, shown apart from the reachable one: for the anthropomorphic arm with
+/// spherical wrist every approach direction is reachable well inside (the wrist centre within
+/// a2 + d4 of the shoulder), few near the outer rim (the last d6 = 0.1 m).
+#[test]
+fn dexterous_workspace_is_shown() {
+    let robot = built_in("anthropomorphic_spherical_wrist").unwrap();
+    let mut f = Figures::new().unwrap_or_else(|e| panic!("{e}"));
+    let opts = WsFigureOptions {
+        view: WsView::Side,
+        color_by: ColorBy::Dexterity,
+        samples: 5000,
+        seed: 1,
+        size: [640, 480],
+        theme: Theme::Light,
+        end_effector: 0,
+    };
+    let fig = workspace_figure(&mut f, &robot, "arm", &opts, &|_| {}).unwrap();
+    let yellow = fig
+        .image
+        .pixels()
+        .filter(|p| p.0[0] > 220 && p.0[1] > 200 && p.0[2] < 80)
+        .count();
+    let dark = fig
+        .image
+        .pixels()
+        .filter(|p| p.0[0] < 90 && p.0[1] < 60 && p.0[2] > 60 && p.0[2] < 130)
+        .count();
+    assert!(yellow > 10_000, "dexterous core missing ({yellow} px)");
+    assert!(dark > 200, "low-dexterity rim missing ({dark} px)");
+    assert!(fig.stats.dexterous_measure > 0.0);
+}

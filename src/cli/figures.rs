@@ -213,6 +213,8 @@ pub enum ColorByArg {
     Posture,
     /// Manipulability.
     Manipulability,
+    /// The dexterous workspace: fraction of orientations reachable.
+    Dexterity,
     /// One colour.
     None,
 }
@@ -271,6 +273,7 @@ pub(super) fn workspace(
         color_by: match args.color_by {
             ColorByArg::Posture => ColorBy::Posture,
             ColorByArg::Manipulability => ColorBy::Manipulability,
+            ColorByArg::Dexterity => ColorBy::Dexterity,
             ColorByArg::None => ColorBy::None,
         },
         samples: args.samples,

@@ -37,6 +37,10 @@ pub enum ColorBy {
     Posture,
     /// By manipulability (largest in the pixel), a sequential colour map.
     Manipulability,
+    /// The dexterous workspace: the fraction of orientations reachable at each position (for
+    /// a planar arm the angle phi, for a spatial arm the approach direction), shown apart from
+    /// the reachable workspace.
+    Dexterity,
     /// One colour.
     None,
 }
@@ -346,7 +350,9 @@ pub fn workspace_figure(
             let bounds = padded(&b, [0, 1], 0.06);
             // Exact (IK per cell) rasters at about the plot's pixel size; sampled ones at a few
             // samples per cell so regions read as areas.
-            let exact_regions = opts.color_by == ColorBy::Posture && view == View::Plane && planar;
+            let exact_regions = matches!(opts.color_by, ColorBy::Posture | ColorBy::Dexterity)
+                && view == View::Plane
+                && planar;
             // A redundant planar arm scans phi per cell: keep its IK count near 2 million.
             const PHI_SCAN: usize = 24;
             let tester = if exact_regions {
@@ -363,6 +369,99 @@ pub fn workspace_figure(
             let mut raster = ClassRaster::new(dims[0], dims[1], bounds);
             let mut legend = Vec::new();
             let image = match opts.color_by {
+                ColorBy::Dexterity => {
+                    // Fraction of orientations reached per pixel: exact (closed-form IK per
+                    // pixel) for planar arms, the grid analysis projected (largest along the
+                    // view direction) for spatial arms.
+                    let (w, h) = (dims[0] as usize, dims[1] as usize);
+                    let mut frac = vec![-1.0f32; w * h];
+                    if let Some(t) = &tester {
+                        use rayon::prelude::*;
+                        frac = (0..w * h)
+                            .into_par_iter()
+                            .map(|i| {
+                                let (u, v) = ((i % w) as f64 + 0.5, (i / w) as f64 + 0.5);
+                                let x = bounds[0] + u / w as f64 * (bounds[1] - bounds[0]);
+                                let y = bounds[3] - v / h as f64 * (bounds[3] - bounds[2]);
+                                let r = t.test_plane([x, y]);
+                                if r.mask == 0 {
+                                    -1.0
+                                } else {
+                                    r.reached as f32 / r.tried.max(1) as f32
+                                }
+                            })
+                            .collect();
+                    } else {
+                        let g = workspace::analyze_grid(
+                            robot,
+                            &GridOptions {
+                                resolution: 40,
+                                ..grid.clone()
+                            },
+                            &|_| {},
+                        )?;
+                        for i in 0..g.masks.len() {
+                            if g.masks[i] == 0 {
+                                continue;
+                            }
+                            let c = g.world_centre(i);
+                            let (a, b) = match view {
+                                View::SideRZ => (
+                                    (c[0] - robot.base.translation.x)
+                                        .hypot(c[1] - robot.base.translation.y),
+                                    c[2],
+                                ),
+                                _ => (c[0], c[1]),
+                            };
+                            // Paint the cell's whole footprint so the coarse grid reads as an area.
+                            let cs = g.grid.cell_size();
+                            let (hx, hy) = (0.5 * cs[0].max(cs[1]), 0.5 * cs[2].max(cs[1]));
+                            let (hy, hx) = if matches!(view, View::SideRZ) {
+                                (hy, hx)
+                            } else {
+                                (0.5 * cs[1], 0.5 * cs[0])
+                            };
+                            let to_px = |x: f64, y: f64| -> (f64, f64) {
+                                (
+                                    (x - bounds[0]) / (bounds[1] - bounds[0]) * w as f64,
+                                    (bounds[3] - y) / (bounds[3] - bounds[2]) * h as f64,
+                                )
+                            };
+                            let (u0, v0) = to_px(a - hx, b + hy);
+                            let (u1, v1) = to_px(a + hx, b - hy);
+                            let (u0, u1) = (
+                                u0.floor().max(0.0) as usize,
+                                (u1.ceil().max(0.0) as usize).min(w),
+                            );
+                            let (v0, v1) = (
+                                v0.floor().max(0.0) as usize,
+                                (v1.ceil().max(0.0) as usize).min(h),
+                            );
+                            for v in v0..v1 {
+                                for u in u0..u1 {
+                                    let k = v * w + u;
+                                    frac[k] = frac[k].max(g.orientation_fraction[i]);
+                                }
+                            }
+                        }
+                    }
+                    legend = vec![
+                        ("few orientations".into(), c32(sequential(0.0))),
+                        ("all orientations (dexterous)".into(), c32(sequential(1.0))),
+                    ];
+                    let pixels = frac
+                        .iter()
+                        .map(|&f| {
+                            if f < 0.0 {
+                                Color32::TRANSPARENT
+                            } else {
+                                let c = sequential(f);
+                                Color32::from_rgb(c[0], c[1], c[2])
+                            }
+                        })
+                        .collect();
+                    egui::ColorImage::new([w, h], pixels)
+                }
                 ColorBy::Posture if exact_regions => {
                     // Exact regions: closed-form IK at every raster cell centre.
                     if let Some(t) = &tester {
