@@ -1,58 +1,152 @@
-//! One frame of the app at 1280x800 on the software renderer: move the IK target, solve IK for
-//! every solution, build the scene with all ghost arms, render the 3D view, lay out and paint the
-//! whole window with egui, and wait for the GPU (the read-back makes the wait explicit; it is
-//! included, so the figure is an upper bound). Run: `cargo bench --bench app_frame`.
+//! One frame of the app at 1280x800 while the IK target is dragged, done as the live window
+//! does it on the software renderer: move the target, solve IK for every closed-form solution,
+//! build the scene with the ghost arms, render the 3D view (1x multisampling while moving, as
+//! the app does on a CPU adapter), lay the window out once with egui, paint it into a
+//! persistent 1280x800 texture, and wait until the GPU (lavapipe) has finished. Presenting to a
+//! window is not included (`armlab view --measure-frames N` measures the real window).
+//! Run: `cargo bench --bench app_frame`.
 
 use armlab::app::state::AppState;
 use armlab::app::ui::AppUi;
 use armlab::app::viewport::Viewport3d;
-use armlab::figure::offscreen::Offscreen;
+use armlab::figure::offscreen::{FIGURE_FORMAT, Offscreen};
 use armlab::render::Gpu;
 use criterion::{Criterion, criterion_group, criterion_main};
 
+const SIZE: [u32; 2] = [1280, 800];
+
+/// A pose with eight distinct closed-form solutions (no singularity, no coinciding postures).
+const Q: [f64; 6] = [0.4, 0.7, 0.5, 0.6, 0.8, 0.3];
+
+struct Frame {
+    gpu: Gpu,
+    offscreen: Offscreen,
+    vp: Viewport3d,
+    app: AppUi,
+    view: wgpu::TextureView,
+    start: nalgebra::IsometryMatrix3<f64>,
+    k: u32,
+}
+
+impl Frame {
+    fn new() -> Self {
+        let gpu = Gpu::new_headless()
+            .expect("a graphics adapter (mesa-vulkan-drivers on machines without a GPU)");
+        // As eframe's painter: default options (hardware texture filtering, dithering).
+        let mut offscreen =
+            Offscreen::with_options(&gpu.device, egui_wgpu::RendererOptions::default());
+        let vp = Viewport3d::adaptive(Gpu::from_parts(
+            gpu.device.clone(),
+            gpu.queue.clone(),
+            gpu.adapter_info.clone(),
+        ))
+        .expect("renderer");
+        let mut app = AppUi::new(AppState::from_spec("anthropomorphic_spherical_wrist").unwrap());
+        app.state.set_q(&Q).unwrap();
+        let start = app.state.robot().fk(app.state.q()).unwrap();
+        app.state.set_target(0, start).unwrap();
+        assert_eq!(app.state.ghosts(0).len(), 8, "eight postures on screen");
+        offscreen.set_background(Some(app.background()));
+        let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("window"),
+            size: wgpu::Extent3d {
+                width: SIZE[0],
+                height: SIZE[1],
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: FIGURE_FORMAT,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+            view_formats: &[],
+        });
+        let view = texture.create_view(&Default::default());
+        let mut f = Self {
+            gpu,
+            offscreen,
+            vp,
+            app,
+            view,
+            start,
+            k: 0,
+        };
+        f.paint(None);
+        f.app.fit();
+        f
+    }
+
+    /// Drags the target one step along a small circle (IK for every solution).
+    fn drag(&mut self) {
+        self.k += 1;
+        let a = self.k as f64 * 0.05;
+        let mut t = self.start;
+        t.translation.vector.y += 0.03 * a.sin();
+        t.translation.vector.z += 0.03 * (1.0 - a.cos());
+        self.app.state.set_target(0, t).expect("target");
+    }
+
+    fn viewport(&mut self) -> Option<armlab::app::viewport::ViewportImage> {
+        self.app
+            .render_viewport(&mut self.vp, self.offscreen.renderer_mut(), false)
+    }
+
+    fn paint(&mut self, image: Option<armlab::app::viewport::ViewportImage>) {
+        let app = &mut self.app;
+        self.offscreen
+            .frame(
+                &self.gpu.device,
+                &self.gpu.queue,
+                &self.view,
+                SIZE,
+                1.0,
+                |ui| app.show(ui, image.clone()),
+            )
+            .expect("frame");
+    }
+
+    fn wait(&self) {
+        self.gpu
+            .device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .expect("device");
+    }
+}
+
 fn frame(c: &mut Criterion) {
-    let gpu = Gpu::new_headless()
-        .expect("a graphics adapter (mesa-vulkan-drivers on machines without a GPU)");
-    let mut offscreen = Offscreen::new(&gpu.device);
-    let mut vp = Viewport3d::new(Gpu::from_parts(
-        gpu.device.clone(),
-        gpu.queue.clone(),
-        gpu.adapter_info.clone(),
-    ))
-    .expect("renderer");
-    let mut app =
-        AppUi::new(AppState::from_spec("anthropomorphic_spherical_wrist").expect("model"));
-    let start = app.state.robot().fk(app.state.q()).expect("fk");
-    app.state.set_target(0, start).expect("target");
-    offscreen
-        .render(&gpu.device, &gpu.queue, [1280, 800], 1.0, |ui| {
-            app.show(ui, None)
-        })
-        .expect("layout");
-    app.fit();
-    let mut k = 0u32;
+    let mut f = Frame::new();
     c.bench_function(
-        "app/frame 1280x800 (IK all solutions + ghosts + 3D + egui)",
+        "app/frame 1280x800 (drag: IK all solutions + ghosts + 3D + egui)",
         |b| {
             b.iter(|| {
-                k += 1;
-                let mut t = start;
-                t.translation.vector.y += 0.05 * (k as f64 * 0.1).sin();
-                app.state.set_target(0, t).expect("target");
-                let tex = app.render_viewport(&mut vp, offscreen.renderer_mut(), false);
-                offscreen
-                    .render(&gpu.device, &gpu.queue, [1280, 800], 1.0, |ui| {
-                        app.show(ui, tex)
-                    })
-                    .expect("frame")
+                f.drag();
+                let image = f.viewport();
+                f.paint(image);
+                f.wait();
             })
         },
     );
+    c.bench_function("app/part: IK for every solution", |b| b.iter(|| f.drag()));
+    c.bench_function("app/part: 3D view of a moving scene", |b| {
+        b.iter(|| {
+            f.drag();
+            let image = f.viewport();
+            f.wait();
+            image
+        })
+    });
+    let image = f.viewport();
+    c.bench_function("app/part: egui layout + paint of the window", |b| {
+        b.iter(|| {
+            f.paint(image.clone());
+            f.wait();
+        })
+    });
 }
 
 criterion_group! {
     name = benches;
-    config = Criterion::default().sample_size(20);
+    config = Criterion::default().sample_size(30);
     targets = frame
 }
 criterion_main!(benches);

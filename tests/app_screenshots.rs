@@ -82,6 +82,45 @@ fn real_window_runs_under_xvfb() {
     );
 }
 
+/// `armlab view --measure-frames N` drives the real window (under a virtual X server), drags
+/// the IK target for N frames, prints the frame times and exits by itself.
+#[test]
+fn the_real_window_measures_its_frames() {
+    let o = std::process::Command::new("xvfb-run")
+        .args([
+            "-a",
+            "-s",
+            "-screen 0 1280x900x24",
+            "timeout",
+            "120",
+            env!("CARGO_BIN_EXE_armlab"),
+            "view",
+            "--measure-frames",
+            "15",
+            "--q",
+            "0.4,0.7,0.5,0.6,0.8,0.3",
+        ])
+        .output()
+        .unwrap_or_else(|e| {
+            panic!("cannot run xvfb-run ({e}): install it with apt-get install xvfb xauth")
+        });
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        o.status.success(),
+        "exit {:?}: {}",
+        o.status.code(),
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(out.starts_with("15 frames at 1280x800 on "), "{out}");
+    let median: f64 = out
+        .split("median ")
+        .nth(1)
+        .and_then(|t| t.split(" ms").next())
+        .and_then(|t| t.parse().ok())
+        .unwrap_or_else(|| panic!("no median in {out}"));
+    assert!(median > 0.0 && median.is_finite(), "{out}");
+}
+
 /// The Screenshot button's path: the live app's state and camera rendered offscreen.
 #[test]
 fn screenshot_button_renders_the_current_view() {

@@ -5,6 +5,7 @@
 
 pub mod gizmo;
 pub mod panels;
+pub mod probe;
 pub mod screenshot;
 pub mod singularity;
 pub mod state;
@@ -21,18 +22,36 @@ use viewport::Viewport3d;
 pub struct ArmlabApp {
     ui: AppUi,
     viewport: Option<Viewport3d>,
+    probe: Option<probe::FrameProbe>,
 }
 
 impl eframe::App for ArmlabApp {
+    fn clear_color(&self, _visuals: &egui::Visuals) -> [f32; 4] {
+        self.ui.background().to_normalized_gamma_f32()
+    }
+
     fn ui(&mut self, ui: &mut egui::Ui, frame: &mut eframe::Frame) {
-        let texture = match (frame.wgpu_render_state(), &mut self.viewport) {
+        if let Some(p) = &mut self.probe {
+            let [w, h] = self.ui.window_points;
+            let ppp = ui.ctx().pixels_per_point();
+            let size = [(w * ppp).round() as u32, (h * ppp).round() as u32];
+            if p.frame(&mut self.ui.state, size) {
+                ui.ctx().send_viewport_cmd(egui::ViewportCommand::Close);
+            }
+            ui.ctx().request_repaint();
+        }
+        let image = match (frame.wgpu_render_state(), &mut self.viewport) {
             (Some(rs), Some(vp)) => {
                 let mut renderer = rs.renderer.write();
                 self.ui.render_viewport(vp, &mut *renderer, false)
             }
             _ => None,
         };
-        self.ui.show(ui, texture);
+        if image.as_ref().is_some_and(|i| i.refine) {
+            // Drawn at the fast quality while moving: one more frame draws it at full quality.
+            ui.ctx().request_repaint();
+        }
+        self.ui.show(ui, image);
         if std::mem::take(&mut self.ui.screenshot_requested) {
             self.save_screenshot();
         }
@@ -80,32 +99,74 @@ impl ArmlabApp {
     }
 }
 
+/// How to run the window.
+#[derive(Debug, Clone, Default)]
+pub struct RunOptions {
+    /// Drag the IK target for this many frames (after a warm-up), time them, close the window
+    /// and return the timings; vsync is off so that frames are not held to the display rate.
+    pub measure_frames: Option<usize>,
+    /// Joint vector (rad, m) to open at; the IK target is put on the tool.
+    pub q: Option<Vec<f64>>,
+}
+
 /// Opens the app window on the model `spec` (a built-in name or a .toml/.urdf path).
 pub fn run(spec: &str) -> Result<(), AppError> {
-    let state = AppState::from_spec(spec).map_err(|e| AppError::Model(e.to_string()))?;
-    let options = eframe::NativeOptions {
+    run_with(spec, &RunOptions::default()).map(|_| ())
+}
+
+/// Opens the app window with `opts`; returns the frame timings when they were asked for.
+pub fn run_with(spec: &str, opts: &RunOptions) -> Result<Option<probe::FrameReport>, AppError> {
+    let mut state = AppState::from_spec(spec).map_err(|e| AppError::Model(e.to_string()))?;
+    if let Some(q) = &opts.q {
+        let input = |e: state::StateError| AppError::Input(e.to_string());
+        state.set_q(q).map_err(input)?;
+        let tool = state
+            .robot()
+            .fk_ee(state.q(), 0)
+            .map_err(|e| AppError::Input(e.to_string()))?;
+        state.set_target(0, tool).map_err(input)?;
+    }
+    let mut options = eframe::NativeOptions {
         renderer: eframe::Renderer::Wgpu,
         viewport: egui::ViewportBuilder::default()
             .with_inner_size([1280.0, 800.0])
             .with_title(format!("armlab: {}", state.robot().name)),
+        // The window has flat colours only: nothing to dither.
+        dithering: false,
         ..Default::default()
     };
+    let probe = opts.measure_frames.map(probe::FrameProbe::new);
+    let report = probe.as_ref().map(|p| p.report.clone());
+    if probe.is_some() {
+        options.wgpu_options.surface.present_mode = wgpu::PresentMode::AutoNoVsync;
+    }
     eframe::run_native(
         "armlab",
         options,
-        Box::new(|cc| {
+        Box::new(move |cc| {
+            let mut probe = probe;
             let viewport = cc.wgpu_render_state.as_ref().and_then(|rs| {
-                let gpu =
-                    Gpu::from_parts(rs.device.clone(), rs.queue.clone(), rs.adapter.get_info());
-                Viewport3d::new(gpu).ok()
+                crate::figure::blit::install(
+                    &mut rs.renderer.write(),
+                    &rs.device,
+                    rs.target_format,
+                );
+                let info = rs.adapter.get_info();
+                if let Some(p) = &mut probe {
+                    p.adapter = format!("{} ({}, {:?})", info.name, info.driver_info, info.backend);
+                }
+                let gpu = Gpu::from_parts(rs.device.clone(), rs.queue.clone(), info);
+                Viewport3d::adaptive(gpu).ok()
             });
             Ok(Box::new(ArmlabApp {
                 ui: AppUi::new(state),
                 viewport,
+                probe,
             }))
         }),
     )
-    .map_err(|e| AppError::Window(e.to_string()))
+    .map_err(|e| AppError::Window(e.to_string()))?;
+    Ok(report.and_then(|r| r.lock().ok().and_then(|r| r.clone())))
 }
 
 /// Why the app could not run.

@@ -72,6 +72,7 @@ fn render_window(
 ) -> Result<image::RgbaImage, AppError> {
     let gpu = Gpu::new_headless().map_err(crate::figure::FigureError::from)?;
     let mut offscreen = Offscreen::new(&gpu.device);
+    offscreen.set_background(Some(app.background()));
     let vp_gpu = Gpu::from_parts(
         gpu.device.clone(),
         gpu.queue.clone(),
@@ -85,6 +86,6 @@ fn render_window(
     }
     let texture = app.render_viewport(&mut vp, offscreen.renderer_mut(), false);
     Ok(offscreen.render(&gpu.device, &gpu.queue, size, 1.0, |ui| {
-        app.show(ui, texture)
+        app.show(ui, texture.clone())
     })?)
 }

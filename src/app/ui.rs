@@ -2,7 +2,7 @@
 //! the IK target gizmo, the workspace tab, projector mode and the shortcut help.
 
 use super::state::{AppState, Level};
-use super::viewport::{TextureRegistry, Viewport3d, build_scene};
+use super::viewport::{TextureRegistry, Viewport3d, ViewportImage, build_scene};
 use super::workspace_job::WorkspaceJob;
 use crate::camera::{Camera, Preset, Projection};
 use crate::scene::arm_points;
@@ -35,6 +35,8 @@ pub struct AppUi {
     pub load_path: String,
     /// Viewport size in pixels, from the last layout (the 3D render uses it).
     pub viewport_px: [u32; 2],
+    /// Where the viewport was laid out last (points, window coordinates).
+    pub viewport_rect: egui::Rect,
     /// The IK target gizmo.
     pub gizmo: super::gizmo::Gizmo,
     /// The workspace computation running or done.
@@ -59,6 +61,7 @@ impl AppUi {
             ee: 0,
             load_path: String::new(),
             viewport_px: [800, 600],
+            viewport_rect: egui::Rect::NOTHING,
             gizmo: super::gizmo::Gizmo::default(),
             workspace: None,
             workspace_texture: None,
@@ -103,20 +106,20 @@ impl AppUi {
         self.camera_fitted = true;
     }
 
-    /// Renders the 3D scene for the viewport at its last size; returns the texture to show.
+    /// Renders the 3D scene for the viewport at its last size; returns the image to show.
     pub fn render_viewport(
         &mut self,
         vp: &mut Viewport3d,
         registry: &mut dyn TextureRegistry,
         dark: bool,
-    ) -> Option<egui::TextureId> {
+    ) -> Option<ViewportImage> {
         if !self.camera_fitted {
             self.fit();
         }
         let dots = self.workspace.as_ref().and_then(|w| w.dots());
         let scene = build_scene(&self.state, dots, self.projector);
         match vp.render(registry, &scene, &self.camera, self.viewport_px, dark) {
-            Ok(id) => Some(id),
+            Ok(image) => Some(image),
             Err(e) => {
                 self.state
                     .push_message(Level::Error, format!("3D view: {e}"));
@@ -141,13 +144,20 @@ impl AppUi {
             s.text_styles
                 .insert(TextStyle::Monospace, FontId::monospace(12.5 * scale));
         });
+        let mut v = egui::Visuals::light();
         if self.projector {
-            let mut v = egui::Visuals::light();
             v.override_text_color = Some(egui::Color32::BLACK);
-            ctx.set_visuals(v);
-        } else {
-            ctx.set_visuals(egui::Visuals::light());
         }
+        // Panels are painted transparent over a window cleared to `background()`: the same
+        // pixels, but a clear costs almost nothing where a window-sized egui rectangle costs
+        // milliseconds per frame on a software rasterizer.
+        v.panel_fill = egui::Color32::TRANSPARENT;
+        ctx.set_visuals(v);
+    }
+
+    /// The window's background colour (what the panels show); the frame is cleared to it.
+    pub fn background(&self) -> egui::Color32 {
+        egui::Visuals::light().panel_fill
     }
 
     fn shortcuts(&mut self, ctx: &egui::Context) {
@@ -241,8 +251,8 @@ impl AppUi {
         }
     }
 
-    /// Lays out the whole window in `ui`; `viewport` is the texture of the 3D view.
-    pub fn show(&mut self, ui: &mut egui::Ui, viewport: Option<egui::TextureId>) {
+    /// Lays out the whole window in `ui`; `viewport` is the image of the 3D view.
+    pub fn show(&mut self, ui: &mut egui::Ui, viewport: Option<ViewportImage>) {
         let ctx = ui.ctx().clone();
         let r = ui.max_rect();
         self.window_points = [r.width(), r.height()];
@@ -360,21 +370,29 @@ impl AppUi {
         });
     }
 
-    fn viewport(&mut self, ui: &mut egui::Ui, texture: Option<egui::TextureId>) {
+    fn viewport(&mut self, ui: &mut egui::Ui, image: Option<ViewportImage>) {
         let rect = ui.available_rect_before_wrap();
+        self.viewport_rect = rect;
         let ppp = ui.ctx().pixels_per_point();
         self.viewport_px = [
             ((rect.width() * ppp).round() as u32).max(16),
             ((rect.height() * ppp).round() as u32).max(16),
         ];
         let response = ui.allocate_rect(rect, egui::Sense::click_and_drag());
-        if let Some(id) = texture {
-            ui.painter().image(
-                id,
-                rect,
-                egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0)),
-                egui::Color32::WHITE,
-            );
+        match image {
+            Some(im) if im.blit => {
+                ui.painter()
+                    .add(crate::figure::blit::TextureBlit::shape(im.view, rect));
+            }
+            Some(im) => {
+                ui.painter().image(
+                    im.id,
+                    rect,
+                    egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0)),
+                    egui::Color32::WHITE,
+                );
+            }
+            None => {}
         }
         // Labels of the scene, projected.
         let scene_labels = build_scene(&self.state, None, self.projector).labels;

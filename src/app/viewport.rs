@@ -8,8 +8,9 @@ use crate::render::{Gpu, RenderError, RenderSettings, RenderTarget, Renderer, Vi
 use crate::scene::{ArmStyle, Dot, Label, Line, Scene, arm_scene, robot_scale};
 use egui::TextureId;
 
-/// Multisampling of the viewport: 4x gives smooth edges on a projector; the live app drops to 1
-/// when frames get slow (software rendering), see [`Viewport3d::set_msaa`].
+/// Multisampling of the viewport: 4x gives smooth edges on a projector. On a software
+/// rasterizer the live app draws moving frames at 1x and the still frame at this count (see
+/// [`Viewport3d::adaptive`]).
 pub const VIEWPORT_MSAA: u32 = 4;
 
 /// Registers wgpu texture views with whichever egui renderer shows them.
@@ -18,6 +19,11 @@ pub trait TextureRegistry {
     fn register(&mut self, device: &wgpu::Device, view: &wgpu::TextureView) -> TextureId;
     /// Points an existing id at a new view (after a resize).
     fn update(&mut self, device: &wgpu::Device, view: &wgpu::TextureView, id: TextureId);
+    /// Whether the texture can be shown with [`crate::figure::blit::TextureBlit`] (cheaper
+    /// than an egui image on a software rasterizer).
+    fn can_blit(&self) -> bool {
+        false
+    }
 }
 
 impl TextureRegistry for egui_wgpu::Renderer {
@@ -27,51 +33,113 @@ impl TextureRegistry for egui_wgpu::Renderer {
     fn update(&mut self, device: &wgpu::Device, view: &wgpu::TextureView, id: TextureId) {
         self.update_egui_texture_from_wgpu_texture(device, view, wgpu::FilterMode::Linear, id);
     }
+    fn can_blit(&self) -> bool {
+        crate::figure::blit::installed(self)
+    }
+}
+
+/// The 3D view of one frame, ready to be shown by egui.
+#[derive(Debug, Clone)]
+pub struct ViewportImage {
+    /// The texture as an egui image.
+    pub id: TextureId,
+    /// The texture itself (`Rgba8Unorm`, gamma-encoded, the viewport's size in pixels).
+    pub view: wgpu::TextureView,
+    /// Show it with [`crate::figure::blit::TextureBlit`] rather than as an image.
+    pub blit: bool,
+    /// Drawn at the fast quality while the scene moves: repaint once more when it stops, and
+    /// the still frame comes at full quality.
+    pub refine: bool,
+}
+
+/// A renderer at one sample count and the target it draws into.
+struct Layer {
+    renderer: Renderer,
+    target: Option<RenderTarget>,
+}
+
+impl Layer {
+    fn new(gpu: &Gpu, msaa: u32) -> Result<Self, RenderError> {
+        Ok(Self {
+            renderer: Renderer::new(gpu, msaa)?,
+            target: None,
+        })
+    }
+
+    /// Draws into the target (made, or remade at a new size, first); returns its egui view.
+    fn draw(
+        &mut self,
+        gpu: &Gpu,
+        size: [u32; 2],
+        scene: &Scene,
+        view: &ViewUniforms,
+        settings: &RenderSettings,
+    ) -> Result<wgpu::TextureView, RenderError> {
+        let [w, h] = size;
+        let target = match self.target.take() {
+            Some(t) if t.size() == (w, h) => t,
+            _ => RenderTarget::new(gpu, w, h, self.renderer.sample_count())?,
+        };
+        let target = self.target.insert(target);
+        self.renderer.render(gpu, target, scene, view, settings)?;
+        Ok(target.egui_view())
+    }
 }
 
 /// The GPU side of the viewport: our renderer and the target it draws into.
+///
+/// A frame whose scene, camera, size and background equal the last one's is not drawn again.
 pub struct Viewport3d {
     gpu: Gpu,
-    renderer: Renderer,
-    target: Option<(RenderTarget, TextureId)>,
-    msaa: u32,
-    stale_id: Option<TextureId>,
+    /// Renders at the full sample count.
+    full: Layer,
+    /// Renders at 1x while the scene moves (adaptive mode only).
+    fast: Option<Layer>,
+    /// The egui id of the texture shown last.
+    id: Option<TextureId>,
+    /// Fingerprint of what the shown texture holds and whether it is the full-quality frame.
+    shown: Option<(u64, bool)>,
+    /// The image returned last.
+    image: Option<ViewportImage>,
+    /// Frames drawn so far (not counting those served from the last image).
+    draws: u64,
 }
 
 impl Viewport3d {
-    /// A viewport on a device (eframe's, or a headless one).
+    /// A viewport on a device (eframe's, or a headless one), always at [`VIEWPORT_MSAA`].
     pub fn new(gpu: Gpu) -> Result<Self, RenderError> {
         Self::with_msaa(gpu, VIEWPORT_MSAA)
     }
 
     /// A viewport with `msaa` samples per pixel (1 or 4).
     pub fn with_msaa(gpu: Gpu, msaa: u32) -> Result<Self, RenderError> {
-        let renderer = Renderer::new(&gpu, msaa)?;
+        let full = Layer::new(&gpu, msaa)?;
         Ok(Self {
             gpu,
-            renderer,
-            target: None,
-            msaa,
-            stale_id: None,
+            full,
+            fast: None,
+            id: None,
+            shown: None,
+            image: None,
+            draws: 0,
         })
     }
 
-    /// Samples per pixel.
-    pub fn msaa(&self) -> u32 {
-        self.msaa
+    /// The live app's viewport: on a software rasterizer (a CPU adapter) frames drawn while
+    /// the scene moves use 1x multisampling and the frame after it stops uses
+    /// [`VIEWPORT_MSAA`] (see [`ViewportImage::refine`]); on a GPU every frame is full quality.
+    pub fn adaptive(gpu: Gpu) -> Result<Self, RenderError> {
+        let cpu = gpu.adapter_info.device_type == wgpu::DeviceType::Cpu;
+        let mut vp = Self::new(gpu)?;
+        if cpu && VIEWPORT_MSAA > 1 {
+            vp.fast = Some(Layer::new(&vp.gpu, 1)?);
+        }
+        Ok(vp)
     }
 
-    /// Changes the multisampling (rebuilds the pipelines; the next render rebuilds the target
-    /// and keeps its egui texture id).
-    pub fn set_msaa(&mut self, msaa: u32) -> Result<(), RenderError> {
-        if msaa != self.msaa {
-            self.renderer = Renderer::new(&self.gpu, msaa)?;
-            self.msaa = msaa;
-            if let Some((_, id)) = self.target.take() {
-                self.stale_id = Some(id);
-            }
-        }
-        Ok(())
+    /// Samples per pixel of the full-quality frames.
+    pub fn msaa(&self) -> u32 {
+        self.full.renderer.sample_count()
     }
 
     /// The device.
@@ -79,7 +147,13 @@ impl Viewport3d {
         &self.gpu
     }
 
-    /// Renders `scene` at `size` pixels and returns the egui texture showing it.
+    /// How many frames were drawn (a frame equal to the one shown is not drawn again).
+    pub fn draws(&self) -> u64 {
+        self.draws
+    }
+
+    /// Renders `scene` at `size` pixels (unless the same frame is shown already) and returns
+    /// the image showing it.
     pub fn render(
         &mut self,
         registry: &mut dyn TextureRegistry,
@@ -87,41 +161,87 @@ impl Viewport3d {
         camera: &Camera,
         size: [u32; 2],
         dark: bool,
-    ) -> Result<TextureId, RenderError> {
+    ) -> Result<ViewportImage, RenderError> {
         let [w, h] = [size[0].max(16), size[1].max(16)];
-        let stale = self.target.as_ref().is_none_or(|(t, _)| t.size() != (w, h));
-        if stale {
-            let target = RenderTarget::new(&self.gpu, w, h, self.msaa)?;
-            let id = match self
-                .target
-                .take()
-                .map(|(_, id)| id)
-                .or(self.stale_id.take())
-            {
-                Some(id) => {
-                    registry.update(&self.gpu.device, &target.egui_view(), id);
-                    id
-                }
-                None => registry.register(&self.gpu.device, &target.egui_view()),
-            };
-            self.target = Some((target, id));
+        let view = ViewUniforms::from_camera(camera, w, h);
+        let key = fingerprint(scene, &view, dark, [w, h]);
+        let same = self.shown.is_some_and(|(k, _)| k == key);
+        if let (true, Some((_, true)), Some(image)) = (same, self.shown, &mut self.image) {
+            image.blit = registry.can_blit();
+            return Ok(image.clone());
         }
-        let Some((target, id)) = &self.target else {
-            unreachable!("target just created")
+        // Moving (or first) frame: the fast layer if there is one; a still frame: full.
+        let fast = !same && self.fast.is_some();
+        let layer = match (&mut self.fast, fast) {
+            (Some(l), true) => l,
+            _ => &mut self.full,
         };
         let mut settings = RenderSettings::default();
         if dark {
             settings.clear = [0.015, 0.017, 0.02, 1.0];
         }
-        self.renderer.render(
-            &self.gpu,
-            target,
-            scene,
-            &ViewUniforms::from_camera(camera, w, h),
-            &settings,
-        )?;
-        Ok(*id)
+        let texture_view = layer.draw(&self.gpu, [w, h], scene, &view, &settings)?;
+        self.draws += 1;
+        let id = match self.id {
+            Some(id) => {
+                if self.image.as_ref().is_none_or(|i| i.view != texture_view) {
+                    registry.update(&self.gpu.device, &texture_view, id);
+                }
+                id
+            }
+            None => registry.register(&self.gpu.device, &texture_view),
+        };
+        self.id = Some(id);
+        self.shown = Some((key, !fast));
+        let image = ViewportImage {
+            id,
+            view: texture_view,
+            blit: registry.can_blit(),
+            refine: fast,
+        };
+        self.image = Some(image.clone());
+        Ok(image)
     }
+}
+
+/// A 64-bit fingerprint of everything a viewport frame depends on (FNV-1a over the bits).
+fn fingerprint(scene: &Scene, view: &ViewUniforms, dark: bool, size: [u32; 2]) -> u64 {
+    struct Fnv(u64);
+    impl Fnv {
+        fn u32(&mut self, v: u32) {
+            self.0 = (self.0 ^ v as u64).wrapping_mul(0x0100_0000_01b3);
+        }
+        fn f(&mut self, v: &[f32]) {
+            v.iter().for_each(|x| self.u32(x.to_bits()));
+        }
+    }
+    let mut h = Fnv(0xcbf2_9ce4_8422_2325);
+    h.u32(size[0]);
+    h.u32(size[1]);
+    h.u32(dark as u32);
+    view.clip_from_world.iter().for_each(|c| h.f(c));
+    h.f(&view.eye);
+    h.f(&view.viewport);
+    h.u32(scene.meshes.len() as u32);
+    for m in &scene.meshes {
+        h.u32(m.shape as u32);
+        m.world_from_unit.iter().for_each(|c| h.f(c));
+        h.f(&m.color);
+    }
+    h.u32(scene.lines.len() as u32);
+    for l in &scene.lines {
+        h.f(&l.a);
+        h.f(&l.b);
+        h.f(&l.color);
+        h.f(&[l.width_px]);
+    }
+    h.u32(scene.dots.len() as u32);
+    for d in &scene.dots {
+        h.f(&d.p);
+        h.f(&d.color);
+        h.f(&[d.size_px]);
+    }
+    h.0
 }
 
 /// The app's 3D scene for the current state: the arm, ghosts of the other solutions labelled
@@ -167,7 +287,15 @@ pub fn build_scene(state: &AppState, workspace: Option<&[Dot]>, projector: bool)
                     };
                 }
                 if let Ok(s) = arm_scene(robot, &g.q, &ghost) {
-                    scene.meshes.extend(s.meshes);
+                    // Bodies a ghost shares with the arm or with an earlier ghost (the base,
+                    // and every link before the joints where the postures part) are drawn
+                    // once: stacked translucent copies would darken them and cost fill.
+                    let tol = scale * 1e-5;
+                    for m in s.meshes {
+                        if !scene.meshes.iter().any(|o| same_body(o, &m, tol)) {
+                            scene.meshes.push(m);
+                        }
+                    }
                     // Label at the elbow (the middle joint frame), where the postures differ.
                     let frames = robot.fk_frames(&g.q).unwrap_or_default();
                     let chain = robot.chain_to(robot.end_effectors()[ee].parent);
@@ -241,6 +369,17 @@ pub fn build_scene(state: &AppState, workspace: Option<&[Dot]>, projector: bool)
         scene.dots.extend_from_slice(dots);
     }
     scene
+}
+
+/// Whether two mesh instances are the same body: same shape and `world_from_unit` equal
+/// within `tol` (m) entry by entry.
+fn same_body(a: &crate::scene::MeshInstance, b: &crate::scene::MeshInstance, tol: f32) -> bool {
+    a.shape == b.shape
+        && a.world_from_unit
+            .iter()
+            .flatten()
+            .zip(b.world_from_unit.iter().flatten())
+            .all(|(x, y)| (x - y).abs() <= tol)
 }
 
 /// Ghost labels that fall on the same spot (postures differing only at the wrist share an elbow)

@@ -21,7 +21,7 @@ pub struct ViewArgs {
     /// Window size for --screenshot, WIDTHxHEIGHT.
     #[arg(long, default_value = "1280x800")]
     pub size: Size,
-    /// Joint vector (rad, m) to show.
+    /// Joint vector (rad, m) to show (in the window too, with the IK target on the tool).
     #[arg(long, allow_hyphen_values = true)]
     pub q: Option<String>,
     /// Put the IK target on the tool and show every closed-form solution.
@@ -33,20 +33,35 @@ pub struct ViewArgs {
     /// Projector mode (large fonts, high contrast).
     #[arg(long)]
     pub projector: bool,
+    /// Open the window, drag the IK target for N frames, print the frame times and exit
+    /// (vsync off; under `xvfb-run` on a machine without a display).
+    #[arg(long, value_name = "N", conflicts_with = "screenshot")]
+    pub measure_frames: Option<usize>,
 }
 
 /// Runs `view`.
 pub(super) fn run(args: &ViewArgs, out: &mut dyn std::io::Write) -> Result<(), CliError> {
     let spec = args.model.as_deref().unwrap_or(DEFAULT_MODEL);
-    let Some(path) = &args.screenshot else {
-        return crate::app::run(spec).map_err(CliError::App);
-    };
     let state = AppState::from_spec(spec)
         .map_err(|e| CliError::App(crate::app::AppError::Model(e.to_string())))?;
     let dof = state.robot().dof();
     let q = match &args.q {
         Some(t) => Some(parse_row(t, "--q", dof, "joint values")?),
         None => None,
+    };
+    let Some(path) = &args.screenshot else {
+        let opts = crate::app::RunOptions {
+            measure_frames: args.measure_frames,
+            q,
+        };
+        if let Some(report) = crate::app::run_with(spec, &opts).map_err(CliError::App)? {
+            writeln!(out, "{report}")?;
+        } else if opts.measure_frames.is_some() {
+            return Err(CliError::App(crate::app::AppError::Window(
+                "the window closed before the frames were measured".into(),
+            )));
+        }
+        return Ok(());
     };
     let target_position = match &args.target_position {
         Some(t) => {

@@ -12,6 +12,7 @@ pub struct Offscreen {
     /// The egui context (fonts, style, memory).
     pub ctx: egui::Context,
     renderer: egui_wgpu::Renderer,
+    background: Option<egui::Color32>,
 }
 
 impl Offscreen {
@@ -25,9 +26,12 @@ impl Offscreen {
     /// hardware, much faster on a software rasterizer; the live app renders like this.
     pub fn with_options(device: &wgpu::Device, options: egui_wgpu::RendererOptions) -> Self {
         let ctx = egui::Context::default();
+        let mut renderer = egui_wgpu::Renderer::new(device, FIGURE_FORMAT, options);
+        super::blit::install(&mut renderer, device, FIGURE_FORMAT);
         Self {
             ctx,
-            renderer: egui_wgpu::Renderer::new(device, FIGURE_FORMAT, options),
+            renderer,
+            background: None,
         }
     }
 
@@ -52,6 +56,13 @@ impl Offscreen {
         self.renderer.free_texture(&id);
     }
 
+    /// The colour the canvas is cleared to before egui paints (default: the style's panel
+    /// fill). The app paints its panels transparent over this clear, which is much cheaper on
+    /// a software rasterizer than a window-sized egui rectangle.
+    pub fn set_background(&mut self, color: Option<egui::Color32>) {
+        self.background = color;
+    }
+
     /// Lays out `ui` on a `size` pixel canvas with `pixels_per_point` pixels per egui point, and
     /// returns the RGBA pixels. The layout runs twice so that sizes measured in the first pass
     /// (plots, legends, text) are settled in the second; only the second is painted.
@@ -63,57 +74,18 @@ impl Offscreen {
         pixels_per_point: f32,
         mut ui: impl FnMut(&mut egui::Ui),
     ) -> Result<image::RgbaImage, FigureError> {
-        let [w, h] = size;
-        if w == 0 || h == 0 || w > 8192 || h > 8192 {
-            return Err(FigureError::Size {
-                width: w,
-                height: h,
-            });
-        }
-        let mut input = egui::RawInput {
-            screen_rect: Some(egui::Rect::from_min_size(
-                egui::Pos2::ZERO,
-                egui::vec2(w as f32, h as f32) / pixels_per_point,
-            )),
-            max_texture_side: Some(device.limits().max_texture_dimension_2d as usize),
-            time: Some(0.0),
-            ..Default::default()
-        };
-        input
-            .viewports
-            .entry(egui::ViewportId::ROOT)
-            .or_default()
-            .native_pixels_per_point = Some(pixels_per_point);
+        let input = raw_input(device, size, pixels_per_point)?;
         let mut deltas = TexturesDelta::default();
-        let mut output = None;
-        for _ in 0..2 {
-            let o = self.ctx.run_ui(input.clone(), &mut ui);
-            let mut o = o;
-            deltas.append(std::mem::take(&mut o.textures_delta));
-            output = Some(o);
-        }
-        let Some(output) = output else {
-            deltas.clear();
-            return Err(FigureError::Size {
-                width: w,
-                height: h,
-            });
-        };
-        for (id, list) in &deltas.set {
-            for delta in list {
-                self.renderer.update_texture(device, queue, *id, delta);
-            }
-        }
-        let prims = self.ctx.tessellate(output.shapes, output.pixels_per_point);
-        let screen = egui_wgpu::ScreenDescriptor {
-            size_in_pixels: [w, h],
-            pixels_per_point: output.pixels_per_point,
-        };
+        let mut output = self.ctx.run_ui(input.clone(), &mut ui);
+        deltas.append(std::mem::take(&mut output.textures_delta));
+        let mut output = self.ctx.run_ui(input, &mut ui);
+        deltas.append(std::mem::take(&mut output.textures_delta));
+        output.textures_delta = deltas;
         let texture = device.create_texture(&wgpu::TextureDescriptor {
             label: Some("figure"),
             size: wgpu::Extent3d {
-                width: w,
-                height: h,
+                width: size[0],
+                height: size[1],
                 depth_or_array_layers: 1,
             },
             mip_level_count: 1,
@@ -124,6 +96,49 @@ impl Offscreen {
             view_formats: &[],
         });
         let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
+        self.paint(device, queue, &view, size, output);
+        crate::render::read_texture_rgba(device, queue, &texture).map_err(FigureError::Render)
+    }
+
+    /// One frame as a window draws it: a single layout pass, tessellation, and painting into
+    /// `view` (format [`FIGURE_FORMAT`], `size` pixels), submitted but not waited for and not
+    /// read back. Returns egui's output for the frame (cursor, repaint requests, ...).
+    pub fn frame(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        view: &wgpu::TextureView,
+        size: [u32; 2],
+        pixels_per_point: f32,
+        ui: impl FnMut(&mut egui::Ui),
+    ) -> Result<egui::PlatformOutput, FigureError> {
+        let input = raw_input(device, size, pixels_per_point)?;
+        let mut output = self.ctx.run_ui(input, ui);
+        let platform = std::mem::take(&mut output.platform_output);
+        self.paint(device, queue, view, size, output);
+        Ok(platform)
+    }
+
+    /// Uploads the output's textures, tessellates its shapes and paints them into `view`.
+    fn paint(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        view: &wgpu::TextureView,
+        size: [u32; 2],
+        output: egui::FullOutput,
+    ) {
+        let mut deltas = output.textures_delta;
+        for (id, list) in &deltas.set {
+            for delta in list {
+                self.renderer.update_texture(device, queue, *id, delta);
+            }
+        }
+        let prims = self.ctx.tessellate(output.shapes, output.pixels_per_point);
+        let screen = egui_wgpu::ScreenDescriptor {
+            size_in_pixels: size,
+            pixels_per_point: output.pixels_per_point,
+        };
         let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
             label: Some("figure"),
         });
@@ -131,16 +146,14 @@ impl Offscreen {
             .renderer
             .update_buffers(device, queue, &mut encoder, &prims, &screen);
         let bg = self
-            .ctx
-            .global_style()
-            .visuals
-            .panel_fill
+            .background
+            .unwrap_or(self.ctx.global_style().visuals.panel_fill)
             .to_normalized_gamma_f32();
         {
             let pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("figure"),
                 color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: &view,
+                    view,
                     resolve_target: None,
                     depth_slice: None,
                     ops: wgpu::Operations {
@@ -166,6 +179,35 @@ impl Offscreen {
             self.renderer.free_texture(id);
         }
         deltas.clear();
-        crate::render::read_texture_rgba(device, queue, &texture).map_err(FigureError::Render)
     }
+}
+
+/// egui's input for a `size` pixel canvas at `pixels_per_point` (no events, time 0).
+fn raw_input(
+    device: &wgpu::Device,
+    size: [u32; 2],
+    pixels_per_point: f32,
+) -> Result<egui::RawInput, FigureError> {
+    let [w, h] = size;
+    if w == 0 || h == 0 || w > 8192 || h > 8192 {
+        return Err(FigureError::Size {
+            width: w,
+            height: h,
+        });
+    }
+    let mut input = egui::RawInput {
+        screen_rect: Some(egui::Rect::from_min_size(
+            egui::Pos2::ZERO,
+            egui::vec2(w as f32, h as f32) / pixels_per_point,
+        )),
+        max_texture_side: Some(device.limits().max_texture_dimension_2d as usize),
+        time: Some(0.0),
+        ..Default::default()
+    };
+    input
+        .viewports
+        .entry(egui::ViewportId::ROOT)
+        .or_default()
+        .native_pixels_per_point = Some(pixels_per_point);
+    Ok(input)
 }

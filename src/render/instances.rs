@@ -1,8 +1,8 @@
 //! The CPU side of a frame: the scene's draw lists as GPU instances, in draw order.
 
-use super::geometry::shape_index;
+use super::geometry::{LOD_SEGMENTS, lod_for_radius_px, shape_index};
 use super::gpu_types::{DotGpu, LineGpu, MeshInstanceGpu};
-use crate::scene::{Dot, Line, MeshInstance, Scene};
+use crate::scene::{Dot, Line, MeshInstance, Scene, Shape};
 use std::ops::Range;
 
 /// One instanced mesh draw.
@@ -14,6 +14,8 @@ pub(crate) struct MeshDraw {
     pub mirrored: bool,
     /// Index of the unit shape.
     pub shape: usize,
+    /// Level of detail (index into [`LOD_SEGMENTS`]).
+    pub lod: usize,
     /// Range in [`DrawLists::meshes`].
     pub instances: Range<u32>,
 }
@@ -21,9 +23,9 @@ pub(crate) struct MeshDraw {
 /// A frame's instances in draw order; kept between frames to reuse the allocations.
 #[derive(Debug, Default)]
 pub(crate) struct DrawLists {
-    /// Opaque instances by `shape * 2 + mirrored`.
-    opaque: [Vec<MeshInstanceGpu>; 8],
-    /// Translucent instances with their squared distance to the eye and `shape * 2 + mirrored`.
+    /// Opaque instances by [`DrawKey::index`].
+    opaque: [Vec<MeshInstanceGpu>; DrawKey::COUNT],
+    /// Translucent instances with their squared distance to the eye and [`DrawKey::index`].
     translucent: Vec<(f32, usize, MeshInstanceGpu)>,
     /// Opaque meshes grouped by shape and winding, then translucent ones back to front.
     pub meshes: Vec<MeshInstanceGpu>,
@@ -37,6 +39,81 @@ pub(crate) struct DrawLists {
     pub dots: Vec<DotGpu>,
     /// Number of opaque dots.
     pub dots_opaque: u32,
+}
+
+/// What one instanced draw shares: the unit shape, its level of detail and the winding.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct DrawKey {
+    shape: usize,
+    lod: usize,
+    mirrored: bool,
+}
+
+impl DrawKey {
+    const COUNT: usize = LOD_SEGMENTS.len() * 4 * 2;
+
+    fn index(self) -> usize {
+        (self.lod * 4 + self.shape) * 2 + self.mirrored as usize
+    }
+
+    fn from_index(i: usize) -> Self {
+        Self {
+            mirrored: i % 2 == 1,
+            shape: (i / 2) % 4,
+            lod: i / 8,
+        }
+    }
+
+    fn draw(self, translucent: bool, instances: Range<u32>) -> MeshDraw {
+        MeshDraw {
+            translucent,
+            mirrored: self.mirrored,
+            shape: self.shape,
+            lod: self.lod,
+            instances,
+        }
+    }
+}
+
+/// How a frame projects sizes: enough to find how many pixels a body's radius covers.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Projection {
+    /// `clip_from_world`, column-major.
+    pub clip_from_world: [[f32; 4]; 4],
+    /// Viewport height (px).
+    pub height_px: f32,
+}
+
+impl Projection {
+    /// Radius (px) that a sphere of `radius` (m) around `centre` (world) covers on screen, from
+    /// the vertical scale of the projection; infinite when the centre is at or behind the eye.
+    fn radius_px(&self, centre: [f32; 3], radius: f32) -> f32 {
+        let m = &self.clip_from_world;
+        let row = |r: usize| [m[0][r], m[1][r], m[2][r], m[3][r]];
+        let (y, w) = (row(1), row(3));
+        let w = w[0] * centre[0] + w[1] * centre[1] + w[2] * centre[2] + w[3];
+        if w.partial_cmp(&1e-6) != Some(std::cmp::Ordering::Greater) {
+            return f32::INFINITY;
+        }
+        let scale = (y[0] * y[0] + y[1] * y[1] + y[2] * y[2]).sqrt();
+        radius * scale / w * self.height_px * 0.5
+    }
+}
+
+/// The level of detail of a mesh instance seen through `proj`: round bodies by the radius
+/// their circle projects to, cubes always the first level (they have no circle).
+fn mesh_lod(m: &MeshInstance, proj: &Projection) -> usize {
+    let len = |k: usize| {
+        let c = m.world_from_unit[k];
+        (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt()
+    };
+    let radius = match m.shape {
+        Shape::Cube => return 0,
+        Shape::Sphere => len(0).max(len(1)).max(len(2)),
+        Shape::Cylinder | Shape::Cone => len(0).max(len(1)),
+    };
+    let t = m.world_from_unit[3];
+    lod_for_radius_px(proj.radius_px([t[0], t[1], t[2]], radius))
 }
 
 fn sub3(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
@@ -128,8 +205,8 @@ fn partition<T, G>(
 impl DrawLists {
     /// Rebuilds every list for `scene` seen from `eye`. Items with alpha <= 0 (or a
     /// non-positive width or size) are left out.
-    pub(crate) fn build(&mut self, scene: &Scene, eye: [f32; 3]) {
-        self.build_meshes(scene, eye);
+    pub(crate) fn build(&mut self, scene: &Scene, eye: [f32; 3], proj: &Projection) {
+        self.build_meshes(scene, eye, proj);
         let line_alpha = |l: &Line| if l.width_px > 0.0 { l.color[3] } else { 0.0 };
         let dot_alpha = |d: &Dot| if d.size_px > 0.0 { d.color[3] } else { 0.0 };
         (self.lines_opaque, _) = partition(&mut self.lines, &scene.lines, line_alpha, line_gpu);
@@ -154,9 +231,9 @@ impl DrawLists {
         }
     }
 
-    /// Fills `meshes` (opaque grouped by shape and winding, then translucent back to front) and
-    /// `mesh_draws`.
-    fn build_meshes(&mut self, scene: &Scene, eye: [f32; 3]) {
+    /// Fills `meshes` (opaque grouped by shape, level of detail and winding, then translucent
+    /// back to front) and `mesh_draws`.
+    fn build_meshes(&mut self, scene: &Scene, eye: [f32; 3], proj: &Projection) {
         self.opaque.iter_mut().for_each(Vec::clear);
         self.translucent.clear();
         self.meshes.clear();
@@ -168,7 +245,12 @@ impl DrawLists {
                 continue;
             }
             let (gpu, mirrored) = mesh_instance_gpu(m);
-            let key = shape_index(m.shape) * 2 + mirrored as usize;
+            let key = DrawKey {
+                shape: shape_index(m.shape),
+                lod: mesh_lod(m, proj),
+                mirrored,
+            }
+            .index();
             if alpha >= 1.0 {
                 self.opaque[key].push(gpu);
             } else {
@@ -186,12 +268,8 @@ impl DrawLists {
                 let start = self.meshes.len() as u32;
                 self.meshes.extend_from_slice(group);
                 let instances = start..self.meshes.len() as u32;
-                self.mesh_draws.push(MeshDraw {
-                    translucent: false,
-                    mirrored: key % 2 == 1,
-                    shape: key / 2,
-                    instances,
-                });
+                self.mesh_draws
+                    .push(DrawKey::from_index(key).draw(false, instances));
             }
         }
         // Farthest first; the sort is stable, so equal distances keep scene order.
@@ -199,18 +277,16 @@ impl DrawLists {
         for &(_, key, gpu) in &self.translucent {
             let i = self.meshes.len() as u32;
             self.meshes.push(gpu);
+            let key = DrawKey::from_index(key);
             match self.mesh_draws.last_mut() {
                 Some(last)
-                    if last.translucent && last.shape * 2 + last.mirrored as usize == key =>
+                    if last.translucent
+                        && (last.shape, last.lod, last.mirrored)
+                            == (key.shape, key.lod, key.mirrored) =>
                 {
                     last.instances.end = i + 1
                 }
-                _ => self.mesh_draws.push(MeshDraw {
-                    translucent: true,
-                    mirrored: key % 2 == 1,
-                    shape: key / 2,
-                    instances: i..i + 1,
-                }),
+                _ => self.mesh_draws.push(key.draw(true, i..i + 1)),
             }
         }
     }
@@ -264,5 +340,39 @@ mod tests {
         let (opaque, all) = partition(&mut out, &alphas, |a| *a, |a| *a);
         assert_eq!((opaque, all), (2, 4));
         assert_eq!(out, vec![1.0, 1.0, 0.5, 0.2]);
+    }
+
+    #[test]
+    fn round_bodies_get_more_segments_the_larger_they_look() {
+        // Looking down -z from 2 m away with a 90 degree vertical field on a 1000 px view.
+        let proj = Projection {
+            clip_from_world: [
+                [1.0, 0.0, 0.0, 0.0],
+                [0.0, 1.0, 0.0, 0.0],
+                [0.0, 0.0, 0.0, -1.0],
+                [0.0, 0.0, 1.0, 2.0],
+            ],
+            height_px: 1000.0,
+        };
+        let cylinder = |radius: f32, z: f32| MeshInstance {
+            shape: Shape::Cylinder,
+            world_from_unit: [
+                [radius, 0.0, 0.0, 0.0],
+                [0.0, radius, 0.0, 0.0],
+                [0.0, 0.0, 0.5, 0.0],
+                [0.0, 0.0, z, 1.0],
+            ],
+            color: [1.0; 4],
+        };
+        // 1 cm at 2 m: 2.5 px; 20 cm: 50 px; 1 m at 1 m: 500 px; behind the eye: finest.
+        assert_eq!(proj.radius_px([0.0, 0.0, 0.0], 0.01), 2.5);
+        let lods = [(0.01, 0.0), (0.2, 0.0), (1.0, 1.0), (0.1, 3.0)]
+            .map(|(r, z)| mesh_lod(&cylinder(r, z), &proj));
+        assert_eq!(lods, [0, 2, 3, 3]);
+        let cube = MeshInstance {
+            shape: Shape::Cube,
+            ..cylinder(1.0, 1.0)
+        };
+        assert_eq!(mesh_lod(&cube, &proj), 0);
     }
 }

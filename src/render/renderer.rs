@@ -1,9 +1,9 @@
 //! [`Renderer`]: draws a [`Scene`] into a [`RenderTarget`].
 
 use super::buffer::GrowBuffer;
-use super::geometry::UnitMeshes;
+use super::geometry::{LOD_SEGMENTS, UnitMeshes};
 use super::gpu_types::FrameUniforms;
-use super::instances::DrawLists;
+use super::instances::{DrawLists, Projection};
 use super::pipelines::Pipelines;
 use super::settings::frame_uniforms;
 use super::{Gpu, RenderError, RenderSettings, RenderTarget, SAMPLE_COUNTS, ViewUniforms};
@@ -23,7 +23,7 @@ pub struct Renderer {
     frame_bind_group: wgpu::BindGroup,
     shape_vertices: wgpu::Buffer,
     shape_indices: wgpu::Buffer,
-    shape_ranges: [Range<u32>; 4],
+    shape_ranges: [[Range<u32>; 4]; LOD_SEGMENTS.len()],
     mesh_instances: GrowBuffer,
     line_instances: GrowBuffer,
     dot_instances: GrowBuffer,
@@ -158,12 +158,14 @@ impl Renderer {
                 target: target.sample_count(),
             });
         }
-        gpu.queue.write_buffer(
-            &self.frame_buffer,
-            0,
-            bytemuck::bytes_of(&frame_uniforms(target.size(), view, settings)),
-        );
-        self.lists.build(scene, view.eye);
+        let frame = frame_uniforms(target.size(), view, settings);
+        gpu.queue
+            .write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(&frame));
+        let proj = Projection {
+            clip_from_world: view.clip_from_world,
+            height_px: frame.viewport[1],
+        };
+        self.lists.build(scene, view.eye, &proj);
         self.mesh_instances.write(gpu, &self.lists.meshes)?;
         self.line_instances.write(gpu, &self.lists.lines)?;
         self.dot_instances.write(gpu, &self.lists.dots)?;
@@ -208,7 +210,11 @@ impl Renderer {
                 bound = true;
             }
             pass.set_pipeline(&self.pipelines.mesh[translucent as usize][d.mirrored as usize]);
-            pass.draw_indexed(self.shape_ranges[d.shape].clone(), 0, d.instances.clone());
+            pass.draw_indexed(
+                self.shape_ranges[d.lod][d.shape].clone(),
+                0,
+                d.instances.clone(),
+            );
         }
     }
 

@@ -1,0 +1,190 @@
+//! The app's 3D viewport: ghost arms drawn once per distinct body, the adaptive quality of
+//! the live view on a software rasterizer (fast while moving, full when still, not redrawn
+//! when nothing changed), and the blit that shows the view in the window drawing the same
+//! pixels as an egui image. Needs a graphics adapter (Mesa's lavapipe without a GPU).
+
+use armlab::app::state::AppState;
+use armlab::app::ui::AppUi;
+use armlab::app::viewport::{TextureRegistry, Viewport3d, build_scene};
+use armlab::figure::offscreen::Offscreen;
+use armlab::render::Gpu;
+use armlab::scene::{ArmStyle, MeshInstance, arm_scene};
+
+fn gpu() -> Gpu {
+    Gpu::new_headless().unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn same_body(a: &MeshInstance, b: &MeshInstance) -> bool {
+    a.shape == b.shape
+        && a.world_from_unit
+            .iter()
+            .flatten()
+            .zip(b.world_from_unit.iter().flatten())
+            .all(|(x, y)| (x - y).abs() < 1e-5)
+}
+
+/// At the ready pose of the default arm the shoulder-left postures put every link where a
+/// shoulder-right one is (no shoulder offset) and the base is shared by all: those bodies
+/// must appear once, not stacked translucent copies.
+#[test]
+fn ghost_arms_draw_each_distinct_body_once() {
+    let mut state = AppState::from_spec("anthropomorphic_spherical_wrist").unwrap();
+    let tool = state.robot().fk(state.q()).unwrap();
+    state.set_target(0, tool).unwrap();
+    let ghosts = state.ghosts(0);
+    assert!(ghosts.len() >= 4, "{} postures", ghosts.len());
+    let scene = build_scene(&state, None, false);
+    for (i, a) in scene.meshes.iter().enumerate() {
+        for b in &scene.meshes[i + 1..] {
+            assert!(!same_body(a, b), "a body is drawn twice: {a:?}");
+        }
+    }
+    // Nothing is lost: at a generic pose (eight postures) every body of every ghost is in
+    // the scene, once.
+    state.set_q(&[0.4, 0.7, 0.5, 0.6, 0.8, 0.3]).unwrap();
+    let tool = state.robot().fk(state.q()).unwrap();
+    state.set_target(0, tool).unwrap();
+    let ghosts = state.ghosts(0);
+    assert_eq!(ghosts.len(), 8);
+    let scene = build_scene(&state, None, false);
+    let style = ArmStyle::default();
+    for g in &ghosts {
+        for body in arm_scene(state.robot(), &g.q, &style).unwrap().meshes {
+            let n = scene.meshes.iter().filter(|m| same_body(m, &body)).count();
+            assert_eq!(n, 1, "posture {}: body {body:?} drawn {n} times", g.posture);
+        }
+    }
+    let translucent = scene.meshes.iter().filter(|m| m.color[3] < 1.0).count();
+    assert!(
+        translucent >= 7,
+        "{translucent} ghost bodies for seven ghosts"
+    );
+}
+
+/// A registry that hands out egui image ids but offers no blit.
+struct NoBlit<'a>(&'a mut egui_wgpu::Renderer);
+
+impl TextureRegistry for NoBlit<'_> {
+    fn register(&mut self, device: &wgpu::Device, view: &wgpu::TextureView) -> egui::TextureId {
+        self.0.register(device, view)
+    }
+    fn update(&mut self, device: &wgpu::Device, view: &wgpu::TextureView, id: egui::TextureId) {
+        self.0.update(device, view, id)
+    }
+}
+
+#[test]
+fn the_live_view_is_fast_while_moving_full_when_still_and_not_redrawn_when_unchanged() {
+    let gpu = gpu();
+    assert_eq!(
+        gpu.adapter_info.device_type,
+        wgpu::DeviceType::Cpu,
+        "this test expects the software rasterizer"
+    );
+    let mut offscreen = Offscreen::new(&gpu.device);
+    let mut vp = Viewport3d::adaptive(Gpu::from_parts(
+        gpu.device.clone(),
+        gpu.queue.clone(),
+        gpu.adapter_info.clone(),
+    ))
+    .unwrap();
+    let mut app = AppUi::new(AppState::from_spec("puma560").unwrap());
+    let mut frame = |app: &mut AppUi| app.render_viewport(&mut vp, offscreen.renderer_mut(), false);
+    let first = frame(&mut app).unwrap();
+    assert!(first.refine, "a new scene is drawn fast first");
+    assert!(first.blit, "the offscreen renderer has the blit installed");
+    let still = frame(&mut app).unwrap();
+    assert!(!still.refine, "the same scene again: drawn at full quality");
+    assert!(
+        first.view != still.view,
+        "the full-quality frame has its own target"
+    );
+    let again = frame(&mut app).unwrap();
+    assert!(!again.refine && again.view == still.view);
+    let mut q = app.state.q().to_vec();
+    q[0] += 0.1;
+    app.state.set_q(&q).unwrap();
+    let moved = frame(&mut app).unwrap();
+    assert!(moved.refine, "a changed scene is drawn fast");
+    assert_eq!(vp.draws(), 3, "the unchanged third frame was not drawn");
+}
+
+/// Fraction of `tex`'s pixels found unchanged in `window` with its top left corner near
+/// `at` (the best of the placements within a pixel).
+fn best_match(window: &image::RgbaImage, tex: &image::RgbaImage, at: [u32; 2]) -> f64 {
+    let (tw, th) = tex.dimensions();
+    let mut best = 0;
+    for oy in at[1].saturating_sub(1)..=at[1] + 1 {
+        for ox in at[0].saturating_sub(1)..=at[0] + 1 {
+            let n = tex
+                .enumerate_pixels()
+                .filter(|(x, y, p)| window.get_pixel_checked(ox + x, oy + y) == Some(*p))
+                .count();
+            best = best.max(n);
+        }
+    }
+    best as f64 / (tw * th) as f64
+}
+
+/// The blit puts the 3D view's texture into the window texel for texel (only the overlays
+/// drawn over it, labels and the gizmo, change pixels); the egui image it replaces shows the
+/// same picture, resampled when the viewport starts between pixels.
+#[test]
+fn the_blit_copies_the_view_texel_for_texel() {
+    let gpu = gpu();
+    let mut offscreen = Offscreen::new(&gpu.device);
+    let mut vp = Viewport3d::new(Gpu::from_parts(
+        gpu.device.clone(),
+        gpu.queue.clone(),
+        gpu.adapter_info.clone(),
+    ))
+    .unwrap();
+    let mut app = AppUi::new(AppState::from_spec("puma560").unwrap());
+    offscreen.set_background(Some(app.background()));
+    let size = [1280, 800];
+    offscreen
+        .render(&gpu.device, &gpu.queue, size, 1.0, |ui| app.show(ui, None))
+        .unwrap();
+    let blit = app
+        .render_viewport(&mut vp, offscreen.renderer_mut(), false)
+        .unwrap();
+    assert!(blit.blit);
+    let tex =
+        armlab::render::read_texture_rgba(&gpu.device, &gpu.queue, blit.view.texture()).unwrap();
+    let [w, h] = app.viewport_px;
+    assert_eq!(tex.dimensions(), (w, h));
+    assert!(w > 300 && h > 300, "viewport {w}x{h}");
+    let image = app
+        .render_viewport(&mut vp, &mut NoBlit(offscreen.renderer_mut()), false)
+        .unwrap();
+    assert!(!image.blit);
+    let [a, b] = [blit, image].map(|im| {
+        offscreen
+            .render(&gpu.device, &gpu.queue, size, 1.0, |ui| {
+                app.show(ui, Some(im.clone()))
+            })
+            .unwrap()
+    });
+    let min = app.viewport_rect.min;
+    let copied = best_match(&a, &tex, [min.x.round() as u32, min.y.round() as u32]);
+    assert!(
+        copied > 0.97,
+        "only {:.1} % of the view is copied unchanged",
+        copied * 100.0
+    );
+    let mean_diff = a
+        .pixels()
+        .zip(b.pixels())
+        .map(|(p, q)| {
+            p.0.iter()
+                .zip(q.0)
+                .map(|(x, y)| x.abs_diff(y) as f64)
+                .sum::<f64>()
+        })
+        .sum::<f64>()
+        / (a.width() * a.height() * 4) as f64;
+    assert!(
+        mean_diff < 1.0,
+        "blit and image differ by {mean_diff:.2} per channel on average"
+    );
+}
