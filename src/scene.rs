@@ -68,6 +68,9 @@ pub struct Label {
     pub text: String,
     /// Colour.
     pub color: Rgba,
+    /// May be moved off its anchor (with a leader line) so as not to cover other movable
+    /// labels; fixed labels (frame axes) stay at their anchor.
+    pub movable: bool,
 }
 
 /// Everything to draw in one view.
@@ -388,6 +391,7 @@ pub fn arm_scene(robot: &Robot, q: &[f64], style: &ArmStyle) -> Result<Scene, Ki
                         p: tip,
                         text: format!("{axis}{name}"),
                         color: fade(*color),
+                        movable: false,
                     });
                 }
             }

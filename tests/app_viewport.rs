@@ -140,6 +140,9 @@ fn the_blit_copies_the_view_texel_for_texel() {
     ))
     .unwrap();
     let mut app = AppUi::new(AppState::from_spec("puma560").unwrap());
+    // Fewer overlays (ghost names on plates, frame labels) over the view to look through.
+    app.state.display.ghosts = false;
+    app.state.display.labels = false;
     offscreen.set_background(Some(app.background()));
     let size = [1280, 800];
     offscreen

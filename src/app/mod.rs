@@ -125,6 +125,7 @@ pub fn run_with(spec: &str, opts: &RunOptions) -> Result<Option<probe::FrameRepo
             .fk_ee(state.q(), 0)
             .map_err(|e| AppError::Input(e.to_string()))?;
         state.set_target(0, tool).map_err(input)?;
+        state.clear_trails();
     }
     let mut options = eframe::NativeOptions {
         renderer: eframe::Renderer::Wgpu,

@@ -11,9 +11,9 @@ const ERROR_BG: Color32 = Color32::from_rgb(255, 215, 215);
 /// Left panel: model, joint sliders, configurations, the DH table.
 pub fn left(app: &mut AppUi, ui: &mut egui::Ui) {
     egui::ScrollArea::vertical().show(ui, |ui| {
-        ui.heading("Model");
+        let heading = ui.heading("Model");
         let current = app.state.spec().to_string();
-        egui::ComboBox::from_id_salt("model")
+        let combo = egui::ComboBox::from_id_salt("model")
             .selected_text(current.clone())
             .width(ui.available_width() - 8.0)
             .show_ui(ui, |ui| {
@@ -27,6 +27,7 @@ pub fn left(app: &mut AppUi, ui: &mut egui::Ui) {
                     }
                 }
             });
+        combo.response.labelled_by(heading.id);
         ui.horizontal(|ui| {
             ui.add(
                 egui::TextEdit::singleline(&mut app.load_path)
@@ -126,6 +127,17 @@ fn dh_table(state: &mut AppState, ui: &mut egui::Ui) {
                             .text_color(Color32::from_rgb(150, 0, 0));
                     }
                     let r = ui.add(edit);
+                    // Named for screen readers (and UI tests): "q2 alpha".
+                    let name = format!("{} {}", state.robot().joints()[j].name, f.name());
+                    r.widget_info(|| {
+                        let mut info = egui::WidgetInfo::labeled(
+                            egui::Role::TextInput,
+                            ui.is_enabled(),
+                            &name,
+                        );
+                        info.current_text_value = Some(text.clone());
+                        info
+                    });
                     let r = match &cell.error {
                         Some(e) => r.on_hover_text(format!(
                             "not applied: {e}; the arm keeps its last valid shape"
@@ -283,18 +295,16 @@ fn target_editor(app: &mut AppUi, ui: &mut egui::Ui, ee: usize) {
     let mut changed = false;
     ui.horizontal(|ui| {
         ui.label("target [mm]");
-        for k in 0..3 {
-            changed |= ui
-                .add(egui::DragValue::new(&mut p[k]).speed(1.0).max_decimals(1))
-                .changed();
+        for (k, axis) in ["x", "y", "z"].into_iter().enumerate() {
+            let r = ui.add(egui::DragValue::new(&mut p[k]).speed(1.0).max_decimals(1));
+            changed |= named(&r, format!("target {axis} [mm]"), p[k]).changed();
         }
     });
     ui.horizontal(|ui| {
         ui.label("RPY [deg]");
-        for k in 0..3 {
-            changed |= ui
-                .add(egui::DragValue::new(&mut a[k]).speed(0.5).max_decimals(1))
-                .changed();
+        for (k, angle) in ["roll", "pitch", "yaw"].into_iter().enumerate() {
+            let r = ui.add(egui::DragValue::new(&mut a[k]).speed(0.5).max_decimals(1));
+            changed |= named(&r, format!("target {angle} [deg]"), a[k]).changed();
         }
     });
     if changed {
@@ -304,4 +314,14 @@ fn target_editor(app: &mut AppUi, ui: &mut egui::Ui, ee: usize) {
             app.state.push_message(Level::Warning, e.to_string());
         }
     }
+}
+
+/// Gives a number field an accessible name (screen readers, UI tests).
+fn named(r: &egui::Response, name: String, value: f64) -> &egui::Response {
+    r.widget_info(|| {
+        let mut info = egui::WidgetInfo::labeled(egui::Role::SpinButton, r.enabled(), &name);
+        info.value = Some(value);
+        info
+    });
+    r
 }

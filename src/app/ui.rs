@@ -396,21 +396,15 @@ impl AppUi {
         }
         // Labels of the scene, projected.
         let scene_labels = build_scene(&self.state, None, self.projector).labels;
-        let [w, h] = self.viewport_px;
         let font = egui::FontId::proportional(if self.projector { 17.0 } else { 12.5 });
-        for l in &scene_labels {
-            if let Some(p) = self.camera.project(&l.p.into(), w, h) {
-                let pos = rect.min + egui::vec2(p[0], p[1]) / ppp;
-                let c = l.color.map(|v| (v.clamp(0.0, 1.0) * 255.0) as u8);
-                ui.painter().text(
-                    pos + egui::vec2(3.0, -3.0),
-                    egui::Align2::LEFT_BOTTOM,
-                    &l.text,
-                    font.clone(),
-                    egui::Color32::from_rgb(c[0], c[1], c[2]),
-                );
-            }
-        }
+        crate::figure::labels::draw_labels(
+            ui.painter(),
+            rect,
+            self.viewport_px,
+            &self.camera,
+            &scene_labels,
+            &font,
+        );
         // The IK target gizmo.
         let ee = self.ee.min(self.state.targets().len().saturating_sub(1));
         let mut gizmo_active = false;
@@ -465,7 +459,9 @@ impl AppUi {
         let chain = robot
             .chain_to(robot.end_effectors()[ee.min(robot.end_effectors().len() - 1)].parent)
             .to_vec();
-        let mut best: Option<(f32, usize)> = None;
+        // Nearest joint within 40 px; a ghost within the limits wins over one outside them
+        // (postures differing only at the wrist share their joint positions).
+        let mut best: Option<(bool, f32, usize)> = None;
         let ghosts = self.state.ghosts(ee);
         let Ok(target) = self.state.target(ee) else {
             return;
@@ -482,13 +478,14 @@ impl AppUi {
                 let p = crate::scene::point32(&frames[j].translation.vector);
                 if let Some(px) = self.camera.project(&p, w, h) {
                     let d = (egui::vec2(px[0], px[1]) - at).length();
-                    if d < 40.0 && best.is_none_or(|b| d < b.0) {
-                        best = Some((d, index));
+                    let key = (!g.within_limits, d);
+                    if d < 40.0 && best.is_none_or(|b| key < (b.0, b.1)) {
+                        best = Some((key.0, d, index));
                     }
                 }
             }
         }
-        if let Some((_, index)) = best
+        if let Some((_, _, index)) = best
             && let Err(e) = self.state.select_solution(ee, index)
         {
             self.state.push_message(Level::Warning, e.to_string());

@@ -313,6 +313,7 @@ pub fn build_scene(state: &AppState, workspace: Option<&[Dot]>, projector: bool)
                             p: [p.x as f32, p.y as f32, p.z as f32 + scale * 0.06],
                             text,
                             color: [0.25, 0.25, 0.3, 1.0],
+                            movable: true,
                         });
                     }
                 }

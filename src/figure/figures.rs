@@ -95,20 +95,6 @@ impl Figures {
             .offscreen
             .register_texture(&self.gpu.device, &target.egui_view());
         let ppp = pixels_per_point(w);
-        let labels: Vec<(egui::Pos2, &str, Color32)> = fig
-            .scene
-            .labels
-            .iter()
-            .filter_map(|l| {
-                let p = fig.camera.project(&l.p.into(), w, h)?;
-                let c = l.color.map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8);
-                Some((
-                    egui::pos2(p[0] / ppp, p[1] / ppp),
-                    l.text.as_str(),
-                    Color32::from_rgb(c[0], c[1], c[2]),
-                ))
-            })
-            .collect();
         let result = self
             .offscreen
             .render(&self.gpu.device, &self.gpu.queue, size, ppp, |ui| {
@@ -120,15 +106,14 @@ impl Figures {
                     egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0)),
                     Color32::WHITE,
                 );
-                for (p, text, color) in &labels {
-                    painter.text(
-                        *p + egui::vec2(3.0, -3.0),
-                        egui::Align2::LEFT_BOTTOM,
-                        *text,
-                        egui::FontId::proportional(13.0),
-                        *color,
-                    );
-                }
+                super::labels::draw_labels(
+                    painter,
+                    rect,
+                    [w, h],
+                    &fig.camera,
+                    &fig.scene.labels,
+                    &egui::FontId::proportional(13.0),
+                );
                 let text = ui.visuals().text_color();
                 painter.text(
                     rect.center_top() + egui::vec2(0.0, 8.0),

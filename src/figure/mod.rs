@@ -4,6 +4,7 @@
 
 pub mod blit;
 pub mod figures;
+pub mod labels;
 pub mod offscreen;
 pub mod plot2d;
 pub mod raster;

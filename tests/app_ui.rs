@@ -1,0 +1,112 @@
+//! The app driven through egui like a user: buttons clicked by their label (egui_kittest,
+//! through the accessibility tree) and clicks at pixel positions in the 3D view. No GPU: the
+//! layout and the interaction run without painting.
+
+use armlab::app::state::AppState;
+use armlab::app::ui::AppUi;
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+
+fn harness(app: AppUi) -> Harness<'static, AppUi> {
+    let mut h = Harness::builder()
+        .with_size(egui::vec2(1280.0, 800.0))
+        .build_ui_state(|ui, app: &mut AppUi| app.show(ui, None), app);
+    h.run();
+    h
+}
+
+#[test]
+fn the_screenshot_button_asks_the_frame_loop_for_a_screenshot() {
+    let mut h = harness(AppUi::new(AppState::from_spec("planar3").unwrap()));
+    assert!(!h.state().screenshot_requested);
+    h.get_by_label("Screenshot").click();
+    h.run();
+    assert!(h.state().screenshot_requested);
+}
+
+#[test]
+fn the_help_button_and_the_h_key_toggle_the_shortcut_list() {
+    let mut h = harness(AppUi::new(AppState::from_spec("planar3").unwrap()));
+    h.get_by_label("Help (H)").click();
+    h.run();
+    assert!(h.state().show_help);
+    assert!(h.query_by_label("Keyboard shortcuts").is_some());
+    h.key_press(egui::Key::H);
+    h.run();
+    assert!(!h.state().show_help);
+}
+
+/// Clicking next to a ghost arm's joint in the 3D view makes that posture the arm's.
+#[test]
+fn clicking_a_ghost_arm_selects_its_posture() {
+    let mut state = AppState::from_spec("puma560").unwrap();
+    state.set_q(&[0.3, 0.5, -1.2, 0.4, 0.8, -0.6]).unwrap();
+    let tool = state.robot().fk(state.q()).unwrap();
+    state.set_target(0, tool).unwrap();
+    let mut app = AppUi::new(state);
+    app.state.display.ghosts = true;
+    let mut h = harness(app);
+    // Where each ghost's joints project in the view (window points).
+    let app = h.state();
+    let [w, hp] = app.viewport_px;
+    let rect = app.viewport_rect;
+    let robot = app.state.robot();
+    let chain = robot.chain_to(robot.end_effectors()[0].parent).to_vec();
+    let project = |q: &[f64]| -> Vec<egui::Pos2> {
+        let frames = robot.fk_frames(q).unwrap();
+        chain
+            .iter()
+            .filter_map(|&j| {
+                let p = armlab::scene::point32(&frames[j].translation.vector);
+                app.camera.project(&p, w, hp)
+            })
+            .map(|px| rect.min + egui::vec2(px[0], px[1]))
+            .collect()
+    };
+    let ghosts = app.state.ghosts(0);
+    let tool_px = *project(app.state.q()).last().unwrap();
+    // A joint of an unselected ghost within the limits that no other such ghost's joint is
+    // near, away from the target gizmo. Ghosts outside the limits may share the point (the
+    // postures differing only at the wrist put their joints at the same places): the click
+    // prefers the one that can be selected.
+    let mut pick = None;
+    for g in ghosts.iter().filter(|g| !g.selected && g.within_limits) {
+        for p in project(&g.q) {
+            let clear = ghosts
+                .iter()
+                .filter(|o| !o.selected && o.within_limits && o.posture != g.posture)
+                .flat_map(|o| project(&o.q))
+                .all(|x| (x - p).length() > 45.0);
+            if clear && (p - tool_px).length() > 160.0 && rect.shrink(5.0).contains(p) {
+                pick = Some((g.posture.clone(), p));
+            }
+        }
+    }
+    let (posture, at) = pick.expect("a ghost joint clear of the others and of the gizmo");
+    let before = h.state().state.q().to_vec();
+    h.event(egui::Event::PointerMoved(at));
+    h.run();
+    for pressed in [true, false] {
+        h.event(egui::Event::PointerButton {
+            pos: at,
+            button: egui::PointerButton::Primary,
+            pressed,
+            modifiers: egui::Modifiers::NONE,
+        });
+        h.run();
+    }
+    let app = h.state();
+    let selected: Vec<_> = app
+        .state
+        .ghosts(0)
+        .into_iter()
+        .filter(|g| g.selected)
+        .collect();
+    assert_eq!(selected.len(), 1);
+    assert_eq!(selected[0].posture, posture, "clicked at {at:?}");
+    assert_ne!(
+        app.state.q(),
+        before.as_slice(),
+        "the arm took the new posture"
+    );
+}
