@@ -35,12 +35,7 @@ impl Frame {
         // As eframe's painter: default options (hardware texture filtering, dithering).
         let mut offscreen =
             Offscreen::with_options(&gpu.device, egui_wgpu::RendererOptions::default());
-        let vp = Viewport3d::adaptive(Gpu::from_parts(
-            gpu.device.clone(),
-            gpu.queue.clone(),
-            gpu.adapter_info.clone(),
-        ))
-        .expect("renderer");
+        let vp = Viewport3d::adaptive(gpu.clone()).expect("renderer");
         let mut app = AppUi::new(AppState::from_spec("anthropomorphic_spherical_wrist").unwrap());
         app.state.set_q(&Q).unwrap();
         let start = app.state.robot().fk(app.state.q()).unwrap();

@@ -4,17 +4,7 @@
 // (Measured on lavapipe: one triangle per dot draws 1M dots about twice as fast as a quad; a
 // non-instanced draw pulling dots from a storage buffer was slower still.)
 
-struct Frame {
-    clip_from_world: mat4x4<f32>,
-    eye: vec4<f32>,        // xyz: eye (world)
-    eye_clip: vec4<f32>,   // clip_from_world * (eye, 1)
-    viewport: vec4<f32>,   // xy: size (px); z: overlay depth bias
-    key_light: vec4<f32>,  // xyz: unit direction towards the light; w: intensity
-    ambient: vec4<f32>,    // x: from above (+z); y: from below; z: headlight intensity
-    specular: vec4<f32>,   // x: strength; y: shininess
-};
-
-@group(0) @binding(0) var<uniform> frame: Frame;
+// `Frame` and `frame` (group 0, binding 0) come from frame.wgsl, prepended.
 
 // Twin of `DotGpu`.
 struct DotIn {

@@ -54,26 +54,26 @@ fn unreachable_target() {
     assert_eq!(state.q(), q0.as_slice());
 }
 
+/// Runs `armlab args...` on a virtual X server (needs `xvfb xauth`, which CI installs),
+/// stopped by `timeout` after `seconds` (exit 124 then).
+fn armlab_under_xvfb(seconds: u32, args: &[&str]) -> std::process::Output {
+    let seconds = seconds.to_string();
+    std::process::Command::new("xvfb-run")
+        .args(["-a", "-s", "-screen 0 1280x900x24", "timeout", &seconds])
+        .arg(env!("CARGO_BIN_EXE_armlab"))
+        .args(args)
+        .output()
+        .unwrap_or_else(|e| {
+            panic!("cannot run xvfb-run ({e}): install it with apt-get install xvfb xauth")
+        })
+}
+
 /// The real window opens and runs under a virtual X server (needs `xvfb xauth`, which CI
 /// installs): it must still be running when `timeout` stops it after 6 s (exit 124), not have
 /// failed or crashed.
 #[test]
 fn real_window_runs_under_xvfb() {
-    let o = std::process::Command::new("xvfb-run")
-        .args([
-            "-a",
-            "-s",
-            "-screen 0 1280x900x24",
-            "timeout",
-            "6",
-            env!("CARGO_BIN_EXE_armlab"),
-            "view",
-            "puma560",
-        ])
-        .output()
-        .unwrap_or_else(|e| {
-            panic!("cannot run xvfb-run ({e}): install it with apt-get install xvfb xauth")
-        });
+    let o = armlab_under_xvfb(6, &["view", "puma560"]);
     assert_eq!(
         o.status.code(),
         Some(124),
@@ -86,24 +86,16 @@ fn real_window_runs_under_xvfb() {
 /// the IK target for N frames, prints the frame times and exits by itself.
 #[test]
 fn the_real_window_measures_its_frames() {
-    let o = std::process::Command::new("xvfb-run")
-        .args([
-            "-a",
-            "-s",
-            "-screen 0 1280x900x24",
-            "timeout",
-            "120",
-            env!("CARGO_BIN_EXE_armlab"),
+    let o = armlab_under_xvfb(
+        120,
+        &[
             "view",
             "--measure-frames",
             "15",
             "--q",
             "0.4,0.7,0.5,0.6,0.8,0.3",
-        ])
-        .output()
-        .unwrap_or_else(|e| {
-            panic!("cannot run xvfb-run ({e}): install it with apt-get install xvfb xauth")
-        });
+        ],
+    );
     let out = String::from_utf8_lossy(&o.stdout);
     assert!(
         o.status.success(),

@@ -82,12 +82,7 @@ fn the_live_view_is_fast_while_moving_full_when_still_and_not_redrawn_when_uncha
         "this test expects the software rasterizer"
     );
     let mut offscreen = Offscreen::new(&gpu.device);
-    let mut vp = Viewport3d::adaptive(Gpu::from_parts(
-        gpu.device.clone(),
-        gpu.queue.clone(),
-        gpu.adapter_info.clone(),
-    ))
-    .unwrap();
+    let mut vp = Viewport3d::adaptive(gpu.clone()).unwrap();
     let mut app = AppUi::new(AppState::from_spec("puma560").unwrap());
     let mut frame = |app: &mut AppUi| app.render_viewport(&mut vp, offscreen.renderer_mut(), false);
     let first = frame(&mut app).unwrap();
@@ -133,12 +128,7 @@ fn best_match(window: &image::RgbaImage, tex: &image::RgbaImage, at: [u32; 2]) -
 fn the_blit_copies_the_view_texel_for_texel() {
     let gpu = gpu();
     let mut offscreen = Offscreen::new(&gpu.device);
-    let mut vp = Viewport3d::new(Gpu::from_parts(
-        gpu.device.clone(),
-        gpu.queue.clone(),
-        gpu.adapter_info.clone(),
-    ))
-    .unwrap();
+    let mut vp = Viewport3d::new(gpu.clone()).unwrap();
     let mut app = AppUi::new(AppState::from_spec("puma560").unwrap());
     // Fewer overlays (ghost names on plates, frame labels) over the view to look through.
     app.state.display.ghosts = false;

@@ -6,8 +6,16 @@ use armlab::render::SHADERS;
 #[test]
 fn every_shader_parses_and_validates() {
     assert!(!SHADERS.is_empty());
+    let blit = [(
+        "blit.wgsl",
+        armlab::figure::blit::BLIT_WGSL,
+        &["vs_main", "fs_gamma", "fs_linear"][..],
+    )];
+    let render = SHADERS
+        .iter()
+        .map(|&(name, source)| (name, source, &["vs_main", "fs_main"][..]));
     let mut failures = Vec::new();
-    for (name, source) in SHADERS {
+    for (name, source, entries) in render.chain(blit) {
         let module = match naga::front::wgsl::parse_str(source) {
             Ok(m) => m,
             Err(e) => {
@@ -29,10 +37,12 @@ fn every_shader_parses_and_validates() {
             ));
             continue;
         }
-        for (entry, stage) in [
-            ("vs_main", naga::ShaderStage::Vertex),
-            ("fs_main", naga::ShaderStage::Fragment),
-        ] {
+        for &entry in entries {
+            let stage = if entry.starts_with("vs_") {
+                naga::ShaderStage::Vertex
+            } else {
+                naga::ShaderStage::Fragment
+            };
             if !module
                 .entry_points
                 .iter()

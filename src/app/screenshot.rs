@@ -73,12 +73,7 @@ fn render_window(
     let gpu = Gpu::new_headless().map_err(crate::figure::FigureError::from)?;
     let mut offscreen = Offscreen::new(&gpu.device);
     offscreen.set_background(Some(app.background()));
-    let vp_gpu = Gpu::from_parts(
-        gpu.device.clone(),
-        gpu.queue.clone(),
-        gpu.adapter_info.clone(),
-    );
-    let mut vp = Viewport3d::new(vp_gpu).map_err(crate::figure::FigureError::from)?;
+    let mut vp = Viewport3d::new(gpu.clone()).map_err(crate::figure::FigureError::from)?;
     offscreen.render(&gpu.device, &gpu.queue, size, 1.0, |ui| app.show(ui, None))?;
     match camera {
         Some(c) => app.set_camera(c),

@@ -7,7 +7,6 @@ use crate::camera::{Camera, Preset, Projection};
 use crate::figure::Theme;
 use crate::figure::figures::{Figures, Scene3d};
 use crate::headless::write_png;
-use crate::kinematics::JointKind;
 use crate::scene::{ArmStyle, arm_scene};
 use clap::ValueEnum;
 use std::path::PathBuf;
@@ -155,17 +154,7 @@ pub(super) fn render(args: &RenderArgs, out: &mut dyn std::io::Write) -> Result<
         args.size.0,
         args.orthographic,
     );
-    let shown: Vec<f64> = q
-        .iter()
-        .enumerate()
-        .map(|(k, &v)| {
-            if robot.dof_joint(k).kind == JointKind::Revolute {
-                v.to_degrees()
-            } else {
-                v
-            }
-        })
-        .collect();
+    let shown = super::q_for_display(&robot, &q);
     let fig = Scene3d {
         title: robot.name.clone(),
         subtitle: format!(

@@ -3,11 +3,11 @@
 use super::fk::fmt_vec;
 use super::input::{InputError, parse_row, read_rows};
 use super::{CliError, Format};
+use crate::kinematics::Robot;
 use crate::kinematics::ik::numerical::{Method, NumericalOptions};
 use crate::kinematics::ik::solver::{self, SolverChoice};
 use crate::kinematics::ik::{IkResult, IkSolution, IkStatus, Target};
 use crate::kinematics::pose::pose_from_matrix;
-use crate::kinematics::{JointKind, Robot};
 use clap::ValueEnum;
 use nalgebra::{Matrix4, Vector3};
 use serde_json::{Value, json};
@@ -361,17 +361,7 @@ fn target_json(t: &Target) -> Value {
 }
 
 fn write_solution(robot: &Robot, s: &IkSolution, out: &mut dyn Write) -> std::io::Result<()> {
-    let deg: Vec<f64> =
-        s.q.iter()
-            .enumerate()
-            .map(|(k, &v)| {
-                if robot.dof_joint(k).kind == JointKind::Revolute {
-                    v.to_degrees()
-                } else {
-                    v
-                }
-            })
-            .collect();
+    let deg = super::q_for_display(robot, &s.q);
     let limits = if s.within_limits {
         "within limits"
     } else {

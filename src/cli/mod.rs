@@ -250,3 +250,18 @@ pub(crate) fn joint_vectors(
     })?;
     Ok(vec![q.to_vec()])
 }
+
+/// A joint vector as the CLI shows it to people: degrees for revolute joints, metres for
+/// prismatic ones.
+fn q_for_display(robot: &Robot, q: &[f64]) -> Vec<f64> {
+    q.iter()
+        .enumerate()
+        .map(|(k, &v)| {
+            if robot.dof_joint(k).kind == crate::kinematics::JointKind::Revolute {
+                v.to_degrees()
+            } else {
+                v
+            }
+        })
+        .collect()
+}

@@ -12,7 +12,8 @@
 
 use egui_wgpu::CallbackResources;
 
-const BLIT_WGSL: &str = r#"
+/// The blit's WGSL: `vs_main`, and `fs_gamma` / `fs_linear` for non-sRGB / sRGB targets.
+pub const BLIT_WGSL: &str = r#"
 struct VertexOut {
     @builtin(position) clip: vec4<f32>,
     @location(0) uv: vec2<f32>,

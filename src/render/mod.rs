@@ -56,11 +56,20 @@ pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrg
 pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
 /// WGSL of the lit mesh pipeline.
-pub const MESH_WGSL: &str = include_str!("../../shaders/mesh.wgsl");
+pub const MESH_WGSL: &str = concat!(
+    include_str!("../../shaders/frame.wgsl"),
+    include_str!("../../shaders/mesh.wgsl")
+);
 /// WGSL of the screen-space line pipeline.
-pub const LINE_WGSL: &str = include_str!("../../shaders/line.wgsl");
+pub const LINE_WGSL: &str = concat!(
+    include_str!("../../shaders/frame.wgsl"),
+    include_str!("../../shaders/line.wgsl")
+);
 /// WGSL of the round dot pipeline.
-pub const DOT_WGSL: &str = include_str!("../../shaders/dot.wgsl");
+pub const DOT_WGSL: &str = concat!(
+    include_str!("../../shaders/frame.wgsl"),
+    include_str!("../../shaders/dot.wgsl")
+);
 
 /// Every shader as (file name, source), for validation.
 pub const SHADERS: &[(&str, &str)] = &[
