@@ -1,15 +1,17 @@
 //! One frame of the app at 1280x800 while the IK target is dragged, done as the live window
 //! does it on the software renderer: move the target, solve IK for every closed-form solution,
 //! build the scene with the ghost arms, render the 3D view (1x multisampling while moving, as
-//! the app does on a CPU adapter), lay the window out once with egui, paint it into a
-//! persistent 1280x800 texture, and wait until the GPU (lavapipe) has finished. Presenting to a
-//! window is not included (`armlab view --measure-frames N` measures the real window).
+//! the app does on a CPU adapter), lay the window out once with egui, paint it with the app's
+//! UI painter into a persistent 1280x800 texture, and wait until the GPU (lavapipe) has
+//! finished. Presenting to a window is not included (`armlab view --measure-frames N` measures
+//! the real window). For comparison, the same frame painted by egui-wgpu's renderer.
 //! Run: `cargo bench --bench app_frame`.
 
 use armlab::app::state::AppState;
 use armlab::app::ui::AppUi;
 use armlab::app::viewport::Viewport3d;
 use armlab::figure::offscreen::{FIGURE_FORMAT, Offscreen};
+use armlab::figure::ui_painter::{UiFrame, UiPainter};
 use armlab::render::Gpu;
 use criterion::{Criterion, criterion_group, criterion_main};
 
@@ -21,6 +23,10 @@ const Q: [f64; 6] = [0.4, 0.7, 0.5, 0.6, 0.8, 0.3];
 struct Frame {
     gpu: Gpu,
     offscreen: Offscreen,
+    painter: UiPainter,
+    ctx: egui::Context,
+    /// Paint with egui-wgpu (as `ARMLAB_EGUI_PAINTER=1` does in the window).
+    egui_wgpu: bool,
     vp: Viewport3d,
     app: AppUi,
     view: wgpu::TextureView,
@@ -57,9 +63,13 @@ impl Frame {
             view_formats: &[],
         });
         let view = texture.create_view(&Default::default());
+        let painter = UiPainter::new(&gpu.device, FIGURE_FORMAT);
         let mut f = Self {
             gpu,
             offscreen,
+            painter,
+            ctx: egui::Context::default(),
+            egui_wgpu: false,
             vp,
             app,
             view,
@@ -82,22 +92,47 @@ impl Frame {
     }
 
     fn viewport(&mut self) -> Option<armlab::app::viewport::ViewportImage> {
-        self.app
-            .render_viewport(&mut self.vp, self.offscreen.renderer_mut(), false)
+        if self.egui_wgpu {
+            self.app
+                .render_viewport(&mut self.vp, self.offscreen.renderer_mut(), false)
+        } else {
+            self.app
+                .render_viewport(&mut self.vp, &mut self.painter, false)
+        }
     }
 
     fn paint(&mut self, image: Option<armlab::app::viewport::ViewportImage>) {
         let app = &mut self.app;
-        self.offscreen
-            .frame(
-                &self.gpu.device,
-                &self.gpu.queue,
-                &self.view,
-                SIZE,
-                1.0,
-                |ui| app.show(ui, image.clone()),
-            )
-            .expect("frame");
+        if self.egui_wgpu {
+            self.offscreen
+                .frame(
+                    &self.gpu.device,
+                    &self.gpu.queue,
+                    &self.view,
+                    SIZE,
+                    1.0,
+                    |ui| app.show(ui, image.clone()),
+                )
+                .expect("frame");
+            return;
+        }
+        let input = egui::RawInput {
+            screen_rect: Some(egui::Rect::from_min_size(
+                egui::Pos2::ZERO,
+                egui::vec2(SIZE[0] as f32, SIZE[1] as f32),
+            )),
+            ..Default::default()
+        };
+        let out = self.ctx.run_ui(input, |ui| app.show(ui, image.clone()));
+        let frame = UiFrame {
+            prims: self.ctx.tessellate(out.shapes, out.pixels_per_point),
+            textures: std::sync::Mutex::new(out.textures_delta),
+            size_px: SIZE,
+            pixels_per_point: out.pixels_per_point,
+        };
+        let bg = app.background();
+        self.painter
+            .render_frame(&self.gpu.device, &self.gpu.queue, &self.view, &frame, bg);
     }
 
     fn wait(&self) {
@@ -137,6 +172,21 @@ fn frame(c: &mut Criterion) {
             f.wait();
         })
     });
+    f.egui_wgpu = true;
+    // The viewport's texture id belongs to the registry it was made with: start afresh.
+    f.vp = Viewport3d::adaptive(f.gpu.clone()).expect("renderer");
+    f.paint(None);
+    c.bench_function(
+        "app/frame, widgets painted by egui-wgpu (for comparison)",
+        |b| {
+            b.iter(|| {
+                f.drag();
+                let image = f.viewport();
+                f.paint(image);
+                f.wait();
+            })
+        },
+    );
 }
 
 criterion_group! {

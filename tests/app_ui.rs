@@ -110,3 +110,79 @@ fn clicking_a_ghost_arm_selects_its_posture() {
         "the arm took the new posture"
     );
 }
+
+/// The window's widgets run in an inner context on the outer (eframe's) input: a click reaches
+/// them, and what they ask of the platform (cursor, clipboard, repaint) reaches the outer one.
+#[test]
+fn the_inner_context_gets_the_input_and_hands_back_the_platform_output() {
+    use armlab::app::inner::InnerUi;
+    let outer = egui::Context::default();
+    let mut inner = InnerUi::default();
+    let screen = egui::Rect::from_min_size(egui::Pos2::ZERO, egui::vec2(400.0, 300.0));
+    let at = egui::pos2(32.0, 30.0);
+    let mut clicks = 0;
+    let mut frame = |events: Vec<egui::Event>, clicks: &mut i32| {
+        let raw = egui::RawInput {
+            screen_rect: Some(screen),
+            events,
+            ..Default::default()
+        };
+        let mut painted = None;
+        let mut out = outer.run_ui(raw, |ui| {
+            painted = Some(inner.run(ui.ctx(), |ui| {
+                egui::Area::new(egui::Id::unique("probe"))
+                    .fixed_pos(egui::pos2(20.0, 20.0))
+                    .show(ui.ctx(), |ui| {
+                        let r = ui.button("Copy");
+                        if r.hovered() {
+                            ui.ctx().set_cursor_icon(egui::CursorIcon::PointingHand);
+                        }
+                        if r.clicked() {
+                            *clicks += 1;
+                            ui.ctx().copy_text("q = [0, 1]".into());
+                            ui.ctx().request_repaint();
+                        }
+                    });
+            }));
+        });
+        // The outer context's own textures (its font atlas) are not painted here.
+        out.textures_delta.clear();
+        (out, painted.expect("inner frame"))
+    };
+    let (_, first) = frame(vec![egui::Event::PointerMoved(at)], &mut clicks);
+    assert_eq!(first.size_px, [400, 300]);
+    let press = |pressed| egui::Event::PointerButton {
+        pos: at,
+        button: egui::PointerButton::Primary,
+        pressed,
+        modifiers: egui::Modifiers::NONE,
+    };
+    // An area is laid out invisibly in its first frame, and hovering is found against the
+    // widgets of the frame before: two more frames.
+    frame(vec![], &mut clicks);
+    let (out, second) = frame(vec![], &mut clicks);
+    assert!(
+        !second.prims.is_empty(),
+        "the inner frame has the button to paint"
+    );
+    assert_eq!(
+        out.platform_output.cursor_icon,
+        egui::CursorIcon::PointingHand
+    );
+    frame(vec![press(true)], &mut clicks);
+    let (out, _) = frame(vec![press(false)], &mut clicks);
+    assert_eq!(clicks, 1, "the click reached the inner widget");
+    assert!(
+        out.platform_output
+            .commands
+            .iter()
+            .any(|c| matches!(c, egui::OutputCommand::CopyText(t) if t == "q = [0, 1]")),
+        "{:?}",
+        out.platform_output.commands
+    );
+    assert!(
+        out.viewport_output[&egui::ViewportId::ROOT]
+            .repaint_delay
+            .is_zero()
+    );
+}

@@ -181,3 +181,77 @@ fn the_blit_copies_the_view_texel_for_texel() {
         "blit and image differ by {mean_diff:.2} per channel on average"
     );
 }
+
+/// The window's widgets painted by armlab's UI painter look as egui-wgpu paints them (same
+/// layout, fonts, clipping and blending): what the live window shows is what the screenshots
+/// and goldens show.
+#[test]
+fn the_ui_painter_paints_the_window_as_egui_wgpu_does() {
+    use armlab::figure::offscreen::FIGURE_FORMAT;
+    use armlab::figure::ui_painter::{UiFrame, UiPainter};
+    let gpu = gpu();
+    let size = [1280u32, 800];
+    let mut app = AppUi::new(AppState::from_spec("puma560").unwrap());
+    let options = egui_wgpu::RendererOptions {
+        dithering: false,
+        ..Default::default()
+    };
+    let mut offscreen = Offscreen::with_options(&gpu.device, options);
+    offscreen.set_background(Some(app.background()));
+    let reference = offscreen
+        .render(&gpu.device, &gpu.queue, size, 1.0, |ui| app.show(ui, None))
+        .unwrap();
+    // The same two layout passes in a fresh context, painted by our painter.
+    let ctx = egui::Context::default();
+    let input = egui::RawInput {
+        screen_rect: Some(egui::Rect::from_min_size(
+            egui::Pos2::ZERO,
+            egui::vec2(size[0] as f32, size[1] as f32),
+        )),
+        time: Some(0.0),
+        ..Default::default()
+    };
+    let mut first = ctx.run_ui(input.clone(), |ui| app.show(ui, None));
+    let mut out = ctx.run_ui(input, |ui| app.show(ui, None));
+    let mut textures = std::mem::take(&mut first.textures_delta);
+    textures.append(std::mem::take(&mut out.textures_delta));
+    let frame = UiFrame {
+        prims: ctx.tessellate(out.shapes, out.pixels_per_point),
+        textures: std::sync::Mutex::new(textures),
+        size_px: size,
+        pixels_per_point: out.pixels_per_point,
+    };
+    let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("window"),
+        size: wgpu::Extent3d {
+            width: size[0],
+            height: size[1],
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: FIGURE_FORMAT,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+        view_formats: &[],
+    });
+    let view = texture.create_view(&Default::default());
+    let mut painter = UiPainter::new(&gpu.device, FIGURE_FORMAT);
+    painter.render_frame(&gpu.device, &gpu.queue, &view, &frame, app.background());
+    let ours = armlab::render::read_texture_rgba(&gpu.device, &gpu.queue, &texture).unwrap();
+    let differing = ours
+        .pixels()
+        .zip(reference.pixels())
+        .filter(|(p, q)| p.0.iter().zip(q.0).any(|(x, y)| x.abs_diff(y) > 24))
+        .count();
+    let fraction = differing as f64 / (size[0] * size[1]) as f64;
+    assert!(
+        fraction < 0.001,
+        "{differing} pixels ({:.3} %) differ",
+        fraction * 100.0
+    );
+    // Not trivially equal: the window has text and widgets on its background.
+    let bg = app.background().to_array();
+    let ink = ours.pixels().filter(|p| p.0 != bg).count();
+    assert!(ink > 50_000, "{ink} pixels drawn");
+}

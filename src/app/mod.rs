@@ -4,6 +4,7 @@
 //! whole window offscreen.
 
 pub mod gizmo;
+pub mod inner;
 pub mod panels;
 pub mod probe;
 pub mod screenshot;
@@ -13,6 +14,7 @@ pub mod ui;
 pub mod viewport;
 pub mod workspace_job;
 
+use crate::figure::ui_painter::UiPainter;
 use crate::render::Gpu;
 use state::AppState;
 use ui::AppUi;
@@ -23,6 +25,8 @@ pub struct ArmlabApp {
     ui: AppUi,
     viewport: Option<Viewport3d>,
     probe: Option<probe::FrameProbe>,
+    /// The widgets' own context, painted by our painter (None: eframe paints them).
+    inner: Option<inner::InnerUi>,
 }
 
 impl eframe::App for ArmlabApp {
@@ -43,7 +47,13 @@ impl eframe::App for ArmlabApp {
         let image = match (frame.wgpu_render_state(), &mut self.viewport) {
             (Some(rs), Some(vp)) => {
                 let mut renderer = rs.renderer.write();
-                self.ui.render_viewport(vp, &mut *renderer, false)
+                match (
+                    &self.inner,
+                    renderer.callback_resources.get_mut::<UiPainter>(),
+                ) {
+                    (Some(_), Some(painter)) => self.ui.render_viewport(vp, painter, false),
+                    _ => self.ui.render_viewport(vp, &mut *renderer, false),
+                }
             }
             _ => None,
         };
@@ -51,7 +61,16 @@ impl eframe::App for ArmlabApp {
             // Drawn at the fast quality while moving: one more frame draws it at full quality.
             ui.ctx().request_repaint();
         }
-        self.ui.show(ui, image);
+        match &mut self.inner {
+            Some(inner) => {
+                let app = &mut self.ui;
+                let painted = inner.run(ui.ctx(), |ui| app.show(ui, image.clone()));
+                let rect = ui.ctx().content_rect();
+                ui.painter()
+                    .add(egui_wgpu::Callback::new_paint_callback(rect, painted));
+            }
+            None => self.ui.show(ui, image),
+        }
         if std::mem::take(&mut self.ui.screenshot_requested) {
             self.save_screenshot();
         }
@@ -157,12 +176,19 @@ pub fn run_with(spec: &str, opts: &RunOptions) -> Result<Option<probe::FrameRepo
                     p.adapter = format!("{} ({}, {:?})", info.name, info.driver_info, info.backend);
                 }
                 let gpu = Gpu::from_parts(rs.device.clone(), rs.queue.clone(), info);
+                UiPainter::new(&rs.device, rs.target_format)
+                    .install(&mut rs.renderer.write().callback_resources);
                 Viewport3d::adaptive(gpu).ok()
             });
+            // Our painter for the widgets when the window has a wgpu device (always with the
+            // wgpu renderer); ARMLAB_EGUI_PAINTER=1 leaves them to egui-wgpu (for comparison).
+            let inner = (viewport.is_some() && std::env::var_os("ARMLAB_EGUI_PAINTER").is_none())
+                .then(inner::InnerUi::default);
             Ok(Box::new(ArmlabApp {
                 ui: AppUi::new(state),
                 viewport,
                 probe,
+                inner,
             }))
         }),
     )

@@ -227,7 +227,7 @@ pub fn right(app: &mut AppUi, ui: &mut egui::Ui) {
             if let Some(s) = &r.singularity {
                 ui.colored_label(
                     Color32::from_rgb(200, 60, 0),
-                    RichText::new(format!("⚠ {}", s.message())).strong(),
+                    RichText::new(format!("(!) {}", s.message())).strong(),
                 );
             }
         }

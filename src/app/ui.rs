@@ -385,6 +385,11 @@ impl AppUi {
                     .add(crate::figure::blit::TextureBlit::shape(im.view, rect));
             }
             Some(im) => {
+                // On whole pixels, the texture's size: a texel per pixel, no resampling.
+                let [w, h] = self.viewport_px;
+                let at = (rect.min.to_vec2() * ppp).round() / ppp;
+                let rect =
+                    egui::Rect::from_min_size(at.to_pos2(), egui::vec2(w as f32, h as f32) / ppp);
                 ui.painter().image(
                     im.id,
                     rect,

@@ -38,6 +38,15 @@ impl TextureRegistry for egui_wgpu::Renderer {
     }
 }
 
+impl TextureRegistry for crate::figure::ui_painter::UiPainter {
+    fn register(&mut self, device: &wgpu::Device, view: &wgpu::TextureView) -> TextureId {
+        self.register_native(device, view)
+    }
+    fn update(&mut self, device: &wgpu::Device, view: &wgpu::TextureView, id: TextureId) {
+        self.update_native(device, view, id)
+    }
+}
+
 /// The 3D view of one frame, ready to be shown by egui.
 #[derive(Debug, Clone)]
 pub struct ViewportImage {

@@ -8,6 +8,7 @@ pub mod labels;
 pub mod offscreen;
 pub mod plot2d;
 pub mod raster;
+pub mod ui_painter;
 pub mod workspace;
 
 use thiserror::Error;
