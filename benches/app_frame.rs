@@ -48,20 +48,7 @@ impl Frame {
         app.state.set_target(0, start).unwrap();
         assert_eq!(app.state.ghosts(0).len(), 8, "eight postures on screen");
         offscreen.set_background(Some(app.background()));
-        let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("window"),
-            size: wgpu::Extent3d {
-                width: SIZE[0],
-                height: SIZE[1],
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: FIGURE_FORMAT,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
-            view_formats: &[],
-        });
+        let texture = armlab::figure::offscreen::canvas(&gpu.device, SIZE);
         let view = texture.create_view(&Default::default());
         let painter = UiPainter::new(&gpu.device, FIGURE_FORMAT);
         let mut f = Self {
@@ -135,6 +122,14 @@ impl Frame {
             .render_frame(&self.gpu.device, &self.gpu.queue, &self.view, &frame, bg);
     }
 
+    /// One whole frame of a drag, waited for.
+    fn whole_frame(&mut self) {
+        self.drag();
+        let image = self.viewport();
+        self.paint(image);
+        self.wait();
+    }
+
     fn wait(&self) {
         self.gpu
             .device
@@ -147,14 +142,7 @@ fn frame(c: &mut Criterion) {
     let mut f = Frame::new();
     c.bench_function(
         "app/frame 1280x800 (drag: IK all solutions + ghosts + 3D + egui)",
-        |b| {
-            b.iter(|| {
-                f.drag();
-                let image = f.viewport();
-                f.paint(image);
-                f.wait();
-            })
-        },
+        |b| b.iter(|| f.whole_frame()),
     );
     c.bench_function("app/part: IK for every solution", |b| b.iter(|| f.drag()));
     c.bench_function("app/part: 3D view of a moving scene", |b| {
@@ -178,14 +166,7 @@ fn frame(c: &mut Criterion) {
     f.paint(None);
     c.bench_function(
         "app/frame, widgets painted by egui-wgpu (for comparison)",
-        |b| {
-            b.iter(|| {
-                f.drag();
-                let image = f.viewport();
-                f.paint(image);
-                f.wait();
-            })
-        },
+        |b| b.iter(|| f.whole_frame()),
     );
 }
 

@@ -6,16 +6,16 @@ use armlab::render::SHADERS;
 #[test]
 fn every_shader_parses_and_validates() {
     assert!(!SHADERS.is_empty());
-    let blit = [(
-        "blit.wgsl",
-        armlab::figure::blit::BLIT_WGSL,
+    let ui = [(
+        "ui.wgsl",
+        armlab::figure::ui_painter::UI_WGSL,
         &["vs_main", "fs_gamma", "fs_linear"][..],
     )];
     let render = SHADERS
         .iter()
         .map(|&(name, source)| (name, source, &["vs_main", "fs_main"][..]));
     let mut failures = Vec::new();
-    for (name, source, entries) in render.chain(blit) {
+    for (name, source, entries) in render.chain(ui) {
         let module = match naga::front::wgsl::parse_str(source) {
             Ok(m) => m,
             Err(e) => {

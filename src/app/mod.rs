@@ -166,11 +166,6 @@ pub fn run_with(spec: &str, opts: &RunOptions) -> Result<Option<probe::FrameRepo
         Box::new(move |cc| {
             let mut probe = probe;
             let viewport = cc.wgpu_render_state.as_ref().and_then(|rs| {
-                crate::figure::blit::install(
-                    &mut rs.renderer.write(),
-                    &rs.device,
-                    rs.target_format,
-                );
                 let info = rs.adapter.get_info();
                 if let Some(p) = &mut probe {
                     p.adapter = format!("{} ({}, {:?})", info.name, info.driver_info, info.backend);

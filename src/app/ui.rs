@@ -379,25 +379,18 @@ impl AppUi {
             ((rect.height() * ppp).round() as u32).max(16),
         ];
         let response = ui.allocate_rect(rect, egui::Sense::click_and_drag());
-        match image {
-            Some(im) if im.blit => {
-                ui.painter()
-                    .add(crate::figure::blit::TextureBlit::shape(im.view, rect));
-            }
-            Some(im) => {
-                // On whole pixels, the texture's size: a texel per pixel, no resampling.
-                let [w, h] = self.viewport_px;
-                let at = (rect.min.to_vec2() * ppp).round() / ppp;
-                let rect =
-                    egui::Rect::from_min_size(at.to_pos2(), egui::vec2(w as f32, h as f32) / ppp);
-                ui.painter().image(
-                    im.id,
-                    rect,
-                    egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0)),
-                    egui::Color32::WHITE,
-                );
-            }
-            None => {}
+        if let Some(im) = image {
+            // On whole pixels, the texture's size: a texel per pixel, no resampling.
+            let [w, h] = self.viewport_px;
+            let at = (rect.min.to_vec2() * ppp).round() / ppp;
+            let rect =
+                egui::Rect::from_min_size(at.to_pos2(), egui::vec2(w as f32, h as f32) / ppp);
+            ui.painter().image(
+                im.id,
+                rect,
+                egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0)),
+                egui::Color32::WHITE,
+            );
         }
         // Labels of the scene, projected.
         let scene_labels = build_scene(&self.state, None, self.projector).labels;

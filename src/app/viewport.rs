@@ -19,11 +19,6 @@ pub trait TextureRegistry {
     fn register(&mut self, device: &wgpu::Device, view: &wgpu::TextureView) -> TextureId;
     /// Points an existing id at a new view (after a resize).
     fn update(&mut self, device: &wgpu::Device, view: &wgpu::TextureView, id: TextureId);
-    /// Whether the texture can be shown with [`crate::figure::blit::TextureBlit`] (cheaper
-    /// than an egui image on a software rasterizer).
-    fn can_blit(&self) -> bool {
-        false
-    }
 }
 
 impl TextureRegistry for egui_wgpu::Renderer {
@@ -32,9 +27,6 @@ impl TextureRegistry for egui_wgpu::Renderer {
     }
     fn update(&mut self, device: &wgpu::Device, view: &wgpu::TextureView, id: TextureId) {
         self.update_egui_texture_from_wgpu_texture(device, view, wgpu::FilterMode::Linear, id);
-    }
-    fn can_blit(&self) -> bool {
-        crate::figure::blit::installed(self)
     }
 }
 
@@ -54,8 +46,6 @@ pub struct ViewportImage {
     pub id: TextureId,
     /// The texture itself (`Rgba8Unorm`, gamma-encoded, the viewport's size in pixels).
     pub view: wgpu::TextureView,
-    /// Show it with [`crate::figure::blit::TextureBlit`] rather than as an image.
-    pub blit: bool,
     /// Drawn at the fast quality while the scene moves: repaint once more when it stops, and
     /// the still frame comes at full quality.
     pub refine: bool,
@@ -175,8 +165,7 @@ impl Viewport3d {
         let view = ViewUniforms::from_camera(camera, w, h);
         let key = fingerprint(scene, &view, dark, [w, h]);
         let same = self.shown.is_some_and(|(k, _)| k == key);
-        if let (true, Some((_, true)), Some(image)) = (same, self.shown, &mut self.image) {
-            image.blit = registry.can_blit();
+        if let (true, Some((_, true)), Some(image)) = (same, self.shown, &self.image) {
             return Ok(image.clone());
         }
         // Moving (or first) frame: the fast layer if there is one; a still frame: full.
@@ -205,7 +194,6 @@ impl Viewport3d {
         let image = ViewportImage {
             id,
             view: texture_view,
-            blit: registry.can_blit(),
             refine: fast,
         };
         self.image = Some(image.clone());

@@ -2,7 +2,6 @@
 //! 3D scenes drawn by [`crate::render`] shown inside them. Used by the headless CLI and, through
 //! the same code, by the app.
 
-pub mod blit;
 pub mod figures;
 pub mod labels;
 pub mod offscreen;

@@ -26,8 +26,7 @@ impl Offscreen {
     /// hardware, much faster on a software rasterizer; the live app renders like this.
     pub fn with_options(device: &wgpu::Device, options: egui_wgpu::RendererOptions) -> Self {
         let ctx = egui::Context::default();
-        let mut renderer = egui_wgpu::Renderer::new(device, FIGURE_FORMAT, options);
-        super::blit::install(&mut renderer, device, FIGURE_FORMAT);
+        let renderer = egui_wgpu::Renderer::new(device, FIGURE_FORMAT, options);
         Self {
             ctx,
             renderer,
@@ -81,20 +80,7 @@ impl Offscreen {
         let mut output = self.ctx.run_ui(input, &mut ui);
         deltas.append(std::mem::take(&mut output.textures_delta));
         output.textures_delta = deltas;
-        let texture = device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("figure"),
-            size: wgpu::Extent3d {
-                width: size[0],
-                height: size[1],
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: FIGURE_FORMAT,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-            view_formats: &[],
-        });
+        let texture = canvas(device, size);
         let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
         self.paint(device, queue, &view, size, output);
         crate::render::read_texture_rgba(device, queue, &texture).map_err(FigureError::Render)
@@ -147,30 +133,9 @@ impl Offscreen {
             .update_buffers(device, queue, &mut encoder, &prims, &screen);
         let bg = self
             .background
-            .unwrap_or(self.ctx.global_style().visuals.panel_fill)
-            .to_normalized_gamma_f32();
+            .unwrap_or(self.ctx.global_style().visuals.panel_fill);
         {
-            let pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("figure"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view,
-                    resolve_target: None,
-                    depth_slice: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(wgpu::Color {
-                            r: bg[0] as f64,
-                            g: bg[1] as f64,
-                            b: bg[2] as f64,
-                            a: 1.0,
-                        }),
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
-                depth_stencil_attachment: None,
-                timestamp_writes: None,
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
+            let pass = clear_pass(&mut encoder, view, bg);
             let mut pass = pass.forget_lifetime();
             self.renderer.render(&mut pass, &prims, &screen);
         }
@@ -210,4 +175,52 @@ fn raw_input(
         .or_default()
         .native_pixels_per_point = Some(pixels_per_point);
     Ok(input)
+}
+
+/// A `size` pixel texture in [`FIGURE_FORMAT`] to paint a window or a figure into and read back.
+pub fn canvas(device: &wgpu::Device, size: [u32; 2]) -> wgpu::Texture {
+    device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("canvas"),
+        size: wgpu::Extent3d {
+            width: size[0],
+            height: size[1],
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: FIGURE_FORMAT,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+        view_formats: &[],
+    })
+}
+
+/// A render pass into `view` (one sample, no depth) that first clears it to `color` (opaque).
+pub(crate) fn clear_pass<'e>(
+    encoder: &'e mut wgpu::CommandEncoder,
+    view: &wgpu::TextureView,
+    color: egui::Color32,
+) -> wgpu::RenderPass<'e> {
+    let c = color.to_normalized_gamma_f32().map(f64::from);
+    encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some("canvas"),
+        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+            view,
+            resolve_target: None,
+            depth_slice: None,
+            ops: wgpu::Operations {
+                load: wgpu::LoadOp::Clear(wgpu::Color {
+                    r: c[0],
+                    g: c[1],
+                    b: c[2],
+                    a: 1.0,
+                }),
+                store: wgpu::StoreOp::Store,
+            },
+        })],
+        depth_stencil_attachment: None,
+        timestamp_writes: None,
+        occlusion_query_set: None,
+        multiview_mask: None,
+    })
 }

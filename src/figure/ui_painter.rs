@@ -15,7 +15,8 @@ use egui::epaint::{ClippedPrimitive, ImageData, Primitive, TextureId, Vertex};
 use std::collections::HashMap;
 use std::ops::Range;
 
-const UI_WGSL: &str = r#"
+/// The painter's WGSL: `vs_main`, and `fs_gamma` / `fs_linear` for non-sRGB / sRGB targets.
+pub const UI_WGSL: &str = r#"
 struct Screen {
     size_points: vec2<f32>,
     pad: vec2<f32>,
@@ -392,28 +393,7 @@ impl UiPainter {
             label: Some("armlab ui"),
         });
         {
-            let c = clear.to_normalized_gamma_f32().map(f64::from);
-            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("armlab ui"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view,
-                    resolve_target: None,
-                    depth_slice: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(wgpu::Color {
-                            r: c[0],
-                            g: c[1],
-                            b: c[2],
-                            a: c[3],
-                        }),
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
-                depth_stencil_attachment: None,
-                timestamp_writes: None,
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
+            let mut pass = super::offscreen::clear_pass(&mut encoder, view, clear);
             self.paint(&mut pass);
         }
         queue.submit([encoder.finish()]);
