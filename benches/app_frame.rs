@@ -48,7 +48,7 @@ impl Frame {
         app.state.set_target(0, start).unwrap();
         assert_eq!(app.state.ghosts(0).len(), 8, "eight postures on screen");
         offscreen.set_background(Some(app.background()));
-        let texture = armlab::figure::offscreen::canvas(&gpu.device, SIZE);
+        let texture = armlab::figure::offscreen::canvas(&gpu.device, SIZE, false);
         let view = texture.create_view(&Default::default());
         let painter = UiPainter::new(&gpu.device, FIGURE_FORMAT);
         let mut f = Self {

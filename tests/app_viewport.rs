@@ -186,7 +186,7 @@ fn the_ui_painter_paints_the_window_as_egui_wgpu_does() {
         size_px: size,
         pixels_per_point: out.pixels_per_point,
     };
-    let texture = armlab::figure::offscreen::canvas(&gpu.device, size);
+    let texture = armlab::figure::offscreen::canvas(&gpu.device, size, true);
     let view = texture.create_view(&Default::default());
     let mut painter = UiPainter::new(&gpu.device, FIGURE_FORMAT);
     painter.render_frame(&gpu.device, &gpu.queue, &view, &frame, app.background());

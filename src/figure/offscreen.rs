@@ -80,7 +80,7 @@ impl Offscreen {
         let mut output = self.ctx.run_ui(input, &mut ui);
         deltas.append(std::mem::take(&mut output.textures_delta));
         output.textures_delta = deltas;
-        let texture = canvas(device, size);
+        let texture = canvas(device, size, true);
         let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
         self.paint(device, queue, &view, size, output);
         crate::render::read_texture_rgba(device, queue, &texture).map_err(FigureError::Render)
@@ -177,8 +177,14 @@ fn raw_input(
     Ok(input)
 }
 
-/// A `size` pixel texture in [`FIGURE_FORMAT`] to paint a window or a figure into and read back.
-pub fn canvas(device: &wgpu::Device, size: [u32; 2]) -> wgpu::Texture {
+/// A `size` pixel texture in [`FIGURE_FORMAT`] to paint a window or a figure into; `readable`
+/// adds the copy-out usage a read-back needs (a window's surface has none: a software rasterizer
+/// keeps such a texture cheaper to draw into).
+pub fn canvas(device: &wgpu::Device, size: [u32; 2], readable: bool) -> wgpu::Texture {
+    let mut usage = wgpu::TextureUsages::RENDER_ATTACHMENT;
+    if readable {
+        usage |= wgpu::TextureUsages::COPY_SRC;
+    }
     device.create_texture(&wgpu::TextureDescriptor {
         label: Some("canvas"),
         size: wgpu::Extent3d {
@@ -190,7 +196,7 @@ pub fn canvas(device: &wgpu::Device, size: [u32; 2]) -> wgpu::Texture {
         sample_count: 1,
         dimension: wgpu::TextureDimension::D2,
         format: FIGURE_FORMAT,
-        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+        usage,
         view_formats: &[],
     })
 }
