@@ -97,6 +97,9 @@ pub struct UiPainter {
     index_data: Vec<u32>,
     /// Textures the last frame freed, dropped once it has been drawn.
     pending_free: Vec<TextureId>,
+    /// Reused staging memory for the meshes: a fresh staging buffer per frame (what
+    /// `Queue::write_buffer` does) costs page faults every frame on a software device.
+    belt: wgpu::util::StagingBelt,
 }
 
 impl UiPainter {
@@ -222,6 +225,7 @@ impl UiPainter {
             vertex_data: Vec::new(),
             index_data: Vec::new(),
             pending_free: Vec::new(),
+            belt: wgpu::util::StagingBelt::new(device.clone(), 1 << 20),
         }
     }
 
@@ -382,16 +386,17 @@ impl UiPainter {
     ) {
         let mut textures = frame.take_textures();
         self.set_textures(device, queue, &textures);
+        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("armlab ui"),
+        });
         self.prepare(
             device,
             queue,
+            &mut encoder,
             &frame.prims,
             frame.size_px,
             frame.pixels_per_point,
         );
-        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
-            label: Some("armlab ui"),
-        });
         {
             let mut pass = super::offscreen::clear_pass(&mut encoder, view, clear);
             self.paint(&mut pass);
@@ -406,11 +411,13 @@ impl UiPainter {
         resources.insert(self);
     }
 
-    /// Uploads the meshes of a frame laid out at `pixels_per_point` on a `size_px` target.
+    /// Uploads the meshes of a frame laid out at `pixels_per_point` on a `size_px` target,
+    /// through `encoder` (which must be submitted before the frame is painted).
     pub fn prepare(
         &mut self,
         device: &wgpu::Device,
         queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
         prims: &[ClippedPrimitive],
         size_px: [u32; 2],
         pixels_per_point: f32,
@@ -457,18 +464,21 @@ impl UiPainter {
         }
         upload(
             device,
-            queue,
+            &mut self.belt,
+            encoder,
             &mut self.vertices,
             bytemuck::cast_slice(&self.vertex_data),
             wgpu::BufferUsages::VERTEX,
         );
         upload(
             device,
-            queue,
+            &mut self.belt,
+            encoder,
             &mut self.indices,
             bytemuck::cast_slice(&self.index_data),
             wgpu::BufferUsages::INDEX,
         );
+        self.belt.finish_and_recall_on_submit(encoder);
     }
 
     /// Draws the prepared frame into `pass` (whose target is the `size_px` of [`Self::prepare`]).
@@ -499,18 +509,20 @@ impl UiPainter {
     }
 }
 
-/// Writes `bytes` into `buffer`, (re)creating it when it is missing or too small.
+/// Writes `bytes` into `buffer` through the staging `belt`, (re)creating the buffer when it is
+/// missing or too small.
 fn upload(
     device: &wgpu::Device,
-    queue: &wgpu::Queue,
+    belt: &mut wgpu::util::StagingBelt,
+    encoder: &mut wgpu::CommandEncoder,
     buffer: &mut Option<wgpu::Buffer>,
     bytes: &[u8],
     usage: wgpu::BufferUsages,
 ) {
-    if bytes.is_empty() {
-        return;
-    }
     let needed = (bytes.len() as u64).next_multiple_of(wgpu::COPY_BUFFER_ALIGNMENT);
+    let Some(size) = wgpu::BufferSize::new(needed) else {
+        return;
+    };
     if buffer.as_ref().is_none_or(|b| b.size() < needed) {
         *buffer = Some(device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("armlab ui"),
@@ -520,16 +532,11 @@ fn upload(
         }));
     }
     if let Some(b) = buffer {
-        // write_buffer wants a multiple of 4 bytes: pad the tail.
-        let mut padded;
-        let data = if bytes.len() as u64 == needed {
-            bytes
-        } else {
-            padded = bytes.to_vec();
-            padded.resize(needed as usize, 0);
-            &padded
-        };
-        queue.write_buffer(b, 0, data);
+        let mut view = belt.write_buffer(encoder, b, 0, size);
+        view.slice(..bytes.len()).copy_from_slice(bytes);
+        // Copies come in multiples of 4 bytes: zero the tail.
+        let pad = needed as usize - bytes.len();
+        view.slice(bytes.len()..).copy_from_slice(&[0u8; 4][..pad]);
     }
 }
 
@@ -571,7 +578,7 @@ impl egui_wgpu::CallbackTrait for UiFrame {
         device: &wgpu::Device,
         queue: &wgpu::Queue,
         _screen: &egui_wgpu::ScreenDescriptor,
-        _encoder: &mut wgpu::CommandEncoder,
+        encoder: &mut wgpu::CommandEncoder,
         resources: &mut egui_wgpu::CallbackResources,
     ) -> Vec<wgpu::CommandBuffer> {
         if let Some(p) = resources.get_mut::<UiPainter>() {
@@ -583,6 +590,7 @@ impl egui_wgpu::CallbackTrait for UiFrame {
             p.prepare(
                 device,
                 queue,
+                encoder,
                 &self.prims,
                 self.size_px,
                 self.pixels_per_point,
