@@ -42,6 +42,8 @@ pub struct AppUi {
     /// The workspace computation running or done.
     pub workspace: Option<WorkspaceJob>,
     workspace_texture: Option<egui::TextureHandle>,
+    /// Labels of the scene rendered last (drawn by egui over the 3D view).
+    scene_labels: Vec<crate::scene::Label>,
     camera_fitted: bool,
     /// Set by the Screenshot button; the frame loop saves the window and clears it.
     pub screenshot_requested: bool,
@@ -65,6 +67,7 @@ impl AppUi {
             gizmo: super::gizmo::Gizmo::default(),
             workspace: None,
             workspace_texture: None,
+            scene_labels: Vec::new(),
             camera_fitted: false,
             screenshot_requested: false,
             window_points: [1280.0, 800.0],
@@ -117,8 +120,10 @@ impl AppUi {
             self.fit();
         }
         let dots = self.workspace.as_ref().and_then(|w| w.dots());
-        let scene = build_scene(&self.state, dots, self.projector);
-        match vp.render(registry, &scene, &self.camera, self.viewport_px, dark) {
+        let mut scene = build_scene(&self.state, dots, self.projector);
+        let rendered = vp.render(registry, &scene, &self.camera, self.viewport_px, dark);
+        self.scene_labels = std::mem::take(&mut scene.labels);
+        match rendered {
             Ok(image) => Some(image),
             Err(e) => {
                 self.state
@@ -393,14 +398,13 @@ impl AppUi {
             );
         }
         // Labels of the scene, projected.
-        let scene_labels = build_scene(&self.state, None, self.projector).labels;
         let font = egui::FontId::proportional(if self.projector { 17.0 } else { 12.5 });
         crate::figure::labels::draw_labels(
             ui.painter(),
             rect,
             self.viewport_px,
             &self.camera,
-            &scene_labels,
+            &self.scene_labels,
             &font,
         );
         // The IK target gizmo.

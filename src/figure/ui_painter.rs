@@ -390,18 +390,11 @@ impl UiPainter {
             };
             // The clip rectangle in whole pixels, inside the target.
             let r = p.clip_rect;
-            let x0 = (r.min.x * pixels_per_point)
-                .round()
-                .clamp(0.0, size_px[0] as f32) as u32;
-            let y0 = (r.min.y * pixels_per_point)
-                .round()
-                .clamp(0.0, size_px[1] as f32) as u32;
-            let x1 = (r.max.x * pixels_per_point)
-                .round()
-                .clamp(0.0, size_px[0] as f32) as u32;
-            let y1 = (r.max.y * pixels_per_point)
-                .round()
-                .clamp(0.0, size_px[1] as f32) as u32;
+            let px =
+                |v: f32, max: u32| (v * pixels_per_point).round().clamp(0.0, max as f32) as u32;
+            let [w, h] = size_px;
+            let (x0, y0) = (px(r.min.x, w), px(r.min.y, h));
+            let (x1, y1) = (px(r.max.x, w), px(r.max.y, h));
             if x1 <= x0 || y1 <= y0 || mesh.indices.is_empty() {
                 continue;
             }
