@@ -47,3 +47,19 @@ fn fs_linear(in: VertexOut) -> @location(0) vec4<f32> {
     let hi = pow((c.rgb + vec3<f32>(0.055)) / 1.055, vec3<f32>(2.4));
     return vec4<f32>(select(hi, lo, c.rgb <= vec3<f32>(0.04045)), c.a);
 }
+
+// An opaque image (the 3D view) shown untinted, without blending: a plain copy of its texels,
+// which the software rasterizer does much faster than the blended path.
+@fragment
+fn fs_copy(in: VertexOut) -> @location(0) vec4<f32> {
+    return textureSample(t_color, s_color, in.uv);
+}
+
+// The same onto an sRGB target.
+@fragment
+fn fs_copy_linear(in: VertexOut) -> @location(0) vec4<f32> {
+    let c = textureSample(t_color, s_color, in.uv);
+    let lo = c.rgb / 12.92;
+    let hi = pow((c.rgb + vec3<f32>(0.055)) / 1.055, vec3<f32>(2.4));
+    return vec4<f32>(select(hi, lo, c.rgb <= vec3<f32>(0.04045)), c.a);
+}

@@ -186,3 +186,41 @@ fn the_inner_context_gets_the_input_and_hands_back_the_platform_output() {
             .is_zero()
     );
 }
+
+/// Every cell of the DH table is wide enough for its whole entry (the grid once squeezed the
+/// Puma's "671.83" to "671." and "-160" to "-16"), and the table stays inside its panel.
+#[test]
+fn dh_cells_show_their_whole_entry() {
+    let mut h = harness(AppUi::new(AppState::from_spec("puma560").unwrap()));
+    h.run();
+    let ctx = h.ctx.clone();
+    let font = egui::TextStyle::Body.resolve(&ctx.global_style());
+    let panel = h.state().viewport_rect.min.x;
+    let mut checked = 0;
+    for j in 1..=6 {
+        for field in ["a", "alpha", "d", "lower", "upper"] {
+            let label = format!("q{j} {field}");
+            let node = h.get_by_label(&label);
+            let text = node.value().unwrap_or_default();
+            let width = ctx.fonts_mut(|f| {
+                f.layout_no_wrap(text.clone(), font.clone(), egui::Color32::WHITE)
+                    .size()
+                    .x
+            });
+            let rect = node.rect();
+            // The text plus the field's inner margins.
+            assert!(
+                rect.width() >= width + 8.0,
+                "q{j} {field} = {text:?}: {:.1} pt wide for {width:.1} pt of text",
+                rect.width()
+            );
+            assert!(
+                rect.max.x <= panel,
+                "q{j} {field} ends at {} past {panel}",
+                rect.max.x
+            );
+            checked += 1;
+        }
+    }
+    assert_eq!(checked, 30);
+}

@@ -147,9 +147,9 @@ fn the_view_is_shown_texel_for_texel() {
     );
 }
 
-/// The window's widgets painted by armlab's UI painter look as egui-wgpu paints them (same
-/// layout, fonts, clipping and blending): what the live window shows is what the screenshots
-/// and goldens show.
+/// The window (widgets and the 3D view) painted by armlab's UI painter looks as egui-wgpu
+/// paints it (same layout, fonts, clipping and blending), in few draw calls: what the live
+/// window shows is what the screenshots and goldens show.
 #[test]
 fn the_ui_painter_paints_the_window_as_egui_wgpu_does() {
     use armlab::figure::offscreen::FIGURE_FORMAT;
@@ -163,47 +163,72 @@ fn the_ui_painter_paints_the_window_as_egui_wgpu_does() {
     };
     let mut offscreen = Offscreen::with_options(&gpu.device, options);
     offscreen.set_background(Some(app.background()));
-    let reference = offscreen
-        .render(&gpu.device, &gpu.queue, size, 1.0, |ui| app.show(ui, None))
-        .unwrap();
-    // The same two layout passes in a fresh context, painted by our painter.
-    let ctx = egui::Context::default();
-    let input = egui::RawInput {
-        screen_rect: Some(egui::Rect::from_min_size(
-            egui::Pos2::ZERO,
-            egui::vec2(size[0] as f32, size[1] as f32),
-        )),
-        time: Some(0.0),
-        ..Default::default()
-    };
-    let mut first = ctx.run_ui(input.clone(), |ui| app.show(ui, None));
-    let mut out = ctx.run_ui(input, |ui| app.show(ui, None));
-    let mut textures = std::mem::take(&mut first.textures_delta);
-    textures.append(std::mem::take(&mut out.textures_delta));
-    let frame = UiFrame {
-        prims: ctx.tessellate(out.shapes, out.pixels_per_point),
-        textures: std::sync::Mutex::new(textures),
-        size_px: size,
-        pixels_per_point: out.pixels_per_point,
-    };
-    let texture = armlab::figure::offscreen::canvas(&gpu.device, size, true);
-    let view = texture.create_view(&Default::default());
     let mut painter = UiPainter::new(&gpu.device, FIGURE_FORMAT);
-    painter.render_frame(&gpu.device, &gpu.queue, &view, &frame, app.background());
-    let ours = armlab::render::read_texture_rgba(&gpu.device, &gpu.queue, &texture).unwrap();
-    let differing = ours
-        .pixels()
-        .zip(reference.pixels())
-        .filter(|(p, q)| p.0.iter().zip(q.0).any(|(x, y)| x.abs_diff(y) > 24))
-        .count();
-    let fraction = differing as f64 / (size[0] * size[1]) as f64;
-    assert!(
-        fraction < 0.001,
-        "{differing} pixels ({:.3} %) differ",
-        fraction * 100.0
-    );
-    // Not trivially equal: the window has text and widgets on its background.
-    let bg = app.background().to_array();
-    let ink = ours.pixels().filter(|p| p.0 != bg).count();
-    assert!(ink > 50_000, "{ink} pixels drawn");
+    let mut vp = Viewport3d::new(gpu.clone()).unwrap();
+    for with_view in [false, true] {
+        let (theirs, ours) = if with_view {
+            // The same texture registered with each painter.
+            let image = app
+                .render_viewport(&mut vp, offscreen.renderer_mut(), false)
+                .unwrap();
+            let mut mine = image.clone();
+            mine.id = painter.register_native(&gpu.device, &image.view);
+            (Some(image), Some(mine))
+        } else {
+            (None, None)
+        };
+        let reference = offscreen
+            .render(&gpu.device, &gpu.queue, size, 1.0, |ui| {
+                app.show(ui, theirs.clone())
+            })
+            .unwrap();
+        // The same two layout passes in a fresh context, painted by our painter.
+        let ctx = egui::Context::default();
+        let input = egui::RawInput {
+            screen_rect: Some(egui::Rect::from_min_size(
+                egui::Pos2::ZERO,
+                egui::vec2(size[0] as f32, size[1] as f32),
+            )),
+            time: Some(0.0),
+            ..Default::default()
+        };
+        let mut first = ctx.run_ui(input.clone(), |ui| app.show(ui, ours.clone()));
+        let mut out = ctx.run_ui(input, |ui| app.show(ui, ours.clone()));
+        let mut textures = std::mem::take(&mut first.textures_delta);
+        textures.append(std::mem::take(&mut out.textures_delta));
+        let frame = UiFrame {
+            prims: ctx.tessellate(out.shapes, out.pixels_per_point),
+            textures: std::sync::Mutex::new(textures),
+            size_px: size,
+            pixels_per_point: out.pixels_per_point,
+        };
+        let texture = armlab::figure::offscreen::canvas(&gpu.device, size, true);
+        let view = texture.create_view(&Default::default());
+        painter.render_frame(&gpu.device, &gpu.queue, &view, &frame, app.background());
+        // Each draw call costs a software rasterizer about as much as a hundred widgets: the
+        // window's ~80 meshes go in a few.
+        let calls = painter.draw_calls();
+        assert!(
+            calls * 3 < frame.prims.len(),
+            "{calls} draw calls for {} meshes",
+            frame.prims.len()
+        );
+        let ours = armlab::render::read_texture_rgba(&gpu.device, &gpu.queue, &texture).unwrap();
+        let differing = ours
+            .pixels()
+            .zip(reference.pixels())
+            .filter(|(p, q)| p.0.iter().zip(q.0).any(|(x, y)| x.abs_diff(y) > 24))
+            .count();
+        let fraction = differing as f64 / (size[0] * size[1]) as f64;
+        assert!(
+            fraction < 0.001,
+            "with the 3D view: {with_view}; {differing} pixels ({:.3} %) differ",
+            fraction * 100.0
+        );
+        // Not trivially equal: the window has text and widgets on its background.
+        let bg = app.background().to_array();
+        let ink = ours.pixels().filter(|p| p.0 != bg).count();
+        let least = if with_view { 300_000 } else { 50_000 };
+        assert!(ink > least, "{ink} pixels drawn");
+    }
 }

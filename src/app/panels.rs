@@ -47,6 +47,9 @@ pub fn left(app: &mut AppUi, ui: &mut egui::Ui) {
         ui.separator();
         ui.heading("Joints");
         let unit = app.state.angle_unit();
+        // Long sliders for fine control (a fixed length: one that followed the panel's width
+        // would widen the panel it fills, frame after frame).
+        ui.spacing_mut().slider_width = if app.projector { 260.0 } else { 200.0 };
         for k in 0..app.state.robot().dof() {
             let name = app.state.robot().dof_joint(k).name.clone();
             let (Ok(v), Ok([lo, hi]), Ok(quantity)) = (
@@ -93,6 +96,24 @@ pub fn left(app: &mut AppUi, ui: &mut egui::Ui) {
 
 fn dh_table(state: &mut AppState, ui: &mut egui::Ui) {
     let unit = state.angle_unit();
+    // Each column as wide as its longest entry (the grid alone would squeeze the cells to
+    // egui's minimum and cut "-180" to "-18"): text, the field's margins, room for the caret.
+    let font = egui::TextStyle::Body.resolve(ui.style());
+    let margin = 2.0 * ui.spacing().button_padding.x + 6.0;
+    let widths = DhField::ALL.map(|f| {
+        (0..state.dh_cells().len())
+            .filter_map(|j| state.dh_cell(j, f))
+            .map(|cell| {
+                ui.fonts_mut(|fonts| {
+                    fonts
+                        .layout_no_wrap(cell.text.clone(), font.clone(), Color32::WHITE)
+                        .size()
+                        .x
+                })
+            })
+            .fold(24.0_f32, f32::max)
+            + margin
+    });
     egui::Grid::new("dh")
         .striped(true)
         .spacing([4.0, 2.0])
@@ -111,7 +132,7 @@ fn dh_table(state: &mut AppState, ui: &mut egui::Ui) {
             let rows = state.dh_cells().len();
             for j in 0..rows {
                 ui.label(state.robot().joints()[j].name.clone());
-                for f in DhField::ALL {
+                for (f, width) in DhField::ALL.into_iter().zip(widths) {
                     let Some(cell) = state.dh_cell(j, f).cloned() else {
                         continue;
                     };
@@ -120,7 +141,9 @@ fn dh_table(state: &mut AppState, ui: &mut egui::Ui) {
                         continue;
                     }
                     let mut text = cell.text.clone();
-                    let mut edit = egui::TextEdit::singleline(&mut text).desired_width(52.0);
+                    let mut edit = egui::TextEdit::singleline(&mut text)
+                        .desired_width(width)
+                        .min_size(egui::vec2(width, 0.0));
                     if cell.error.is_some() {
                         edit = edit
                             .background_color(ERROR_BG)

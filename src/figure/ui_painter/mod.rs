@@ -7,6 +7,11 @@
 //! painter does only what the window needs, as egui-wgpu does on its default path: vertex colour
 //! times a hardware-filtered texel, gamma space, premultiplied alpha.
 //!
+//! Two more things a software rasterizer rewards: consecutive meshes that no clip rectangle
+//! cuts go in one draw call (lavapipe charges for a draw call about what a hundred widgets
+//! cost), and a registered opaque view under white vertices (the 3D view) is copied without
+//! blending.
+//!
 //! Textures come from egui's [`egui::TexturesDelta`] (fonts, images) or are wgpu views
 //! registered with [`UiPainter::register_native`] (the 3D view). Paint callbacks are not
 //! supported (they are skipped).
@@ -15,15 +20,23 @@ use egui::epaint::{ClippedPrimitive, ImageData, Primitive, TextureId, Vertex};
 use std::collections::HashMap;
 use std::ops::Range;
 
-/// The painter's WGSL: `vs_main`, and `fs_gamma` / `fs_linear` for non-sRGB / sRGB targets.
-pub const UI_WGSL: &str = include_str!("../../shaders/ui.wgsl");
+mod frame;
+pub use frame::UiFrame;
+
+/// The painter's WGSL: `vs_main`, and `fs_gamma` / `fs_linear` (blended widgets) and
+/// `fs_copy` / `fs_copy_linear` (opaque views) for non-sRGB / sRGB targets.
+pub const UI_WGSL: &str = include_str!("../../../shaders/ui.wgsl");
 
 /// One indexed draw of a mesh primitive.
 struct Draw {
-    /// Scissor rectangle (px): x, y, width, height; never empty.
+    /// Scissor rectangle (px): x0, y0, x1, y1 (exclusive); never empty.
     clip: [u32; 4],
+    /// Into the frame's index buffer, whose indices count from the frame's first vertex.
     indices: Range<u32>,
-    base_vertex: i32,
+    /// The scissor cuts none of the draw's triangles.
+    uncut: bool,
+    /// An untinted registered view: drawn with the copy pipeline.
+    opaque: bool,
     texture: TextureId,
 }
 
@@ -35,7 +48,10 @@ struct Tex {
 
 /// egui's output painted into a render pass (see the module documentation).
 pub struct UiPainter {
+    /// Blended (premultiplied alpha), vertex colour times texel: every widget.
     pipeline: wgpu::RenderPipeline,
+    /// Unblended texel copy: registered opaque views shown untinted (the 3D view).
+    opaque: wgpu::RenderPipeline,
     screen: wgpu::Buffer,
     screen_bind: wgpu::BindGroup,
     texture_layout: wgpu::BindGroupLayout,
@@ -116,56 +132,21 @@ impl UiPainter {
             bind_group_layouts: &[Some(&screen_layout), Some(&texture_layout)],
             immediate_size: 0,
         });
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("armlab ui"),
-            layout: Some(&layout),
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("vs_main"),
-                compilation_options: Default::default(),
-                buffers: &[Some(wgpu::VertexBufferLayout {
-                    array_stride: size_of::<Vertex>() as u64,
-                    step_mode: wgpu::VertexStepMode::Vertex,
-                    attributes: &wgpu::vertex_attr_array![0 => Float32x2, 1 => Float32x2, 2 => Uint32],
-                })],
-            },
-            primitive: wgpu::PrimitiveState {
-                cull_mode: None,
-                ..Default::default()
-            },
-            depth_stencil: None,
-            multisample: wgpu::MultisampleState::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some(if format.is_srgb() {
-                    "fs_linear"
-                } else {
-                    "fs_gamma"
-                }),
-                compilation_options: Default::default(),
-                targets: &[Some(wgpu::ColorTargetState {
-                    format,
-                    // Premultiplied alpha, as egui blends.
-                    blend: Some(wgpu::BlendState {
-                        color: wgpu::BlendComponent {
-                            src_factor: wgpu::BlendFactor::One,
-                            dst_factor: wgpu::BlendFactor::OneMinusSrcAlpha,
-                            operation: wgpu::BlendOperation::Add,
-                        },
-                        alpha: wgpu::BlendComponent {
-                            src_factor: wgpu::BlendFactor::OneMinusDstAlpha,
-                            dst_factor: wgpu::BlendFactor::One,
-                            operation: wgpu::BlendOperation::Add,
-                        },
-                    }),
-                    write_mask: wgpu::ColorWrites::ALL,
-                })],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        let fs = if format.is_srgb() {
+            "fs_linear"
+        } else {
+            "fs_gamma"
+        };
+        let pipeline = make_pipeline(device, &layout, &module, format, fs, Some(PREMULTIPLIED));
+        let copy = if format.is_srgb() {
+            "fs_copy_linear"
+        } else {
+            "fs_copy"
+        };
+        let opaque = make_pipeline(device, &layout, &module, format, copy, None);
         Self {
             pipeline,
+            opaque,
             screen,
             screen_bind,
             texture_layout,
@@ -223,7 +204,9 @@ impl UiPainter {
         })
     }
 
-    /// Makes a wgpu view (`Rgba8Unorm`, gamma-encoded) available to egui as an image.
+    /// Makes a wgpu view (`Rgba8Unorm`, gamma-encoded, opaque) available to egui as an image.
+    /// It is sampled without filtering (meant to be shown texel for texel) and, untinted,
+    /// copied without blending: its alpha is not used.
     pub fn register_native(
         &mut self,
         device: &wgpu::Device,
@@ -242,7 +225,7 @@ impl UiPainter {
         view: &wgpu::TextureView,
         id: TextureId,
     ) {
-        let bind = self.bind(device, view, egui::TextureOptions::LINEAR);
+        let bind = self.bind(device, view, egui::TextureOptions::NEAREST);
         self.textures.insert(
             id,
             Tex {
@@ -390,23 +373,57 @@ impl UiPainter {
             };
             // The clip rectangle in whole pixels, inside the target.
             let r = p.clip_rect;
-            let px =
-                |v: f32, max: u32| (v * pixels_per_point).round().clamp(0.0, max as f32) as u32;
-            let [w, h] = size_px;
-            let (x0, y0) = (px(r.min.x, w), px(r.min.y, h));
-            let (x1, y1) = (px(r.max.x, w), px(r.max.y, h));
-            if x1 <= x0 || y1 <= y0 || mesh.indices.is_empty() {
+            let px = |v: f32| (v * pixels_per_point).round();
+            let [w, h] = size_px.map(|v| v as f32);
+            let (x0, y0) = (px(r.min.x).clamp(0.0, w), px(r.min.y).clamp(0.0, h));
+            let (x1, y1) = (px(r.max.x).clamp(0.0, w), px(r.max.y).clamp(0.0, h));
+            if x1 <= x0 || y1 <= y0 || mesh.indices.is_empty() || mesh.vertices.is_empty() {
                 continue;
             }
+            // Does the scissor cut this mesh? A pixel is drawn when its centre is inside a
+            // triangle, so compare the pixels whose centres lie within the mesh's bounds with
+            // the scissor's (pixels outside the target do not exist either way).
+            let bounds = mesh_bounds(&mesh.vertices);
+            let first = |v: f32| (v * pixels_per_point - 0.5).ceil().max(0.0);
+            let last = |v: f32, n: f32| (v * pixels_per_point - 0.5).floor().min(n - 1.0);
+            let uncut = first(bounds.min.x) >= x0
+                && first(bounds.min.y) >= y0
+                && last(bounds.max.x, w) < x1
+                && last(bounds.max.y, h) < y1;
+            let clip = [x0 as u32, y0 as u32, x1 as u32, y1 as u32];
+            let base = self.vertex_data.len() as u32;
             let start = self.index_data.len() as u32;
-            self.index_data.extend_from_slice(&mesh.indices);
-            self.draws.push(Draw {
-                clip: [x0, y0, x1 - x0, y1 - y0],
-                indices: start..self.index_data.len() as u32,
-                base_vertex: self.vertex_data.len() as i32,
-                texture: mesh.texture_id,
-            });
+            self.index_data
+                .extend(mesh.indices.iter().map(|&i| base + i));
             self.vertex_data.extend_from_slice(&mesh.vertices);
+            let end = self.index_data.len() as u32;
+            // Consecutive meshes that no clip rectangle cuts and that show the same texture
+            // are drawn at once (one draw call costs lavapipe as much as a hundred widgets),
+            // with a scissor around all of them: the same pixels as one draw each.
+            // A registered view (opaque by contract) under white vertices is a plain copy.
+            let opaque = matches!(mesh.texture_id, TextureId::User(_))
+                && mesh
+                    .vertices
+                    .iter()
+                    .all(|v| v.color == egui::Color32::WHITE);
+            match self.draws.last_mut() {
+                Some(last)
+                    if last.uncut
+                        && uncut
+                        && last.texture == mesh.texture_id
+                        && last.opaque == opaque =>
+                {
+                    last.indices.end = end;
+                    last.clip = union(last.clip, clip);
+                }
+                _ => self.draws.push(Draw {
+                    clip,
+                    indices: start..end,
+                    uncut,
+                    opaque,
+                    texture: mesh.texture_id,
+                }),
+            }
         }
         upload(
             device,
@@ -427,6 +444,11 @@ impl UiPainter {
         self.belt.finish_and_recall_on_submit(encoder);
     }
 
+    /// How many draw calls [`Self::paint`] makes for the prepared frame.
+    pub fn draw_calls(&self) -> usize {
+        self.draws.len()
+    }
+
     /// Draws the prepared frame into `pass` (whose target is the `size_px` of [`Self::prepare`]).
     pub fn paint(&self, pass: &mut wgpu::RenderPass<'_>) {
         let (Some(vertices), Some(indices)) = (&self.vertices, &self.indices) else {
@@ -435,12 +457,20 @@ impl UiPainter {
         if self.draws.is_empty() {
             return;
         }
-        pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, &self.screen_bind, &[]);
         pass.set_vertex_buffer(0, vertices.slice(..));
         pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint32);
         let mut bound = None;
+        let mut opaque = None;
         for d in &self.draws {
+            if opaque != Some(d.opaque) {
+                pass.set_pipeline(if d.opaque {
+                    &self.opaque
+                } else {
+                    &self.pipeline
+                });
+                opaque = Some(d.opaque);
+            }
             let Some(tex) = self.textures.get(&d.texture) else {
                 continue;
             };
@@ -448,11 +478,87 @@ impl UiPainter {
                 pass.set_bind_group(1, &tex.bind, &[]);
                 bound = Some(d.texture);
             }
-            let [x, y, w, h] = d.clip;
-            pass.set_scissor_rect(x, y, w, h);
-            pass.draw_indexed(d.indices.clone(), d.base_vertex, 0..1);
+            let [x0, y0, x1, y1] = d.clip;
+            pass.set_scissor_rect(x0, y0, x1 - x0, y1 - y0);
+            pass.draw_indexed(d.indices.clone(), 0, 0..1);
         }
     }
+}
+
+/// Premultiplied alpha, as egui blends.
+const PREMULTIPLIED: wgpu::BlendState = wgpu::BlendState {
+    color: wgpu::BlendComponent {
+        src_factor: wgpu::BlendFactor::One,
+        dst_factor: wgpu::BlendFactor::OneMinusSrcAlpha,
+        operation: wgpu::BlendOperation::Add,
+    },
+    alpha: wgpu::BlendComponent {
+        src_factor: wgpu::BlendFactor::OneMinusDstAlpha,
+        dst_factor: wgpu::BlendFactor::One,
+        operation: wgpu::BlendOperation::Add,
+    },
+};
+
+/// The painter's pipeline with fragment entry point `fs` and `blend`.
+fn make_pipeline(
+    device: &wgpu::Device,
+    layout: &wgpu::PipelineLayout,
+    module: &wgpu::ShaderModule,
+    format: wgpu::TextureFormat,
+    fs: &str,
+    blend: Option<wgpu::BlendState>,
+) -> wgpu::RenderPipeline {
+    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some("armlab ui"),
+        layout: Some(layout),
+        vertex: wgpu::VertexState {
+            module,
+            entry_point: Some("vs_main"),
+            compilation_options: Default::default(),
+            buffers: &[Some(wgpu::VertexBufferLayout {
+                array_stride: size_of::<Vertex>() as u64,
+                step_mode: wgpu::VertexStepMode::Vertex,
+                attributes: &wgpu::vertex_attr_array![0 => Float32x2, 1 => Float32x2, 2 => Uint32],
+            })],
+        },
+        primitive: wgpu::PrimitiveState {
+            cull_mode: None,
+            ..Default::default()
+        },
+        depth_stencil: None,
+        multisample: wgpu::MultisampleState::default(),
+        fragment: Some(wgpu::FragmentState {
+            module,
+            entry_point: Some(fs),
+            compilation_options: Default::default(),
+            targets: &[Some(wgpu::ColorTargetState {
+                format,
+                blend,
+                write_mask: wgpu::ColorWrites::ALL,
+            })],
+        }),
+        multiview_mask: None,
+        cache: None,
+    })
+}
+
+/// The bounding rectangle of `vertices` (points).
+fn mesh_bounds(vertices: &[Vertex]) -> egui::Rect {
+    let mut r = egui::Rect::NOTHING;
+    for v in vertices {
+        r.extend_with(v.pos);
+    }
+    r
+}
+
+/// The smallest rectangle around both `a` and `b` (x0, y0, x1, y1).
+fn union(a: [u32; 4], b: [u32; 4]) -> [u32; 4] {
+    [
+        a[0].min(b[0]),
+        a[1].min(b[1]),
+        a[2].max(b[2]),
+        a[3].max(b[3]),
+    ]
 }
 
 /// Writes `bytes` into `buffer` through the staging `belt`, (re)creating the buffer when it is
@@ -483,81 +589,5 @@ fn upload(
         // Copies come in multiples of 4 bytes: zero the tail.
         let pad = needed as usize - bytes.len();
         view.slice(bytes.len()..).copy_from_slice(&[0u8; 4][..pad]);
-    }
-}
-
-/// A whole egui frame (laid out by another context) painted by the [`UiPainter`] in a render
-/// pass of egui-wgpu: the app hands eframe this one callback instead of its widgets.
-pub struct UiFrame {
-    /// The tessellated frame.
-    pub prims: Vec<ClippedPrimitive>,
-    /// Its texture uploads and frees (taken by the first paint; a frame never painted drops
-    /// them).
-    pub textures: std::sync::Mutex<egui::TexturesDelta>,
-    /// Target size (px).
-    pub size_px: [u32; 2],
-    /// Pixels per egui point.
-    pub pixels_per_point: f32,
-}
-
-impl UiFrame {
-    /// The frame's texture changes, taken out (empty after the first call).
-    fn take_textures(&self) -> egui::TexturesDelta {
-        match self.textures.lock() {
-            Ok(mut t) => std::mem::take(&mut *t),
-            Err(poisoned) => std::mem::take(&mut *poisoned.into_inner()),
-        }
-    }
-}
-
-impl Drop for UiFrame {
-    fn drop(&mut self) {
-        // egui insists that texture changes are handled; a frame dropped unpainted has none
-        // to hand on (the next full frame re-sends what a texture needs).
-        self.take_textures().clear();
-    }
-}
-
-impl egui_wgpu::CallbackTrait for UiFrame {
-    fn prepare(
-        &self,
-        device: &wgpu::Device,
-        queue: &wgpu::Queue,
-        _screen: &egui_wgpu::ScreenDescriptor,
-        encoder: &mut wgpu::CommandEncoder,
-        resources: &mut egui_wgpu::CallbackResources,
-    ) -> Vec<wgpu::CommandBuffer> {
-        if let Some(p) = resources.get_mut::<UiPainter>() {
-            for id in std::mem::take(&mut p.pending_free) {
-                p.textures.remove(&id);
-            }
-            let mut textures = self.take_textures();
-            p.set_textures(device, queue, &textures);
-            p.prepare(
-                device,
-                queue,
-                encoder,
-                &self.prims,
-                self.size_px,
-                self.pixels_per_point,
-            );
-            p.pending_free.extend(textures.free.iter().copied());
-            textures.clear();
-        }
-        Vec::new()
-    }
-
-    fn paint(
-        &self,
-        info: egui::PaintCallbackInfo,
-        pass: &mut wgpu::RenderPass<'static>,
-        resources: &egui_wgpu::CallbackResources,
-    ) {
-        if let Some(p) = resources.get::<UiPainter>() {
-            // The callback's viewport is the whole window; the painter sets its own scissors.
-            let [w, h] = info.screen_size_px;
-            pass.set_viewport(0.0, 0.0, w as f32, h as f32, 0.0, 1.0);
-            p.paint(pass);
-        }
     }
 }
