@@ -1,6 +1,7 @@
 //! Helpers shared by the integration tests: reading the reference data.
 #![allow(dead_code)]
 
+pub mod closed_form;
 pub mod golden;
 
 use armlab::kinematics::Pose;

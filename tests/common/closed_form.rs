@@ -1,0 +1,162 @@
+//! Helpers shared by the closed-form inverse-kinematics tests (`ik_closed_form*.rs`): the
+//! built-ins with a closed form, comparisons modulo 2 pi, the reference data, and the names
+//! those tests use (re-exported; each test file uses a part of them).
+#![allow(unused_imports)]
+
+pub use armlab::kinematics::dh::standard_to_modified;
+pub use armlab::kinematics::ik::closed_form::{
+    ArmKind, ClosedForm, Family, MAX_SOLUTIONS, RawSolutions, wrap_into_limits,
+};
+pub use armlab::kinematics::ik::{IkError, IkResult, IkStatus, Target};
+pub use armlab::kinematics::models::built_in;
+pub use armlab::kinematics::orientation::{
+    wrap_angle, zyz_from_rotation, zyz_from_rotation_negative,
+};
+pub use armlab::kinematics::pose::{matrix_from_rows, pose_from_matrix, rot_x, rot_y, rot_z};
+pub use armlab::kinematics::{Convention, DhRow, JointKind, Pose, Robot};
+pub use nalgebra::{Translation3, Vector3};
+pub use proptest::prelude::*;
+pub use serde_json::Value;
+pub use std::f64::consts::{FRAC_PI_2, PI};
+
+pub const CLOSED_FORM: [&str; 10] = [
+    "planar2",
+    "planar3",
+    "spherical_arm",
+    "anthropomorphic3r",
+    "spherical_wrist",
+    "stanford",
+    "anthropomorphic_spherical_wrist",
+    "scara",
+    "cylindrical",
+    "puma560",
+];
+
+pub fn robot(name: &str) -> Robot {
+    built_in(name).unwrap_or_else(|| panic!("built-in {name}"))
+}
+
+pub fn cf(robot: &Robot) -> ClosedForm {
+    ClosedForm::detect(robot).unwrap_or_else(|| panic!("{}: no closed form", robot.name))
+}
+
+/// Same configuration modulo 2 pi for revolute joints.
+pub fn same_q(robot: &Robot, a: &[f64], b: &[f64], tol: f64) -> bool {
+    a.len() == b.len()
+        && (0..a.len()).all(|j| {
+            let d = a[j] - b[j];
+            let d = if robot.dof_joint(j).kind == JointKind::Revolute {
+                wrap_angle(d)
+            } else {
+                d
+            };
+            d.abs() < tol
+        })
+}
+
+pub fn show(res: &IkResult) -> String {
+    let mut s = format!("status {:?}\n", res.status);
+    for x in &res.solutions {
+        s += &format!(
+            "  {:?} [{}] within={} pe={:.1e} oe={:.1e} free={:?}\n",
+            x.q, x.posture, x.within_limits, x.position_error, x.orientation_error, x.free_joints
+        );
+    }
+    s
+}
+
+pub fn solve(robot: &Robot, target: Target) -> IkResult {
+    cf(robot).solve(robot, &target).expect("valid target")
+}
+
+/// Every solution reaches the target (position, and orientation when `orient`).
+pub fn assert_verified(res: &IkResult, orient: bool, tol: f64) {
+    for s in &res.solutions {
+        assert!(
+            s.position_error < tol && (!orient || s.orientation_error < tol),
+            "not verified:\n{}",
+            show(res)
+        );
+        assert!(s.q.iter().all(|v| v.is_finite()));
+    }
+}
+
+pub fn q_in_limits(robot: &Robot, u: &[f64]) -> Vec<f64> {
+    robot
+        .limits()
+        .iter()
+        .zip(u)
+        .map(|(l, &t)| l[0] + t * (l[1] - l[0]))
+        .collect()
+}
+
+pub fn position_only(f: &Family) -> bool {
+    matches!(
+        f,
+        Family::Planar2 | Family::Anthropomorphic | Family::SphericalArm | Family::Cylindrical
+    )
+}
+
+/// A JSON array of numbers.
+pub use super::vec_f64 as vecf;
+
+/// Parsed JSON of a reference file.
+pub use super::reference;
+
+pub fn pose_of(v: &Value) -> Pose {
+    let rows: Vec<Vec<f64>> = v.as_array().expect("rows").iter().map(vecf).collect();
+    let mut m = [[0.0; 4]; 4];
+    for (r, row) in rows.iter().enumerate() {
+        for (c, x) in row.iter().enumerate() {
+            m[r][c] = *x;
+        }
+    }
+    pose_from_matrix(&matrix_from_rows(&m)).expect("rigid")
+}
+
+/// The reference solutions and ours are the same sets modulo 2 pi; returns, for each reference
+/// solution, the index of ours.
+pub fn match_sets(robot: &Robot, ours: &IkResult, refs: &[Vec<f64>], tol: f64) -> Vec<usize> {
+    assert_eq!(
+        ours.solutions.len(),
+        refs.len(),
+        "counts differ:\n{}",
+        show(ours)
+    );
+    refs.iter()
+        .map(|r| {
+            ours.solutions
+                .iter()
+                .position(|s| same_q(robot, &s.q, r, tol))
+                .unwrap_or_else(|| panic!("reference {r:?} not found in\n{}", show(ours)))
+        })
+        .collect()
+}
+
+// ---------------------------------------------------------------- detection
+
+/// A DH row as `Robot::from_dh` takes it: kind, row, offset (rad or m), limits.
+pub type Row = (JointKind, DhRow, f64, [f64; 2]);
+/// Short names for the joint kinds.
+pub const R: JointKind = JointKind::Revolute;
+/// Short names for the joint kinds.
+pub const P: JointKind = JointKind::Prismatic;
+/// A revolute joint's full turn.
+pub const FULL: [f64; 2] = [-PI, PI];
+
+/// A revolute row with full limits.
+pub fn rv(a: f64, alpha: f64, d: f64, offset: f64) -> Row {
+    (R, DhRow::new(a, alpha, d, 0.0), offset, FULL)
+}
+
+/// A two-link planar arm with offsets 0.2 and -0.5 rad, on `base`, holding `tool`.
+pub fn planar2_custom(a1: f64, a2: f64, base: Pose, tool: Pose) -> Robot {
+    Robot::from_dh(
+        "my planar",
+        Convention::Standard,
+        &[rv(a1, 0.0, 0.0, 0.2), rv(a2, 0.0, 0.0, -0.5)],
+        base,
+        tool,
+    )
+    .expect("valid")
+}
