@@ -7,9 +7,13 @@
 //! is pure math against a [`Camera`] and a viewport size in pixels; only [`Gizmo::ui`] touches
 //! egui (drawing with the painter over the viewport image, and pointer handling).
 
-use crate::camera::{Camera, Projection};
+use crate::camera::Camera;
 use crate::kinematics::pose::Pose;
-use nalgebra::{Matrix4, Point3, Rotation3, Unit, Vector2, Vector3, Vector4};
+use nalgebra::{Point3, Rotation3, Unit, Vector2, Vector3};
+
+mod view;
+use view::{View, cross2, dist_to_segment, px};
+pub use view::{metres_per_pixel, ray_from_pixel};
 
 type V2 = Vector2<f64>;
 type V3 = Vector3<f64>;
@@ -101,102 +105,6 @@ impl Default for Gizmo {
             hovered: None,
             drag: None,
         }
-    }
-}
-
-/// The world ray under a pixel (origin top-left, y down) of a `viewport_px` viewport: its origin
-/// on the near plane and its unit direction. Works for both projections (orthographic rays are
-/// parallel). Falls back to the camera's axis if the view-projection matrix is singular.
-pub fn ray_from_pixel(
-    camera: &Camera,
-    viewport_px: [u32; 2],
-    pixel: [f32; 2],
-) -> (Point3<f64>, Vector3<f64>) {
-    let eye = camera.eye().cast::<f64>();
-    let fallback = (eye, (camera.target.cast::<f64>() - eye).normalize());
-    View::new(camera, viewport_px)
-        .and_then(|v| v.ray(px(pixel)))
-        .unwrap_or(fallback)
-}
-
-/// Metres per pixel in the view plane at the depth of `point` (what one pixel of pointer motion
-/// means there), or `None` if the point is behind the camera.
-pub fn metres_per_pixel(
-    camera: &Camera,
-    viewport_px: [u32; 2],
-    point: &Point3<f64>,
-) -> Option<f64> {
-    let view = View::new(camera, viewport_px)?;
-    let (_, ey) = view.pixel_basis(point, view.project(point)?)?;
-    Some(ey.norm())
-}
-
-fn px(p: [f32; 2]) -> V2 {
-    V2::new(p[0] as f64, p[1] as f64)
-}
-
-fn dist_to_segment(p: V2, a: V2, b: V2) -> f64 {
-    let ab = b - a;
-    let t = ((p - a).dot(&ab) / ab.norm_squared().max(1e-300)).clamp(0.0, 1.0);
-    (a + ab * t - p).norm()
-}
-
-fn cross2(a: V2, b: V2) -> f64 {
-    a.x * b.y - a.y * b.x
-}
-
-/// The camera's view-projection in f64 with its inverse, for one viewport size.
-struct View {
-    vp: Matrix4<f64>,
-    inv: Matrix4<f64>,
-    size: V2,
-    ortho: bool,
-}
-
-impl View {
-    fn new(camera: &Camera, viewport_px: [u32; 2]) -> Option<Self> {
-        let [w, h] = [viewport_px[0].max(1), viewport_px[1].max(1)];
-        let vp = camera.view_proj(w, h).cast::<f64>();
-        let inv = vp.try_inverse()?;
-        let ortho = matches!(camera.projection, Projection::Orthographic { .. });
-        let size = V2::new(w as f64, h as f64);
-        Some(Self {
-            vp,
-            inv,
-            size,
-            ortho,
-        })
-    }
-
-    /// Pixel of a world point, like [`Camera::project`].
-    fn project(&self, p: &P3) -> Option<V2> {
-        let c = self.vp * p.to_homogeneous();
-        let q = V2::new((c.x / c.w + 1.0) * 0.5, (1.0 - c.y / c.w) * 0.5).component_mul(&self.size);
-        (c.w > 1e-9 && q.iter().all(|v| v.is_finite())).then_some(q)
-    }
-
-    /// World point at pixel `q` and normalised device depth `z`.
-    fn unproject(&self, q: V2, z: f64) -> Option<P3> {
-        let (x, y) = (2.0 * q.x / self.size.x - 1.0, 1.0 - 2.0 * q.y / self.size.y);
-        let h = self.inv * Vector4::new(x, y, z, 1.0);
-        (h.w.abs() > 1e-300).then(|| P3::new(h.x / h.w, h.y / h.w, h.z / h.w))
-    }
-
-    /// Origin (near plane) and unit direction of the ray under pixel `q`.
-    fn ray(&self, q: V2) -> Option<(P3, V3)> {
-        let near = self.unproject(q, 0.0)?;
-        let dir = (self.unproject(q, 1.0)? - near).try_normalize(1e-300)?;
-        Some((near, dir))
-    }
-
-    /// World vectors of one pixel right and one pixel down at the depth of `p` (projected at `c`).
-    fn pixel_basis(&self, p: &P3, c: V2) -> Option<(V3, V3)> {
-        let clip = self.vp * p.to_homogeneous();
-        let z = clip.z / clip.w;
-        let o = self.unproject(c, z)?;
-        let ex = self.unproject(c + V2::x(), z)? - o;
-        let ey = self.unproject(c + V2::y(), z)? - o;
-        (ex.iter().chain(ey.iter()).all(|v| v.is_finite())).then_some((ex, ey))
     }
 }
 
