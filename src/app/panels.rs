@@ -1,6 +1,6 @@
 //! The side panels: model and joints (left), readouts and inverse kinematics (right).
 
-use super::state::{AppState, DhField, Level};
+use super::state::{AppState, DhField, Level, format_number, without_negative_zero};
 use super::ui::AppUi;
 use crate::kinematics::models::BUILT_INS;
 use crate::kinematics::pose::Pose;
@@ -62,7 +62,8 @@ pub fn left(app: &mut AppUi, ui: &mut egui::Ui) {
             let mut value = v;
             let slider = egui::Slider::new(&mut value, lo..=hi)
                 .text(format!("{name} [{}]", quantity.symbol(unit)))
-                .max_decimals(2);
+                .max_decimals(2)
+                .custom_formatter(|v, _| format_number(v, 2));
             if ui.add(slider).changed() {
                 let si = quantity.from_display(value, unit);
                 if let Err(e) = app.state.set_joint(k, si) {
@@ -212,11 +213,12 @@ pub fn right(app: &mut AppUi, ui: &mut egui::Ui) {
         if let Ok(r) = app.state.readouts(ee) {
             ui.label("T (world from tool):");
             matrix_grid(ui, "T", &r.t);
+            let mm = |v: f64| without_negative_zero(v * 1e3, 1);
             ui.monospace(format!(
                 "p = [{:.1}, {:.1}, {:.1}] mm",
-                r.p.x * 1e3,
-                r.p.y * 1e3,
-                r.p.z * 1e3
+                mm(r.p.x),
+                mm(r.p.y),
+                mm(r.p.z)
             ));
             let kind = r.phi_kind.as_str().to_uppercase();
             let sing = if r.phi_singular {
@@ -224,11 +226,12 @@ pub fn right(app: &mut AppUi, ui: &mut egui::Ui) {
             } else {
                 ""
             };
+            let deg = |v: f64| without_negative_zero(v.to_degrees(), 2);
             ui.monospace(format!(
                 "phi {kind} = [{:.2}, {:.2}, {:.2}] deg{sing}",
-                r.phi.x.to_degrees(),
-                r.phi.y.to_degrees(),
-                r.phi.z.to_degrees()
+                deg(r.phi.x),
+                deg(r.phi.y),
+                deg(r.phi.z)
             ));
             ui.horizontal(|ui| {
                 ui.radio_value(
@@ -319,14 +322,24 @@ fn target_editor(app: &mut AppUi, ui: &mut egui::Ui, ee: usize) {
     ui.horizontal(|ui| {
         ui.label("target [mm]");
         for (k, axis) in ["x", "y", "z"].into_iter().enumerate() {
-            let r = ui.add(egui::DragValue::new(&mut p[k]).speed(1.0).max_decimals(1));
+            let r = ui.add(
+                egui::DragValue::new(&mut p[k])
+                    .speed(1.0)
+                    .max_decimals(1)
+                    .custom_formatter(|v, _| format_number(v, 1)),
+            );
             changed |= named(&r, format!("target {axis} [mm]"), p[k]).changed();
         }
     });
     ui.horizontal(|ui| {
         ui.label("RPY [deg]");
         for (k, angle) in ["roll", "pitch", "yaw"].into_iter().enumerate() {
-            let r = ui.add(egui::DragValue::new(&mut a[k]).speed(0.5).max_decimals(1));
+            let r = ui.add(
+                egui::DragValue::new(&mut a[k])
+                    .speed(0.5)
+                    .max_decimals(1)
+                    .custom_formatter(|v, _| format_number(v, 1)),
+            );
             changed |= named(&r, format!("target {angle} [deg]"), a[k]).changed();
         }
     });

@@ -42,7 +42,10 @@ pub use track::{
 pub use types::{
     DisplayToggles, EeTarget, Ghost, Level, Reach, Readouts, StateError, StatusMessage,
 };
-pub use units::{AngleUnit, EntryError, MM_PER_M, Quantity, format_entry, parse_entry};
+pub use units::{
+    AngleUnit, EntryError, MM_PER_M, Quantity, format_entry, format_number, parse_entry,
+    without_negative_zero,
+};
 
 use super::singularity::SingularityAnalyzer;
 use crate::kinematics::orientation::angle_axis_from_rotation;

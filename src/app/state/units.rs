@@ -149,8 +149,13 @@ pub fn parse_entry(text: &str, quantity: Quantity, unit: AngleUnit) -> Result<f6
 /// A stored value (rad or m) as display text without unit: at most 6 decimals, trailing zeros
 /// removed ("90", "431.8", "-0.7854").
 pub fn format_entry(si: f64, quantity: Quantity, unit: AngleUnit) -> String {
-    let v = quantity.to_display(si, unit);
-    let s = format!("{v:.6}");
+    format_number(quantity.to_display(si, unit), 6)
+}
+
+/// A number with at most `max_decimals` decimals, trailing zeros removed, and never "-0" (a
+/// value that rounds to zero is shown as "0", not with the sign of a rounding error).
+pub fn format_number(v: f64, max_decimals: usize) -> String {
+    let s = format!("{v:.max_decimals$}");
     let s = s.trim_end_matches('0').trim_end_matches('.');
     if s == "-0" || s.is_empty() {
         "0".to_string()
@@ -159,9 +164,32 @@ pub fn format_entry(si: f64, quantity: Quantity, unit: AngleUnit) -> String {
     }
 }
 
+/// `v`, or +0 if it shows as zero at `decimals` decimals: for fixed-decimal readouts, which
+/// would otherwise print a rounding error as "-0.0".
+pub fn without_negative_zero(v: f64, decimals: i32) -> f64 {
+    if v.abs() < 0.5 * 10f64.powi(-decimals) {
+        0.0
+    } else {
+        v
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn numbers_never_show_negative_zero() {
+        assert_eq!(format_number(-1e-17, 2), "0");
+        assert_eq!(format_number(-0.004, 2), "0");
+        assert_eq!(format_number(-0.006, 2), "-0.01");
+        assert_eq!(format_number(90.0, 2), "90");
+        assert_eq!(format_number(431.8, 1), "431.8");
+        assert_eq!(format_number(-12.25, 1), "-12.2");
+        assert_eq!(format!("{:.1}", without_negative_zero(-0.04, 1)), "0.0");
+        assert_eq!(format!("{:.1}", without_negative_zero(-0.06, 1)), "-0.1");
+        assert_eq!(format!("{:.2}", without_negative_zero(-1e-15, 2)), "0.00");
+    }
 
     #[test]
     fn entries_in_display_or_explicit_units() {
