@@ -22,10 +22,19 @@ fn quad(r: Rect, color: Color32, clip: Rect) -> ClippedPrimitive {
     }
 }
 
+/// At one and two pixels per point (a high-density screen).
 #[test]
 fn merged_draws_keep_every_clip_rectangle() {
     let gpu = Gpu::new_headless().unwrap_or_else(|e| panic!("{e}"));
-    let size = [64u32, 64];
+    for scale in [1u32, 2] {
+        paint_and_check(&gpu, scale);
+    }
+}
+
+/// Paints four rectangles (64x64 points) at `scale` pixels per point and checks every pixel of
+/// the points that matter.
+fn paint_and_check(gpu: &Gpu, scale: u32) {
+    let size = [64 * scale, 64 * scale];
     let (red, green, blue) = (Color32::RED, Color32::GREEN, Color32::BLUE);
     let everything = rect([0.0, 0.0], [64.0, 64.0]);
     let prims = vec![
@@ -60,7 +69,7 @@ fn merged_draws_keep_every_clip_rectangle() {
         prims,
         textures: std::sync::Mutex::new(textures),
         size_px: size,
-        pixels_per_point: 1.0,
+        pixels_per_point: scale as f32,
     };
     let texture = canvas(&gpu.device, size, true);
     let view = texture.create_view(&Default::default());
@@ -69,13 +78,19 @@ fn merged_draws_keep_every_clip_rectangle() {
     // The cut mesh is a draw of its own; the two uncut blue ones after it share one.
     assert_eq!(painter.draw_calls(), 3);
     let image = armlab::render::read_texture_rgba(&gpu.device, &gpu.queue, &texture).unwrap();
-    let at = |x, y| {
-        Color32::from_rgba_premultiplied(
-            image.get_pixel(x, y)[0],
-            image.get_pixel(x, y)[1],
-            image.get_pixel(x, y)[2],
-            image.get_pixel(x, y)[3],
-        )
+    // The colour of every pixel of point (x, y).
+    let at = |x: u32, y: u32| {
+        let colours: Vec<Color32> = (0..scale * scale)
+            .map(|k| {
+                let p = image.get_pixel(x * scale + k % scale, y * scale + k / scale);
+                Color32::from_rgba_premultiplied(p[0], p[1], p[2], p[3])
+            })
+            .collect();
+        assert!(
+            colours.iter().all(|c| *c == colours[0]),
+            "point ({x}, {y}) at {scale} px/pt: {colours:?}"
+        );
+        colours[0]
     };
     assert_eq!(at(5, 5), red);
     assert_eq!(at(35, 35), green);
@@ -83,7 +98,7 @@ fn merged_draws_keep_every_clip_rectangle() {
     assert_eq!(at(39, 39), green);
     // Outside the green mesh's clip rectangle, though inside the mesh.
     for (x, y) in [(25, 25), (29, 35), (40, 35), (35, 40), (50, 50), (15, 35)] {
-        assert_eq!(at(x, y), Color32::BLACK, "({x}, {y})");
+        assert_eq!(at(x, y), Color32::BLACK, "({x}, {y}) at {scale} px/pt");
     }
     assert_eq!(at(50, 10), blue);
     assert_eq!(at(10, 50), blue);
