@@ -3,6 +3,7 @@
 
 pub mod closed_form;
 pub mod golden;
+pub mod render;
 
 use armlab::kinematics::Pose;
 use nalgebra::Matrix4;
