@@ -83,6 +83,8 @@ const CLASS_COLORS: [[u8; 3]; 6] = [
 ];
 const SEVERAL: [u8; 3] = [0, 158, 115];
 const PLAIN: [u8; 3] = [70, 110, 190];
+/// Pixels reached by too few samples to tell the postures (see [`super::raster::UNSURE`]).
+const UNSURE_GREY: [u8; 3] = [165, 165, 165];
 
 fn c32(c: [u8; 3]) -> Color32 {
     Color32::from_rgb(c[0], c[1], c[2])
@@ -135,6 +137,9 @@ fn class_palette(names: &[String]) -> (Vec<(String, Color32)>, impl Fn(u32) -> [
         legend.push(("several postures".into(), c32(SEVERAL)));
     }
     let palette = move |m: u32| {
+        if m == super::raster::UNSURE {
+            return [UNSURE_GREY[0], UNSURE_GREY[1], UNSURE_GREY[2], 235];
+        }
         let m = m & ((1u32 << n.max(1)) - 1);
         let c = if m.count_ones() == 1 {
             CLASS_COLORS[m.trailing_zeros() as usize]
@@ -494,8 +499,25 @@ pub fn workspace_figure(
                             .zip(classes.iter().copied().chain(std::iter::repeat(0))),
                     );
                     raster.close_holes();
+                    raster.mark_unsure(super::raster::MIN_EVIDENCE);
                     let (l, palette) = class_palette(&proj.class_names);
-                    legend = l;
+                    // Only what the picture shows: after `mark_unsure` an "X only" class may
+                    // have no pixel left.
+                    let shown = |mask: u32| raster.masks.contains(&mask);
+                    let several = raster
+                        .masks
+                        .iter()
+                        .any(|&m| m != super::raster::UNSURE && m.count_ones() > 1);
+                    let classes = l.len().min(proj.class_names.len());
+                    legend = l
+                        .into_iter()
+                        .enumerate()
+                        .filter(|(k, _)| if *k < classes { shown(1 << k) } else { several })
+                        .map(|(_, e)| e)
+                        .collect();
+                    if shown(super::raster::UNSURE) {
+                        legend.push(("too few samples to tell".into(), c32(UNSURE_GREY)));
+                    }
                     raster.to_image(palette)
                 }
                 ColorBy::Manipulability => {
