@@ -5,6 +5,7 @@
 pub mod figures;
 pub mod labels;
 pub mod offscreen;
+mod palette;
 pub mod plot2d;
 pub mod raster;
 pub mod ui_painter;

@@ -3,6 +3,7 @@
 //! shows them; a 3D point cloud; the joint-space rectangle of Fig. 2.29.
 
 use super::figures::{Figures, Scene3d};
+use super::palette::{CLASS_COLORS, PLAIN, c32, class_palette, sequential, shown_legend};
 use super::plot2d::{Area, Curve, Plot2d};
 use super::raster::ClassRaster;
 use super::{FigureError, Theme};
@@ -72,39 +73,6 @@ pub struct WsFigure {
     pub stats: WorkspaceStats,
 }
 
-/// Colours of posture classes (colour-blind safe), of "several postures", and of plain points.
-const CLASS_COLORS: [[u8; 3]; 6] = [
-    [0, 114, 178],
-    [230, 159, 0],
-    [204, 121, 167],
-    [86, 180, 233],
-    [213, 94, 0],
-    [240, 228, 66],
-];
-const SEVERAL: [u8; 3] = [0, 158, 115];
-const PLAIN: [u8; 3] = [70, 110, 190];
-/// Pixels reached by too few samples to tell the postures (see [`super::raster::UNSURE`]).
-const UNSURE_GREY: [u8; 3] = [165, 165, 165];
-
-fn c32(c: [u8; 3]) -> Color32 {
-    Color32::from_rgb(c[0], c[1], c[2])
-}
-
-/// A perceptually ordered map for t in [0, 1] (dark blue -> teal -> yellow).
-fn sequential(t: f32) -> [u8; 3] {
-    const STOPS: [[f32; 3]; 5] = [
-        [68.0, 1.0, 84.0],
-        [59.0, 82.0, 139.0],
-        [33.0, 145.0, 140.0],
-        [94.0, 201.0, 98.0],
-        [253.0, 231.0, 37.0],
-    ];
-    let x = t.clamp(0.0, 1.0) * 4.0;
-    let i = (x.floor() as usize).min(3);
-    let f = x - i as f32;
-    std::array::from_fn(|k| (STOPS[i][k] + (STOPS[i + 1][k] - STOPS[i][k]) * f).round() as u8)
-}
-
 fn padded(b: &Aabb, axes: [usize; 2], pad: f64) -> [f64; 4] {
     let (x0, x1, y0, y1) = (
         b.min[axes[0]],
@@ -123,34 +91,6 @@ fn raster_dims(size: [u32; 2], bounds: [f64; 4], max_cells: f64) -> [u32; 2] {
         .min((max_cells / aspect).sqrt())
         .max(16.0);
     [((h * aspect).round() as u32).max(16), h.round() as u32]
-}
-
-/// Legend and palette for class masks.
-fn class_palette(names: &[String]) -> (Vec<(String, Color32)>, impl Fn(u32) -> [u8; 4]) {
-    let n = names.len().min(CLASS_COLORS.len());
-    let mut legend: Vec<(String, Color32)> = (0..n)
-        .map(|k| (format!("{} only", names[k]), c32(CLASS_COLORS[k])))
-        .collect();
-    if n == 2 {
-        legend.push(("both postures".into(), c32(SEVERAL)));
-    } else if n > 2 {
-        legend.push(("several postures".into(), c32(SEVERAL)));
-    }
-    let palette = move |m: u32| {
-        if m == super::raster::UNSURE {
-            return [UNSURE_GREY[0], UNSURE_GREY[1], UNSURE_GREY[2], 235];
-        }
-        let m = m & ((1u32 << n.max(1)) - 1);
-        let c = if m.count_ones() == 1 {
-            CLASS_COLORS[m.trailing_zeros() as usize]
-        } else if m == 0 {
-            PLAIN
-        } else {
-            SEVERAL
-        };
-        [c[0], c[1], c[2], 235]
-    };
-    (legend, palette)
 }
 
 /// Makes a workspace figure. `progress(fraction)` is called as work proceeds.
@@ -501,23 +441,7 @@ pub fn workspace_figure(
                     raster.close_holes();
                     raster.mark_unsure(super::raster::MIN_EVIDENCE);
                     let (l, palette) = class_palette(&proj.class_names);
-                    // Only what the picture shows: after `mark_unsure` an "X only" class may
-                    // have no pixel left.
-                    let shown = |mask: u32| raster.masks.contains(&mask);
-                    let several = raster
-                        .masks
-                        .iter()
-                        .any(|&m| m != super::raster::UNSURE && m.count_ones() > 1);
-                    let classes = l.len().min(proj.class_names.len());
-                    legend = l
-                        .into_iter()
-                        .enumerate()
-                        .filter(|(k, _)| if *k < classes { shown(1 << k) } else { several })
-                        .map(|(_, e)| e)
-                        .collect();
-                    if shown(super::raster::UNSURE) {
-                        legend.push(("too few samples to tell".into(), c32(UNSURE_GREY)));
-                    }
+                    legend = shown_legend(l, proj.class_names.len(), &raster);
                     raster.to_image(palette)
                 }
                 ColorBy::Manipulability => {
