@@ -224,3 +224,36 @@ fn dh_cells_show_their_whole_entry() {
     }
     assert_eq!(checked, 30);
 }
+
+/// The live window renders its first 3D frame before the panels are laid out, so the arm is
+/// framed for a guessed viewport; once the real size is known (and the camera untouched) it is
+/// framed again and fits. A camera the user moved is kept when the size changes.
+#[test]
+fn the_arm_is_framed_for_the_viewport_it_is_shown_in() {
+    let mut app = AppUi::new(AppState::from_spec("anthropomorphic_spherical_wrist").unwrap());
+    app.frame_if_needed(); // as the first live frame does, at the initial guess
+    let guessed = app.camera;
+    let mut h = harness(app);
+    let app = h.state_mut();
+    let [w, hp] = app.viewport_px;
+    assert!(w < hp, "the view is taller than wide at 1280x800: {w}x{hp}");
+    app.frame_if_needed();
+    assert_ne!(app.camera, guessed, "framed again for the real size");
+    let pts = armlab::scene::arm_points(app.state.robot(), app.state.q()).unwrap();
+    for p in &pts {
+        let [x, y] = app
+            .camera
+            .project(p, w, hp)
+            .expect("in front of the camera");
+        assert!(
+            (0.0..w as f32).contains(&x) && (0.0..hp as f32).contains(&y),
+            "{p:?} at ({x}, {y}) outside the {w}x{hp} view"
+        );
+    }
+    // Moved by the user: a new size does not reframe.
+    app.camera.orbit(0.3, 0.1);
+    let moved = app.camera;
+    app.viewport_px = [w + 100, hp];
+    app.frame_if_needed();
+    assert_eq!(app.camera, moved);
+}

@@ -45,6 +45,9 @@ pub struct AppUi {
     /// Labels of the scene rendered last (drawn by egui over the 3D view).
     scene_labels: Vec<crate::scene::Label>,
     camera_fitted: bool,
+    /// Viewport size and camera right after the last framing: while the camera is untouched, a
+    /// new viewport size (the first layout, a resized window) frames the arm again.
+    framed: Option<([u32; 2], Camera)>,
     /// Set by the Screenshot button; the frame loop saves the window and clears it.
     pub screenshot_requested: bool,
     /// Window size in points, from the last layout (the screenshot button renders at it).
@@ -69,6 +72,7 @@ impl AppUi {
             workspace_texture: None,
             scene_labels: Vec::new(),
             camera_fitted: false,
+            framed: None,
             screenshot_requested: false,
             window_points: [1280.0, 800.0],
         }
@@ -91,6 +95,7 @@ impl AppUi {
     pub fn set_camera(&mut self, camera: Camera) {
         self.camera = camera;
         self.camera_fitted = true;
+        self.framed = None;
     }
 
     /// Frames the arm in the viewport.
@@ -107,6 +112,19 @@ impl AppUi {
             self.camera.fit_points(&pts, w.max(16), h.max(16), 0.7);
         }
         self.camera_fitted = true;
+        self.framed = Some((self.viewport_px, self.camera));
+    }
+
+    /// Frames the arm if it has not been framed yet, or if the viewport changed size since the
+    /// last framing and the user has not moved the camera since (the live window renders its
+    /// first 3D frame before the panels are laid out, at a guessed size).
+    pub fn frame_if_needed(&mut self) {
+        let resized = self
+            .framed
+            .is_some_and(|(size, camera)| size != self.viewport_px && camera == self.camera);
+        if !self.camera_fitted || resized {
+            self.fit();
+        }
     }
 
     /// Renders the 3D scene for the viewport at its last size; returns the image to show.
@@ -116,9 +134,7 @@ impl AppUi {
         registry: &mut dyn TextureRegistry,
         dark: bool,
     ) -> Option<ViewportImage> {
-        if !self.camera_fitted {
-            self.fit();
-        }
+        self.frame_if_needed();
         let dots = self.workspace.as_ref().and_then(|w| w.dots());
         let mut scene = build_scene(&self.state, dots, self.projector);
         let rendered = vp.render(registry, &scene, &self.camera, self.viewport_px, dark);
