@@ -28,34 +28,59 @@ fn targets(name: &str, n: usize) -> Vec<Target> {
         .collect()
 }
 
+/// The seeds of the success and timing figures: "near" (the target's own q moved by up to
+/// 0.1 rad or m per joint, then clamped), "zero", and "home" (the "ready" configuration).
+fn seeds(robot: &armlab::kinematics::Robot, q_true: &[f64], rng: &mut ChaCha8Rng) -> [Vec<f64>; 3] {
+    let near = q_true
+        .iter()
+        .zip(robot.limits())
+        .map(|(v, l)| (v + rng.random_range(-0.1..0.1)).clamp(l[0], l[1]))
+        .collect();
+    let home = robot.config("ready").expect("ready").to_vec();
+    [near, vec![0.0; robot.dof()], home]
+}
+
 fn numerical(c: &mut Criterion) {
     let opts = NumericalOptions::default();
     for name in ["puma560", "panda"] {
         let robot = built_in(name).expect("built-in");
-        let seed = robot.config("ready").expect("ready").to_vec();
-        let ts = targets(name, 2000);
-        // Per-solve distribution.
-        let mut times = Vec::with_capacity(ts.len());
-        let mut ok = 0;
-        for t in &ts {
-            let start = Instant::now();
-            let rep = solve(&robot, 0, t, &seed, &opts).expect("valid input");
-            times.push(start.elapsed().as_secs_f64() * 1e6);
-            ok += usize::from(rep.converged);
+        let mut rng = ChaCha8Rng::seed_from_u64(42);
+        let n = 2000;
+        let cases: Vec<(Target, [Vec<f64>; 3])> = (0..n)
+            .map(|_| {
+                let q: Vec<f64> = robot
+                    .limits()
+                    .iter()
+                    .map(|l| rng.random_range(l[0]..=l[1]))
+                    .collect();
+                let t = Target::Pose(robot.fk(&q).expect("fk"));
+                (t, seeds(&robot, &q, &mut rng))
+            })
+            .collect();
+        // Per-solve distribution, per seed.
+        for (k, seed_name) in ["near", "zero", "home"].iter().enumerate() {
+            let mut times = Vec::with_capacity(n);
+            let mut ok = 0;
+            for (t, s) in &cases {
+                let start = Instant::now();
+                let rep = solve(&robot, 0, t, &s[k], &opts).expect("valid input");
+                times.push(start.elapsed().as_secs_f64() * 1e6);
+                ok += usize::from(rep.converged);
+            }
+            times.sort_by(f64::total_cmp);
+            eprintln!(
+                "ik/numerical/{name}/{seed_name}: success {:.2} %, median {:.1} us, p95 {:.1} us (n = {n}, tol 1e-10)",
+                100.0 * ok as f64 / n as f64,
+                times[n / 2],
+                times[n * 95 / 100],
+            );
         }
-        times.sort_by(f64::total_cmp);
-        eprintln!(
-            "ik/numerical/{name}: success {:.2} %, median {:.1} us, p95 {:.1} us (n = {}, tol 1e-10)",
-            100.0 * ok as f64 / ts.len() as f64,
-            times[times.len() / 2],
-            times[times.len() * 95 / 100],
-            ts.len()
-        );
         let mut i = 0;
         c.bench_function(&format!("ik/numerical/{name}"), |b| {
             b.iter(|| {
-                i = (i + 1) % ts.len();
-                solve(&robot, 0, black_box(&ts[i]), &seed, &opts).expect("valid input")
+                i = (i + 1) % cases.len();
+                let (t, s) = &cases[i];
+                solve(&robot, 0, black_box(t), &s[2], &opts).expect("valid input")
             })
         });
     }
@@ -66,7 +91,7 @@ criterion_main!(benches);
 
 fn closed_form(c: &mut Criterion) {
     use armlab::kinematics::ik::ClosedForm;
-    use armlab::kinematics::ik::closed_form::RawSolutions;
+    use armlab::kinematics::ik::closed_form::{RawSolutions, Solutions, Verify};
     for name in ["puma560", "anthropomorphic_spherical_wrist"] {
         let robot = built_in(name).expect("built-in");
         let cf = ClosedForm::detect(&robot).expect("closed form");
@@ -86,6 +111,22 @@ fn closed_form(c: &mut Criterion) {
                     .expect("valid pose")
             })
         });
+        // The labelled calls, in the same run as the raw one: postures, wrapping, limit flags and
+        // duplicate removal (`Verify::Limits`); the same with every solution FK-verified
+        // (`Verify::Fk`); and the allocating `solve` (Vec, String labels) built on the latter.
+        let targets: Vec<Target> = poses.iter().map(|p| Target::Pose(*p)).collect();
+        let mut sols = Solutions::default();
+        for (label, verify) in [("labelled", Verify::Limits), ("labelled_fk", Verify::Fk)] {
+            let mut i = 0;
+            c.bench_function(&format!("ik/closed_form_{label}/{name}"), |b| {
+                b.iter(|| {
+                    i = (i + 1) % targets.len();
+                    cf.solve_into(&robot, black_box(&targets[i]), verify, &mut sols)
+                        .expect("valid pose");
+                    sols.len()
+                })
+            });
+        }
         let mut i = 0;
         c.bench_function(&format!("ik/closed_form_all_verified/{name}"), |b| {
             b.iter(|| {

@@ -205,7 +205,7 @@ pub fn robot_scale(robot: &Robot) -> f64 {
         JointGeometry::Dh { row, .. } => {
             row.a.abs()
                 + row.d.abs()
-                + if j.kind == JointKind::Prismatic {
+                + if j.kind == JointKind::Prismatic && j.limits[1].is_finite() {
                     j.limits[1].abs()
                 } else {
                     0.0

@@ -120,7 +120,11 @@ fn dh_edits_move_the_arm_and_invalid_text_is_kept_with_its_reason() {
             .1
             .iter()
             .zip(s.robot().limits())
-            .map(|(&(k, r, o), l)| (k, r, o, l))
+            .map(|(&(k, r, o), [lo, hi])| {
+                armlab::kinematics::DhJoint::new(k, r)
+                    .offset(o)
+                    .limits(lo, hi)
+            })
             .collect::<Vec<_>>(),
         Pose::identity(),
         Pose::identity(),

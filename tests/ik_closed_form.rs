@@ -50,19 +50,100 @@ fn detects_the_families_of_the_built_ins() {
         assert!(!c.name().is_empty());
         assert_eq!(c.dof(), robot(name).dof());
     }
-    for name in ["parallelogram", "dlr", "humanoid", "lwr4", "panda"] {
-        assert!(ClosedForm::detect(&robot(name)).is_none(), "{name}");
+    // Each arm without a closed form says why, naming the structural fact.
+    for (name, why) in [
+        ("parallelogram", "coupled"),
+        ("dlr", "7 joints"),
+        ("humanoid", "coupled"),
+        ("lwr4", "redundant"),
+        ("panda", "7 joints"),
+    ] {
+        let e = ClosedForm::detect(&robot(name))
+            .expect_err(name)
+            .to_string();
+        assert!(e.contains(why), "{name}: {e}");
     }
+}
+
+#[test]
+fn no_closed_form_names_the_failed_condition() {
+    // A Puma whose wrist axes do not meet: a5 = 0.1 m.
+    let puma = robot("puma560");
+    let (conv, table) = puma.dh_table().unwrap();
+    let rows = |edit: &dyn Fn(usize, &mut DhRow)| -> Vec<DhJoint> {
+        table
+            .iter()
+            .enumerate()
+            .map(|(i, &(kind, mut row, offset))| {
+                edit(i, &mut row);
+                DhJoint::new(kind, row).offset(offset)
+            })
+            .collect()
+    };
+    let build = |rows: Vec<DhJoint>| {
+        Robot::from_dh("edited", conv, &rows, Pose::identity(), Pose::identity()).unwrap()
+    };
+    let e = ClosedForm::detect(&build(rows(&|i, r| {
+        if i == 4 {
+            r.a = 0.1
+        }
+    })))
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.contains("do not intersect") && e.contains("a5 = 0.1 m"),
+        "{e}"
+    );
+    assert!(e.contains("no spherical wrist"), "{e}");
+    // Axes 4 and 5 not perpendicular.
+    let e = ClosedForm::detect(&build(rows(&|i, r| {
+        if i == 3 {
+            r.alpha = 1.0
+        }
+    })))
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("axes 4 and 5 are not perpendicular"), "{e}");
+    // Axes 2 and 3 not parallel: the wrist is fine, the arm is not.
+    let e = ClosedForm::detect(&build(rows(&|i, r| {
+        if i == 1 {
+            r.alpha = 0.3
+        }
+    })))
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.contains("joints 4-6 form a spherical wrist") && e.contains("alpha2"),
+        "{e}"
+    );
+    // Five joints.
+    let five: Vec<DhJoint> = rows(&|_, _| {}).into_iter().take(5).collect();
+    let e = ClosedForm::detect(&build(five)).unwrap_err().to_string();
+    assert!(e.starts_with("5 joints"), "{e}");
+    // A planar arm with a twisted axis.
+    let r = Robot::from_dh(
+        "twisted",
+        Convention::Standard,
+        &[rv(1.0, 0.0, 0.0, 0.0), rv(1.0, 0.4, 0.0, 0.0)],
+        Pose::identity(),
+        Pose::identity(),
+    )
+    .unwrap();
+    let e = ClosedForm::detect(&r).unwrap_err().to_string();
+    assert!(
+        e.contains("not a two-link planar arm") || e.contains("alpha"),
+        "{e}"
+    );
 }
 
 #[test]
 fn detection_ignores_the_name() {
     let mut r = robot("lwr4");
     r.name = "Puma 560".into();
-    assert!(ClosedForm::detect(&r).is_none());
+    assert!(ClosedForm::detect(&r).is_err());
     let mut p = robot("puma560");
     p.name = "KUKA LWR-IV".into();
-    assert!(ClosedForm::detect(&p).is_some());
+    assert!(ClosedForm::detect(&p).is_ok());
 }
 
 // ---------------------------------------------------------------- round trips (proptest)

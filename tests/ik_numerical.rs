@@ -214,3 +214,131 @@ fn invalid_input_is_an_error() {
     assert!(solve(&r, 0, &ok, &[0.0; 5], &NumericalOptions::default()).is_err());
     assert!(solve(&r, 4, &ok, &[0.0; 6], &NumericalOptions::default()).is_err());
 }
+
+/// The Puma with every joint's limits replaced (`None` = no limits).
+fn puma_with_limits(limits: Option<[f64; 2]>) -> Robot {
+    use armlab::kinematics::DhJoint;
+    let p = built_in("puma560").unwrap();
+    let (conv, table) = p.dh_table().unwrap();
+    let rows: Vec<DhJoint> = table
+        .iter()
+        .map(|&(k, row, off)| {
+            let j = DhJoint::new(k, row).offset(off);
+            match limits {
+                Some([lo, hi]) => j.limits(lo, hi),
+                None => j.unbounded(),
+            }
+        })
+        .collect();
+    Robot::from_dh("puma", conv, &rows, p.base, p.end_effectors()[0].tool).unwrap()
+}
+
+#[test]
+fn lm_converges_beside_the_elbow_singularity() {
+    // The reported case: a goal 2.8 mrad from the Puma's folded-elbow singularity (q3 = pi/2 +
+    // atan(a3/d4) = 1.61778), where the wrist centre is also 0.5 mm from the shoulder axis. Its
+    // solutions have q3 = 1.6206 or 1.6150, outside the built-in Puma's q3 range [-225, 45] deg,
+    // so the test uses the same arm with [-pi, pi] limits, with none, and with limits ignored.
+    let pi = std::f64::consts::PI;
+    let arms = [
+        (puma_with_limits(Some([-pi, pi])), true),
+        (puma_with_limits(None), true),
+        (built_in("puma560").unwrap(), false),
+    ];
+    let seed = built_in("puma560")
+        .unwrap()
+        .config("ready")
+        .unwrap()
+        .to_vec();
+    let mut cases = 0;
+    for (robot, enforce) in &arms {
+        let opts = NumericalOptions {
+            enforce_limits: *enforce,
+            ..NumericalOptions::default()
+        };
+        for q3 in [1.6206, 1.6190, 1.6230, 1.6150] {
+            for (q1, q2, q4, q5, q6) in [
+                (0.0, 0.0, 0.0, 0.0, 0.0),
+                (0.3, 0.5, 0.4, 0.7, 0.2),
+                (-0.5, 1.0, -0.4, 0.3, 1.2),
+                (1.2, -0.3, 0.9, -1.1, -0.6),
+            ] {
+                let q = [q1, q2, q3, q4, q5, q6];
+                let goal = robot.fk(&q).unwrap();
+                let rep = solve(robot, 0, &Target::Pose(goal), &seed, &opts).unwrap();
+                let t = robot.fk(&rep.q).unwrap();
+                let dp = (t.translation.vector - goal.translation.vector).norm();
+                assert!(
+                    rep.converged && dp <= 1e-10 && rep.orientation_error <= 1e-10,
+                    "q = {q:?}, enforce {enforce}: {rep:?}"
+                );
+                cases += 1;
+            }
+        }
+    }
+    assert_eq!(cases, 48);
+    // With the built-in limits no solution exists, and the solver says so.
+    let puma = built_in("puma560").unwrap();
+    let goal = puma.fk(&[0.3, 0.5, 1.6206, 0.4, 0.7, 0.2]).unwrap();
+    let cf = armlab::kinematics::ik::ClosedForm::detect(&puma).unwrap();
+    let all = cf.solve(&puma, &Target::Pose(goal)).unwrap();
+    assert_eq!(all.solutions.len(), 8);
+    assert!(all.solutions.iter().all(|s| !s.within_limits));
+    let rep = solve(
+        &puma,
+        0,
+        &Target::Pose(goal),
+        &seed,
+        &NumericalOptions::default(),
+    )
+    .unwrap();
+    assert!(!rep.converged && rep.position_error > 1e-6, "{rep:?}");
+}
+
+#[test]
+fn joints_without_limits_do_not_hurt_the_solver() {
+    // A user who writes [-pi, pi] "to mean no limits", or gives none, gets a solver at least as
+    // good from a fixed seed as with the arm's real limits: first-attempt success (no restarts)
+    // over random reachable poses from the "ready" seed.
+    let pi = std::f64::consts::PI;
+    let puma = built_in("puma560").unwrap();
+    let seed = puma.config("ready").unwrap().to_vec();
+    let opts = NumericalOptions {
+        restarts: 0,
+        ..NumericalOptions::default()
+    };
+    let mut rng = ChaCha8Rng::seed_from_u64(7);
+    let goals: Vec<Pose> = (0..300)
+        .map(|_| puma.fk(&random_q(&puma, &mut rng)).unwrap())
+        .collect();
+    let rate = |r: &Robot| {
+        goals
+            .iter()
+            .filter(|g| {
+                solve(r, 0, &Target::Pose(**g), &seed, &opts)
+                    .unwrap()
+                    .converged
+            })
+            .count() as f64
+            / goals.len() as f64
+    };
+    let full = rate(&puma_with_limits(Some([-pi, pi])));
+    let none = rate(&puma_with_limits(None));
+    assert!(full >= 0.9, "[-pi, pi]: {full}");
+    assert!(none >= 0.9, "unbounded: {none}");
+    // Restarts of an unbounded arm draw from [-pi, pi] per revolute joint: finite answers.
+    let free = puma_with_limits(None);
+    let far = Pose::translation(5.0, 0.0, 0.0);
+    let rep = solve(
+        &free,
+        0,
+        &Target::Pose(far),
+        &seed,
+        &NumericalOptions::default(),
+    )
+    .unwrap();
+    assert!(
+        !rep.converged && rep.q.iter().all(|v| v.is_finite()),
+        "{rep:?}"
+    );
+}

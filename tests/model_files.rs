@@ -266,3 +266,35 @@ fn unreadable_file_is_reported() {
     assert!(matches!(err, ModelFileError::Read { .. }));
     assert!(err.to_string().contains("bad_models"), "{err}");
 }
+
+#[test]
+fn joints_without_limits_load_write_and_reload() {
+    let text = r#"
+name = "free arm"
+convention = "standard"
+[[joints]]
+type = "revolute"
+a = 1.0
+alpha = 0.0
+d = 0.0
+limits = "none"
+[[joints]]
+type = "prismatic"
+a = 0.0
+alpha = 0.0
+theta = 0.0
+limits = "none"
+"#;
+    let robot = armlab::model_file::parse_model(text, std::path::Path::new("free.toml")).unwrap();
+    assert_eq!(robot.limits(), vec![armlab::kinematics::UNBOUNDED; 2]);
+    // The sampling ranges are finite: one turn, and the arm's scale either side of 0.
+    let [lo, hi] = robot.sampling_range(0);
+    assert!((hi - lo - std::f64::consts::TAU).abs() < 1e-15);
+    let [lo, hi] = robot.sampling_range(1);
+    assert!(lo.is_finite() && hi.is_finite() && lo < 0.0 && hi > 0.0);
+    let written = armlab::model_file::to_toml(&robot).unwrap();
+    assert!(written.contains("limits = \"none\""), "{written}");
+    let back =
+        armlab::model_file::parse_model(&written, std::path::Path::new("back.toml")).unwrap();
+    assert_eq!(back.limits(), robot.limits());
+}

@@ -2,7 +2,7 @@
 
 use armlab::kinematics::dh::{modified_to_standard, standard_to_modified};
 use armlab::kinematics::models::{BUILT_INS, built_in};
-use armlab::kinematics::{Convention, EulerKind, Robot};
+use armlab::kinematics::{Convention, DhJoint, EulerKind, Robot};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -118,7 +118,7 @@ fn dh_conversions_preserve_fk() {
         };
         let spec: Vec<_> = rows
             .iter()
-            .map(|(k, row, off)| (*k, *row, *off, [-1.0, 1.0]))
+            .map(|(k, row, off)| DhJoint::new(*k, *row).offset(*off).limits(-1.0, 1.0))
             .collect();
         let dh: Vec<_> = rows.iter().map(|x| x.1).collect();
         let tool = r.end_effectors()[0].tool;
@@ -128,7 +128,7 @@ fn dh_conversions_preserve_fk() {
                 let spec: Vec<_> = spec
                     .iter()
                     .zip(m)
-                    .map(|(s, row)| (s.0, row, s.2, s.3))
+                    .map(|(s, row)| DhJoint { row, ..s.clone() })
                     .collect();
                 Robot::from_dh("m", Convention::Modified, &spec, r.base, extra * tool).unwrap()
             }
@@ -137,7 +137,7 @@ fn dh_conversions_preserve_fk() {
                 let spec: Vec<_> = spec
                     .iter()
                     .zip(s)
-                    .map(|(s, row)| (s.0, row, s.2, s.3))
+                    .map(|(s, row)| DhJoint { row, ..s.clone() })
                     .collect();
                 Robot::from_dh("s", Convention::Standard, &spec, r.base * extra, tool).unwrap()
             }

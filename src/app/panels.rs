@@ -259,6 +259,17 @@ pub fn right(app: &mut AppUi, ui: &mut egui::Ui) {
         }
         ui.separator();
         ui.heading("Inverse kinematics");
+        let analyzer = app.state.analyzer();
+        match (analyzer.family(), analyzer.why_no_closed_form()) {
+            (Some(f), _) => ui.label(RichText::new(format!("closed form: {f}")).small()),
+            (None, why) => ui.label(
+                RichText::new(format!(
+                    "numerical (Levenberg-Marquardt); no closed form: {}",
+                    why.unwrap_or("-")
+                ))
+                .small(),
+            ),
+        };
         let mut lock = app.state.lock();
         if ui
             .checkbox(&mut lock, "Lock posture while dragging (L)")

@@ -172,6 +172,7 @@ impl SingularityReport {
 #[derive(Debug, Clone)]
 pub struct SingularityAnalyzer {
     family: Option<Family>,
+    no_closed_form: Option<String>,
     task_rank: Vec<usize>,
     scale: f64,
 }
@@ -186,14 +187,24 @@ struct Axis {
 impl SingularityAnalyzer {
     /// Detects the family and the task rank of every end-effector.
     pub fn new(robot: &Robot) -> Self {
-        let family = if robot.end_effectors().len() == 1 {
-            ClosedForm::detect(robot).map(|cf| *cf.family())
+        let (family, no_closed_form) = if robot.end_effectors().len() == 1 {
+            match ClosedForm::detect(robot) {
+                Ok(cf) => (Some(*cf.family()), None),
+                Err(e) => (None, Some(e.to_string())),
+            }
         } else {
-            None
+            (
+                None,
+                Some(format!(
+                    "{} end-effectors: the closed forms solve a single chain",
+                    robot.end_effectors().len()
+                )),
+            )
         };
         let scale = crate::scene::robot_scale(robot);
         let mut me = Self {
             family,
+            no_closed_form,
             task_rank: Vec::new(),
             scale,
         };
@@ -212,6 +223,11 @@ impl SingularityAnalyzer {
     /// The closed-form family the geometric kinds are based on, if any.
     pub fn family(&self) -> Option<Family> {
         self.family
+    }
+
+    /// Why the robot has no closed form (`None` when it has one), in words.
+    pub fn why_no_closed_form(&self) -> Option<&str> {
+        self.no_closed_form.as_deref()
     }
 
     /// Task rank of end-effector `ee` (0 for an unknown index).
@@ -486,7 +502,7 @@ fn ratio_of(sv: &[f64], rank: usize) -> f64 {
 /// A deterministic configuration inside the limits (golden-ratio sequence).
 fn sample_q(robot: &Robot, s: usize) -> Vec<f64> {
     robot
-        .limits()
+        .sampling_ranges()
         .iter()
         .enumerate()
         .map(|(k, [lo, hi])| {

@@ -312,7 +312,8 @@ impl AppState {
     /// The limits of `q[k]` in display units (the slider's range).
     pub fn joint_display_limits(&self, k: usize) -> Result<[f64; 2], StateError> {
         let quantity = self.joint_quantity(k)?;
-        let [lo, hi] = self.robot.dof_joint(k).limits;
+        // A joint without limits gets a slider over one turn (or the arm's scale for a slide).
+        let [lo, hi] = self.robot.sampling_range(k);
         Ok([
             quantity.to_display(lo, self.angle_unit),
             quantity.to_display(hi, self.angle_unit),

@@ -2,6 +2,7 @@
 
 use super::fk::{fmt_vec, write_pose};
 use super::{CliError, Format, JointInput, joint_vectors};
+use crate::kinematics::ik::ClosedForm;
 use crate::kinematics::models::{BUILT_INS, DEFAULT_MODEL};
 use crate::kinematics::pose::pose_to_rows;
 use crate::kinematics::{EulerKind, JointGeometry, JointKind, Robot};
@@ -84,6 +85,10 @@ pub(super) fn run(
                 })
             })
             .collect();
+        let (family, why_not) = match ClosedForm::detect(&robot) {
+            Ok(cf) => (Some(cf.name()), None),
+            Err(e) => (None, Some(e.to_string())),
+        };
         let v = json!({
             "name": robot.name,
             "description": robot.description,
@@ -91,6 +96,8 @@ pub(super) fn run(
             "limits": robot.limits(),
             "q": q,
             "end_effectors": ees,
+            "closed_form": family,
+            "no_closed_form": why_not,
         });
         serde_json::to_writer_pretty(&mut *out, &v).map_err(std::io::Error::from)?;
         writeln!(out)?;
@@ -103,6 +110,14 @@ pub(super) fn run(
     writeln!(out)?;
     for c in &robot.configurations {
         writeln!(out, "configuration {:<8} q = {}", c.name, fmt_vec(&c.q))?;
+    }
+    writeln!(out)?;
+    match ClosedForm::detect(&robot) {
+        Ok(cf) => writeln!(out, "inverse kinematics: closed form ({})", cf.name())?,
+        Err(e) => writeln!(
+            out,
+            "inverse kinematics: numerical only; no closed form: {e}"
+        )?,
     }
     writeln!(out)?;
     writeln!(out, "at q = {}", fmt_vec(q))?;
@@ -155,6 +170,9 @@ fn write_table(robot: &Robot, out: &mut dyn Write) -> std::io::Result<()> {
             JointGeometry::Origin { .. } => (f64::NAN, f64::NAN, f64::NAN, f64::NAN, "urdf"),
         };
         let lim = match j.kind {
+            _ if j.limits.iter().all(|v| v.is_infinite()) && j.kind != JointKind::Fixed => {
+                "none".into()
+            }
             JointKind::Revolute => format!(
                 "[{:.1}, {:.1}] deg",
                 j.limits[0].to_degrees(),

@@ -25,7 +25,11 @@ impl Convention {
     }
 }
 
-/// One row of a DH table. Lengths in metres, angles in radians.
+/// One row of a DH table, in the order of the textbook's tables (Tables 2.1-2.8: a_i, alpha_i,
+/// d_i, theta_i). Lengths in metres, angles in radians.
+///
+/// Build it with named fields, so that a and d cannot be swapped:
+/// `DhRow { a: 0.4318, alpha: 0.0, d: 0.0, theta: 0.0 }`. [`DhRow::default`] is all zeros.
 ///
 /// For a revolute joint `theta` is ignored at evaluation time (theta = q + offset); for a
 /// prismatic joint `d` is ignored (d = q + offset). For a fixed row both are used as stored.
@@ -41,12 +45,21 @@ pub struct DhRow {
     pub theta: f64,
 }
 
-impl DhRow {
-    /// A row from its four parameters.
-    pub const fn new(a: f64, alpha: f64, d: f64, theta: f64) -> Self {
-        Self { a, alpha, d, theta }
+impl std::fmt::Display for DhRow {
+    /// `a = 0.4318 m, alpha = -90°, d = 0.15005 m, theta = 0°` (angles shown in degrees).
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "a = {} m, alpha = {}°, d = {} m, theta = {}°",
+            self.a,
+            self.alpha.to_degrees(),
+            self.d,
+            self.theta.to_degrees()
+        )
     }
+}
 
+impl DhRow {
     /// The homogeneous transform `A_i` of this row with the given `theta` and `d` (the caller
     /// has already put the joint variable into one of them), eq. (2.52) for the standard
     /// convention.
@@ -69,7 +82,12 @@ pub fn standard_to_modified(rows: &[DhRow]) -> (Vec<DhRow>, Pose) {
     let mut out = Vec::with_capacity(rows.len());
     let mut prev = (0.0, 0.0);
     for r in rows {
-        out.push(DhRow::new(prev.0, prev.1, r.d, r.theta));
+        out.push(DhRow {
+            a: prev.0,
+            alpha: prev.1,
+            d: r.d,
+            theta: r.theta,
+        });
         prev = (r.a, r.alpha);
     }
     (out, trans_x(prev.0) * rot_x(prev.1))
@@ -87,7 +105,12 @@ pub fn modified_to_standard(rows: &[DhRow]) -> (Pose, Vec<DhRow>) {
     };
     for (i, r) in rows.iter().enumerate() {
         let (a, alpha) = rows.get(i + 1).map_or((0.0, 0.0), |n| (n.a, n.alpha));
-        out.push(DhRow::new(a, alpha, r.d, r.theta));
+        out.push(DhRow {
+            a,
+            alpha,
+            d: r.d,
+            theta: r.theta,
+        });
     }
     (base_extra, out)
 }

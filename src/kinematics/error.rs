@@ -60,7 +60,7 @@ pub enum ModelError {
     },
     /// Lower limit above upper limit, or a non-finite limit.
     #[error(
-        "joint {joint}: limits [{lower}, {upper}] are not an interval (need lower <= upper, both finite)"
+        "joint {joint}: limits [{lower}, {upper}] are not an interval (need lower <= upper, not NaN; an infinite bound means no limit on that side)"
     )]
     BadLimits {
         /// Zero-based joint index.

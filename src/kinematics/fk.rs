@@ -1,7 +1,7 @@
 //! Direct kinematics, eq. (2.50): the pose of every joint frame and of each end-effector.
 
 use super::error::KinematicsError;
-use super::frame::Frame;
+pub(crate) use super::frame::Frame;
 use super::pose::Pose;
 use super::robot::{Drive, Lowered, Motion, Robot};
 use nalgebra::{Matrix3, Rotation3, Translation3, Vector3};
@@ -125,6 +125,60 @@ impl Robot {
         f.point_of(&e.tool)
     }
 
+    /// The frame of end-effector `ee`'s parent joint (the flange: apply the end-effector's `tool`
+    /// for the tool frame), as [`Self::fk_ee`] computes it, for joint vectors that often share their first `split` components (the
+    /// closed-form solutions of one arm branch with the two wrist solutions): the frame after
+    /// the chain's joints driven by `q[..split]` (and the fixed rows among them) is kept in
+    /// `shared` and reused while those components are equal. Same result to the last bit as
+    /// `fk_ee`, since the same products are taken in the same order.
+    pub(crate) fn fk_ee_shared(
+        &self,
+        q: &[f64],
+        ee: usize,
+        shared: &mut SharedPrefix,
+    ) -> Result<Frame, KinematicsError> {
+        self.check_q(q)?;
+        let e = self
+            .end_effectors()
+            .get(ee)
+            .ok_or(KinematicsError::NoSuchEndEffector {
+                index: ee,
+                count: self.end_effectors().len(),
+            })?;
+        let chain = &self.chains[e.parent];
+        let split = shared.split.min(q.len());
+        let (mut f, start) = match shared.frame {
+            Some(f) if shared.ee == ee && shared.key[..split] == q[..split] => (f, shared.pos),
+            _ => {
+                let mut f = Frame::from_pose(&self.base);
+                let mut pos = 0;
+                for &j in chain {
+                    let l = &self.lowered[j];
+                    let in_prefix = match (l.dof, &self.joints()[j].drive) {
+                        (Some(k), _) => k < split,
+                        (None, Drive::None) => true,
+                        _ => false,
+                    };
+                    if !in_prefix {
+                        break;
+                    }
+                    f.apply(l, self.variable_of(j, l, q));
+                    pos += 1;
+                }
+                shared.frame = Some(f);
+                shared.pos = pos;
+                shared.ee = ee;
+                shared.key[..split].copy_from_slice(&q[..split]);
+                (f, pos)
+            }
+        };
+        for &j in &chain[start..] {
+            let l = &self.lowered[j];
+            f.apply(l, self.variable_of(j, l, q));
+        }
+        Ok(f)
+    }
+
     /// `world_from_tool` of the first end-effector.
     pub fn fk(&self, q: &[f64]) -> Result<Pose, KinematicsError> {
         self.fk_ee(q, 0)
@@ -138,6 +192,29 @@ impl Robot {
             .iter()
             .map(|e| frames[e.parent] * e.tool)
             .collect())
+    }
+}
+
+/// The cached leading frame of [`Robot::fk_ee_shared`].
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct SharedPrefix {
+    split: usize,
+    key: [f64; 8],
+    frame: Option<Frame>,
+    pos: usize,
+    ee: usize,
+}
+
+impl SharedPrefix {
+    /// A cache of the frame after the joints driven by `q[..split]` (at most 8).
+    pub(crate) fn new(split: usize) -> Self {
+        Self {
+            split: split.min(8),
+            key: [0.0; 8],
+            frame: None,
+            pos: 0,
+            ee: 0,
+        }
     }
 }
 

@@ -45,6 +45,24 @@ impl Frame {
         std::array::from_fn(|k| self.t[k] + c0[k] * v.x + c1[k] * v.y + c2[k] * v.z)
     }
 
+    /// `R^T g` for this frame's rotation R: the rotation from this frame to `g`'s.
+    #[inline(always)]
+    pub(crate) fn rotation_to(&self, g: &Matrix3<f64>) -> Matrix3<f64> {
+        let dot = |c: &[f64; 3], j: usize| c[0] * g[(0, j)] + c[1] * g[(1, j)] + c[2] * g[(2, j)];
+        let [c0, c1, c2] = &self.r;
+        Matrix3::new(
+            dot(c0, 0),
+            dot(c0, 1),
+            dot(c0, 2),
+            dot(c1, 0),
+            dot(c1, 1),
+            dot(c1, 2),
+            dot(c2, 0),
+            dot(c2, 1),
+            dot(c2, 2),
+        )
+    }
+
     /// Back to a pose.
     #[inline(always)]
     pub(crate) fn to_pose(self) -> Pose {

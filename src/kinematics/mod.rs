@@ -21,4 +21,7 @@ pub use error::{KinematicsError, ModelError};
 pub use jacobian::JacobianAnalysis;
 pub use orientation::EulerKind;
 pub use pose::Pose;
-pub use robot::{Drive, EndEffector, Joint, JointGeometry, JointId, JointKind, NamedConfig, Robot};
+pub use robot::{
+    DhJoint, Drive, EndEffector, Joint, JointGeometry, JointId, JointKind, NamedConfig, Robot,
+    UNBOUNDED,
+};

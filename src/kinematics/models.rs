@@ -7,7 +7,7 @@
 
 use super::dh::{Convention, DhRow};
 use super::pose::{Pose, rot_x, rot_z, trans_x, trans_y, trans_z};
-use super::robot::{Drive, EndEffector, Joint, JointGeometry, JointKind, Robot};
+use super::robot::{DhJoint, Drive, EndEffector, Joint, JointGeometry, JointKind, Robot};
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_3, FRAC_PI_4, FRAC_PI_6, PI};
 
 /// Name of the robot used when none is given: the anthropomorphic arm with spherical wrist.
@@ -114,10 +114,11 @@ const R: JointKind = JointKind::Revolute;
 const P: JointKind = JointKind::Prismatic;
 const FULL: [f64; 2] = [-PI, PI];
 
-type Row = (JointKind, DhRow, f64, [f64; 2]);
+type Row = DhJoint;
 
-fn row(kind: JointKind, a: f64, alpha: f64, d: f64, theta: f64, limits: [f64; 2]) -> Row {
-    (kind, DhRow::new(a, alpha, d, theta), 0.0, limits)
+/// A row in the column order of the textbook's tables: a, alpha, d, theta, then the limits.
+fn row(kind: JointKind, a: f64, alpha: f64, d: f64, theta: f64, [lo, hi]: [f64; 2]) -> Row {
+    DhJoint::new(kind, DhRow { a, alpha, d, theta }).limits(lo, hi)
 }
 
 fn serial(name: &str, conv: Convention, rows: &[Row], tool: Pose, description: &str) -> Robot {
@@ -171,7 +172,12 @@ pub fn planar3() -> Robot {
 pub fn parallelogram() -> Robot {
     let (a1p, a1pp, a4) = (0.2, 0.6, 0.5);
     let dh = |a: f64| JointGeometry::Dh {
-        row: DhRow::new(a, 0.0, 0.0, 0.0),
+        row: DhRow {
+            a,
+            alpha: 0.0,
+            d: 0.0,
+            theta: 0.0,
+        },
         convention: Convention::Standard,
     };
     let joints = vec![
@@ -380,7 +386,12 @@ pub fn dlr() -> Robot {
 /// give the modified seventh row of Problem 2.14, so the DLR row is kept with a longer hand).
 pub fn humanoid() -> Robot {
     let dh = |a: f64, alpha: f64, d: f64| JointGeometry::Dh {
-        row: DhRow::new(a, alpha, d, 0.0),
+        row: DhRow {
+            a,
+            alpha,
+            d,
+            theta: 0.0,
+        },
         convention: Convention::Standard,
     };
     let mut joints = vec![

@@ -250,6 +250,10 @@ pub fn angular_velocity_map(kind: EulerKind, a: &Vector3<f64>) -> Matrix3<f64> {
 
 /// Wraps an angle into (-pi, pi].
 pub fn wrap_angle(a: f64) -> f64 {
+    if a > -PI && a <= PI {
+        // Already inside: returned as is (the shifted form below would round tiny angles).
+        return a;
+    }
     let w = (a + PI).rem_euclid(2.0 * PI) - PI;
     if w == -PI { PI } else { w }
 }

@@ -87,7 +87,14 @@ pub struct Joint {
     pub offset: f64,
     /// How the joint's value is obtained.
     pub drive: Drive,
-    /// Joint-variable limits `[lower, upper]` (rad or m) of an actuated joint.
+    /// Joint-variable limits `[lower, upper]` (rad or m) of an actuated joint; an infinite bound
+    /// means no limit on that side ([`UNBOUNDED`]: none at all).
+    ///
+    /// What limits do: closed-form IK returns every solution and flags those outside
+    /// (`within_limits`), wrapping revolute angles by 2 pi into the limits where possible;
+    /// numerical IK keeps every iterate inside (a revolute joint is first shifted by 2 pi into its
+    /// range, then clamped) and draws its restarts from [`Robot::sampling_range`]; workspace
+    /// sampling and the app's sliders use the same finite range.
     pub limits: [f64; 2],
 }
 
@@ -110,6 +117,92 @@ pub struct NamedConfig {
     /// Joint vector (rad or m).
     pub q: Vec<f64>,
 }
+
+/// One joint of a serial DH table for [`Robot::from_dh`]: its kind, its row, the joint offset and
+/// the limits, read like a row of the textbook's tables.
+///
+/// ```
+/// use armlab::kinematics::{DhJoint, DhRow};
+/// let elbow = DhJoint::revolute(DhRow { a: 0.4318, alpha: 0.0, d: 0.0, theta: 0.0 })
+///     .limits(-0.785, 3.927);
+/// let slide = DhJoint::prismatic(DhRow { a: 0.0, alpha: 0.0, d: 0.0, theta: 0.0 })
+///     .limits(0.0, 0.5);
+/// assert!(DhJoint::revolute(DhRow::default()).is_unbounded());
+/// # let _ = (elbow, slide);
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct DhJoint {
+    /// Revolute (theta = q + offset), prismatic (d = q + offset) or fixed.
+    pub kind: JointKind,
+    /// The row; its theta (revolute) or d (prismatic) is replaced by the joint variable.
+    pub row: DhRow,
+    /// Joint offset (rad or m), added to q.
+    pub offset: f64,
+    /// `[lower, upper]` (rad or m); infinite bounds mean no limit. Default: unbounded.
+    pub limits: [f64; 2],
+    /// Joint name; `None` = `q1`, `q2`, ...
+    pub name: Option<String>,
+}
+
+impl DhJoint {
+    /// A joint of the given kind with this row, no offset, no limits.
+    pub fn new(kind: JointKind, row: DhRow) -> Self {
+        Self {
+            kind,
+            row,
+            offset: 0.0,
+            limits: UNBOUNDED,
+            name: None,
+        }
+    }
+
+    /// A revolute joint (theta = q + offset).
+    pub fn revolute(row: DhRow) -> Self {
+        Self::new(JointKind::Revolute, row)
+    }
+
+    /// A prismatic joint (d = q + offset).
+    pub fn prismatic(row: DhRow) -> Self {
+        Self::new(JointKind::Prismatic, row)
+    }
+
+    /// A fixed row (no variable).
+    pub fn fixed(row: DhRow) -> Self {
+        Self::new(JointKind::Fixed, row)
+    }
+
+    /// Sets the joint offset (rad or m).
+    pub fn offset(mut self, offset: f64) -> Self {
+        self.offset = offset;
+        self
+    }
+
+    /// Sets the limits `lower <= q <= upper` (rad or m; `f64::INFINITY` for an open side).
+    pub fn limits(mut self, lower: f64, upper: f64) -> Self {
+        self.limits = [lower, upper];
+        self
+    }
+
+    /// Removes the limits.
+    pub fn unbounded(mut self) -> Self {
+        self.limits = UNBOUNDED;
+        self
+    }
+
+    /// Sets the joint's name.
+    pub fn name(mut self, name: impl Into<String>) -> Self {
+        self.name = Some(name.into());
+        self
+    }
+
+    /// Whether both bounds are infinite.
+    pub fn is_unbounded(&self) -> bool {
+        self.limits == UNBOUNDED
+    }
+}
+
+/// The limits of a joint without limits: `[-inf, +inf]`.
+pub const UNBOUNDED: [f64; 2] = [f64::NEG_INFINITY, f64::INFINITY];
 
 /// The joint motion after lowering.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -248,13 +341,13 @@ impl Robot {
         })
     }
 
-    /// A serial DH chain: joint i's parent is joint i-1, one end-effector with `tool`.
-    ///
-    /// `rows[i] = (kind, row, offset, limits)`.
+    /// A serial DH chain: joint i's parent is joint i-1, one end-effector `tool`
+    /// (`flange_from_tool`) on the last joint, `base` = `world_from_base`. Joints are named
+    /// `q1`, `q2`, ... unless [`DhJoint::name`] is given.
     pub fn from_dh(
         name: impl Into<String>,
         convention: Convention,
-        rows: &[(JointKind, DhRow, f64, [f64; 2])],
+        rows: &[DhJoint],
         base: Pose,
         tool: Pose,
     ) -> Result<Self, ModelError> {
@@ -262,22 +355,25 @@ impl Robot {
         let joints: Vec<Joint> = rows
             .iter()
             .enumerate()
-            .map(|(i, &(kind, row, offset, limits))| {
-                let drive = if kind == JointKind::Fixed {
+            .map(|(i, r)| {
+                let drive = if r.kind == JointKind::Fixed {
                     Drive::None
                 } else {
                     dof += 1;
                     Drive::Actuated(dof - 1)
                 };
                 Joint {
-                    name: format!("q{}", i + 1),
-                    kind,
+                    name: r.name.clone().unwrap_or_else(|| format!("q{}", i + 1)),
+                    kind: r.kind,
                     parent: i.checked_sub(1),
                     pre: Pose::identity(),
-                    geometry: JointGeometry::Dh { row, convention },
-                    offset,
+                    geometry: JointGeometry::Dh {
+                        row: r.row,
+                        convention,
+                    },
+                    offset: r.offset,
                     drive,
-                    limits,
+                    limits: r.limits,
                 }
             })
             .collect();
@@ -347,6 +443,56 @@ impl Robot {
             .iter()
             .map(|&j| self.joints[j].limits)
             .collect()
+    }
+
+    /// A finite range for drawing values of `q[k]` (numerical-IK restarts, workspace sampling,
+    /// sliders): the limits where both are finite; for a revolute joint an open side is closed
+    /// one turn (2 pi) from the other bound, or [-pi, pi] with no limits at all; for a prismatic
+    /// joint an open side lies [`Robot::characteristic_length`] from the other bound (or from 0).
+    pub fn sampling_range(&self, k: usize) -> [f64; 2] {
+        let j = &self.joints[self.dof_joint[k]];
+        let [lo, hi] = j.limits;
+        if lo.is_finite() && hi.is_finite() {
+            return [lo, hi];
+        }
+        let span = match j.kind {
+            JointKind::Revolute => std::f64::consts::TAU,
+            _ => 2.0 * self.characteristic_length(),
+        };
+        match (lo.is_finite(), hi.is_finite()) {
+            (true, false) => [lo, lo + span],
+            (false, true) => [hi - span, hi],
+            _ => [-0.5 * span, 0.5 * span],
+        }
+    }
+
+    /// [`Robot::sampling_range`] of every component of q.
+    pub fn sampling_ranges(&self) -> Vec<[f64; 2]> {
+        (0..self.dof()).map(|k| self.sampling_range(k)).collect()
+    }
+
+    /// A length that sets the robot's scale (m): the sum of every |a| and |d| of its DH rows, the
+    /// lengths of its URDF origins and the finite prismatic strokes, at least 1 m when there is
+    /// none. Used to bound open prismatic ranges.
+    pub fn characteristic_length(&self) -> f64 {
+        let mut sum = 0.0;
+        for j in &self.joints {
+            sum += j.pre.translation.vector.norm();
+            match &j.geometry {
+                JointGeometry::Dh { row, .. } => sum += row.a.abs() + row.d.abs(),
+                JointGeometry::Origin {
+                    parent_from_joint, ..
+                } => sum += parent_from_joint.translation.vector.norm(),
+            }
+            if j.kind == JointKind::Prismatic && j.limits.iter().all(|v| v.is_finite()) {
+                sum += j.limits[1] - j.limits[0];
+            }
+        }
+        if sum > 0.0 && sum.is_finite() {
+            sum
+        } else {
+            1.0
+        }
     }
 
     /// Whether `q` lies inside the limits (inclusive, with `tol` slack).
@@ -471,7 +617,7 @@ fn validate_joint(i: usize, j: &Joint, all: &[Joint]) -> Result<(), ModelError> 
     }
     if j.kind != JointKind::Fixed && matches!(j.drive, Drive::Actuated(_)) {
         let [lo, hi] = j.limits;
-        if !(lo.is_finite() && hi.is_finite() && lo <= hi) {
+        if lo.is_nan() || hi.is_nan() || lo > hi || lo == f64::INFINITY || hi == f64::NEG_INFINITY {
             return Err(ModelError::BadLimits {
                 joint: i,
                 lower: lo,

@@ -251,7 +251,7 @@ fn joint(
         parent,
         pre,
         geometry: JointGeometry::Dh {
-            row: DhRow::new(a, alpha, d, theta),
+            row: DhRow { a, alpha, d, theta },
             convention,
         },
         offset,
@@ -267,7 +267,17 @@ const FIXED_NO_VARIABLE: &str =
     "a fixed joint has no variable, so it takes no `offset`, `limits` or `couple`";
 
 fn limits_of(ctx: &Ctx, field: &str, v: &Val, angular: bool) -> Res<[f64; 2]> {
-    let a = ctx.array_n(field, v, 2, "2 values [lower, upper]")?;
+    if let toml::de::DeValue::String(s) = v.get_ref() {
+        if s == "none" {
+            return Ok(crate::kinematics::UNBOUNDED);
+        }
+        return Err(ctx.wrong_type(
+            field,
+            "2 values [lower, upper], or \"none\" for a joint without limits",
+            v,
+        ));
+    }
+    let a = ctx.array_n(field, v, 2, "2 values [lower, upper] (or \"none\")")?;
     let lower = ctx.scalar(&format!("{field}[1]"), &a[0], angular)?;
     let upper = ctx.scalar(&format!("{field}[2]"), &a[1], angular)?;
     if lower > upper {

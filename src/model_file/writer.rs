@@ -58,12 +58,16 @@ pub fn to_toml(robot: &Robot) -> Option<String> {
                 let _ = writeln!(s, "offset = {}", scalar(offset, revolute));
             }
             let [lo, hi] = j.limits;
-            let _ = writeln!(
-                s,
-                "limits = [{}, {}]",
-                scalar(lo, revolute),
-                scalar(hi, revolute)
-            );
+            if lo.is_infinite() && hi.is_infinite() {
+                let _ = writeln!(s, "limits = \"none\"");
+            } else {
+                let _ = writeln!(
+                    s,
+                    "limits = [{}, {}]",
+                    scalar(lo, revolute),
+                    scalar(hi, revolute)
+                );
+            }
         }
     }
     if !default_ee {

@@ -345,7 +345,7 @@ fn sampled_bounds(
     seed: u64,
     frame: Option<&PlanarFrame>,
 ) -> Result<Aabb, WorkspaceError> {
-    let limits = robot.limits();
+    let limits = robot.sampling_ranges();
     (0..samples.div_ceil(SAMPLE_CHUNK))
         .into_par_iter()
         .map(|c| {
@@ -400,7 +400,7 @@ fn sampling_grid(
         None => voxel_grid(b, n, 1e-9),
     };
     let classifier = PostureClassifier::for_end_effector(robot, ee);
-    let limits = robot.limits();
+    let limits = robot.sampling_ranges();
     let prog = Progress::new(progress);
     let cells = grid.len();
     let all = ((1u16 << classifier.class_count()) - 1) as u8;

@@ -167,7 +167,7 @@ pub fn planar_frame(robot: &Robot, ee: usize) -> Option<PlanarFrame> {
                 .coords,
         )
     };
-    let limits = robot.limits();
+    let limits = robot.sampling_ranges();
     let zero: Vec<f64> = limits.iter().map(|l| 0f64.clamp(l[0], l[1])).collect();
     let p0 = z_of(&zero)?;
     let mut rng = rng::Xoshiro256pp::stream(0x5EED, 0);

@@ -228,7 +228,9 @@ pub(super) fn planar_arm(robot: &Robot) -> Result<(PlanarFrame, usize), Workspac
             robot.name
         ))
     };
-    let cf = ClosedForm::detect(robot).ok_or_else(not)?;
+    let cf = ClosedForm::detect(robot).map_err(|e| {
+        WorkspaceError::NotPlanar(format!("{} has no planar closed form: {e}", robot.name))
+    })?;
     let n = match cf.family() {
         Family::Planar2 => 2,
         Family::Planar3 => 3,
@@ -446,7 +448,7 @@ pub fn planar_boundary(
         });
     }
     // Three links: each curve is (moving joint, fixed values of the other two).
-    let lim = robot.limits();
+    let lim = robot.sampling_ranges();
     let name = |k: usize, v: f64, why: &str| format!("q{} = {v:.6} rad ({why})", k + 1);
     let mut specs: Vec<(char, usize, [f64; 3], String)> = Vec::new();
     for mv in 0..3 {

@@ -75,7 +75,7 @@ impl PostureClassifier {
         if ee != 0 || robot.end_effectors().len() != 1 {
             return single;
         }
-        let Some(cf) = ClosedForm::detect(robot) else {
+        let Ok(cf) = ClosedForm::detect(robot) else {
             return single;
         };
         let kind = match cf.family() {
@@ -130,7 +130,7 @@ impl PostureClassifier {
 
     /// Whether two classifiers agree on 64 pseudo-random non-degenerate configurations.
     fn agrees_with(&self, other: &Self, robot: &Robot) -> bool {
-        let limits = robot.limits();
+        let limits = robot.sampling_ranges();
         let mut g = rng::Xoshiro256pp::stream(0xC1A55, 0);
         let mut q = vec![0.0; robot.dof()];
         let mut checked = 0;

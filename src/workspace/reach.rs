@@ -90,7 +90,7 @@ impl<'a> ReachTester<'a> {
         if robot.end_effectors().len() != 1 {
             return None;
         }
-        let cf = ClosedForm::detect(robot)?;
+        let cf = ClosedForm::detect(robot).ok()?;
         let frame = planar_frame(robot, 0);
         let mode = match cf.family() {
             Family::Planar2 => Mode::Position,

@@ -64,7 +64,7 @@ pub fn joint_rectangle(robot: &Robot) -> Result<JointRectangle, WorkspaceError> 
         ));
     }
     let mut ev = Eval::new(robot, frame);
-    let lim = robot.limits();
+    let lim = robot.sampling_ranges();
     let (l1, l2) = (lim[0], lim[1]);
     let singular = roots(|x| ev.cross(&[l1[0], x], 0, 1), l2[0], l2[1]);
     let mut b = vec![l2[0]];

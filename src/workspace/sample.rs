@@ -235,7 +235,7 @@ pub fn sample(
     // Only closed-form posture rules need the whole pose; otherwise the position suffices.
     let needs_pose = classifier.needs_pose();
     let task = Task::of(robot, ee);
-    let limits = robot.limits();
+    let limits = robot.sampling_ranges();
     let mut positions = vec![[0.0; 3]; n];
     let mut classes = opts.classes.then(|| vec![0u8; n]);
     let mut manip = opts.manipulability.then(|| vec![0f32; n]);

@@ -13,7 +13,7 @@ pub use armlab::kinematics::orientation::{
     wrap_angle, zyz_from_rotation, zyz_from_rotation_negative,
 };
 pub use armlab::kinematics::pose::{matrix_from_rows, pose_from_matrix, rot_x, rot_y, rot_z};
-pub use armlab::kinematics::{Convention, DhRow, JointKind, Pose, Robot};
+pub use armlab::kinematics::{Convention, DhJoint, DhRow, JointKind, Pose, Robot};
 pub use nalgebra::{Translation3, Vector3};
 pub use proptest::prelude::*;
 pub use serde_json::Value;
@@ -37,7 +37,7 @@ pub fn robot(name: &str) -> Robot {
 }
 
 pub fn cf(robot: &Robot) -> ClosedForm {
-    ClosedForm::detect(robot).unwrap_or_else(|| panic!("{}: no closed form", robot.name))
+    ClosedForm::detect(robot).unwrap_or_else(|e| panic!("{}: no closed form: {e}", robot.name))
 }
 
 /// Same configuration modulo 2 pi for revolute joints.
@@ -135,8 +135,13 @@ pub fn match_sets(robot: &Robot, ours: &IkResult, refs: &[Vec<f64>], tol: f64) -
 
 // ---------------------------------------------------------------- detection
 
-/// A DH row as `Robot::from_dh` takes it: kind, row, offset (rad or m), limits.
-pub type Row = (JointKind, DhRow, f64, [f64; 2]);
+/// A DH row as `Robot::from_dh` takes it.
+pub type Row = DhJoint;
+
+/// A DH joint from kind, row, offset (rad or m) and limits.
+pub fn dj(kind: JointKind, row: DhRow, offset: f64, [lo, hi]: [f64; 2]) -> Row {
+    DhJoint::new(kind, row).offset(offset).limits(lo, hi)
+}
 /// Short names for the joint kinds.
 pub const R: JointKind = JointKind::Revolute;
 /// Short names for the joint kinds.
@@ -146,7 +151,17 @@ pub const FULL: [f64; 2] = [-PI, PI];
 
 /// A revolute row with full limits.
 pub fn rv(a: f64, alpha: f64, d: f64, offset: f64) -> Row {
-    (R, DhRow::new(a, alpha, d, 0.0), offset, FULL)
+    dj(
+        R,
+        DhRow {
+            a,
+            alpha,
+            d,
+            theta: 0.0,
+        },
+        offset,
+        FULL,
+    )
 }
 
 /// A two-link planar arm with offsets 0.2 and -0.5 rad, on `base`, holding `tool`.

@@ -2,7 +2,9 @@
 #![allow(dead_code)]
 
 pub mod closed_form;
+#[cfg(feature = "app")]
 pub mod golden;
+#[cfg(feature = "app")]
 pub mod render;
 
 use armlab::kinematics::Pose;

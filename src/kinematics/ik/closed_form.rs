@@ -34,13 +34,18 @@ mod chain;
 mod family;
 mod planar;
 mod posture;
+mod solutions;
+mod why;
 mod wrist;
 
 pub use family::{ArmKind, Family};
 pub use posture::{Elbow, Extension, FreeReason, Posture, Shoulder, WristFlip};
+pub use solutions::{Solution, SolutionErrors, Solutions, Verify};
+pub use why::NoClosedForm;
 
 use super::{IkError, IkResult, IkSolution, IkStatus, Target, check_target};
-use crate::kinematics::orientation::{angle_axis_from_rotation, wrap_angle};
+use crate::kinematics::fk::SharedPrefix;
+use crate::kinematics::orientation::wrap_angle;
 use crate::kinematics::pose::{Pose, rot_z};
 use crate::kinematics::robot::Robot;
 use arm::{ArmSol, SpatialArm};
@@ -118,13 +123,11 @@ enum World {
 }
 
 impl World {
-    fn errors(&self, fk: &Pose) -> (f64, f64) {
+    /// The FK check of this target for a robot whose first end-effector holds `tool`.
+    fn check(&self, tool: Pose) -> solutions::Check {
         match self {
-            World::Pose(t) => (
-                (fk.translation.vector - t.translation.vector).norm(),
-                angle_axis_from_rotation(&(fk.rotation.inverse() * t.rotation)).angle,
-            ),
-            World::Point(p) => ((fk.translation.vector - p).norm(), 0.0),
+            World::Pose(t) => solutions::Check::new(tool, Some(t), t.translation.vector),
+            World::Point(p) => solutions::Check::new(tool, None, *p),
         }
     }
 }
@@ -162,10 +165,16 @@ pub struct ClosedForm {
 
 impl ClosedForm {
     /// Detects the family from the structure of the DH table (`robot.dh_table()`, joint kinds,
-    /// twists, vanishing lengths; base and tool are allowed), never from the robot's name. `None`
-    /// if the robot is not a serial DH chain with one actuated variable per joint or no family
-    /// matches (parallelogram, DLR, humanoid, LWR, Panda).
-    pub fn detect(robot: &Robot) -> Option<ClosedForm> {
+    /// twists, vanishing lengths; base and tool are allowed), never from the robot's name.
+    ///
+    /// When no family matches (parallelogram, DLR, humanoid, LWR, Panda, most URDF trees) the
+    /// error says why in words, e.g. "axes 4-6 do not intersect in one point: a5 = 0.1 m, not 0:
+    /// no spherical wrist, so position and orientation do not decouple".
+    pub fn detect(robot: &Robot) -> Result<ClosedForm, NoClosedForm> {
+        Self::detect_family(robot).ok_or_else(|| why::diagnose(robot))
+    }
+
+    fn detect_family(robot: &Robot) -> Option<ClosedForm> {
         let chain = chain::normalize(robot)?;
         let rows = &chain.rows;
         let n = rows.len();
@@ -273,6 +282,42 @@ impl ClosedForm {
     /// arm, the gap to the annulus for planar arms, the gap to the cylinder of the lateral offset
     /// for a Puma-like shoulder), or the tilt angle (rad) of a pose a SCARA cannot orient.
     pub fn solve(&self, robot: &Robot, target: &Target) -> Result<IkResult, IkError> {
+        let mut out = Solutions::default();
+        self.solve_into(robot, target, Verify::Fk, &mut out)?;
+        let solutions = out
+            .iter()
+            .map(|s| {
+                let e = s.errors.unwrap_or_default();
+                IkSolution {
+                    q: s.q().to_vec(),
+                    posture: s.posture.to_string(),
+                    within_limits: s.within_limits,
+                    position_error: e.position,
+                    orientation_error: e.orientation,
+                    free_joints: s.posture.free_joints(),
+                }
+            })
+            .collect();
+        Ok(IkResult {
+            status: out.status,
+            solutions,
+        })
+    }
+
+    /// Every solution for the target into `out`, labelled and flagged as [`Self::solve`] does,
+    /// without allocating: postures stay [`Posture`] values (their `Display` is the label),
+    /// revolute angles are wrapped into the limits, `within_limits` is set and duplicates are
+    /// removed in the same pass; with [`Verify::Fk`] each solution is also checked by the
+    /// robot's forward kinematics. `out` is cleared first; its `status` is set as in
+    /// [`IkResult::status`].
+    pub fn solve_into(
+        &self,
+        robot: &Robot,
+        target: &Target,
+        verify: Verify,
+        out: &mut Solutions,
+    ) -> Result<(), IkError> {
+        out.clear();
         check_target(target)?;
         if robot.dof() != self.dof {
             return Err(IkError::NoClosedForm(format!(
@@ -291,49 +336,48 @@ impl ClosedForm {
             } else {
                 d.max(0.0)
             };
-            return Ok(IkResult {
-                status: IkStatus::Unreachable { distance },
-                solutions: Vec::new(),
-            });
+            out.status = IkStatus::Unreachable { distance };
+            return Ok(());
         }
-        let limits = robot.limits();
-        let mut solutions: Vec<IkSolution> = Vec::with_capacity(raw.len);
+        let dof = self.dof;
+        let mut limits = [[0.0; 2]; MAX_DOF];
+        for (k, l) in limits[..dof].iter_mut().enumerate() {
+            *l = robot.dof_joint(k).limits;
+        }
         let mut singular = false;
-        for (q_raw, posture) in raw.iter(self.dof) {
-            if q_raw.iter().any(|v| !v.is_finite()) {
+        // The two wrist solutions of an arm branch share joints 1-3: their frame is reused.
+        let mut shared = SharedPrefix::new(if self.dof == 6 { 3 } else { 0 });
+        let check = world.check(robot.end_effectors()[0].tool);
+        for (q_raw, posture) in raw.q[..raw.len].iter().zip(&raw.postures) {
+            let Some((q, within)) = self.wrap_solution(q_raw, &limits) else {
                 continue;
-            }
-            let q: Vec<f64> = q_raw
-                .iter()
-                .zip(&limits)
-                .zip(&self.revolute)
-                .map(|((&v, &lim), &rev)| if rev { wrap_into_limits(v, lim) } else { v })
-                .collect();
+            };
             if posture.extension == Some(Extension::Reversed)
                 && let Some(j) = self.mirror_joint
                 && !(q[j] >= limits[j][0] - LIMIT_TOL && q[j] <= limits[j][1] + LIMIT_TOL)
             {
                 continue;
             }
-            if solutions
-                .iter()
-                .any(|s| same_configuration(&s.q, &q, &self.revolute))
+            // Two solutions of different branches can coincide only where a pair of postures
+            // merges or a joint is free (the flags are set within COS_TOL, i.e. ~1e-6 rad, far
+            // above DUPLICATE_TOL), so only then are they compared.
+            let degenerate = posture.is_degenerate();
+            if (degenerate || singular)
+                && out
+                    .iter()
+                    .any(|s| same_configuration_fast(s.q(), &q[..dof], &self.revolute[..dof]))
             {
                 continue;
             }
-            let fk = robot.fk(&q)?;
-            let (position_error, orientation_error) = world.errors(&fk);
-            singular |= posture.is_degenerate();
-            solutions.push(IkSolution {
-                within_limits: robot.within_limits(&q, LIMIT_TOL),
-                posture: posture.label(),
-                position_error,
-                orientation_error,
-                free_joints: posture.free_joints(),
-                q,
-            });
+            let mut s = Solution::new(q, dof, *posture);
+            s.within_limits = within;
+            if verify == Verify::Fk {
+                s.errors = Some(check.errors(&robot.fk_ee_shared(&q[..dof], 0, &mut shared)?));
+            }
+            singular |= degenerate;
+            out.push(s);
         }
-        let status = if solutions.is_empty() {
+        out.status = if out.is_empty() {
             IkStatus::Unreachable {
                 distance: f64::INFINITY,
             }
@@ -342,7 +386,34 @@ impl ClosedForm {
         } else {
             IkStatus::Ok
         };
-        Ok(IkResult { status, solutions })
+        Ok(())
+    }
+
+    /// A raw solution with its revolute angles wrapped into the limits, and whether it lies
+    /// inside them; `None` if it has a non-finite entry.
+    #[inline]
+    fn wrap_solution(
+        &self,
+        q_raw: &[f64; MAX_DOF],
+        limits: &[[f64; 2]; MAX_DOF],
+    ) -> Option<([f64; MAX_DOF], bool)> {
+        let mut q = [0.0; MAX_DOF];
+        let mut within = true;
+        for i in 0..self.dof {
+            let v = q_raw[i];
+            if !v.is_finite() {
+                return None;
+            }
+            let [lo, hi] = limits[i];
+            let w = if self.revolute[i] {
+                wrap_into_limits(v, [lo, hi])
+            } else {
+                v
+            };
+            within &= w >= lo - LIMIT_TOL && w <= hi + LIMIT_TOL;
+            q[i] = w;
+        }
+        Some((q, within))
     }
 
     /// The allocation-free core for a pose target `world_from_tool`: every solution (up to 8)
@@ -521,19 +592,68 @@ fn wrist_posture(singular: bool, k: usize) -> WristFlip {
 
 /// `q + 2 pi k` inside `[lo, hi]` (with [`LIMIT_TOL`] slack), the one nearest to 0 if several;
 /// `q` wrapped into (-pi, pi] when no shift fits.
+///
+/// The shifts are tried outwards from the wrapped angle (which is the nearest to 0), so no
+/// floating-point rounding call is needed in the common case of limits within a few turns.
+#[inline]
 pub fn wrap_into_limits(q: f64, [lo, hi]: [f64; 2]) -> f64 {
     let w = wrap_angle(q);
     let (lo, hi) = (lo - LIMIT_TOL, hi + LIMIT_TOL);
     if w >= lo && w <= hi {
         return w;
     }
+    if !(lo.is_finite() && hi.is_finite()) || hi - lo > 64.0 * TAU {
+        return wrap_into_limits_far(w, lo, hi);
+    }
+    // |w + k 2pi| grows with |k| on each side; alternate sides, nearer first.
+    let reach = lo.abs().max(hi.abs()) + TAU;
+    let mut k = 1.0;
+    while k * TAU - std::f64::consts::PI <= reach {
+        let (near, far) = if w > 0.0 {
+            (w - k * TAU, w + k * TAU)
+        } else {
+            (w + k * TAU, w - k * TAU)
+        };
+        if near >= lo && near <= hi {
+            return near;
+        }
+        if far >= lo && far <= hi {
+            return far;
+        }
+        k += 1.0;
+    }
+    w
+}
+
+/// [`wrap_into_limits`] for limits of many turns or with an open side.
+fn wrap_into_limits_far(w: f64, lo: f64, hi: f64) -> f64 {
     let k_lo = ((lo - w) / TAU).ceil();
     let k_hi = ((hi - w) / TAU).floor();
-    if k_lo > k_hi || !k_lo.is_finite() || !k_hi.is_finite() {
+    if k_lo > k_hi || k_lo.is_nan() || k_hi.is_nan() {
         return w;
     }
-    let c = w + 0f64.clamp(k_lo, k_hi) * TAU;
+    // The shift nearest to 0 in [k_lo, k_hi] (an open side is infinite and never chosen).
+    let k = 0f64.clamp(k_lo, k_hi);
+    let c = w + k * TAU;
     if c >= lo && c <= hi { c } else { w }
+}
+
+/// [`same_configuration`] without the floating-point remainder: a difference is compared with
+/// the nearest multiple of 2 pi found by a truncating conversion (the remainder is a library
+/// call that made duplicate removal the largest part of the labelled solve).
+#[inline]
+fn same_configuration_fast(a: &[f64], b: &[f64], revolute: &[bool]) -> bool {
+    a.iter().zip(b).zip(revolute).all(|((&x, &y), &rev)| {
+        let d = (x - y).abs();
+        if d < DUPLICATE_TOL {
+            return true;
+        }
+        if !rev || d > 1e6 {
+            return false;
+        }
+        let turns = (d / TAU + 0.5) as u64 as f64;
+        (d - turns * TAU).abs() < DUPLICATE_TOL
+    })
 }
 
 /// Whether two joint vectors are the same configuration: every revolute joint equal modulo

@@ -55,15 +55,16 @@ pub fn solve(
 ) -> Result<(IkResult, SolverUsed), IkError> {
     super::check_target(target)?;
     let cf = if ee == 0 && robot.end_effectors().len() == 1 {
-        ClosedForm::detect(robot)
+        ClosedForm::detect(robot).map_err(|e| e.to_string())
     } else {
-        None
+        Err(format!(
+            "end-effector {ee} of {}: the closed forms solve robots with a single end-effector",
+            robot.end_effectors().len()
+        ))
     };
     match (choice, cf) {
-        (SolverChoice::ClosedForm, None) => Err(IkError::NoClosedForm(
-            "no closed-form family matches this arm's structure".into(),
-        )),
-        (SolverChoice::Auto | SolverChoice::ClosedForm, Some(cf)) => {
+        (SolverChoice::ClosedForm, Err(why)) => Err(IkError::NoClosedForm(why)),
+        (SolverChoice::Auto | SolverChoice::ClosedForm, Ok(cf)) => {
             let mut result = cf.solve(robot, target)?;
             polish(robot, target, &mut result, opts)?;
             Ok((result, SolverUsed::ClosedForm(cf.name())))

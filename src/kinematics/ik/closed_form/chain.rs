@@ -2,10 +2,11 @@
 //! table is converted exactly, its first `Rx(alpha_0) Tx(a_0)` going into the base), leading and
 //! trailing fixed rows folded into the base and the tool, one row per joint variable.
 
+use super::why::NoClosedForm;
 use crate::kinematics::dh::{Convention, DhRow, modified_to_standard};
 use crate::kinematics::orientation::wrap_angle;
 use crate::kinematics::pose::{Pose, rot_x, rot_z, trans_x, trans_z};
-use crate::kinematics::robot::{Drive, JointKind, Robot};
+use crate::kinematics::robot::{Drive, JointGeometry, JointKind, Robot};
 use nalgebra::{Matrix3, Vector3};
 use std::f64::consts::{FRAC_PI_2, PI};
 
@@ -65,6 +66,8 @@ impl Twist {
 /// One joint of the normalised chain, standard DH: `A_i = Rz(theta) Tz(d) Tx(a) Rx(alpha)`, (2.52).
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Row {
+    /// Zero-based position in the chain (the joint variable's index).
+    pub index: usize,
     /// Revolute (theta = q + offset) or prismatic (d = q + offset).
     pub revolute: bool,
     /// Link length (m).
@@ -145,22 +148,37 @@ fn fixed(r: &DhRow) -> Pose {
 /// (no couplings) and whose first end-effector sits on the last joint; fixed rows are allowed
 /// only at the ends.
 pub(super) fn normalize(robot: &Robot) -> Option<Chain> {
-    let (conv, table) = robot.dh_table()?;
+    normalize_checked(robot).ok()
+}
+
+/// [`normalize`], saying why a robot has no normal form.
+pub(super) fn normalize_checked(robot: &Robot) -> Result<Chain, NoClosedForm> {
     let joints = robot.joints();
     for j in joints {
-        let ok = match (j.kind, &j.drive) {
-            (JointKind::Fixed, Drive::None) => true,
-            (JointKind::Fixed, _) => false,
-            (_, Drive::Actuated(_)) => true,
-            _ => false,
-        };
-        if !ok {
-            return None;
+        match (j.kind, &j.drive) {
+            (JointKind::Fixed, Drive::None) | (_, Drive::Actuated(_)) => {}
+            _ => return Err(NoClosedForm::Coupled(j.name.clone())),
         }
     }
-    let ee = robot.end_effectors().first()?;
+    for (i, j) in joints.iter().enumerate() {
+        let why = if j.parent != i.checked_sub(1) {
+            "a joint branches off an earlier one (the robot is a tree)"
+        } else if !matches!(j.geometry, JointGeometry::Dh { .. }) {
+            "a joint is given by a URDF origin and axis, not a DH row"
+        } else if j.pre != Pose::identity() {
+            "a joint has a constant `pre` transform before its DH row"
+        } else {
+            continue;
+        };
+        return Err(NoClosedForm::NotSerialDh(why));
+    }
+    let (conv, table) = robot.dh_table().ok_or(NoClosedForm::NotSerialDh(
+        "its DH rows mix the standard and modified conventions",
+    ))?;
+    let not_last = NoClosedForm::NotSerialDh("the first end-effector is not on the last joint");
+    let ee = robot.end_effectors().first().ok_or(not_last.clone())?;
     if ee.parent + 1 != joints.len() {
-        return None;
+        return Err(not_last);
     }
     let mut base = robot.base;
     let mut tool = ee.tool;
@@ -173,8 +191,15 @@ pub(super) fn normalize(robot: &Robot) -> Option<Chain> {
             rows
         }
     };
-    let first = table.iter().position(|r| r.0 != JointKind::Fixed)?;
-    let last = table.iter().rposition(|r| r.0 != JointKind::Fixed)?;
+    let moving = NoClosedForm::NotSerialDh("it has no moving joint");
+    let first = table
+        .iter()
+        .position(|r| r.0 != JointKind::Fixed)
+        .ok_or(moving.clone())?;
+    let last = table
+        .iter()
+        .rposition(|r| r.0 != JointKind::Fixed)
+        .ok_or(moving)?;
     for r in &rows[..first] {
         base *= fixed(r);
     }
@@ -185,11 +210,14 @@ pub(super) fn normalize(robot: &Robot) -> Option<Chain> {
     for i in first..=last {
         let (kind, _, offset) = table[i];
         if kind == JointKind::Fixed {
-            return None;
+            return Err(NoClosedForm::NotSerialDh(
+                "a fixed row lies between moving joints",
+            ));
         }
         let r = rows[i];
         let (sa, ca) = r.alpha.sin_cos();
         out.push(Row {
+            index: out.len(),
             revolute: kind == JointKind::Revolute,
             a: r.a,
             d: r.d,
@@ -200,7 +228,7 @@ pub(super) fn normalize(robot: &Robot) -> Option<Chain> {
             sa,
         });
     }
-    Some(Chain {
+    Ok(Chain {
         base,
         rows: out,
         tool,

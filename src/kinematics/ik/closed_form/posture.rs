@@ -120,40 +120,37 @@ pub struct Posture {
 }
 
 impl Posture {
-    /// Human-readable label, e.g. "shoulder right, elbow up, wrist no flip".
+    /// Human-readable label, e.g. "shoulder right, elbow up, wrist no flip" (the `Display`
+    /// text).
     pub fn label(&self) -> String {
-        let mut parts: Vec<&str> = Vec::with_capacity(4);
-        if let Some(s) = self.shoulder {
-            parts.push(match s {
-                Shoulder::Right => "shoulder right",
-                Shoulder::Left => "shoulder left",
-                Shoulder::OnAxis => "shoulder on axis",
-                Shoulder::Boundary => "shoulder boundary",
-            });
-        }
-        if let Some(e) = self.elbow {
-            parts.push(match e {
-                Elbow::Up => "elbow up",
-                Elbow::Down => "elbow down",
-                Elbow::Stretched => "elbow stretched",
-                Elbow::Folded => "elbow folded",
-            });
-        }
-        if let Some(x) = self.extension {
-            parts.push(match x {
-                Extension::Forward => "extension forward",
-                Extension::Reversed => "extension reversed",
-                Extension::Zero => "extension zero",
-            });
-        }
-        if let Some(w) = self.wrist {
-            parts.push(match w {
-                WristFlip::NoFlip => "wrist no flip",
-                WristFlip::Flip => "wrist flip",
-                WristFlip::Singular => "wrist singular",
-            });
-        }
-        parts.join(", ")
+        self.to_string()
+    }
+
+    /// The parts of the label, in order (no allocation).
+    pub fn parts(&self) -> impl Iterator<Item = &'static str> {
+        let shoulder = self.shoulder.map(|s| match s {
+            Shoulder::Right => "shoulder right",
+            Shoulder::Left => "shoulder left",
+            Shoulder::OnAxis => "shoulder on axis",
+            Shoulder::Boundary => "shoulder boundary",
+        });
+        let elbow = self.elbow.map(|e| match e {
+            Elbow::Up => "elbow up",
+            Elbow::Down => "elbow down",
+            Elbow::Stretched => "elbow stretched",
+            Elbow::Folded => "elbow folded",
+        });
+        let extension = self.extension.map(|x| match x {
+            Extension::Forward => "extension forward",
+            Extension::Reversed => "extension reversed",
+            Extension::Zero => "extension zero",
+        });
+        let wrist = self.wrist.map(|w| match w {
+            WristFlip::NoFlip => "wrist no flip",
+            WristFlip::Flip => "wrist flip",
+            WristFlip::Singular => "wrist singular",
+        });
+        [shoulder, elbow, extension, wrist].into_iter().flatten()
     }
 
     /// True on a degenerate solution: a free joint or a merged pair of postures.
@@ -177,5 +174,18 @@ impl Posture {
                 })
             })
             .collect()
+    }
+}
+
+impl std::fmt::Display for Posture {
+    /// The label: the parts joined by ", " ("shoulder right, elbow up, wrist no flip").
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        for (i, p) in self.parts().enumerate() {
+            if i > 0 {
+                f.write_str(", ")?;
+            }
+            f.write_str(p)?;
+        }
+        Ok(())
     }
 }
