@@ -38,7 +38,8 @@
 //!     Pose::identity(),
 //! )?;
 //! let world_from_tool = robot.fk(&[0.0, 0.3, -0.6])?;
-//! assert!((world_from_tool.translation.vector.norm() - 1.955).abs() < 1e-3);
+//! // In the arm's plane: a2 cos(q2) + a3 cos(q2 + q3) = 2 cos(0.3) from the shoulder.
+//! assert!((world_from_tool.translation.vector.norm() - 2.0 * 0.3f64.cos()).abs() < 1e-12);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 //!

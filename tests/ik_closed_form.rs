@@ -543,3 +543,130 @@ fn spherical_wrist_matches_the_zyz_functions() {
 }
 
 // ---------------------------------------------------------------- degenerate cases
+
+// ---------------------------------------------------------------- the allocation-free labelled call
+
+#[test]
+fn solve_into_matches_solve_and_an_independent_check() {
+    use armlab::kinematics::ik::closed_form::{Solutions, Verify};
+    let mut sols = Solutions::default();
+    let mut labels_only = Solutions::default();
+    for name in CLOSED_FORM {
+        let r = robot(name);
+        let c = cf(&r);
+        let mut rng = 0x1234_5678_u64;
+        for _ in 0..200 {
+            let u: Vec<f64> = (0..r.dof())
+                .map(|_| {
+                    rng = rng
+                        .wrapping_mul(6364136223846793005)
+                        .wrapping_add(1442695040888963407);
+                    (rng >> 11) as f64 / (1u64 << 53) as f64
+                })
+                .collect();
+            let q = q_in_limits(&r, &u);
+            let pose = r.fk(&q).unwrap();
+            let target = if position_only(c.family()) {
+                Target::Position(pose.translation.vector)
+            } else {
+                Target::Pose(pose)
+            };
+            let old = c.solve(&r, &target).unwrap();
+            c.solve_into(&r, &target, Verify::Fk, &mut sols).unwrap();
+            c.solve_into(&r, &target, Verify::Limits, &mut labels_only)
+                .unwrap();
+            assert_eq!(sols.status, old.status, "{name}");
+            assert_eq!(sols.len(), old.solutions.len(), "{name}");
+            assert_eq!(labels_only.len(), sols.len(), "{name}");
+            for ((s, o), l) in sols.iter().zip(&old.solutions).zip(&labels_only) {
+                assert_eq!(s.q(), o.q.as_slice(), "{name}");
+                assert_eq!(s.posture.to_string(), o.posture, "{name}");
+                assert_eq!(s.within_limits, o.within_limits, "{name}");
+                assert_eq!(l.q(), s.q(), "{name}");
+                assert!(l.errors.is_none(), "{name}: Limits does not verify");
+                // The errors against an FK and an angle computed here, independently.
+                let e = s.errors.expect("verified");
+                let t = r.fk(s.q()).unwrap();
+                let dp = match target {
+                    Target::Pose(p) => (t.translation.vector - p.translation.vector).norm(),
+                    Target::Position(p) => (t.translation.vector - p).norm(),
+                    Target::Planar { .. } => unreachable!(),
+                };
+                assert!(
+                    (e.position - dp).abs() < 1e-15,
+                    "{name}: {} vs {dp}",
+                    e.position
+                );
+                if let Target::Pose(p) = target {
+                    let m = t.rotation.matrix().transpose() * p.rotation.matrix();
+                    let angle = ((m.trace() - 1.0) / 2.0).clamp(-1.0, 1.0).acos();
+                    // acos loses half the digits near 0: compare to 1e-7.
+                    assert!((e.orientation - angle).abs() < 1e-7, "{name}");
+                }
+                assert!(e.position < 1e-9, "{name}: {e:?}");
+                assert_eq!(
+                    s.within_limits,
+                    r.within_limits(s.q(), armlab::kinematics::ik::closed_form::LIMIT_TOL),
+                    "{name}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn posture_labels_are_the_documented_text() {
+    use armlab::kinematics::ik::closed_form::{Elbow, Posture, Shoulder, WristFlip};
+    let p = Posture {
+        shoulder: Some(Shoulder::Right),
+        elbow: Some(Elbow::Up),
+        wrist: Some(WristFlip::NoFlip),
+        ..Posture::default()
+    };
+    assert_eq!(p.to_string(), "shoulder right, elbow up, wrist no flip");
+    assert_eq!(p.label(), p.to_string());
+    assert_eq!(Posture::default().to_string(), "");
+    let q = Posture {
+        elbow: Some(Elbow::Down),
+        ..Posture::default()
+    };
+    assert_eq!(format!("{q}"), "elbow down");
+}
+
+#[test]
+fn wrapping_into_limits_picks_the_shift_nearest_to_zero() {
+    // Against a brute-force search over shifts written here.
+    let tol = armlab::kinematics::ik::closed_form::LIMIT_TOL;
+    let reference = |q: f64, lo: f64, hi: f64| -> f64 {
+        let w = wrap_angle(q);
+        (-20..=20)
+            .map(|k| w + k as f64 * 2.0 * PI)
+            .filter(|c| *c >= lo - tol && *c <= hi + tol)
+            .min_by(|a, b| a.abs().total_cmp(&b.abs()))
+            .unwrap_or(w)
+    };
+    let mut rng = 99u64;
+    let mut next = || {
+        rng = rng
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (rng >> 11) as f64 / (1u64 << 53) as f64
+    };
+    for _ in 0..20_000 {
+        let q = (next() - 0.5) * 40.0;
+        let lo = (next() - 0.7) * 20.0;
+        let hi = lo + next() * 15.0;
+        let got = wrap_into_limits(q, [lo, hi]);
+        let want = reference(q, lo, hi);
+        assert!(
+            (got - want).abs() < 1e-12,
+            "q {q}, [{lo}, {hi}]: {got} vs {want}"
+        );
+    }
+    // Open sides.
+    assert_eq!(
+        wrap_into_limits(7.0, [f64::NEG_INFINITY, f64::INFINITY]),
+        wrap_angle(7.0)
+    );
+    assert!((wrap_into_limits(-3.0, [0.0, f64::INFINITY]) - (-3.0 + 2.0 * PI)).abs() < 1e-15);
+}

@@ -24,7 +24,6 @@ const FORBIDDEN: &[&str] = &[
     "anyhow",
     "serde_json",
     "pollster",
-    "bytemuck",
     "ash",
     "glow",
     "x11rb",
