@@ -37,7 +37,7 @@ pub struct Plot2d {
     pub title: String,
     /// One line under the title (data source, resolution, statistics).
     pub subtitle: String,
-    /// x axis label with unit, e.g. "x [m]".
+    /// x axis label with unit, e.g. `x [m]`.
     pub x_label: String,
     /// y axis label with unit.
     pub y_label: String,

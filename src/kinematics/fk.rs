@@ -137,7 +137,15 @@ impl Robot {
         ee: usize,
         shared: &mut SharedPrefix,
     ) -> Result<Frame, KinematicsError> {
-        self.check_q(q)?;
+        // The closed forms hand over q of length dof, every entry checked finite; a wrong length
+        // is still an error, never a panic.
+        if q.len() != self.dof() {
+            return Err(KinematicsError::DofMismatch {
+                expected: self.dof(),
+                got: q.len(),
+            });
+        }
+        debug_assert!(q.iter().all(|v| v.is_finite()));
         let e = self
             .end_effectors()
             .get(ee)

@@ -347,7 +347,7 @@ impl ClosedForm {
         let mut singular = false;
         // The two wrist solutions of an arm branch share joints 1-3: their frame is reused.
         let mut shared = SharedPrefix::new(if self.dof == 6 { 3 } else { 0 });
-        let check = world.check(robot.end_effectors()[0].tool);
+        let check = (verify == Verify::Fk).then(|| world.check(robot.end_effectors()[0].tool));
         for (q_raw, posture) in raw.q[..raw.len].iter().zip(&raw.postures) {
             let Some((q, within)) = self.wrap_solution(q_raw, &limits) else {
                 continue;
@@ -371,7 +371,7 @@ impl ClosedForm {
             }
             let mut s = Solution::new(q, dof, *posture);
             s.within_limits = within;
-            if verify == Verify::Fk {
+            if let Some(check) = &check {
                 s.errors = Some(check.errors(&robot.fk_ee_shared(&q[..dof], 0, &mut shared)?));
             }
             singular |= degenerate;

@@ -90,7 +90,7 @@ impl Row {
     /// `Rz(theta) Rx(alpha)`, the rotation part of `A_i` for joint angle `theta`.
     #[inline]
     pub(super) fn rotation(&self, theta: f64) -> Matrix3<f64> {
-        let (s, c) = theta.sin_cos();
+        let (s, c) = crate::kinematics::trig::sin_cos(theta);
         Matrix3::new(
             c,
             -s * self.ca,

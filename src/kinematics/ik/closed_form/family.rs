@@ -58,7 +58,7 @@ impl Family {
         }
     }
 
-    /// Number of distinct solutions [`ClosedForm::solve`] returns for a generic reachable target
+    /// Number of distinct solutions [`super::ClosedForm::solve`] returns for a generic reachable target
     /// (no singularity, mirror extensions outside the limits): the theory implemented here.
     pub fn generic_solution_count(&self) -> usize {
         match self {

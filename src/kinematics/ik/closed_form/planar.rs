@@ -233,7 +233,7 @@ impl ParallelArm {
                 }
                 // phi = theta1 + theta2 + theta3 (2.90), generalised: psi_n from the x axis.
                 let psi3 = r[(1, 0)].atan2(r[(0, 0)]) - self.kappa;
-                let (s, c) = psi3.sin_cos();
+                let (s, c) = crate::kinematics::trig::sin_cos(psi3);
                 let p = t.translation.vector;
                 let v = self.v[2];
                 // p_W = p - a3 (cos phi, sin phi), (2.91)-(2.92)
