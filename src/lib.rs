@@ -3,7 +3,7 @@
 //!
 //! The layers have one-way dependencies: [`kinematics`] (pure f64 math: DH tables, FK,
 //! Jacobians, orientation, closed-form and numerical IK) → [`model_file`] and [`urdf`] (text
-//! formats into robots) and [`workspace`] (pure compute) → with the `app` feature (on by
+//! formats into robots), [`workspace`] and [`calibration`] (pure compute) → with the `app` feature (on by
 //! default) `scene` (f32 draw lists), `render` (wgpu), `figure` and `headless` (figures to PNG),
 //! `app` (egui/eframe) and `cli` (the command line).
 //!
@@ -76,6 +76,7 @@ pub use nalgebra;
 
 #[cfg(feature = "app")]
 pub mod app;
+pub mod calibration;
 #[cfg(feature = "app")]
 pub mod camera;
 #[cfg(feature = "app")]

@@ -1,0 +1,369 @@
+//! The parameter vector zeta of (2.84), the pose it predicts, and the calibration matrix Phi of
+//! (2.86) in closed form.
+
+use super::CalibrationError;
+use crate::kinematics::dh::{Convention, DhRow};
+use crate::kinematics::orientation::angle_axis_from_rotation;
+use crate::kinematics::pose::Pose;
+use crate::kinematics::robot::{Drive, JointKind, Robot};
+use nalgebra::{DMatrix, Vector3};
+
+/// Which DH parameter of a row.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kind {
+    /// Link length a (m).
+    A,
+    /// Link twist alpha (rad).
+    Alpha,
+    /// Link offset d (m); the joint offset of a prismatic joint.
+    D,
+    /// Joint angle theta (rad); the joint offset of a revolute joint.
+    Theta,
+}
+
+impl Kind {
+    /// The name used in reports and JSON: "a", "alpha", "d", "theta".
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Kind::A => "a",
+            Kind::Alpha => "alpha",
+            Kind::D => "d",
+            Kind::Theta => "theta",
+        }
+    }
+
+    /// Whether the parameter is an angle (rad) rather than a length (m).
+    pub fn is_angle(self) -> bool {
+        matches!(self, Kind::Alpha | Kind::Theta)
+    }
+}
+
+/// One component of zeta.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Parameter {
+    /// Name, e.g. "d2" (kind and 1-based row).
+    pub name: String,
+    /// 1-based DH row.
+    pub joint: usize,
+    /// Which parameter.
+    pub kind: Kind,
+    /// Nominal value (m or rad).
+    pub nominal: f64,
+    /// Kept at its nominal value (not estimated).
+    pub fixed: bool,
+}
+
+/// One measured pose of the end-effector, with the joint readings it was taken at.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Measurement {
+    /// The whole `world_from_tool`.
+    Pose {
+        /// Joint values (rad or m).
+        q: Vec<f64>,
+        /// Measured `world_from_tool`.
+        world_from_tool: Pose,
+    },
+    /// The tool point only (a laser tracker without orientation).
+    Position {
+        /// Joint values (rad or m).
+        q: Vec<f64>,
+        /// Measured tool point, world frame (m).
+        p: Vector3<f64>,
+    },
+}
+
+impl Measurement {
+    /// The joint values.
+    pub fn q(&self) -> &[f64] {
+        match self {
+            Measurement::Pose { q, .. } | Measurement::Position { q, .. } => q,
+        }
+    }
+
+    /// Rows this measurement adds to the stacked system: 6 or 3.
+    pub fn rows(&self) -> usize {
+        match self {
+            Measurement::Pose { .. } => 6,
+            Measurement::Position { .. } => 3,
+        }
+    }
+
+    /// "pose" or "position".
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Measurement::Pose { .. } => "pose",
+            Measurement::Position { .. } => "position",
+        }
+    }
+}
+
+/// One DH row as the model evaluates it.
+#[derive(Debug, Clone, Copy)]
+struct RowInfo {
+    kind: JointKind,
+    /// The q index of an actuated row.
+    dof: Option<usize>,
+    /// The stored row (for the constant theta of a prismatic row, d of a revolute one).
+    row: DhRow,
+}
+
+/// The calibration model of a serial DH robot: its 4n parameters zeta = [a; alpha; d; theta]
+/// (2.84) in that order, each row's joint offset included (theta of a revolute row, d of a
+/// prismatic one), and which of them are fixed.
+#[derive(Debug, Clone)]
+pub struct ParameterModel {
+    nominal: Robot,
+    convention: Convention,
+    rows: Vec<RowInfo>,
+    params: Vec<Parameter>,
+}
+
+impl ParameterModel {
+    /// The model of `robot`, every parameter free. The robot must be a serial DH chain (one
+    /// convention, each joint the child of the previous, no couplings) with its first
+    /// end-effector on the last row.
+    pub fn new(robot: &Robot) -> Result<Self, CalibrationError> {
+        let (convention, table) = robot.dh_table().ok_or(CalibrationError::NotSerialDh(
+            "not one chain of DH rows in one convention",
+        ))?;
+        if robot
+            .joints()
+            .iter()
+            .any(|j| matches!(j.drive, Drive::Coupled(_)))
+        {
+            return Err(CalibrationError::NotSerialDh(
+                "a joint is coupled to others",
+            ));
+        }
+        if robot.end_effectors()[0].parent + 1 != robot.joints().len() {
+            return Err(CalibrationError::NotSerialDh(
+                "the first end-effector is not on the last row",
+            ));
+        }
+        let rows: Vec<RowInfo> = robot
+            .joints()
+            .iter()
+            .zip(&table)
+            .map(|(j, &(kind, row, _))| RowInfo {
+                kind,
+                dof: match j.drive {
+                    Drive::Actuated(k) => Some(k),
+                    _ => None,
+                },
+                row,
+            })
+            .collect();
+        let n = rows.len();
+        let mut params = Vec::with_capacity(4 * n);
+        for kind in [Kind::A, Kind::Alpha, Kind::D, Kind::Theta] {
+            for (i, &(jk, row, offset)) in table.iter().enumerate() {
+                let nominal = match kind {
+                    Kind::A => row.a,
+                    Kind::Alpha => row.alpha,
+                    Kind::D if jk == JointKind::Prismatic => offset,
+                    Kind::D => row.d,
+                    Kind::Theta if jk == JointKind::Revolute => offset,
+                    Kind::Theta => row.theta,
+                };
+                params.push(Parameter {
+                    name: format!("{}{}", kind.as_str(), i + 1),
+                    joint: i + 1,
+                    kind,
+                    nominal,
+                    fixed: false,
+                });
+            }
+        }
+        Ok(Self {
+            nominal: robot.clone(),
+            convention,
+            rows,
+            params,
+        })
+    }
+
+    /// Fixes the named parameters ("d2", "theta1", ...); unknown names are an error.
+    pub fn fix(&mut self, names: &[&str]) -> Result<(), CalibrationError> {
+        for name in names {
+            let p = self
+                .params
+                .iter_mut()
+                .find(|p| p.name == *name)
+                .ok_or_else(|| {
+                    CalibrationError::InvalidOption(format!("no parameter named {name:?}"))
+                })?;
+            p.fixed = true;
+        }
+        Ok(())
+    }
+
+    /// Every parameter, in the order of zeta.
+    pub fn parameters(&self) -> &[Parameter] {
+        &self.params
+    }
+
+    /// Indices (into zeta) of the free parameters.
+    pub fn free(&self) -> Vec<usize> {
+        (0..self.params.len())
+            .filter(|&k| !self.params[k].fixed)
+            .collect()
+    }
+
+    /// The nominal zeta.
+    pub fn nominal(&self) -> Vec<f64> {
+        self.params.iter().map(|p| p.nominal).collect()
+    }
+
+    /// The nominal robot.
+    pub fn nominal_robot(&self) -> &Robot {
+        &self.nominal
+    }
+
+    /// Number of DH rows n (zeta has 4n entries).
+    pub fn rows(&self) -> usize {
+        self.rows.len()
+    }
+
+    /// The parameters of row i (0-based) as (a, alpha, d, theta) of zeta.
+    fn row_values(&self, zeta: &[f64], i: usize) -> [f64; 4] {
+        let n = self.rows.len();
+        [zeta[i], zeta[n + i], zeta[2 * n + i], zeta[3 * n + i]]
+    }
+
+    /// `world_from_frame_i` for i = 0 (the base) .. n with the parameters `zeta`, and the tool
+    /// pose: `k(zeta, q)` of (2.84) with the robot's base and tool.
+    pub fn frames(&self, zeta: &[f64], q: &[f64]) -> Result<(Vec<Pose>, Pose), CalibrationError> {
+        self.nominal.check_q(q)?;
+        let mut frames = Vec::with_capacity(self.rows.len() + 1);
+        let mut t = self.nominal.base;
+        frames.push(t);
+        for (i, r) in self.rows.iter().enumerate() {
+            let [a, alpha, d, theta] = self.row_values(zeta, i);
+            let v = r.dof.map_or(0.0, |k| q[k]);
+            let (theta, d) = match r.kind {
+                JointKind::Revolute => (v + theta, d),
+                JointKind::Prismatic => (theta, v + d),
+                JointKind::Fixed => (theta, d),
+            };
+            let row = DhRow { a, alpha, d, theta };
+            t *= row.transform(self.convention, theta, d);
+            frames.push(t);
+        }
+        let tool = t * self.nominal.end_effectors()[0].tool;
+        Ok((frames, tool))
+    }
+
+    /// The robot with the parameters `zeta` (its DH rows and joint offsets replaced): what
+    /// `--write-model` saves. Its FK equals [`Self::frames`]'s tool pose.
+    pub fn robot_with(&self, zeta: &[f64]) -> Result<Robot, CalibrationError> {
+        let mut r = self.nominal.clone();
+        for (i, info) in self.rows.iter().enumerate() {
+            let [a, alpha, d, theta] = self.row_values(zeta, i);
+            let (row, offset) = match info.kind {
+                JointKind::Revolute => (
+                    DhRow {
+                        a,
+                        alpha,
+                        d,
+                        theta: info.row.theta,
+                    },
+                    theta,
+                ),
+                JointKind::Prismatic => (
+                    DhRow {
+                        a,
+                        alpha,
+                        d: info.row.d,
+                        theta,
+                    },
+                    d,
+                ),
+                JointKind::Fixed => (DhRow { a, alpha, d, theta }, 0.0),
+            };
+            r.set_dh_row(i, row)?;
+            if info.kind != JointKind::Fixed {
+                let limits = r.joints()[i].limits;
+                r.set_offset_limits(i, offset, limits)?;
+            }
+        }
+        Ok(r)
+    }
+
+    /// The error `[p_measured - p_model; delta phi]` (6 rows, or 3 for a position) of one
+    /// measurement against the model with `zeta`, written into `out`.
+    pub fn residual(
+        &self,
+        zeta: &[f64],
+        m: &Measurement,
+        out: &mut [f64],
+    ) -> Result<(), CalibrationError> {
+        let (_, t) = self.frames(zeta, m.q())?;
+        match m {
+            Measurement::Pose {
+                world_from_tool, ..
+            } => {
+                let dp = world_from_tool.translation.vector - t.translation.vector;
+                let aa =
+                    angle_axis_from_rotation(&(world_from_tool.rotation * t.rotation.inverse()));
+                let dphi = aa.axis.into_inner() * aa.angle;
+                out[..3].copy_from_slice(dp.as_slice());
+                out[3..6].copy_from_slice(dphi.as_slice());
+            }
+            Measurement::Position { p, .. } => {
+                out[..3].copy_from_slice((p - t.translation.vector).as_slice());
+            }
+        }
+        Ok(())
+    }
+
+    /// Phi(zeta) of (2.86) for one configuration: 6 x 4n (or 3 x 4n with `position_only`), the
+    /// first-order change of `[p; phi]` of the tool per unit change of each parameter.
+    ///
+    /// Every parameter moves the tool like a joint would: a length (a or d) translates along a
+    /// DH axis, an angle (theta or alpha) rotates about one; so a column is `[u; 0]` or
+    /// `[u x (p_e - o); u]` with u the axis and o a point on it. Standard rows
+    /// `Rz(theta) Tz(d) Tx(a) Rx(alpha)`: theta and d along z_{i-1} through o_{i-1}, a and alpha
+    /// along x_i through o_i. Modified rows `Rx(alpha) Tx(a) Rz(theta) Tz(d)`: alpha and a along
+    /// x_{i-1} through o_{i-1}, theta and d along z_i through o_i.
+    pub fn calibration_matrix(
+        &self,
+        zeta: &[f64],
+        q: &[f64],
+        position_only: bool,
+    ) -> Result<DMatrix<f64>, CalibrationError> {
+        let (frames, tool) = self.frames(zeta, q)?;
+        let pe = tool.translation.vector;
+        let n = self.rows.len();
+        let rows = if position_only { 3 } else { 6 };
+        let mut phi = DMatrix::zeros(rows, 4 * n);
+        let mut put = |col: usize, u: Vector3<f64>, o: Option<Vector3<f64>>| {
+            let (lin, ang) = match o {
+                Some(o) => (u.cross(&(pe - o)), u),
+                None => (u, Vector3::zeros()),
+            };
+            for k in 0..3 {
+                phi[(k, col)] = lin[k];
+                if !position_only {
+                    phi[(3 + k, col)] = ang[k];
+                }
+            }
+        };
+        for i in 0..n {
+            let prev = &frames[i];
+            let this = &frames[i + 1];
+            let axis = |p: &Pose, c: usize| p.rotation.matrix().column(c).into_owned();
+            let origin = |p: &Pose| p.translation.vector;
+            let (a_axis, a_point, t_axis, t_point) = match self.convention {
+                // a, alpha along x_i through o_i; theta, d along z_{i-1} through o_{i-1}.
+                Convention::Standard => (axis(this, 0), origin(this), axis(prev, 2), origin(prev)),
+                // a, alpha along x_{i-1} through o_{i-1}; theta, d along z_i through o_i.
+                Convention::Modified => (axis(prev, 0), origin(prev), axis(this, 2), origin(this)),
+            };
+            put(i, a_axis, None);
+            put(n + i, a_axis, Some(a_point));
+            put(2 * n + i, t_axis, None);
+            put(3 * n + i, t_axis, Some(t_point));
+        }
+        Ok(phi)
+    }
+}

@@ -1,0 +1,421 @@
+//! Iterative least squares (2.88)-(2.89) on the stacked, weighted, column-scaled system (2.87).
+
+use super::CalibrationError;
+use super::identify::{Identifiability, identifiability_of};
+use super::model::{Measurement, Parameter, ParameterModel};
+use nalgebra::{DMatrix, DVector};
+
+/// Options of [`calibrate`]; every field with its unit and trade-off.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CalibrationOptions {
+    /// Largest number of iterations of (2.88)-(2.89).
+    pub max_iterations: usize,
+    /// The iteration has converged when no parameter moves more than this (m or rad), or when
+    /// the weighted residual changes by less than 1e-10 of itself between iterations.
+    pub step_tolerance: f64,
+    /// Singular values of the scaled system below `rank_tolerance * sigma_max` count as zero:
+    /// the numerical rank. Larger hides weakly identifiable parameters; smaller lets noise into
+    /// them.
+    pub rank_tolerance: f64,
+    /// Position measurement noise (m, one sigma): position rows are divided by it.
+    pub position_sigma: f64,
+    /// Orientation measurement noise (rad, one sigma): orientation rows are divided by it.
+    pub orientation_sigma: f64,
+    /// Levenberg–Marquardt damping of the scaled step (0 = plain (2.88)); damps the directions
+    /// with singular values below about its square root.
+    pub damping: f64,
+}
+
+impl Default for CalibrationOptions {
+    /// 50 iterations, steps below 1e-12, rank tolerance 1e-9, 0.1 mm and 1 mrad noise, no
+    /// damping.
+    fn default() -> Self {
+        Self {
+            max_iterations: 50,
+            step_tolerance: 1e-12,
+            rank_tolerance: 1e-9,
+            position_sigma: 1e-4,
+            orientation_sigma: 1e-3,
+            damping: 0.0,
+        }
+    }
+}
+
+/// Errors of a model against a set of measurements: position_rms = sqrt(mean |dp|^2), the
+/// largest |dp|, and the same for the rotation angle of `R_measured R_model^T` (`None` for
+/// position-only data).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Fit {
+    /// RMS position error (m).
+    pub position_rms: f64,
+    /// Largest position error (m).
+    pub position_max: f64,
+    /// RMS orientation error (rad).
+    pub orientation_rms: Option<f64>,
+    /// Largest orientation error (rad).
+    pub orientation_max: Option<f64>,
+}
+
+/// One iteration of the least squares.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Iteration {
+    /// RMS position residual before the step (m).
+    pub position_rms: f64,
+    /// RMS orientation residual before the step (rad; 0 for position-only data).
+    pub orientation_rms: f64,
+    /// Largest parameter change of the step (m or rad).
+    pub step_norm: f64,
+    /// sigma_max / sigma_min over the numerical rank of the scaled system.
+    pub condition: f64,
+    /// Numerical rank of the scaled system.
+    pub rank: usize,
+}
+
+/// What [`calibrate`] found.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CalibrationReport {
+    /// Every parameter (nominal value, fixed or not), in the order of zeta.
+    pub parameters: Vec<Parameter>,
+    /// The estimate of zeta.
+    pub estimate: Vec<f64>,
+    /// Standard deviation of each estimated, identifiable parameter (m or rad).
+    pub std: Vec<Option<f64>>,
+    /// Identifiability at the nominal parameters.
+    pub nominal: Identifiability,
+    /// Identifiability at the estimate.
+    pub at_estimate: Identifiability,
+    /// The iterations.
+    pub iterations: Vec<Iteration>,
+    /// Whether the step fell below the tolerance.
+    pub converged: bool,
+    /// Why not, when it did not converge.
+    pub reason: Option<String>,
+    /// Residual variance sigma^2 = |r|^2 / (rows - identifiable parameters) of the weighted
+    /// system (1 when the noise is as stated).
+    pub sigma2: f64,
+    /// Pairs of identifiable parameters whose estimates correlate above 0.9.
+    pub correlations: Vec<(String, String, f64)>,
+    /// Errors of the nominal and of the calibrated model on the measurements.
+    pub before: Fit,
+    /// After.
+    pub after: Fit,
+}
+
+/// The errors of the model with `zeta` on `ms`.
+pub fn fit(
+    model: &ParameterModel,
+    zeta: &[f64],
+    ms: &[Measurement],
+) -> Result<Fit, CalibrationError> {
+    let mut r = [0.0; 6];
+    let (mut p2, mut pmax, mut o2, mut omax) = (0.0, 0.0f64, 0.0, 0.0f64);
+    let pose = ms.first().is_some_and(|m| m.rows() == 6);
+    for m in ms {
+        model.residual(zeta, m, &mut r)?;
+        let dp = (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt();
+        p2 += dp * dp;
+        pmax = pmax.max(dp);
+        if pose {
+            let da = (r[3] * r[3] + r[4] * r[4] + r[5] * r[5]).sqrt();
+            o2 += da * da;
+            omax = omax.max(da);
+        }
+    }
+    let l = ms.len().max(1) as f64;
+    Ok(Fit {
+        position_rms: (p2 / l).sqrt(),
+        position_max: pmax,
+        orientation_rms: pose.then(|| (o2 / l).sqrt()),
+        orientation_max: pose.then_some(omax),
+    })
+}
+
+/// Checks the measurements: joint counts, finite numbers, one kind.
+pub(super) fn check(model: &ParameterModel, ms: &[Measurement]) -> Result<(), CalibrationError> {
+    let dof = model.nominal_robot().dof();
+    let first = ms.first().map_or("pose", Measurement::kind);
+    for (index, m) in ms.iter().enumerate() {
+        if m.q().len() != dof {
+            return Err(CalibrationError::JointCount {
+                index,
+                expected: dof,
+                got: m.q().len(),
+            });
+        }
+        let finite = m.q().iter().all(|v| v.is_finite())
+            && match m {
+                Measurement::Pose {
+                    world_from_tool, ..
+                } => world_from_tool
+                    .to_homogeneous()
+                    .iter()
+                    .all(|v| v.is_finite()),
+                Measurement::Position { p, .. } => p.iter().all(|v| v.is_finite()),
+            };
+        if !finite {
+            return Err(CalibrationError::NonFinite { index });
+        }
+        if m.kind() != first {
+            return Err(CalibrationError::MixedKinds {
+                index,
+                first,
+                found: m.kind(),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// The weighted stacked system (2.87) over the free parameters: Phi (rows x free) and the
+/// residual.
+pub(super) fn stacked(
+    model: &ParameterModel,
+    zeta: &[f64],
+    ms: &[Measurement],
+    free: &[usize],
+    opts: &CalibrationOptions,
+) -> Result<(DMatrix<f64>, DVector<f64>), CalibrationError> {
+    let rows: usize = ms.iter().map(Measurement::rows).sum();
+    let mut phi = DMatrix::zeros(rows, free.len());
+    let mut res = DVector::zeros(rows);
+    let mut r = [0.0; 6];
+    let mut at = 0;
+    for m in ms {
+        let k = m.rows();
+        let full = model.calibration_matrix(zeta, m.q(), k == 3)?;
+        model.residual(zeta, m, &mut r)?;
+        for i in 0..k {
+            let w = if i < 3 {
+                1.0 / opts.position_sigma
+            } else {
+                1.0 / opts.orientation_sigma
+            };
+            res[at + i] = r[i] * w;
+            for (c, &j) in free.iter().enumerate() {
+                phi[(at + i, c)] = full[(i, j)] * w;
+            }
+        }
+        at += k;
+    }
+    Ok((phi, res))
+}
+
+/// Column norms of `phi` (1 for an all-zero column), for the scaling.
+pub(super) fn column_scale(phi: &DMatrix<f64>) -> DVector<f64> {
+    DVector::from_iterator(
+        phi.ncols(),
+        phi.column_iter().map(|c| {
+            let n = c.norm();
+            if n > 0.0 { n } else { 1.0 }
+        }),
+    )
+}
+
+fn validate(opts: &CalibrationOptions) -> Result<(), CalibrationError> {
+    let positive = [
+        ("position_sigma", opts.position_sigma),
+        ("orientation_sigma", opts.orientation_sigma),
+        ("rank_tolerance", opts.rank_tolerance),
+        ("step_tolerance", opts.step_tolerance),
+    ];
+    for (name, v) in positive {
+        if !(v > 0.0 && v.is_finite()) {
+            return Err(CalibrationError::InvalidOption(format!(
+                "{name} must be positive and finite, got {v}"
+            )));
+        }
+    }
+    if !(opts.damping >= 0.0 && opts.damping.is_finite()) {
+        return Err(CalibrationError::InvalidOption(format!(
+            "damping must be >= 0, got {}",
+            opts.damping
+        )));
+    }
+    Ok(())
+}
+
+/// One scaled, rank-revealing least-squares step: the change of the free parameters, the
+/// rank and the condition number.
+fn step(
+    phi: &DMatrix<f64>,
+    res: &DVector<f64>,
+    opts: &CalibrationOptions,
+) -> (DVector<f64>, usize, f64) {
+    let scale = column_scale(phi);
+    let mut scaled = phi.clone();
+    for (j, mut c) in scaled.column_iter_mut().enumerate() {
+        c /= scale[j];
+    }
+    let svd = scaled.svd(true, true);
+    let (u, vt) = (
+        svd.u.as_ref().expect("u requested"),
+        svd.v_t.as_ref().expect("v_t requested"),
+    );
+    let smax = svd.singular_values.max();
+    let mut y = DVector::zeros(phi.ncols());
+    let mut rank = 0;
+    let mut smin = smax;
+    for (k, &s) in svd.singular_values.iter().enumerate() {
+        if s <= opts.rank_tolerance * smax || s == 0.0 {
+            continue;
+        }
+        rank += 1;
+        smin = smin.min(s);
+        let lambda = opts.damping * smax * smax;
+        let coef = u.column(k).dot(res) * s / (s * s + lambda);
+        y += vt.row(k).transpose() * coef;
+    }
+    let dz = y.component_div(&scale);
+    let cond = if rank > 0 { smax / smin } else { f64::INFINITY };
+    (dz, rank, cond)
+}
+
+/// Estimates the free parameters of `model` from the measurements by (2.88)-(2.89) iterated:
+/// each step solves the weighted, column-scaled stacked system (2.87) by SVD over its numerical
+/// rank (unidentifiable directions are left at their nominal values), until no parameter moves
+/// more than `opts.step_tolerance`.
+pub fn calibrate(
+    model: &ParameterModel,
+    ms: &[Measurement],
+    opts: &CalibrationOptions,
+) -> Result<CalibrationReport, CalibrationError> {
+    validate(opts)?;
+    check(model, ms)?;
+    let free = model.free();
+    let equations: usize = ms.iter().map(Measurement::rows).sum();
+    if equations < free.len() {
+        let per = ms.first().map_or(6, Measurement::rows);
+        return Err(CalibrationError::TooFewEquations {
+            equations,
+            poses: ms.len(),
+            parameters: free.len(),
+            needed: free.len().div_ceil(per),
+        });
+    }
+    let nominal = model.nominal();
+    let mut zeta = nominal.clone();
+    let before = fit(model, &zeta, ms)?;
+    let mut iterations = Vec::new();
+    let mut converged = false;
+    let mut reason = None;
+    let mut last_cost = f64::INFINITY;
+    for _ in 0..opts.max_iterations {
+        let (phi, res) = stacked(model, &zeta, ms, &free, opts)?;
+        // The weighted residual no longer changes (to 1e-10 relative): the least-squares fixed
+        // point is reached even where an ill-conditioned direction keeps the step above the
+        // tolerance with rounding noise.
+        let cost = res.norm_squared();
+        if cost > 0.0 && (last_cost - cost).abs() <= 1e-10 * cost {
+            converged = true;
+            break;
+        }
+        last_cost = cost;
+        let (dz, rank, condition) = step(&phi, &res, opts);
+        let now = fit(model, &zeta, ms)?;
+        let step_norm = dz.amax();
+        iterations.push(Iteration {
+            position_rms: now.position_rms,
+            orientation_rms: now.orientation_rms.unwrap_or(0.0),
+            step_norm,
+            condition,
+            rank,
+        });
+        if !step_norm.is_finite() {
+            reason = Some("the step is not finite (the system is singular)".into());
+            break;
+        }
+        for (c, &j) in free.iter().enumerate() {
+            zeta[j] += dz[c];
+        }
+        if step_norm <= opts.step_tolerance {
+            converged = true;
+            break;
+        }
+    }
+    if !converged && reason.is_none() {
+        reason = Some(format!(
+            "the step was still above {} after {} iterations",
+            opts.step_tolerance, opts.max_iterations
+        ));
+    }
+    let after = fit(model, &zeta, ms)?;
+    let at_nominal = identifiability_of(model, &nominal, ms, opts)?;
+    let at_estimate = identifiability_of(model, &zeta, ms, opts)?;
+    let (std, sigma2, correlations) = uncertainty(model, &zeta, ms, &free, opts, &at_estimate)?;
+    Ok(CalibrationReport {
+        parameters: model.parameters().to_vec(),
+        estimate: zeta,
+        std,
+        nominal: at_nominal,
+        at_estimate,
+        iterations,
+        converged,
+        reason,
+        sigma2,
+        correlations,
+        before,
+        after,
+    })
+}
+
+type Uncertainty = (Vec<Option<f64>>, f64, Vec<(String, String, f64)>);
+
+/// sigma^2 = |r|^2 / (rows - rank), the covariance `sigma^2 (Phi^T Phi)^+` over the identifiable
+/// subspace (in parameter units), the standard deviations and the correlations above 0.9.
+fn uncertainty(
+    model: &ParameterModel,
+    zeta: &[f64],
+    ms: &[Measurement],
+    free: &[usize],
+    opts: &CalibrationOptions,
+    ident: &Identifiability,
+) -> Result<Uncertainty, CalibrationError> {
+    let (phi, res) = stacked(model, zeta, ms, free, opts)?;
+    let scale = column_scale(&phi);
+    let mut scaled = phi.clone();
+    for (j, mut c) in scaled.column_iter_mut().enumerate() {
+        c /= scale[j];
+    }
+    let svd = scaled.svd(false, true);
+    let vt = svd.v_t.as_ref().expect("v_t requested");
+    let smax = svd.singular_values.max();
+    let p = free.len();
+    let mut cov = DMatrix::zeros(p, p);
+    let mut rank = 0;
+    for (k, &s) in svd.singular_values.iter().enumerate() {
+        if s > opts.rank_tolerance * smax && s > 0.0 {
+            rank += 1;
+            let v = vt.row(k).transpose();
+            cov += &v * v.transpose() / (s * s);
+        }
+    }
+    let dof = res.len().saturating_sub(rank).max(1);
+    let sigma2 = res.norm_squared() / dof as f64;
+    for i in 0..p {
+        for j in 0..p {
+            cov[(i, j)] *= sigma2 / (scale[i] * scale[j]);
+        }
+    }
+    let mut std = vec![None; model.parameters().len()];
+    for (c, &j) in free.iter().enumerate() {
+        if ident.identifiable[j] {
+            std[j] = Some(cov[(c, c)].max(0.0).sqrt());
+        }
+    }
+    let mut correlations = Vec::new();
+    for (a, &ja) in free.iter().enumerate() {
+        for (b, &jb) in free.iter().enumerate().skip(a + 1) {
+            if let (Some(sa), Some(sb)) = (std[ja], std[jb])
+                && sa > 0.0
+                && sb > 0.0
+            {
+                let r = cov[(a, b)] / (sa * sb);
+                if r.abs() > 0.9 {
+                    let names = model.parameters();
+                    correlations.push((names[ja].name.clone(), names[jb].name.clone(), r));
+                }
+            }
+        }
+    }
+    Ok((std, sigma2, correlations))
+}

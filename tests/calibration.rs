@@ -1,0 +1,321 @@
+//! Kinematic calibration (Sect. 2.11): Phi against finite differences, recovery of simulated
+//! robots, identifiability of known rank deficiencies, observability indices, bad input.
+
+use armlab::calibration::{
+    CalibrationError, CalibrationOptions, Measurement, Observability, ParameterModel,
+    SimulationOptions, calibrate, fit, identifiability, simulate,
+};
+use armlab::kinematics::models::built_in;
+use armlab::kinematics::orientation::angle_axis_from_rotation;
+use nalgebra::Vector3;
+
+/// The pose change between two zeta, as the model's error convention measures it: [dp; dphi].
+fn pose_difference(model: &ParameterModel, za: &[f64], zb: &[f64], q: &[f64]) -> [f64; 6] {
+    let (_, ta) = model.frames(za, q).unwrap();
+    let (_, tb) = model.frames(zb, q).unwrap();
+    let dp = ta.translation.vector - tb.translation.vector;
+    let aa = angle_axis_from_rotation(&(ta.rotation * tb.rotation.inverse()));
+    let w = aa.axis.into_inner() * aa.angle;
+    [dp.x, dp.y, dp.z, w.x, w.y, w.z]
+}
+
+#[test]
+fn phi_matches_central_finite_differences() {
+    for (name, q) in [
+        ("puma560", vec![0.3, -0.7, 0.5, 1.1, -0.4, 0.9]),
+        ("panda", vec![0.2, -0.4, 0.3, -2.0, 0.5, 1.7, -0.6]),
+        ("stanford", vec![0.4, 0.9, 0.6, -0.3, 0.8, 0.2]),
+        ("scara", vec![0.5, -0.9, 0.1, 0.4]),
+    ] {
+        let r = built_in(name).unwrap();
+        let model = ParameterModel::new(&r).unwrap();
+        let zeta = model.nominal();
+        let phi = model.calibration_matrix(&zeta, &q, false).unwrap();
+        let phi_pos = model.calibration_matrix(&zeta, &q, true).unwrap();
+        let h = 1e-6;
+        for k in 0..zeta.len() {
+            let mut zp = zeta.clone();
+            let mut zm = zeta.clone();
+            zp[k] += h;
+            zm[k] -= h;
+            let d = pose_difference(&model, &zp, &zm, &q);
+            for i in 0..6 {
+                let fd = d[i] / (2.0 * h);
+                assert!(
+                    (phi[(i, k)] - fd).abs() < 1e-7,
+                    "{name}: Phi[{i}, {}] = {} vs {fd}",
+                    model.parameters()[k].name,
+                    phi[(i, k)]
+                );
+                if i < 3 {
+                    assert_eq!(phi_pos[(i, k)], phi[(i, k)]);
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn noise_free_data_recovers_the_robot_and_names_the_parallel_axes() {
+    let puma = built_in("puma560").unwrap();
+    let model = ParameterModel::new(&puma).unwrap();
+    let sim = simulate(
+        &model,
+        &SimulationOptions {
+            poses: 40,
+            noise_mm: 0.0,
+            noise_mrad: 0.0,
+            seed: 7,
+            ..SimulationOptions::default()
+        },
+    )
+    .unwrap();
+    let report = calibrate(&model, &sim.measurements, &CalibrationOptions::default()).unwrap();
+    assert!(report.converged, "{:?}", report.reason);
+    let v = fit(&model, &report.estimate, &sim.validation).unwrap();
+    assert!(
+        v.position_max < 1e-9 && v.orientation_max.unwrap() < 1e-9,
+        "{v:?}"
+    );
+    let before = fit(&model, &model.nominal(), &sim.validation).unwrap();
+    assert!(
+        before.position_rms > 1e-4,
+        "the deviations are visible: {before:?}"
+    );
+    // Every identifiable parameter is recovered to 1e-9.
+    for (k, p) in model.parameters().iter().enumerate() {
+        if report.at_estimate.identifiable[k] {
+            assert!(
+                (report.estimate[k] - sim.truth[k]).abs() < 1e-9,
+                "{}: {} vs {}",
+                p.name,
+                report.estimate[k],
+                sim.truth[k]
+            );
+        }
+    }
+    // Axes 2 and 3 of the Puma are parallel: only d2 + d3 is identifiable, and it is recovered.
+    let ident = &report.nominal;
+    assert!(
+        ident
+            .combinations
+            .iter()
+            .any(|c| c.starts_with("d2 and d3 only as d2 + d3") && c.contains("parallel")),
+        "{:?}",
+        ident.combinations
+    );
+    let idx = |n: &str| model.parameters().iter().position(|p| p.name == n).unwrap();
+    let (d2, d3) = (idx("d2"), idx("d3"));
+    assert!(!ident.identifiable[d2] && !ident.identifiable[d3]);
+    let sum = report.estimate[d2] + report.estimate[d3];
+    assert!((sum - (sim.truth[d2] + sim.truth[d3])).abs() < 1e-9);
+    assert!(ident.rank < ident.parameter_count);
+}
+
+#[test]
+fn noisy_estimates_lie_within_four_sigma_and_validation_reaches_the_noise_floor() {
+    let puma = built_in("puma560").unwrap();
+    let model = ParameterModel::new(&puma).unwrap();
+    let (noise_mm, noise_mrad) = (0.02, 0.05);
+    let sim = simulate(
+        &model,
+        &SimulationOptions {
+            poses: 200,
+            validation_poses: 100,
+            noise_mm,
+            noise_mrad,
+            seed: 11,
+            ..SimulationOptions::default()
+        },
+    )
+    .unwrap();
+    let opts = CalibrationOptions {
+        position_sigma: noise_mm * 1e-3,
+        orientation_sigma: noise_mrad * 1e-3,
+        ..CalibrationOptions::default()
+    };
+    let report = calibrate(&model, &sim.measurements, &opts).unwrap();
+    assert!(report.converged, "{:?}", report.reason);
+    // The residual variance of the weighted system is about 1 when the noise is as stated.
+    assert!(
+        (0.7..1.4).contains(&report.sigma2),
+        "sigma^2 = {}",
+        report.sigma2
+    );
+    let mut checked = 0;
+    for (k, p) in model.parameters().iter().enumerate() {
+        if let Some(s) = report.std[k] {
+            let err = (report.estimate[k] - sim.truth[k]).abs();
+            assert!(
+                err <= 4.0 * s,
+                "{}: error {err:e} vs 4 sigma {:e}",
+                p.name,
+                4.0 * s
+            );
+            checked += 1;
+        }
+    }
+    assert!(
+        checked >= 20,
+        "{checked} parameters with a standard deviation"
+    );
+    // Validation: the position error of a perfect model would be the noise, |n| ~ sqrt(3) sigma.
+    let v = fit(&model, &report.estimate, &sim.validation).unwrap();
+    let floor = 3f64.sqrt() * noise_mm * 1e-3;
+    assert!(
+        v.position_rms < 1.3 * floor,
+        "{:e} vs floor {floor:e}",
+        v.position_rms
+    );
+    let before = fit(&model, &model.nominal(), &sim.validation).unwrap();
+    assert!(before.position_rms > 10.0 * v.position_rms);
+}
+
+#[test]
+fn two_link_arm_with_positions_has_rank_six() {
+    // Independently of the code: the tool point is the origin of frame 2, so alpha2 (a rotation
+    // about x2 through that origin) never moves it; d1 and d2 both translate along parallel z
+    // axes, so only d1 + d2 shows. The other six (a1, a2, alpha1, theta1, theta2 and d1 + d2)
+    // move the point in independent ways: rank 8 - 2 = 6.
+    let r = built_in("planar2").unwrap();
+    let model = ParameterModel::new(&r).unwrap();
+    let sim = simulate(
+        &model,
+        &SimulationOptions {
+            position_only: true,
+            poses: 20,
+            noise_mm: 0.0,
+            ..SimulationOptions::default()
+        },
+    )
+    .unwrap();
+    let ident = identifiability(
+        &model,
+        &model.nominal(),
+        &sim.measurements,
+        &CalibrationOptions::default(),
+    )
+    .unwrap();
+    assert_eq!(ident.parameter_count, 8);
+    assert_eq!(ident.rank, 6, "{:?}", ident.singular_values);
+    let mut un = ident.unidentifiable.clone();
+    un.sort();
+    assert_eq!(un, ["alpha2", "d1", "d2"]);
+    assert!(
+        ident
+            .combinations
+            .iter()
+            .any(|c| c.starts_with("alpha2 cannot be identified")),
+        "{:?}",
+        ident.combinations
+    );
+    assert!(
+        ident
+            .combinations
+            .iter()
+            .any(|c| c.starts_with("d1 and d2 only as d1 + d2")),
+        "{:?}",
+        ident.combinations
+    );
+}
+
+#[test]
+fn fixing_parameters_removes_them_from_the_estimate() {
+    let puma = built_in("puma560").unwrap();
+    let mut model = ParameterModel::new(&puma).unwrap();
+    model.fix(&["d3", "theta6"]).unwrap();
+    assert!(matches!(
+        model.fix(&["q9"]),
+        Err(CalibrationError::InvalidOption(_))
+    ));
+    let sim = simulate(
+        &model,
+        &SimulationOptions {
+            noise_mm: 0.0,
+            noise_mrad: 0.0,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    let report = calibrate(&model, &sim.measurements, &CalibrationOptions::default()).unwrap();
+    let idx = |n: &str| model.parameters().iter().position(|p| p.name == n).unwrap();
+    assert_eq!(report.estimate[idx("d3")], model.nominal()[idx("d3")]);
+    assert_eq!(sim.truth[idx("theta6")], model.nominal()[idx("theta6")]);
+    // With d3 fixed, d2 alone carries the common offset and is identifiable.
+    assert!(report.at_estimate.identifiable[idx("d2")]);
+}
+
+#[test]
+fn observability_indices_of_known_singular_values() {
+    // sigma = (2, 1, 0.5), 4 poses: O1 = (2 * 1 * 0.5)^(1/3) / sqrt(4) = 0.5, O2 = 0.25,
+    // O3 = 0.5, O4 = 0.25 / 2 = 0.125.
+    let o = Observability::from_singular_values(&[1.0, 2.0, 0.5], 4);
+    assert!((o.o1 - 0.5).abs() < 1e-15 && (o.o2 - 0.25).abs() < 1e-15);
+    assert!((o.o3 - 0.5).abs() < 1e-15 && (o.o4 - 0.125).abs() < 1e-15);
+}
+
+#[test]
+fn bad_measurements_are_typed_errors() {
+    let puma = built_in("puma560").unwrap();
+    let model = ParameterModel::new(&puma).unwrap();
+    let opts = CalibrationOptions::default();
+    let pos = |q: Vec<f64>, x: f64| Measurement::Position {
+        q,
+        p: Vector3::new(x, 0.0, 1.0),
+    };
+    let e = calibrate(&model, &[pos(vec![0.0; 5], 0.5)], &opts).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            CalibrationError::JointCount {
+                index: 0,
+                expected: 6,
+                got: 5
+            }
+        ),
+        "{e}"
+    );
+    let e = calibrate(&model, &[pos(vec![0.0; 6], f64::NAN)], &opts).unwrap_err();
+    assert!(matches!(e, CalibrationError::NonFinite { index: 0 }), "{e}");
+    let pose = Measurement::Pose {
+        q: vec![0.0; 6],
+        world_from_tool: puma.fk(&[0.0; 6]).unwrap(),
+    };
+    let e = calibrate(&model, &[pose, pos(vec![0.0; 6], 0.5)], &opts).unwrap_err();
+    assert!(
+        matches!(e, CalibrationError::MixedKinds { index: 1, .. }),
+        "{e}"
+    );
+    let few: Vec<Measurement> = (0..3).map(|i| pos(vec![0.1 * i as f64; 6], 0.5)).collect();
+    let e = calibrate(&model, &few, &opts).unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("9 equations from 3 poses for 24 free parameters"),
+        "{e}"
+    );
+    let bad = CalibrationOptions {
+        position_sigma: 0.0,
+        ..opts
+    };
+    assert!(calibrate(&model, &few, &bad).is_err());
+    // A robot that is not a serial DH chain.
+    assert!(ParameterModel::new(&built_in("humanoid").unwrap()).is_err());
+}
+
+#[test]
+fn the_calibrated_model_is_a_robot_that_reloads_from_its_model_file() {
+    let puma = built_in("puma560").unwrap();
+    let model = ParameterModel::new(&puma).unwrap();
+    let sim = simulate(&model, &SimulationOptions::default()).unwrap();
+    let robot = model.robot_with(&sim.truth).unwrap();
+    let text = armlab::model_file::to_toml(&robot).unwrap();
+    let back =
+        armlab::model_file::parse_model(&text, std::path::Path::new("calibrated.toml")).unwrap();
+    for m in &sim.validation {
+        let (_, t) = model.frames(&sim.truth, m.q()).unwrap();
+        for r in [&robot, &back] {
+            let f = r.fk(m.q()).unwrap();
+            assert!((f.to_homogeneous() - t.to_homogeneous()).amax() < 1e-12);
+        }
+    }
+}
