@@ -376,3 +376,224 @@ fn ik_bad_input_exits_2() {
         "--seed-q: expected 6 joint values",
     );
 }
+
+#[test]
+fn calibrate_simulated_json_has_the_documented_keys() {
+    let o = armlab(&[
+        "calibrate",
+        "puma560",
+        "--simulate",
+        "--poses",
+        "30",
+        "--seed",
+        "5",
+        "--noise-mm",
+        "0.02",
+        "--format",
+        "json",
+    ]);
+    let v = json(&o);
+    for key in [
+        "parameters",
+        "parameter_count",
+        "rank",
+        "rank_threshold",
+        "unidentifiable",
+        "correlations",
+        "iterations",
+        "converged",
+        "observability",
+        "fit",
+        "validation",
+    ] {
+        assert!(v.get(key).is_some(), "missing {key}");
+    }
+    assert_eq!(v["parameter_count"], 24);
+    assert_eq!(v["rank"], 23, "axes 2 and 3 of the Puma are parallel");
+    assert_eq!(v["unidentifiable"], serde_json::json!(["d2", "d3"]));
+    let p = &v["parameters"][0];
+    for key in [
+        "name",
+        "joint",
+        "kind",
+        "nominal",
+        "estimate",
+        "std",
+        "identifiable",
+        "true",
+    ] {
+        assert!(p.get(key).is_some(), "parameter lacks {key}");
+    }
+    assert_eq!(p["name"], "a1");
+    assert_eq!(p["kind"], "a");
+    for key in ["O1", "O2", "O3", "O4"] {
+        assert!(v["observability"][key].is_number());
+    }
+    for s in [
+        &v["fit"]["before"],
+        &v["fit"]["after"],
+        &v["validation"]["after"],
+    ] {
+        for key in [
+            "position_rms",
+            "position_max",
+            "orientation_rms",
+            "orientation_max",
+        ] {
+            assert!(s[key].is_number(), "{key} in {s}");
+        }
+    }
+    let it = &v["iterations"][0];
+    for key in [
+        "position_rms",
+        "orientation_rms",
+        "step_norm",
+        "condition",
+        "rank",
+    ] {
+        assert!(it.get(key).is_some());
+    }
+    assert_eq!(v["converged"], true);
+    let after = v["validation"]["after"]["position_rms"].as_f64().unwrap();
+    let before = v["validation"]["before"]["position_rms"].as_f64().unwrap();
+    assert!(after < 0.1 * before, "{after} vs {before}");
+}
+
+#[test]
+fn calibrate_from_a_measurement_file_and_write_the_model() {
+    let dir = std::env::temp_dir().join(format!("armlab-cal-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let meas = dir.join("m.csv");
+    let model = dir.join("calibrated.toml");
+    let o = armlab(&[
+        "calibrate",
+        "puma560",
+        "--simulate",
+        "--poses",
+        "30",
+        "--noise-mm",
+        "0",
+        "--noise-mrad",
+        "0",
+        "--write-measurements",
+        meas.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = armlab(&[
+        "calibrate",
+        "puma560",
+        "--measurements",
+        meas.to_str().unwrap(),
+        "--write-model",
+        model.to_str().unwrap(),
+        "--format",
+        "json",
+    ]);
+    let v = json(&o);
+    assert!(
+        v["fit"]["after"]["position_max"].as_f64().unwrap() < 1e-9,
+        "{}",
+        v["fit"]
+    );
+    // The written model reproduces the measured poses through the ordinary FK path.
+    let text = std::fs::read_to_string(&meas).unwrap();
+    let first = text.lines().find(|l| !l.starts_with('#')).unwrap();
+    let nums: Vec<f64> = first
+        .split(',')
+        .map(|f| f.trim().parse().unwrap())
+        .collect();
+    let q: Vec<String> = nums[..6].iter().map(|x| format!("{x:?}")).collect();
+    let fk = json(&armlab(&[
+        "fk",
+        model.to_str().unwrap(),
+        "--q",
+        &q.join(","),
+        "--format",
+        "json",
+    ]));
+    let t = &fk[0]["T"];
+    for r in 0..4 {
+        for c in 0..4 {
+            let got = t[r][c].as_f64().unwrap();
+            assert!((got - nums[6 + 4 * r + c]).abs() < 1e-9, "T[{r}][{c}]");
+        }
+    }
+    // Bad files: a line with the wrong count, a non-number, mixed kinds; each names file:line.
+    let bad_file = dir.join("bad.csv");
+    std::fs::write(&bad_file, "# header\n0,0,0,0,0,0,1,2\n").unwrap();
+    let o = armlab(&[
+        "calibrate",
+        "puma560",
+        "--measurements",
+        bad_file.to_str().unwrap(),
+    ]);
+    bad(&o, "line 2: 8 values");
+    std::fs::write(&bad_file, "0,0,0,0,0,0,1,nan,3\n").unwrap();
+    bad(
+        &armlab(&[
+            "calibrate",
+            "puma560",
+            "--measurements",
+            bad_file.to_str().unwrap(),
+        ]),
+        "line 1: value 8",
+    );
+    std::fs::write(&bad_file, format!("0,0,0,0,0,0,1,2,3\n{first}\n")).unwrap();
+    bad(
+        &armlab(&[
+            "calibrate",
+            "puma560",
+            "--measurements",
+            bad_file.to_str().unwrap(),
+        ]),
+        "all lines of a file must be of one kind",
+    );
+    std::fs::write(&bad_file, "0,0,0,0,0,0,1,2,3\n").unwrap();
+    bad(
+        &armlab(&[
+            "calibrate",
+            "puma560",
+            "--measurements",
+            bad_file.to_str().unwrap(),
+        ]),
+        "equations from 1 poses",
+    );
+    bad(
+        &armlab(&[
+            "calibrate",
+            "puma560",
+            "--measurements",
+            "/no/such/file.csv",
+        ]),
+        "cannot read",
+    );
+    bad(
+        &armlab(&["calibrate", "puma560", "--simulate", "--fix", "q7"]),
+        "no parameter named",
+    );
+    bad(
+        &armlab(&["calibrate", "puma560", "--simulate", "--with-base"]),
+        "not implemented yet",
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn calibrate_pose_selection_beats_random_poses() {
+    let o1 = |select: &str| {
+        let v = json(&armlab(&[
+            "calibrate",
+            "planar3",
+            "--simulate",
+            "--poses",
+            "8",
+            "--select",
+            select,
+            "--format",
+            "json",
+        ]));
+        v["observability"]["O1"].as_f64().unwrap()
+    };
+    let (random, chosen) = (o1("random"), o1("o1"));
+    assert!(chosen > random, "O1 chosen {chosen} vs random {random}");
+}

@@ -7,7 +7,9 @@ use super::solve::{CalibrationOptions, check, column_scale, stacked};
 use nalgebra::DMatrix;
 
 /// Observability indices of a pose set, from the singular values sigma_1 >= ... >= sigma_L of
-/// the column-scaled stacked Phi (not of Phi^T Phi), L free parameters, l poses.
+/// the column-scaled stacked Phi (not of Phi^T Phi), l poses. L is the numerical rank: the
+/// indices describe the identifiable combinations (with an unidentifiable direction among them,
+/// O2-O4 would be rounding noise, about 1e-16, whatever the poses).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Observability {
     /// O1 (Borm & Menq): (sigma_1 ... sigma_L)^(1/L) / sqrt(l).
@@ -125,7 +127,10 @@ pub(super) fn identifiability_of(
         identifiable,
         unidentifiable,
         combinations,
-        observability: Observability::from_singular_values(&sv, ms.len()),
+        observability: Observability::from_singular_values(
+            &sv[..rank.max(1).min(sv.len())],
+            ms.len(),
+        ),
         singular_values: sv,
     })
 }

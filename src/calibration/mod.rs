@@ -12,19 +12,27 @@
 //! - [`calibrate`]: (2.88)-(2.89) iterated, with a rank-revealing SVD of the column-scaled,
 //!   noise-weighted Phi, a record per iteration, the identifiability report and the uncertainty
 //!   of the estimate.
+//! - [`select_poses`]: l poses out of candidates maximising O1 or O4 (DETMAX-style exchange);
+//!   [`parse_measurements`] / [`write_measurements`]: the measurement file format.
+//! - [`select_poses`]: l poses out of candidates maximising O1 or O4 (DETMAX-style exchange);
+//!   [`parse_measurements`] / [`write_measurements`]: the measurement file format.
 //! - [`simulate`]: a "real" robot (the nominal plus seeded deviations) and measurements with
 //!   seeded noise, for teaching and for tests.
 //!
 //! Units: metres and radians; errors of a pose are `[p_measured - p_model; delta phi]` with
 //! `R_measured R_model^T = Rot(delta phi)` (world frame).
 
+mod file;
 mod identify;
 mod model;
+mod select;
 mod simulate;
 mod solve;
 
+pub use file::{MeasurementFileError, parse_measurements, write_measurements};
 pub use identify::{Identifiability, Observability, identifiability};
 pub use model::{Kind, Measurement, Parameter, ParameterModel};
+pub use select::{Criterion, select_poses};
 pub use simulate::{Simulated, SimulationOptions, simulate};
 pub use solve::{CalibrationOptions, CalibrationReport, Fit, Iteration, calibrate, fit};
 

@@ -1,6 +1,7 @@
 //! The scriptable command line: subcommands, their arguments, and dispatch. `main.rs` only
 //! parses and reports errors; everything here returns typed errors.
 
+mod calibrate;
 mod figures;
 mod fk;
 mod ik;
@@ -116,6 +117,9 @@ pub enum Command {
     Render(figures::RenderArgs),
     /// Compute the workspace (Sect. 2.10.1) and draw it to PNG, headlessly.
     Workspace(figures::WorkspaceArgs),
+    /// Kinematic calibration (Sect. 2.11): estimate the DH parameters from measured poses (or a
+    /// simulated robot), with what can and cannot be identified.
+    Calibrate(Box<calibrate::CalibrateArgs>),
 }
 
 /// Everything a subcommand can report (all are bad input: the binary exits with code 2).
@@ -202,6 +206,7 @@ pub fn run(cli: Cli, out: &mut dyn std::io::Write) -> Result<(), CliError> {
         Some(Command::Workspace(args)) => figures::workspace(&args, out),
         Some(Command::Render(args)) => figures::render(&args, out),
         Some(Command::Ik(args)) => ik::run(&args, out),
+        Some(Command::Calibrate(args)) => calibrate::run(&args, out),
     }
 }
 
