@@ -56,6 +56,79 @@ fn phi_matches_central_finite_differences() {
 }
 
 #[test]
+fn phi_of_base_and_tool_parameters_matches_finite_differences_away_from_nominal() {
+    let puma = built_in("puma560").unwrap();
+    let model = ParameterModel::new(&puma).unwrap().with_base().with_tool();
+    assert_eq!(model.parameters().len(), 36);
+    let mut zeta = model.nominal();
+    // Base and tool moved well away from identity, so the rotation-vector Jacobian matters.
+    for (k, v) in [
+        0.1, -0.2, 0.05, 0.3, -0.4, 0.2, 0.02, 0.03, -0.01, -0.5, 0.25, 0.6,
+    ]
+    .iter()
+    .enumerate()
+    {
+        zeta[24 + k] = *v;
+    }
+    let q = [0.3, -0.7, 0.5, 1.1, -0.4, 0.9];
+    let phi = model.calibration_matrix(&zeta, &q, false).unwrap();
+    let h = 1e-6;
+    for k in 0..zeta.len() {
+        let (mut zp, mut zm) = (zeta.clone(), zeta.clone());
+        zp[k] += h;
+        zm[k] -= h;
+        let d = pose_difference(&model, &zp, &zm, &q);
+        for i in 0..6 {
+            let fd = d[i] / (2.0 * h);
+            assert!(
+                (phi[(i, k)] - fd).abs() < 1e-7,
+                "Phi[{i}, {}] = {} vs {fd}",
+                model.parameters()[k].name,
+                phi[(i, k)]
+            );
+        }
+    }
+    // The robot with those parameters is what the model predicts.
+    let robot = model.robot_with(&zeta).unwrap();
+    let (_, t) = model.frames(&zeta, &q).unwrap();
+    assert!((robot.fk(&q).unwrap().to_homogeneous() - t.to_homogeneous()).amax() < 1e-12);
+}
+
+#[test]
+fn base_and_tool_deviations_are_recovered_from_noise_free_poses() {
+    let puma = built_in("puma560").unwrap();
+    let model = ParameterModel::new(&puma).unwrap().with_base().with_tool();
+    let sim = simulate(
+        &model,
+        &SimulationOptions {
+            noise_mm: 0.0,
+            noise_mrad: 0.0,
+            poses: 60,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    let report = calibrate(&model, &sim.measurements, &CalibrationOptions::default()).unwrap();
+    assert!(report.converged, "{:?}", report.reason);
+    let v = fit(&model, &report.estimate, &sim.validation).unwrap();
+    assert!(
+        v.position_max < 1e-9 && v.orientation_max.unwrap() < 1e-9,
+        "{v:?}"
+    );
+    // With the base free, the first joint's theta and d lump with the base's rotation and height.
+    let c = &report.nominal.combinations;
+    assert!(
+        c.iter()
+            .any(|s| s.contains("theta1") && s.contains("base_rz")),
+        "{c:?}"
+    );
+    assert!(
+        c.iter().any(|s| s.contains("d1") && s.contains("base_z")),
+        "{c:?}"
+    );
+}
+
+#[test]
 fn noise_free_data_recovers_the_robot_and_names_the_parallel_axes() {
     let puma = built_in("puma560").unwrap();
     let model = ParameterModel::new(&puma).unwrap();

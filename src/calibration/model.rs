@@ -6,7 +6,7 @@ use crate::kinematics::dh::{Convention, DhRow};
 use crate::kinematics::orientation::angle_axis_from_rotation;
 use crate::kinematics::pose::Pose;
 use crate::kinematics::robot::{Drive, JointKind, Robot};
-use nalgebra::{DMatrix, Vector3};
+use nalgebra::{DMatrix, Rotation3, Translation3, Vector3};
 
 /// Which DH parameter of a row.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -19,6 +19,16 @@ pub enum Kind {
     D,
     /// Joint angle theta (rad); the joint offset of a revolute joint.
     Theta,
+    /// A translation of the base along world axis 0, 1, 2 (m): `world_from_base` becomes
+    /// `Trans(t) Rot(r) world_from_base`.
+    BaseTranslation(usize),
+    /// A rotation of the base about world axis 0, 1, 2 (rad; the rotation vector r).
+    BaseRotation(usize),
+    /// A translation of the tool along its own axis 0, 1, 2 (m): `flange_from_tool` becomes
+    /// `flange_from_tool Trans(t) Rot(r)`.
+    ToolTranslation(usize),
+    /// A rotation of the tool about its own axis 0, 1, 2 (rad; the rotation vector r).
+    ToolRotation(usize),
 }
 
 impl Kind {
@@ -29,12 +39,19 @@ impl Kind {
             Kind::Alpha => "alpha",
             Kind::D => "d",
             Kind::Theta => "theta",
+            Kind::BaseTranslation(k) => ["base_x", "base_y", "base_z"][k.min(2)],
+            Kind::BaseRotation(k) => ["base_rx", "base_ry", "base_rz"][k.min(2)],
+            Kind::ToolTranslation(k) => ["tool_x", "tool_y", "tool_z"][k.min(2)],
+            Kind::ToolRotation(k) => ["tool_rx", "tool_ry", "tool_rz"][k.min(2)],
         }
     }
 
     /// Whether the parameter is an angle (rad) rather than a length (m).
     pub fn is_angle(self) -> bool {
-        matches!(self, Kind::Alpha | Kind::Theta)
+        matches!(
+            self,
+            Kind::Alpha | Kind::Theta | Kind::BaseRotation(_) | Kind::ToolRotation(_)
+        )
     }
 }
 
@@ -97,6 +114,19 @@ impl Measurement {
     }
 }
 
+/// The left Jacobian of SO(3) at the rotation vector r: `Exp(r + dr) = Exp(J_l(r) dr) Exp(r)`
+/// to first order.
+fn left_jacobian(r: &Vector3<f64>) -> nalgebra::Matrix3<f64> {
+    let th = r.norm();
+    let k = r.cross_matrix();
+    if th < 1e-8 {
+        return nalgebra::Matrix3::identity() + k * 0.5;
+    }
+    nalgebra::Matrix3::identity()
+        + k * ((1.0 - th.cos()) / (th * th))
+        + k * k * ((th - th.sin()) / (th * th * th))
+}
+
 /// One DH row as the model evaluates it.
 #[derive(Debug, Clone, Copy)]
 struct RowInfo {
@@ -116,6 +146,10 @@ pub struct ParameterModel {
     convention: Convention,
     rows: Vec<RowInfo>,
     params: Vec<Parameter>,
+    /// Index in zeta of the 6 base parameters (translation, rotation), if estimated.
+    base_at: Option<usize>,
+    /// Index in zeta of the 6 tool parameters, if estimated.
+    tool_at: Option<usize>,
 }
 
 impl ParameterModel {
@@ -164,6 +198,10 @@ impl ParameterModel {
                     Kind::D => row.d,
                     Kind::Theta if jk == JointKind::Revolute => offset,
                     Kind::Theta => row.theta,
+                    Kind::BaseTranslation(_)
+                    | Kind::BaseRotation(_)
+                    | Kind::ToolTranslation(_)
+                    | Kind::ToolRotation(_) => 0.0,
                 };
                 params.push(Parameter {
                     name: format!("{}{}", kind.as_str(), i + 1),
@@ -179,6 +217,51 @@ impl ParameterModel {
             convention,
             rows,
             params,
+            base_at: None,
+            tool_at: None,
+        })
+    }
+
+    /// Also estimates the base transform: 6 parameters (`base_x` .. `base_rz`, nominal 0) after
+    /// the DH ones, `world_from_base = Trans(t) Rot(r) world_from_base_nominal`.
+    pub fn with_base(mut self) -> Self {
+        if self.base_at.is_none() {
+            self.base_at = Some(self.params.len());
+            self.push_six(0, Kind::BaseTranslation, Kind::BaseRotation);
+        }
+        self
+    }
+
+    /// Also estimates the tool transform: 6 parameters (`tool_x` .. `tool_rz`, nominal 0),
+    /// `flange_from_tool = flange_from_tool_nominal Trans(t) Rot(r)`.
+    pub fn with_tool(mut self) -> Self {
+        if self.tool_at.is_none() {
+            self.tool_at = Some(self.params.len());
+            let joint = self.rows.len() + 1;
+            self.push_six(joint, Kind::ToolTranslation, Kind::ToolRotation);
+        }
+        self
+    }
+
+    fn push_six(&mut self, joint: usize, t: fn(usize) -> Kind, r: fn(usize) -> Kind) {
+        for kind in (0..3).map(t).chain((0..3).map(r)) {
+            self.params.push(Parameter {
+                name: kind.as_str().into(),
+                joint,
+                kind,
+                nominal: 0.0,
+                fixed: false,
+            });
+        }
+    }
+
+    /// `Trans(t) Rot(r)` of the six parameters starting at `at` (identity when not estimated).
+    fn six(zeta: &[f64], at: Option<usize>) -> Pose {
+        at.map_or_else(Pose::identity, |k| {
+            Pose::from_parts(
+                Translation3::new(zeta[k], zeta[k + 1], zeta[k + 2]),
+                Rotation3::new(Vector3::new(zeta[k + 3], zeta[k + 4], zeta[k + 5])),
+            )
         })
     }
 
@@ -235,7 +318,7 @@ impl ParameterModel {
     pub fn frames(&self, zeta: &[f64], q: &[f64]) -> Result<(Vec<Pose>, Pose), CalibrationError> {
         self.nominal.check_q(q)?;
         let mut frames = Vec::with_capacity(self.rows.len() + 1);
-        let mut t = self.nominal.base;
+        let mut t = Self::six(zeta, self.base_at) * self.nominal.base;
         frames.push(t);
         for (i, r) in self.rows.iter().enumerate() {
             let [a, alpha, d, theta] = self.row_values(zeta, i);
@@ -249,7 +332,7 @@ impl ParameterModel {
             t *= row.transform(self.convention, theta, d);
             frames.push(t);
         }
-        let tool = t * self.nominal.end_effectors()[0].tool;
+        let tool = t * self.nominal.end_effectors()[0].tool * Self::six(zeta, self.tool_at);
         Ok((frames, tool))
     }
 
@@ -257,6 +340,11 @@ impl ParameterModel {
     /// `--write-model` saves. Its FK equals [`Self::frames`]'s tool pose.
     pub fn robot_with(&self, zeta: &[f64]) -> Result<Robot, CalibrationError> {
         let mut r = self.nominal.clone();
+        r.base = Self::six(zeta, self.base_at) * self.nominal.base;
+        r.set_tool(
+            0,
+            self.nominal.end_effectors()[0].tool * Self::six(zeta, self.tool_at),
+        )?;
         for (i, info) in self.rows.iter().enumerate() {
             let [a, alpha, d, theta] = self.row_values(zeta, i);
             let (row, offset) = match info.kind {
@@ -335,7 +423,7 @@ impl ParameterModel {
         let pe = tool.translation.vector;
         let n = self.rows.len();
         let rows = if position_only { 3 } else { 6 };
-        let mut phi = DMatrix::zeros(rows, 4 * n);
+        let mut phi = DMatrix::zeros(rows, self.params.len());
         let mut put = |col: usize, u: Vector3<f64>, o: Option<Vector3<f64>>| {
             let (lin, ang) = match o {
                 Some(o) => (u.cross(&(pe - o)), u),
@@ -363,6 +451,27 @@ impl ParameterModel {
             put(n + i, a_axis, Some(a_point));
             put(2 * n + i, t_axis, None);
             put(3 * n + i, t_axis, Some(t_point));
+        }
+        if let Some(k) = self.base_at {
+            // world_from_tool = Trans(t) Rot(r) B X: a translation e_j moves everything by e_j;
+            // a change of r rotates by omega = J_l(r) e_j about the base origin t.
+            let t = Vector3::new(zeta[k], zeta[k + 1], zeta[k + 2]);
+            let jl = left_jacobian(&Vector3::new(zeta[k + 3], zeta[k + 4], zeta[k + 5]));
+            for j in 0..3 {
+                put(k + j, Vector3::ith(j, 1.0), None);
+                put(k + 3 + j, jl.column(j).into_owned(), Some(t));
+            }
+        }
+        if let Some(k) = self.tool_at {
+            // world_from_tool = A Trans(t) Rot(r): t moves the tool point along A's axes; r turns
+            // the tool about its own point by omega = R_A J_l(r) e_j.
+            let a = frames[n] * self.nominal.end_effectors()[0].tool;
+            let ra = a.rotation.matrix();
+            let jl = left_jacobian(&Vector3::new(zeta[k + 3], zeta[k + 4], zeta[k + 5]));
+            for j in 0..3 {
+                put(k + j, ra.column(j).into_owned(), None);
+                put(k + 3 + j, ra * jl.column(j), Some(pe));
+            }
         }
         Ok(phi)
     }

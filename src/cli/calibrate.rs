@@ -181,22 +181,22 @@ fn data(
 
 /// `armlab calibrate`.
 pub(super) fn run(args: &CalibrateArgs, out: &mut dyn Write) -> Result<(), CliError> {
-    for (flag, on) in [
-        ("--with-base", args.with_base),
-        ("--with-tool", args.with_tool),
-        ("--hayati auto", args.hayati == Hayati::Auto),
-    ] {
-        if on {
-            return Err(CliError::BadTarget {
-                source_name: flag.into(),
-                reason: "not implemented yet: armlab estimates the 4n DH parameters of (2.84); \
-                         base and tool transforms and Hayati's beta are still to come"
-                    .into(),
-            });
-        }
+    if args.hayati == Hayati::Auto {
+        return Err(CliError::BadTarget {
+            source_name: "--hayati auto".into(),
+            reason: "not implemented yet: armlab estimates plain DH parameters (with the base and \
+                     tool if asked); Hayati's beta for nearly parallel axes is still to come"
+                .into(),
+        });
     }
     let robot = crate::model_file::load_model(&args.model)?;
     let mut model = ParameterModel::new(&robot).map_err(calibration_error)?;
+    if args.with_base {
+        model = model.with_base();
+    }
+    if args.with_tool {
+        model = model.with_tool();
+    }
     if let Some(list) = &args.fix {
         let names: Vec<&str> = list
             .split(',')

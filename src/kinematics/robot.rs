@@ -546,6 +546,21 @@ impl Robot {
         Ok(())
     }
 
+    /// Replaces the tool (`frame_from_tool`) of end-effector `ee` (calibration); validated.
+    pub fn set_tool(&mut self, ee: usize, tool: Pose) -> Result<(), ModelError> {
+        if ee >= self.end_effectors.len() {
+            return Err(ModelError::Structure("no such end-effector"));
+        }
+        if !tool.to_homogeneous().iter().all(|v| v.is_finite()) {
+            return Err(ModelError::NotRigid {
+                what: format!("end-effector {ee} tool"),
+                reason: "non-finite element".into(),
+            });
+        }
+        self.end_effectors[ee].tool = tool;
+        Ok(())
+    }
+
     /// Replaces joint `j`'s offset and limits (live editing); validated.
     pub fn set_offset_limits(
         &mut self,
