@@ -74,6 +74,10 @@
 /// `nalgebra::Isometry3<f64>`), re-exported so that users name the same types.
 pub use nalgebra;
 
+/// The serialization crate whose traits [`kinematics::DhRow`] and [`kinematics::Convention`]
+/// implement, re-exported for the same reason.
+pub use serde;
+
 #[cfg(feature = "app")]
 pub mod app;
 pub mod calibration;

@@ -392,3 +392,59 @@ fn the_calibrated_model_is_a_robot_that_reloads_from_its_model_file() {
         }
     }
 }
+
+#[test]
+fn position_only_data_at_the_wrist_centre_cannot_see_the_wrist_rotations() {
+    // Independently of the code: the Puma's flange origin is its wrist centre (a4 = a5 = a6 = 0,
+    // d5 = d6 = 0), and the axes z3, x4, z4, x5, z5, x6 all pass through it, so theta4, alpha4,
+    // theta5, alpha5, theta6 and alpha6 rotate the measured point about itself: six parameters
+    // that position-only data never see. The wrist centre is w = o2 + d3 z2 + (a3 x3 + d4 z3):
+    // d2 and d3 lump (parallel axes 2, 3); the in-plane vector (a3, d4) at angle theta3 has two
+    // degrees of freedom for three parameters (one combination of a3, d4, theta3 is invisible);
+    // a small change of alpha3 tilts d4 z3 out of the plane by d4 * dalpha3 along z2, exactly
+    // like d3, so only alpha3 + d3 / d4 shows. Rank 24 - 6 - 1 - 1 - 1 = 15.
+    let puma = built_in("puma560").unwrap();
+    let model = ParameterModel::new(&puma).unwrap();
+    let sim = simulate(
+        &model,
+        &SimulationOptions {
+            position_only: true,
+            poses: 40,
+            noise_mm: 0.0,
+            ..SimulationOptions::default()
+        },
+    )
+    .unwrap();
+    let ident = identifiability(
+        &model,
+        &model.nominal(),
+        &sim.measurements,
+        &CalibrationOptions::default(),
+    )
+    .unwrap();
+    assert_eq!(ident.rank, 15, "{:?}", ident.combinations);
+    let c = &ident.combinations;
+    let d4 = 0.4318;
+    assert!(
+        c.iter()
+            .any(|s| s == &format!("alpha3 and d3 only as alpha3 {:+.6} * d3", 1.0 / d4)),
+        "{c:?}"
+    );
+    assert!(
+        c.iter()
+            .any(|s| s.starts_with("a3, d4, theta3 only in one combination")),
+        "{c:?}"
+    );
+    assert!(
+        c.iter().any(|s| s.starts_with("d2 and d3 only as d2 + d3")),
+        "{c:?}"
+    );
+    for name in ["theta4", "alpha4", "theta5", "alpha5", "theta6", "alpha6"] {
+        assert!(
+            ident.combinations.iter().any(|c| c
+                == &format!("{name} cannot be identified: it does not change the measurements")),
+            "{name}: {:?}",
+            ident.combinations
+        );
+    }
+}

@@ -3,6 +3,7 @@
 
 use super::CalibrationError;
 use super::model::{Measurement, ParameterModel};
+use crate::kinematics::ik::numerical::SplitMix;
 use crate::kinematics::pose::Pose;
 use nalgebra::{Rotation3, Translation3, Vector3};
 
@@ -55,17 +56,12 @@ pub struct Simulated {
     pub validation: Vec<Measurement>,
 }
 
-/// SplitMix64 with Box–Muller normals: small, deterministic, no dependency.
-struct Rng(u64);
+/// Uniform and Box–Muller normal numbers from the solver's SplitMix64.
+struct Rng(SplitMix);
 
 impl Rng {
     fn uniform(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64
+        self.0.next_f64()
     }
 
     fn normal(&mut self) -> f64 {
@@ -94,7 +90,7 @@ pub fn simulate(
             )));
         }
     }
-    let mut rng = Rng(opts.seed ^ 0xCA11_B8A7);
+    let mut rng = Rng(SplitMix(opts.seed ^ 0xCA11_B8A7));
     let mut truth = model.nominal();
     for (z, p) in truth.iter_mut().zip(model.parameters()) {
         if p.fixed {

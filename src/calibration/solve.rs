@@ -200,13 +200,23 @@ pub(super) fn stacked(
     Ok((phi, res))
 }
 
-/// Column norms of `phi` (1 for an all-zero column), for the scaling.
+/// Column norms of `phi`, for the scaling. A column that is zero up to rounding (below 1e-12 of
+/// the largest: a parameter that does not move the measured pose at all) keeps the largest
+/// norm as its scale, so that it stays a zero column instead of being blown up into noise.
 pub(super) fn column_scale(phi: &DMatrix<f64>) -> DVector<f64> {
+    let norms: Vec<f64> = phi.column_iter().map(|c| c.norm()).collect();
+    let largest = norms.iter().copied().fold(0.0, f64::max);
+    let floor = 1e-12 * largest;
     DVector::from_iterator(
-        phi.ncols(),
-        phi.column_iter().map(|c| {
-            let n = c.norm();
-            if n > 0.0 { n } else { 1.0 }
+        norms.len(),
+        norms.iter().map(|&n| {
+            if n > floor {
+                n
+            } else if largest > 0.0 {
+                largest
+            } else {
+                1.0
+            }
         }),
     )
 }

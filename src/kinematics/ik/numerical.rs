@@ -128,12 +128,14 @@ pub struct IkReport {
     pub orientation_error: f64,
 }
 
-/// SplitMix64: a small deterministic generator for restarts (no dependency, no global state).
+/// SplitMix64: a small deterministic generator for restarts and simulated data (no dependency,
+/// no global state).
 #[derive(Debug, Clone)]
-struct SplitMix(u64);
+pub(crate) struct SplitMix(pub(crate) u64);
 
 impl SplitMix {
-    fn next_f64(&mut self) -> f64 {
+    /// Uniform in [0, 1).
+    pub(crate) fn next_f64(&mut self) -> f64 {
         self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
         let mut z = self.0;
         z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
