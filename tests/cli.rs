@@ -571,10 +571,44 @@ fn calibrate_from_a_measurement_file_and_write_the_model() {
         &armlab(&["calibrate", "puma560", "--simulate", "--fix", "q7"]),
         "no parameter named",
     );
-    bad(
-        &armlab(&["calibrate", "puma560", "--simulate", "--with-base"]),
-        "not implemented yet",
-    );
+    // Base and tool parameters: 36 in all, the lumped ones named.
+    let v = json(&armlab(&[
+        "calibrate",
+        "puma560",
+        "--simulate",
+        "--with-base",
+        "--with-tool",
+        "--format",
+        "json",
+    ]));
+    assert_eq!(v["parameter_count"], 36);
+    let names: Vec<&str> = v["parameters"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| p["name"].as_str().unwrap())
+        .collect();
+    assert!(names.contains(&"base_rz") && names.contains(&"tool_x"));
+    assert!(v["rank"].as_u64().unwrap() < 36);
+    // Hayati's beta for the parallel axes 2 and 3: every parameter identifiable.
+    let v = json(&armlab(&[
+        "calibrate",
+        "puma560",
+        "--simulate",
+        "--hayati",
+        "auto",
+        "--format",
+        "json",
+    ]));
+    assert_eq!(v["hayati_rows"], serde_json::json!([2]));
+    assert_eq!(v["rank"], v["parameter_count"]);
+    let beta = v["parameters"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|p| p["name"] == "beta2")
+        .unwrap();
+    assert_eq!(beta["kind"], "beta");
     std::fs::remove_dir_all(&dir).ok();
 }
 

@@ -210,7 +210,12 @@ fn parallel_reason(model: &ParameterModel, ka: Kind, ja: usize, kb: Kind, jb: us
         crate::kinematics::Convention::Modified => table[jb - 1].1.alpha,
     };
     if alpha.sin().abs() < 1e-9 {
-        format!(" (axes {ja} and {jb} are parallel: plain DH cannot place the common normal)")
+        let hint = if model.hayati_rows().contains(&ja) {
+            String::new()
+        } else {
+            format!("; Hayati's beta{ja} instead of d{ja} (--hayati auto) removes the ambiguity")
+        };
+        format!(" (axes {ja} and {jb} are parallel: plain DH cannot place the common normal{hint})")
     } else {
         String::new()
     }

@@ -19,6 +19,9 @@ pub enum Kind {
     D,
     /// Joint angle theta (rad); the joint offset of a revolute joint.
     Theta,
+    /// Hayati's beta (rad) of a row whose joint axes are parallel: a rotation about the row's
+    /// y axis after `Rx(alpha)`, replacing that row's d (then fixed).
+    Beta,
     /// A translation of the base along world axis 0, 1, 2 (m): `world_from_base` becomes
     /// `Trans(t) Rot(r) world_from_base`.
     BaseTranslation(usize),
@@ -39,6 +42,7 @@ impl Kind {
             Kind::Alpha => "alpha",
             Kind::D => "d",
             Kind::Theta => "theta",
+            Kind::Beta => "beta",
             Kind::BaseTranslation(k) => ["base_x", "base_y", "base_z"][k.min(2)],
             Kind::BaseRotation(k) => ["base_rx", "base_ry", "base_rz"][k.min(2)],
             Kind::ToolTranslation(k) => ["tool_x", "tool_y", "tool_z"][k.min(2)],
@@ -50,7 +54,7 @@ impl Kind {
     pub fn is_angle(self) -> bool {
         matches!(
             self,
-            Kind::Alpha | Kind::Theta | Kind::BaseRotation(_) | Kind::ToolRotation(_)
+            Kind::Alpha | Kind::Theta | Kind::Beta | Kind::BaseRotation(_) | Kind::ToolRotation(_)
         )
     }
 }
@@ -150,6 +154,8 @@ pub struct ParameterModel {
     base_at: Option<usize>,
     /// Index in zeta of the 6 tool parameters, if estimated.
     tool_at: Option<usize>,
+    /// Rows (0-based) with Hayati's beta, and the index of beta in zeta.
+    betas: Vec<(usize, usize)>,
 }
 
 impl ParameterModel {
@@ -198,7 +204,8 @@ impl ParameterModel {
                     Kind::D => row.d,
                     Kind::Theta if jk == JointKind::Revolute => offset,
                     Kind::Theta => row.theta,
-                    Kind::BaseTranslation(_)
+                    Kind::Beta
+                    | Kind::BaseTranslation(_)
                     | Kind::BaseRotation(_)
                     | Kind::ToolTranslation(_)
                     | Kind::ToolRotation(_) => 0.0,
@@ -219,7 +226,63 @@ impl ParameterModel {
             params,
             base_at: None,
             tool_at: None,
+            betas: Vec::new(),
         })
+    }
+
+    /// The rows (1-based) whose joint axes i and i + 1 are parallel in the nominal table
+    /// (standard DH, |sin alpha_i| < 1e-6), where plain DH cannot place the common normal and
+    /// Hayati's beta should replace d_i.
+    pub fn parallel_rows(&self) -> Vec<usize> {
+        if self.convention != Convention::Standard {
+            return Vec::new();
+        }
+        let n = self.rows.len();
+        (0..n.saturating_sub(1))
+            .filter(|&i| self.params[n + i].nominal.sin().abs() < 1e-6)
+            .filter(|&i| self.rows[i].kind == JointKind::Revolute)
+            .map(|i| i + 1)
+            .collect()
+    }
+
+    /// Uses Hayati's parameter on every row of [`Self::parallel_rows`]: the row becomes
+    /// `Rz(theta) Tz(d) Tx(a) Rx(alpha) Ry(beta)` with d fixed at its nominal value and beta
+    /// (nominal 0) estimated. Standard DH tables only.
+    pub fn with_hayati(mut self) -> Result<Self, CalibrationError> {
+        if self.convention != Convention::Standard {
+            return Err(CalibrationError::InvalidOption(
+                "Hayati's parameter is implemented for standard DH tables".into(),
+            ));
+        }
+        let n = self.rows.len();
+        for row in self.parallel_rows() {
+            let i = row - 1;
+            if self.betas.iter().any(|&(r, _)| r == i) {
+                continue;
+            }
+            self.params[2 * n + i].fixed = true;
+            self.betas.push((i, self.params.len()));
+            self.params.push(Parameter {
+                name: format!("beta{row}"),
+                joint: row,
+                kind: Kind::Beta,
+                nominal: 0.0,
+                fixed: false,
+            });
+        }
+        Ok(self)
+    }
+
+    /// The rows (1-based) that use Hayati's beta.
+    pub fn hayati_rows(&self) -> Vec<usize> {
+        self.betas.iter().map(|&(i, _)| i + 1).collect()
+    }
+
+    fn beta_of(&self, zeta: &[f64], i: usize) -> Option<f64> {
+        self.betas
+            .iter()
+            .find(|&&(r, _)| r == i)
+            .map(|&(_, k)| zeta[k])
     }
 
     /// Also estimates the base transform: 6 parameters (`base_x` .. `base_rz`, nominal 0) after
@@ -330,6 +393,9 @@ impl ParameterModel {
             };
             let row = DhRow { a, alpha, d, theta };
             t *= row.transform(self.convention, theta, d);
+            if let Some(beta) = self.beta_of(zeta, i) {
+                t *= crate::kinematics::pose::rot_y(beta);
+            }
             frames.push(t);
         }
         let tool = t * self.nominal.end_effectors()[0].tool * Self::six(zeta, self.tool_at);
@@ -369,6 +435,11 @@ impl ParameterModel {
                 JointKind::Fixed => (DhRow { a, alpha, d, theta }, 0.0),
             };
             r.set_dh_row(i, row)?;
+            if let Some(beta) = self.beta_of(zeta, i) {
+                // Ry(beta) after row i: the constant transform before row i + 1.
+                let pre = crate::kinematics::pose::rot_y(beta) * r.joints()[i + 1].pre;
+                r.set_pre(i + 1, pre)?;
+            }
             if info.kind != JointKind::Fixed {
                 let limits = r.joints()[i].limits;
                 r.set_offset_limits(i, offset, limits)?;
@@ -451,6 +522,15 @@ impl ParameterModel {
             put(n + i, a_axis, Some(a_point));
             put(2 * n + i, t_axis, None);
             put(3 * n + i, t_axis, Some(t_point));
+        }
+        for &(i, k) in &self.betas {
+            // Ry(beta) at the end of row i: a rotation about y_i through o_i.
+            let f = &frames[i + 1];
+            put(
+                k,
+                f.rotation.matrix().column(1).into_owned(),
+                Some(f.translation.vector),
+            );
         }
         if let Some(k) = self.base_at {
             // world_from_tool = Trans(t) Rot(r) B X: a translation e_j moves everything by e_j;

@@ -181,14 +181,6 @@ fn data(
 
 /// `armlab calibrate`.
 pub(super) fn run(args: &CalibrateArgs, out: &mut dyn Write) -> Result<(), CliError> {
-    if args.hayati == Hayati::Auto {
-        return Err(CliError::BadTarget {
-            source_name: "--hayati auto".into(),
-            reason: "not implemented yet: armlab estimates plain DH parameters (with the base and \
-                     tool if asked); Hayati's beta for nearly parallel axes is still to come"
-                .into(),
-        });
-    }
     let robot = crate::model_file::load_model(&args.model)?;
     let mut model = ParameterModel::new(&robot).map_err(calibration_error)?;
     if args.with_base {
@@ -196,6 +188,9 @@ pub(super) fn run(args: &CalibrateArgs, out: &mut dyn Write) -> Result<(), CliEr
     }
     if args.with_tool {
         model = model.with_tool();
+    }
+    if args.hayati == Hayati::Auto {
+        model = model.with_hayati().map_err(calibration_error)?;
     }
     if let Some(list) = &args.fix {
         let names: Vec<&str> = list
@@ -230,11 +225,26 @@ pub(super) fn run(args: &CalibrateArgs, out: &mut dyn Write) -> Result<(), CliEr
     }
     match args.format {
         Format::Json => {
-            let v = to_json(&report, val.as_ref(), truth.as_deref());
+            let mut v = to_json(&report, val.as_ref(), truth.as_deref());
+            v["hayati_rows"] = json!(model.hayati_rows());
             serde_json::to_writer_pretty(&mut *out, &v).map_err(std::io::Error::from)?;
             writeln!(out)?;
         }
-        Format::Text => write_text(out, &report, val.as_ref(), truth.as_deref())?,
+        Format::Text => {
+            let rows = model.hayati_rows();
+            if !rows.is_empty() {
+                let list: Vec<String> = rows
+                    .iter()
+                    .map(|r| format!("beta{r} instead of d{r}"))
+                    .collect();
+                writeln!(
+                    out,
+                    "Hayati's parameter (parallel axes): {}",
+                    list.join(", ")
+                )?;
+            }
+            write_text(out, &report, val.as_ref(), truth.as_deref())?
+        }
     }
     Ok(())
 }

@@ -546,6 +546,36 @@ impl Robot {
         Ok(())
     }
 
+    /// Replaces joint `j`'s constant `pre` transform (Hayati's extra rotation after a
+    /// calibrated row goes into the next joint's `pre`); validated, re-lowered.
+    pub fn set_pre(&mut self, j: JointId, pre: Pose) -> Result<(), ModelError> {
+        let mut joint = self.joints[j].clone();
+        joint.pre = pre;
+        validate_joint(j, &joint, &self.joints)?;
+        self.lowered[j] = lower(&joint);
+        self.joints[j] = joint;
+        Ok(())
+    }
+
+    /// The rows of a serial chain of DH joints in one convention like [`Self::dh_table`], also
+    /// when joints carry constant `pre` transforms (returned alongside, identity where none).
+    pub fn dh_table_with_pre(&self) -> Option<(DhTable, Vec<Pose>)> {
+        let mut conv = None;
+        let mut out = Vec::new();
+        let mut pres = Vec::new();
+        for (i, j) in self.joints.iter().enumerate() {
+            let JointGeometry::Dh { row, convention } = j.geometry else {
+                return None;
+            };
+            if j.parent != i.checked_sub(1) || *conv.get_or_insert(convention) != convention {
+                return None;
+            }
+            out.push((j.kind, row, j.offset));
+            pres.push(j.pre);
+        }
+        conv.map(|c| ((c, out), pres))
+    }
+
     /// Replaces the tool (`frame_from_tool`) of end-effector `ee` (calibration); validated.
     pub fn set_tool(&mut self, ee: usize, tool: Pose) -> Result<(), ModelError> {
         if ee >= self.end_effectors.len() {

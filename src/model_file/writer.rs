@@ -8,7 +8,8 @@ use std::fmt::Write;
 /// The TOML model file of a serial DH robot, or `None` if the robot is not one.
 ///
 /// A serial DH robot has only DH joints in one convention, each the child of the previous one,
-/// no `pre` transforms and no couplings (see [`Robot::dh_table`]); its end-effectors may sit on
+/// and no couplings (see [`Robot::dh_table_with_pre`]; constant `pre` transforms, such as a
+/// calibrated Hayati rotation, are written as `pre`); its end-effectors may sit on
 /// any joint. Angles that are exact multiples of pi or whole degrees are written as strings such
 /// as `"pi/2"` or `"-160deg"`, everything else with the shortest decimal that reads back to the
 /// same `f64`, so parsing the result gives a robot with the same forward kinematics, joint
@@ -16,7 +17,7 @@ use std::fmt::Write;
 /// [`crate::kinematics::pose::pose_from_matrix`] again on reading, which may change them in the
 /// last bit.
 pub fn to_toml(robot: &Robot) -> Option<String> {
-    let (convention, rows) = robot.dh_table()?;
+    let ((convention, rows), pres) = robot.dh_table_with_pre()?;
     if robot
         .joints()
         .iter()
@@ -41,10 +42,13 @@ pub fn to_toml(robot: &Robot) -> Option<String> {
     if default_ee && ees[0].tool != Pose::identity() {
         let _ = writeln!(s, "tool = {}", matrix(&ees[0].tool));
     }
-    for (j, (kind, row, offset)) in joints.iter().zip(rows) {
+    for ((j, (kind, row, offset)), pre) in joints.iter().zip(rows).zip(&pres) {
         let revolute = kind == JointKind::Revolute;
         let _ = writeln!(s, "\n[[joints]]\ntype = \"{}\"", kind.as_str());
         let _ = writeln!(s, "name = {}", quote(&j.name));
+        if *pre != Pose::identity() {
+            let _ = writeln!(s, "pre = {}", matrix(pre));
+        }
         let _ = writeln!(s, "a = {}", num(row.a));
         let _ = writeln!(s, "alpha = {}", angle(row.alpha));
         if kind != JointKind::Prismatic {
