@@ -39,18 +39,7 @@ pub fn parse_measurements(
         if data.is_empty() {
             continue;
         }
-        let mut values = Vec::new();
-        for (i, f) in data.split(',').map(str::trim).enumerate() {
-            match f.parse::<f64>() {
-                Ok(v) if v.is_finite() => values.push(v),
-                _ => {
-                    return Err(err(
-                        line,
-                        format!("value {} ({f:?}) is not a finite number", i + 1),
-                    ));
-                }
-            }
-        }
+        let values = numbers(data).map_err(|p| err(line, p))?;
         let extra = values
             .len()
             .checked_sub(dof)
@@ -107,6 +96,18 @@ pub fn parse_measurements(
         ));
     }
     Ok(out)
+}
+
+/// The comma-separated finite numbers of one line, or what is wrong.
+fn numbers(data: &str) -> Result<Vec<f64>, String> {
+    data.split(',')
+        .map(str::trim)
+        .enumerate()
+        .map(|(i, f)| match f.parse::<f64>() {
+            Ok(v) if v.is_finite() => Ok(v),
+            _ => Err(format!("value {} ({f:?}) is not a finite number", i + 1)),
+        })
+        .collect()
 }
 
 /// Writes measurements in the file format above (shortest round-trip numbers).

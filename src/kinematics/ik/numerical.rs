@@ -551,6 +551,35 @@ const ACCELERATION_RATIO: f64 = 0.75;
 /// Finite-difference step (a fraction of the step) for the second directional derivative.
 const ACCELERATION_PROBE: f64 = 0.1;
 
+/// Adds half the geodesic acceleration to the step `s.dq` (Transtrum & Sethna 2012): the second
+/// directional derivative of the error along the step, by one extra forward kinematics, and the
+/// same damped solve; skipped when it is not small against the step (the model is too poor).
+#[allow(clippy::too_many_arguments)]
+fn accelerate(
+    robot: &Robot,
+    ee: usize,
+    goal: &Pose,
+    mask: &TaskMask,
+    q: &[f64],
+    e: &Vector6<f64>,
+    jv: &Vector6<f64>,
+    ch: &nalgebra::Cholesky<f64, nalgebra::U6>,
+    s: &mut Scratch,
+) -> Result<(), IkError> {
+    let h = ACCELERATION_PROBE;
+    for ((t, &v), d) in s.trial.iter_mut().zip(q.iter()).zip(s.dq.iter()) {
+        *t = v + h * d;
+    }
+    let e_probe = error(goal, &robot.fk_ee(&s.trial, ee)?, mask);
+    // e(q + h v) = e - h J v - h^2/2 e'': the second directional derivative, sign as J v.
+    let second = ((e - e_probe) / h - jv) * (2.0 / h);
+    s.acc.gemv_tr(-1.0, &s.jac, &ch.solve(&second), 0.0);
+    if s.acc.norm() <= ACCELERATION_RATIO * s.dq.norm() {
+        s.dq.axpy(0.5, &s.acc, 1.0);
+    }
+    Ok(())
+}
+
 /// One Levenberg–Marquardt attempt from `q`: the damped Gauss–Newton step
 /// `v = J^T (J J^T + lambda I)^-1 e`, with its geodesic acceleration whenever the previous step
 /// fitted the linear model poorly (Transtrum & Sethna 2012: the second directional derivative of
@@ -600,20 +629,10 @@ fn lm_attempt(
         };
         s.dq.gemv_tr(1.0, &s.jac, &ch.solve(&e), 0.0);
         let jv: Vector6<f64> = &s.jac * &s.dq;
-        // e(q + h v) = e - h J v - h^2/2 e'' : the second directional derivative, sign as J v.
         if poor_fit || crawling {
             // The last step's decrease fell short of the linear model's: correct for the
             // curvature (once the model fits, plain steps converge quadratically).
-            let h = ACCELERATION_PROBE;
-            for ((t, &v), d) in s.trial.iter_mut().zip(q.iter()).zip(s.dq.iter()) {
-                *t = v + h * d;
-            }
-            let e_probe = error(goal, &robot.fk_ee(&s.trial, ee)?, mask);
-            let second = ((e - e_probe) / h - jv) * (2.0 / h);
-            s.acc.gemv_tr(-1.0, &s.jac, &ch.solve(&second), 0.0);
-            if s.acc.norm() <= ACCELERATION_RATIO * s.dq.norm() {
-                s.dq.axpy(0.5, &s.acc, 1.0);
-            }
+            accelerate(robot, ee, goal, mask, q, &e, &jv, &ch, s)?;
         }
         let norm = s.dq.amax();
         if norm > opts.max_step {
