@@ -534,3 +534,75 @@ fn hayati_beta_removes_the_parallel_axis_trap() {
         assert!(v.position_rms < 1.3 * floor, "{:e}", v.position_rms);
     }
 }
+
+#[test]
+fn converged_is_not_accurate_with_poses_that_are_all_alike() {
+    // The lesson of Sect. 2.11 ("a sufficient number of poses" is not enough: they must differ):
+    // 40 poses within 0.02 rad of one configuration fit their own data to the noise, but the
+    // model is wrong elsewhere, and O1 says so.
+    let puma = built_in("puma560").unwrap();
+    let model = ParameterModel::new(&puma).unwrap();
+    let sim = simulate(
+        &model,
+        &SimulationOptions {
+            poses: 40,
+            noise_mm: 0.01,
+            noise_mrad: 0.02,
+            seed: 3,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    let base = [0.3, 0.5, -0.8, 0.4, 0.9, -0.2];
+    let alike: Vec<Measurement> = (0..40)
+        .map(|k| {
+            let q: Vec<f64> = base
+                .iter()
+                .enumerate()
+                .map(|(j, v)| v + 0.02 * (((k * 7 + j * 3) % 11) as f64 / 10.0 - 0.5))
+                .collect();
+            let (_, t) = model.frames(&sim.truth, &q).unwrap();
+            // Measured with noise of the stated size (deterministic, +- 1.7 sigma).
+            let n = |i: usize| ((k * 13 + i * 5) % 17) as f64 / 8.0 - 1.0;
+            let dp = nalgebra::Vector3::new(n(0), n(1), n(2)) * 1.7 * 0.01e-3;
+            let dr =
+                nalgebra::Rotation3::new(nalgebra::Vector3::new(n(3), n(4), n(5)) * 1.7 * 0.02e-3);
+            let measured = armlab::kinematics::Pose::from_parts(
+                nalgebra::Translation3::from(t.translation.vector + dp),
+                dr * t.rotation,
+            );
+            Measurement::Pose {
+                q,
+                world_from_tool: measured,
+            }
+        })
+        .collect();
+    let opts = CalibrationOptions {
+        position_sigma: 0.01e-3,
+        orientation_sigma: 0.02e-3,
+        ..Default::default()
+    };
+    let narrow = calibrate(&model, &alike, &opts).unwrap();
+    let broad = calibrate(&model, &sim.measurements, &opts).unwrap();
+    assert!(narrow.converged);
+    assert!(
+        narrow.after.position_rms < 3e-5, // its own poses, to the noise level
+        "{:?}",
+        narrow.after
+    );
+    let on_random = fit(&model, &narrow.estimate, &sim.validation).unwrap();
+    let good = fit(&model, &broad.estimate, &sim.validation).unwrap();
+    assert!(
+        on_random.position_rms > 20.0 * good.position_rms, // and far off elsewhere
+        "{on_random:?} vs {good:?}"
+    );
+    assert!(narrow.nominal.observability.o1 < 0.1 * broad.nominal.observability.o1);
+    // Not rank deficient, ill-conditioned: the condition number says what the residual hides.
+    let cond = |r: &armlab::calibration::CalibrationReport| r.iterations.last().unwrap().condition;
+    assert!(
+        cond(&narrow) > 100.0 * cond(&broad),
+        "{} vs {}",
+        cond(&narrow),
+        cond(&broad)
+    );
+}
