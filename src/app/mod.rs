@@ -3,6 +3,8 @@
 //! the 3D scene with the same renderer as the headless figures; [`screenshot`] renders the
 //! whole window offscreen.
 
+pub mod calibration_lab;
+pub mod calibration_panel;
 pub mod gizmo;
 pub mod inner;
 pub mod panels;

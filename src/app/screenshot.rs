@@ -31,6 +31,7 @@ pub fn screenshot_with(
     let mut app = AppUi::new(live.state.clone());
     app.projector = opts.projector;
     app.tab = live.tab;
+    app.calibration = live.calibration.clone();
     app.ee = live.ee;
     render_window(app, size, Some(live.camera))
 }

@@ -15,6 +15,8 @@ pub enum Tab {
     View3d,
     /// The 2D workspace figure.
     Workspace,
+    /// The calibration sandbox (Sect. 2.11).
+    Calibration,
 }
 
 /// The app: its state (no GUI types) plus what only the UI needs.
@@ -41,6 +43,8 @@ pub struct AppUi {
     pub gizmo: super::gizmo::Gizmo,
     /// The workspace computation running or done.
     pub workspace: Option<WorkspaceJob>,
+    /// The Calibration tab.
+    pub calibration: super::calibration_lab::CalibrationLab,
     workspace_texture: Option<egui::TextureHandle>,
     /// Labels of the scene rendered last (drawn by egui over the 3D view).
     scene_labels: Vec<crate::scene::Label>,
@@ -69,6 +73,7 @@ impl AppUi {
             viewport_rect: egui::Rect::NOTHING,
             gizmo: super::gizmo::Gizmo::default(),
             workspace: None,
+            calibration: Default::default(),
             workspace_texture: None,
             scene_labels: Vec::new(),
             camera_fitted: false,
@@ -317,6 +322,12 @@ impl AppUi {
         egui::CentralPanel::default().show(ui, |ui| match self.tab {
             Tab::View3d => self.viewport(ui, viewport),
             Tab::Workspace => self.workspace_tab(ui),
+            Tab::Calibration => super::calibration_panel::show(
+                &mut self.calibration,
+                self.state.robot(),
+                self.state.q(),
+                ui,
+            ),
         });
         if self.show_help {
             egui::Window::new("Keyboard shortcuts")
@@ -336,6 +347,7 @@ impl AppUi {
             ui.separator();
             ui.selectable_value(&mut self.tab, Tab::View3d, "3D view");
             ui.selectable_value(&mut self.tab, Tab::Workspace, "Workspace (2D)");
+            ui.selectable_value(&mut self.tab, Tab::Calibration, "Calibration");
             ui.separator();
             for (label, p) in [
                 ("Top", Preset::Top),

@@ -1,0 +1,314 @@
+//! The Calibration tab's state (no GUI types): simulation settings, the last run's report, the
+//! two built-in lessons, measurement files and saving the calibrated model. Every failure is a
+//! message; the previous result stays.
+
+use crate::calibration::{
+    CalibrationOptions, CalibrationReport, Criterion, Fit, Measurement, ParameterModel,
+    SimulationOptions, calibrate, fit, parse_measurements, select_poses, simulate,
+};
+use crate::kinematics::Robot;
+use crate::kinematics::pose::Pose;
+use nalgebra::{Rotation3, Translation3, Vector3};
+
+/// How the simulated poses are chosen.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PoseChoice {
+    /// Uniformly random in the joint limits.
+    Random,
+    /// Maximising O1 among 10x as many random poses.
+    O1,
+    /// Maximising O4 among 10x as many random poses.
+    O4,
+    /// All within 0.02 rad of the arm's current configuration (the lesson "converged is not
+    /// accurate").
+    Alike,
+}
+
+/// The settings of a simulated calibration (units as named).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LabSettings {
+    /// Measured poses (as many again are held out).
+    pub poses: usize,
+    /// Length deviations of the "real" arm, +- mm.
+    pub tolerance_mm: f64,
+    /// Angle deviations, +- degrees.
+    pub tolerance_deg: f64,
+    /// Position noise, mm (one sigma).
+    pub noise_mm: f64,
+    /// Orientation noise, mrad (one sigma).
+    pub noise_mrad: f64,
+    /// Position-only measurements.
+    pub position_only: bool,
+    /// Pose choice.
+    pub choice: PoseChoice,
+    /// Hayati's beta on parallel axes.
+    pub hayati: bool,
+    /// Seed of the simulation.
+    pub seed: u64,
+}
+
+impl Default for LabSettings {
+    fn default() -> Self {
+        Self {
+            poses: 50,
+            tolerance_mm: 1.0,
+            tolerance_deg: 0.5,
+            noise_mm: 0.02,
+            noise_mrad: 0.05,
+            position_only: false,
+            choice: PoseChoice::Random,
+            hayati: false,
+            seed: 1,
+        }
+    }
+}
+
+/// What one run produced.
+#[derive(Debug, Clone)]
+pub struct LabResult {
+    /// What was calibrated, in words ("simulated Puma 560, 50 random poses", a file name).
+    pub title: String,
+    /// The parameter model used (names, kinds, which rows use Hayati's beta).
+    pub model: ParameterModel,
+    /// The report.
+    pub report: CalibrationReport,
+    /// The true parameters, when simulated.
+    pub truth: Option<Vec<f64>>,
+    /// Errors on held-out poses before and after, when there are any.
+    pub validation: Option<(Fit, Fit)>,
+    /// The joint vectors of the measured poses (drawn as ghosts).
+    pub poses: Vec<Vec<f64>>,
+}
+
+/// The Calibration tab.
+#[derive(Debug, Clone, Default)]
+pub struct CalibrationLab {
+    /// Simulation settings.
+    pub settings: LabSettings,
+    /// The last successful run.
+    pub result: Option<LabResult>,
+    /// The last message (an error, or what was saved).
+    pub message: Option<String>,
+    /// Path typed for measurement files.
+    pub measurements_path: String,
+    /// Path typed for saving the calibrated model.
+    pub save_path: String,
+}
+
+fn options(s: &LabSettings) -> CalibrationOptions {
+    CalibrationOptions {
+        position_sigma: (s.noise_mm * 1e-3).max(1e-9),
+        orientation_sigma: (s.noise_mrad * 1e-3).max(1e-9),
+        ..CalibrationOptions::default()
+    }
+}
+
+fn model_of(robot: &Robot, hayati: bool) -> Result<ParameterModel, String> {
+    let m = ParameterModel::new(robot).map_err(|e| e.to_string())?;
+    if hayati {
+        m.with_hayati().map_err(|e| e.to_string())
+    } else {
+        Ok(m)
+    }
+}
+
+/// Poses within 0.02 rad (or m) of `q0`, measured on the true parameters with the stated noise
+/// (deterministic).
+fn alike(
+    model: &ParameterModel,
+    truth: &[f64],
+    q0: &[f64],
+    s: &LabSettings,
+) -> Result<Vec<Measurement>, String> {
+    (0..s.poses)
+        .map(|k| {
+            let n = |i: usize| ((k * 13 + i * 5) % 17) as f64 / 8.0 - 1.0;
+            let q: Vec<f64> = q0
+                .iter()
+                .enumerate()
+                .map(|(j, v)| v + 0.01 * n(j + 6))
+                .collect();
+            let (_, t) = model.frames(truth, &q).map_err(|e| e.to_string())?;
+            let p = t.translation.vector + Vector3::new(n(0), n(1), n(2)) * 1.7 * s.noise_mm * 1e-3;
+            Ok(if s.position_only {
+                Measurement::Position { q, p }
+            } else {
+                let r = Rotation3::new(Vector3::new(n(3), n(4), n(5)) * 1.7 * s.noise_mrad * 1e-3);
+                Measurement::Pose {
+                    q,
+                    world_from_tool: Pose::from_parts(Translation3::from(p), r * t.rotation),
+                }
+            })
+        })
+        .collect()
+}
+
+impl CalibrationLab {
+    /// Simulates a "real" `robot` with the settings, measures it, calibrates; `q_now` is the
+    /// arm's configuration (the centre of the "alike" poses).
+    pub fn run_simulated(&mut self, robot: &Robot, q_now: &[f64]) {
+        match self.simulated(robot, q_now) {
+            Ok(r) => {
+                self.result = Some(r);
+                self.message = None;
+            }
+            Err(e) => self.message = Some(e),
+        }
+    }
+
+    fn simulated(&self, robot: &Robot, q_now: &[f64]) -> Result<LabResult, String> {
+        let s = self.settings;
+        let model = model_of(robot, s.hayati)?;
+        let opts = options(&s);
+        let candidates = match s.choice {
+            PoseChoice::O1 | PoseChoice::O4 => 10 * s.poses,
+            _ => s.poses,
+        };
+        let sim = simulate(
+            &model,
+            &SimulationOptions {
+                poses: candidates,
+                validation_poses: s.poses.max(10),
+                tolerance_mm: s.tolerance_mm,
+                tolerance_deg: s.tolerance_deg,
+                noise_mm: s.noise_mm,
+                noise_mrad: s.noise_mrad,
+                position_only: s.position_only,
+                seed: s.seed,
+            },
+        )
+        .map_err(|e| e.to_string())?;
+        let ms = match s.choice {
+            PoseChoice::Random => sim.measurements,
+            PoseChoice::Alike => alike(&model, &sim.truth, q_now, &s)?,
+            PoseChoice::O1 | PoseChoice::O4 => {
+                let c = if s.choice == PoseChoice::O1 {
+                    Criterion::O1
+                } else {
+                    Criterion::O4
+                };
+                let chosen = select_poses(&model, &sim.measurements, s.poses, c, &opts)
+                    .map_err(|e| e.to_string())?;
+                chosen
+                    .into_iter()
+                    .map(|i| sim.measurements[i].clone())
+                    .collect()
+            }
+        };
+        let title = format!(
+            "simulated {}, {} {:?} poses",
+            robot.name,
+            ms.len(),
+            s.choice
+        )
+        .to_lowercase();
+        finish(
+            model,
+            &ms,
+            Some(&sim.validation),
+            Some(sim.truth),
+            title,
+            &opts,
+        )
+    }
+
+    /// Calibrates `robot` from the measurement file typed in `measurements_path`.
+    pub fn run_file(&mut self, robot: &Robot) {
+        let path = self.measurements_path.trim().to_string();
+        let result = std::fs::read_to_string(&path)
+            .map_err(|e| format!("cannot read {path}: {e}"))
+            .and_then(|text| {
+                parse_measurements(&text, &path, robot.dof()).map_err(|e| e.to_string())
+            })
+            .and_then(|ms| {
+                let model = model_of(robot, self.settings.hayati)?;
+                finish(
+                    model,
+                    &ms,
+                    None,
+                    None,
+                    path.clone(),
+                    &options(&self.settings),
+                )
+            });
+        match result {
+            Ok(r) => {
+                self.result = Some(r);
+                self.message = None;
+            }
+            Err(e) => self.message = Some(e),
+        }
+    }
+
+    /// Writes the calibrated robot to `save_path` as a model file.
+    pub fn save_model(&mut self) {
+        let path = self.save_path.trim().to_string();
+        let Some(r) = &self.result else {
+            self.message = Some("run a calibration first".into());
+            return;
+        };
+        let text = r
+            .model
+            .robot_with(&r.report.estimate)
+            .map_err(|e| e.to_string())
+            .and_then(|robot| {
+                crate::model_file::to_toml(&robot)
+                    .ok_or_else(|| "the calibrated robot is not a DH model file".to_string())
+            });
+        self.message = Some(
+            match text.and_then(|t| {
+                std::fs::write(&path, t).map_err(|e| format!("cannot write {path}: {e}"))
+            }) {
+                Ok(()) => format!("saved the calibrated model to {path}"),
+                Err(e) => e,
+            },
+        );
+    }
+
+    /// The lesson "converged is not accurate": poses all alike around the current configuration.
+    pub fn lesson_alike(&mut self, robot: &Robot, q_now: &[f64]) {
+        self.settings = LabSettings {
+            choice: PoseChoice::Alike,
+            poses: 40,
+            ..LabSettings::default()
+        };
+        self.run_simulated(robot, q_now);
+    }
+
+    /// The lesson "parallel axes": plain DH on an arm with parallel axes (the Puma's 2 and 3);
+    /// switch `hayati` on to see what beta does.
+    pub fn lesson_parallel(&mut self, robot: &Robot, q_now: &[f64], hayati: bool) {
+        self.settings = LabSettings {
+            poses: 60,
+            hayati,
+            ..LabSettings::default()
+        };
+        self.run_simulated(robot, q_now);
+    }
+}
+
+fn finish(
+    model: ParameterModel,
+    ms: &[Measurement],
+    validation: Option<&[Measurement]>,
+    truth: Option<Vec<f64>>,
+    title: String,
+    opts: &CalibrationOptions,
+) -> Result<LabResult, String> {
+    let report = calibrate(&model, ms, opts).map_err(|e| e.to_string())?;
+    let validation = match validation {
+        Some(v) => Some((
+            fit(&model, &model.nominal(), v).map_err(|e| e.to_string())?,
+            fit(&model, &report.estimate, v).map_err(|e| e.to_string())?,
+        )),
+        None => None,
+    };
+    Ok(LabResult {
+        title,
+        poses: ms.iter().map(|m| m.q().to_vec()).collect(),
+        model,
+        report,
+        truth,
+        validation,
+    })
+}

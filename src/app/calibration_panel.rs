@@ -1,0 +1,263 @@
+//! The Calibration tab's widgets: settings, the lessons, files, and the report of the last run
+//! (iterations, identifiability in words, O1-O4, the parameter table, held-out errors).
+
+use super::calibration_lab::{CalibrationLab, LabResult, PoseChoice};
+use crate::calibration::Fit;
+use crate::kinematics::Robot;
+use egui::{Color32, RichText};
+
+/// The whole tab.
+pub fn show(lab: &mut CalibrationLab, robot: &Robot, q: &[f64], ui: &mut egui::Ui) {
+    egui::ScrollArea::vertical().show(ui, |ui| {
+        ui.heading("Kinematic calibration (Sect. 2.11)");
+        ui.label(
+            RichText::new(
+                "A simulated \"real\" arm (the model plus deviations) is measured with noise; \
+                 iterative least squares (2.88)-(2.89) estimates its DH parameters.",
+            )
+            .small(),
+        );
+        settings(lab, ui);
+        actions(lab, robot, q, ui);
+        if let Some(m) = &lab.message {
+            let color = if m.starts_with("saved") {
+                Color32::from_rgb(0, 110, 0)
+            } else {
+                Color32::from_rgb(190, 0, 0)
+            };
+            ui.colored_label(color, m);
+        }
+        if let Some(r) = &lab.result {
+            ui.separator();
+            report(r, ui);
+        }
+    });
+}
+
+fn settings(lab: &mut CalibrationLab, ui: &mut egui::Ui) {
+    let s = &mut lab.settings;
+    egui::Grid::new("calibration settings")
+        .num_columns(4)
+        .show(ui, |ui| {
+            let named = |ui: &mut egui::Ui, name: &str, w: egui::DragValue<'_>| {
+                let l = ui.label(name);
+                ui.add(w).labelled_by(l.id);
+            };
+            named(
+                ui,
+                "poses",
+                egui::DragValue::new(&mut s.poses).range(4..=500),
+            );
+            named(ui, "seed", egui::DragValue::new(&mut s.seed));
+            ui.end_row();
+            named(
+                ui,
+                "tolerance [mm]",
+                egui::DragValue::new(&mut s.tolerance_mm)
+                    .range(0.0..=50.0)
+                    .speed(0.05),
+            );
+            named(
+                ui,
+                "tolerance [deg]",
+                egui::DragValue::new(&mut s.tolerance_deg)
+                    .range(0.0..=10.0)
+                    .speed(0.01),
+            );
+            ui.end_row();
+            named(
+                ui,
+                "noise [mm]",
+                egui::DragValue::new(&mut s.noise_mm)
+                    .range(0.0..=5.0)
+                    .speed(0.001),
+            );
+            named(
+                ui,
+                "noise [mrad]",
+                egui::DragValue::new(&mut s.noise_mrad)
+                    .range(0.0..=50.0)
+                    .speed(0.005),
+            );
+            ui.end_row();
+        });
+    ui.horizontal_wrapped(|ui| {
+        ui.label("poses:");
+        for (c, name) in [
+            (PoseChoice::Random, "random"),
+            (PoseChoice::O1, "best O1"),
+            (PoseChoice::O4, "best O4"),
+            (PoseChoice::Alike, "all alike"),
+        ] {
+            ui.selectable_value(&mut s.choice, c, name);
+        }
+        ui.checkbox(&mut s.position_only, "position only");
+        ui.checkbox(&mut s.hayati, "Hayati's beta on parallel axes");
+    });
+}
+
+fn actions(lab: &mut CalibrationLab, robot: &Robot, q: &[f64], ui: &mut egui::Ui) {
+    ui.horizontal_wrapped(|ui| {
+        if ui.button("Run").clicked() {
+            lab.run_simulated(robot, q);
+        }
+        if ui
+            .button("Lesson: converged is not accurate")
+            .on_hover_text("40 poses all alike: a small residual, a bad validation, O1 near zero")
+            .clicked()
+        {
+            lab.lesson_alike(robot, q);
+        }
+        if ui
+            .button("Lesson: parallel axes")
+            .on_hover_text("Plain DH on parallel axes (the Puma's 2 and 3): d2 and d3 run off")
+            .clicked()
+        {
+            lab.lesson_parallel(robot, q, false);
+        }
+        if ui
+            .button("... with Hayati's beta")
+            .on_hover_text("beta instead of d on the parallel pair: every parameter identifiable")
+            .clicked()
+        {
+            lab.lesson_parallel(robot, q, true);
+        }
+    });
+    ui.horizontal(|ui| {
+        let l = ui.label("measurements");
+        ui.add(
+            egui::TextEdit::singleline(&mut lab.measurements_path)
+                .hint_text("measurements.csv")
+                .desired_width(200.0),
+        )
+        .labelled_by(l.id);
+        if ui.button("Calibrate from file").clicked() {
+            lab.run_file(robot);
+        }
+    });
+    ui.horizontal(|ui| {
+        let l = ui.label("save as");
+        ui.add(
+            egui::TextEdit::singleline(&mut lab.save_path)
+                .hint_text("calibrated.toml")
+                .desired_width(200.0),
+        )
+        .labelled_by(l.id);
+        if ui.button("Save calibrated model").clicked() {
+            lab.save_model();
+        }
+    });
+}
+
+fn fit_line(name: &str, f: &Fit) -> String {
+    let o = f.orientation_rms.map_or(String::new(), |r| {
+        format!(", orientation rms {:.4} mrad", r * 1e3)
+    });
+    format!(
+        "{name}: position rms {:.4} mm, max {:.4} mm{o}",
+        f.position_rms * 1e3,
+        f.position_max * 1e3
+    )
+}
+
+fn report(r: &LabResult, ui: &mut egui::Ui) {
+    let rep = &r.report;
+    ui.strong(&r.title);
+    let rows = r.model.hayati_rows();
+    if !rows.is_empty() {
+        ui.label(format!("Hayati's beta instead of d on rows {rows:?}"));
+    }
+    egui::Grid::new("calibration iterations")
+        .striped(true)
+        .show(ui, |ui| {
+            for h in [
+                "iteration",
+                "position rms [mm]",
+                "orientation rms [mrad]",
+                "step",
+                "condition",
+                "rank",
+            ] {
+                ui.label(RichText::new(h).small().strong());
+            }
+            ui.end_row();
+            for (i, it) in rep.iterations.iter().enumerate() {
+                ui.label(i.to_string());
+                ui.label(format!("{:.5}", it.position_rms * 1e3));
+                ui.label(format!("{:.5}", it.orientation_rms * 1e3));
+                ui.label(format!("{:.1e}", it.step_norm));
+                ui.label(format!("{:.2e}", it.condition));
+                ui.label(it.rank.to_string());
+                ui.end_row();
+            }
+        });
+    ui.label(match &rep.reason {
+        None => "converged".to_string(),
+        Some(why) => format!("not converged: {why}"),
+    });
+    let n = &rep.nominal;
+    ui.label(format!(
+        "identifiable: rank {} of {}",
+        n.rank, n.parameter_count
+    ));
+    for c in &n.combinations {
+        ui.add(egui::Label::new(RichText::new(c).color(Color32::from_rgb(170, 60, 0))).wrap());
+    }
+    let o = n.observability;
+    ui.label(format!(
+        "O1 {:.3e}   O2 {:.3e}   O3 {:.3e}   O4 {:.3e}",
+        o.o1, o.o2, o.o3, o.o4
+    ));
+    let line = |ui: &mut egui::Ui, t: RichText| ui.add(egui::Label::new(t).wrap());
+    line(ui, RichText::new(fit_line("fit before", &rep.before)));
+    line(ui, RichText::new(fit_line("fit after", &rep.after)));
+    if let Some((b, a)) = &r.validation {
+        line(ui, RichText::new(fit_line("held-out before", b)));
+        line(ui, RichText::new(fit_line("held-out after", a)).strong());
+    }
+    parameters(r, ui);
+}
+
+fn parameters(r: &LabResult, ui: &mut egui::Ui) {
+    let rep = &r.report;
+    let correlated = |name: &str| {
+        rep.correlations
+            .iter()
+            .any(|(a, b, _)| a == name || b == name)
+    };
+    egui::Grid::new("calibration parameters")
+        .striped(true)
+        .show(ui, |ui| {
+            for h in ["parameter", "nominal", "true", "estimate", "std", ""] {
+                ui.label(RichText::new(h).small().strong());
+            }
+            ui.end_row();
+            for (k, p) in rep.parameters.iter().enumerate() {
+                let (scale, unit) = if p.kind.is_angle() {
+                    (180.0 / std::f64::consts::PI, "deg")
+                } else {
+                    (1e3, "mm")
+                };
+                let state = if p.fixed {
+                    ("fixed", Color32::GRAY)
+                } else if !rep.at_estimate.identifiable[k] {
+                    ("not identifiable", Color32::from_rgb(190, 0, 0))
+                } else if correlated(&p.name) {
+                    ("correlated > 0.9", Color32::from_rgb(200, 110, 0))
+                } else {
+                    ("", Color32::GRAY)
+                };
+                ui.label(format!("{} [{unit}]", p.name));
+                ui.label(format!("{:.4}", p.nominal * scale));
+                ui.label(
+                    r.truth
+                        .as_ref()
+                        .map_or("-".into(), |t| format!("{:.4}", t[k] * scale)),
+                );
+                ui.label(format!("{:.4}", rep.estimate[k] * scale));
+                ui.label(rep.std[k].map_or("-".into(), |s| format!("{:.2e}", s * scale)));
+                ui.colored_label(state.1, state.0);
+                ui.end_row();
+            }
+        });
+}

@@ -1,0 +1,125 @@
+//! The app's Calibration tab: its state (simulated runs, the two lessons, files, saving) and the
+//! tab driven through egui (kittest, no GPU).
+
+use armlab::app::calibration_lab::{CalibrationLab, PoseChoice};
+use armlab::app::state::AppState;
+use armlab::app::ui::{AppUi, Tab};
+use armlab::kinematics::models::built_in;
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+
+fn lengths_off(r: &armlab::app::calibration_lab::LabResult) -> f64 {
+    r.report
+        .parameters
+        .iter()
+        .zip(&r.report.estimate)
+        .filter(|(p, _)| !p.kind.is_angle())
+        .map(|(p, v)| (v - p.nominal).abs())
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn a_simulated_run_calibrates_and_validates() {
+    let puma = built_in("puma560").unwrap();
+    let mut lab = CalibrationLab::default();
+    lab.run_simulated(&puma, &[0.0; 6]);
+    let r = lab.result.as_ref().expect("a result");
+    assert!(lab.message.is_none());
+    assert!(r.report.converged);
+    let (before, after) = r.validation.unwrap();
+    assert!(
+        after.position_rms < 0.05 * before.position_rms,
+        "{before:?} -> {after:?}"
+    );
+    assert_eq!(r.poses.len(), lab.settings.poses);
+}
+
+#[test]
+fn the_two_lessons_show_what_they_promise() {
+    let puma = built_in("puma560").unwrap();
+    let q = puma.config("ready").unwrap().to_vec();
+    let mut lab = CalibrationLab::default();
+    // Converged is not accurate: the poses' own residual is the noise, the held-out one is not.
+    lab.lesson_alike(&puma, &q);
+    assert_eq!(lab.settings.choice, PoseChoice::Alike);
+    let r = lab.result.as_ref().unwrap();
+    let (_, held_out) = r.validation.unwrap();
+    assert!(r.report.converged);
+    assert!(
+        held_out.position_rms > 10.0 * r.report.after.position_rms,
+        "{held_out:?}"
+    );
+    // Parallel axes: plain DH names d2 + d3 and runs a length off; beta does not.
+    lab.lesson_parallel(&puma, &q, false);
+    let plain = lab.result.clone().unwrap();
+    assert!(
+        plain
+            .report
+            .nominal
+            .combinations
+            .iter()
+            .any(|c| c.contains("d2 and d3 only as d2 + d3"))
+    );
+    lab.lesson_parallel(&puma, &q, true);
+    let beta = lab.result.clone().unwrap();
+    assert_eq!(beta.model.hayati_rows(), vec![2]);
+    assert_eq!(
+        beta.report.nominal.rank,
+        beta.report.nominal.parameter_count
+    );
+    assert!(lengths_off(&plain) > 0.05 && lengths_off(&beta) < 0.005);
+}
+
+#[test]
+fn file_errors_keep_the_last_result_and_the_model_saves() {
+    let puma = built_in("puma560").unwrap();
+    let dir = std::env::temp_dir().join(format!("armlab-lab-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut lab = CalibrationLab::default();
+    lab.run_simulated(&puma, &[0.0; 6]);
+    let estimate = lab.result.as_ref().unwrap().report.estimate.clone();
+    lab.measurements_path = dir.join("missing.csv").display().to_string();
+    lab.run_file(&puma);
+    assert!(lab.message.as_deref().unwrap().contains("cannot read"));
+    let bad = dir.join("bad.csv");
+    std::fs::write(&bad, "0,0,0\n").unwrap();
+    lab.measurements_path = bad.display().to_string();
+    lab.run_file(&puma);
+    assert!(
+        lab.message.as_deref().unwrap().contains(":1:"),
+        "{:?}",
+        lab.message
+    );
+    assert_eq!(
+        lab.result.as_ref().unwrap().report.estimate,
+        estimate,
+        "the result is kept"
+    );
+    let out = dir.join("calibrated.toml");
+    lab.save_path = out.display().to_string();
+    lab.save_model();
+    assert!(lab.message.as_deref().unwrap().starts_with("saved"));
+    let back = armlab::model_file::load_model(out.to_str().unwrap()).unwrap();
+    let r = lab.result.as_ref().unwrap();
+    let q = [0.2, 0.4, -0.6, 0.8, -1.0, 1.2];
+    let (_, t) = r.model.frames(&r.report.estimate, &q).unwrap();
+    assert!((back.fk(&q).unwrap().to_homogeneous() - t.to_homogeneous()).amax() < 1e-12);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn the_tab_runs_from_its_buttons() {
+    let app = AppUi::new(AppState::from_spec("puma560").unwrap());
+    let mut h = Harness::builder()
+        .with_size(egui::vec2(1280.0, 800.0))
+        .build_ui_state(|ui, app: &mut AppUi| app.show(ui, None), app);
+    h.run();
+    h.get_by_label("Calibration").click();
+    h.run();
+    assert_eq!(h.state().tab, Tab::Calibration);
+    h.get_by_label("Run").click();
+    h.run();
+    assert!(h.state().calibration.result.is_some());
+    h.run();
+    assert!(h.query_by_label_contains("held-out after").is_some());
+}
