@@ -40,5 +40,30 @@ fn puma_100_poses(c: &mut Criterion) {
     });
 }
 
-criterion_group!(benches, puma_100_poses);
+/// The Puma's accuracy map (nominal vs a simulated real arm), 256 x 256 cells from 1,000,000
+/// joint vectors: what `armlab calibrate --accuracy-map` computes per figure.
+fn puma_accuracy_map(c: &mut Criterion) {
+    let puma = built_in("puma560").expect("built-in");
+    let model = ParameterModel::new(&puma).expect("serial DH");
+    let sim = simulate(&model, &SimulationOptions::default()).expect("simulate");
+    let nominal = model.nominal();
+    let mut g = c.benchmark_group("calibration");
+    g.sample_size(10);
+    g.bench_function("puma560_accuracy_map_256x256_1M_samples", |b| {
+        b.iter(|| {
+            armlab::calibration::accuracy_map(
+                &model,
+                &nominal,
+                black_box(&sim.truth),
+                [256, 256],
+                1_000_000,
+                1,
+            )
+            .expect("map")
+        })
+    });
+    g.finish();
+}
+
+criterion_group!(benches, puma_100_poses, puma_accuracy_map);
 criterion_main!(benches);

@@ -606,3 +606,73 @@ fn converged_is_not_accurate_with_poses_that_are_all_alike() {
         cond(&broad)
     );
 }
+
+#[test]
+fn accuracy_maps_of_known_deviations() {
+    use armlab::calibration::accuracy_map;
+    let puma = built_in("puma560").unwrap();
+    let model = ParameterModel::new(&puma).unwrap().with_base();
+    let a = model.nominal();
+    let idx = |n: &str| model.parameters().iter().position(|p| p.name == n).unwrap();
+    // The same model: no deviation anywhere.
+    let same = accuracy_map(&model, &a, &a, [32, 32], 20_000, 1).unwrap();
+    assert_eq!(same.max, 0.0);
+    assert!(
+        same.values
+            .iter()
+            .filter(|v| v.is_finite())
+            .all(|&v| v == 0.0)
+    );
+    // The base raised by 5 mm: every tool point moves by exactly 5 mm.
+    let mut b = a.clone();
+    b[idx("base_z")] = 5e-3;
+    let up = accuracy_map(&model, &a, &b, [32, 32], 20_000, 1).unwrap();
+    assert!((up.max - 5e-3).abs() < 1e-12 && (up.rms - 5e-3).abs() < 1e-12);
+    assert!(
+        up.values
+            .iter()
+            .filter(|v| v.is_finite())
+            .all(|v| (v - 5e-3).abs() < 1e-12)
+    );
+    // The base turned about z by delta: a point at distance r from the axis moves by
+    // 2 r sin(delta / 2), so each cell's value lies between that of its nearest and farthest
+    // corner (cells straddling the axis from 0).
+    let delta = 0.01;
+    let mut c = a.clone();
+    c[idx("base_rz")] = delta;
+    let m = accuracy_map(&model, &a, &c, [40, 40], 200_000, 2).unwrap();
+    let [x0, x1, y0, y1] = m.bounds;
+    let (dx, dy) = ((x1 - x0) / 40.0, (y1 - y0) / 40.0);
+    let mut checked = 0;
+    for j in 0..40 {
+        for i in 0..40 {
+            let v = m.values[j * 40 + i];
+            if !v.is_finite() {
+                continue;
+            }
+            let xs = [x0 + i as f64 * dx, x0 + (i + 1) as f64 * dx];
+            let ys = [y0 + j as f64 * dy, y0 + (j + 1) as f64 * dy];
+            let far = xs
+                .iter()
+                .flat_map(|x| ys.iter().map(move |y| x.hypot(*y)))
+                .fold(0.0, f64::max);
+            let near = if xs[0] <= 0.0 && xs[1] >= 0.0 && ys[0] <= 0.0 && ys[1] >= 0.0 {
+                0.0
+            } else {
+                let cx = 0f64.clamp(xs[0], xs[1]);
+                let cy = 0f64.clamp(ys[0], ys[1]);
+                cx.hypot(cy)
+            };
+            let k = 2.0 * (delta / 2.0).sin();
+            assert!(
+                v >= k * near - 1e-12 && v <= k * far + 1e-12,
+                "cell {i},{j}: {v} not in [{}, {}]",
+                k * near,
+                k * far
+            );
+            checked += 1;
+        }
+    }
+    assert!(checked > 300, "{checked} cells");
+    assert!(accuracy_map(&model, &a, &a, [0, 4], 10, 1).is_err());
+}

@@ -609,6 +609,24 @@ fn calibrate_from_a_measurement_file_and_write_the_model() {
         .find(|p| p["name"] == "beta2")
         .unwrap();
     assert_eq!(beta["kind"], "beta");
+    // The accuracy maps: calibrated and nominal against the real arm, as PNG figures.
+    let map = dir.join("acc.png");
+    let o = armlab(&[
+        "calibrate",
+        "puma560",
+        "--simulate",
+        "--accuracy-map",
+        map.to_str().unwrap(),
+        "--map-cells",
+        "64x64",
+        "--map-samples",
+        "20000",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    for f in [map.clone(), dir.join("acc-before.png")] {
+        let img = image::open(&f).unwrap_or_else(|e| panic!("{}: {e}", f.display()));
+        assert_eq!((img.width(), img.height()), (1200, 1000));
+    }
     std::fs::remove_dir_all(&dir).ok();
 }
 

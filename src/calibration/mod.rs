@@ -16,12 +16,15 @@
 //!   [`parse_measurements`] / [`write_measurements`]: the measurement file format.
 //! - [`select_poses`]: l poses out of candidates maximising O1 or O4 (DETMAX-style exchange);
 //!   [`parse_measurements`] / [`write_measurements`]: the measurement file format.
+//! - [`accuracy_map`]: the position deviation between two models over the top view of the
+//!   workspace (Sect. 2.10.1).
 //! - [`simulate`]: a "real" robot (the nominal plus seeded deviations) and measurements with
 //!   seeded noise, for teaching and for tests.
 //!
 //! Units: metres and radians; errors of a pose are `[p_measured - p_model; delta phi]` with
 //! `R_measured R_model^T = Rot(delta phi)` (world frame).
 
+mod accuracy;
 mod file;
 mod identify;
 mod model;
@@ -29,6 +32,7 @@ mod select;
 mod simulate;
 mod solve;
 
+pub use accuracy::{AccuracyMap, accuracy_map};
 pub use file::{MeasurementFileError, parse_measurements, write_measurements};
 pub use identify::{Identifiability, Observability, identifiability};
 pub use model::{Kind, Measurement, Parameter, ParameterModel};

@@ -93,6 +93,17 @@ pub struct CalibrateArgs {
     /// Write the simulated measurements to this file.
     #[arg(long)]
     pub write_measurements: Option<PathBuf>,
+    /// Draw the accuracy map (position deviation over the top view of the workspace) to this
+    /// PNG: calibrated vs real when simulated (and nominal vs real to FILE-before.png), else the
+    /// correction, calibrated vs nominal.
+    #[arg(long)]
+    pub accuracy_map: Option<PathBuf>,
+    /// Cells of the accuracy map, "WxH" (16 to 8192 each).
+    #[arg(long, default_value = "256x256")]
+    pub map_cells: super::figures::Size,
+    /// Joint vectors sampled for the accuracy map.
+    #[arg(long, default_value_t = 1_000_000)]
+    pub map_samples: usize,
     /// Output format.
     #[arg(long, value_enum, default_value_t)]
     pub format: Format,
@@ -223,6 +234,9 @@ pub(super) fn run(args: &CalibrateArgs, out: &mut dyn Write) -> Result<(), CliEr
         ))?;
         std::fs::write(path, text)?;
     }
+    if let Some(path) = &args.accuracy_map {
+        accuracy_figures(args, &model, &report.estimate, truth.as_deref(), path)?;
+    }
     match args.format {
         Format::Json => {
             let mut v = to_json(&report, val.as_ref(), truth.as_deref());
@@ -245,6 +259,61 @@ pub(super) fn run(args: &CalibrateArgs, out: &mut dyn Write) -> Result<(), CliEr
             }
             write_text(out, &report, val.as_ref(), truth.as_deref())?
         }
+    }
+    Ok(())
+}
+
+/// The accuracy map(s) of `--accuracy-map`.
+fn accuracy_figures(
+    args: &CalibrateArgs,
+    model: &ParameterModel,
+    estimate: &[f64],
+    truth: Option<&[f64]>,
+    path: &Path,
+) -> Result<(), CliError> {
+    let cells = [args.map_cells.0[0] as usize, args.map_cells.0[1] as usize];
+    let nominal = model.nominal();
+    let name = &model.nominal_robot().name;
+    let mut maps = Vec::new();
+    match truth {
+        Some(t) => {
+            maps.push((
+                path.to_path_buf(),
+                estimate,
+                t,
+                format!("Accuracy of the calibrated {name}"),
+            ));
+            let stem = path
+                .file_stem()
+                .and_then(|s| s.to_str())
+                .unwrap_or("accuracy");
+            let before = path.with_file_name(format!("{stem}-before.png"));
+            maps.push((
+                before,
+                &nominal[..],
+                t,
+                format!("Accuracy of the nominal {name}"),
+            ));
+        }
+        None => maps.push((
+            path.to_path_buf(),
+            estimate,
+            &nominal[..],
+            format!("Correction of the {name} by the calibration"),
+        )),
+    }
+    let mut figures = crate::figure::figures::Figures::new()?;
+    for (file, a, b, title) in maps {
+        let map = crate::calibration::accuracy_map(model, a, b, cells, args.map_samples, args.seed)
+            .map_err(calibration_error)?;
+        let img = crate::figure::accuracy::accuracy_figure(
+            &mut figures,
+            &map,
+            &title,
+            [1200, 1000],
+            crate::figure::Theme::Light,
+        )?;
+        crate::headless::write_png(&img, &file)?;
     }
     Ok(())
 }

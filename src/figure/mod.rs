@@ -2,6 +2,7 @@
 //! 3D scenes drawn by [`crate::render`] shown inside them. Used by the headless CLI and, through
 //! the same code, by the app.
 
+pub mod accuracy;
 pub mod figures;
 pub mod labels;
 pub mod offscreen;

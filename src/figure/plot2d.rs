@@ -53,6 +53,82 @@ pub struct Plot2d {
     pub labels: Vec<(String, [f64; 2])>,
     /// Legend swatches: name and colour (for the raster's classes).
     pub legend: Vec<(String, Color32)>,
+    /// A colour bar for a continuous raster (drawn under the title).
+    pub colorbar: Option<ColorBar>,
+}
+
+/// A horizontal colour bar: the colour map from `min` to `max` with ticks and a label.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct ColorBar {
+    /// What the colours mean, with unit and the map's name, e.g. "deviation [mm] (viridis-like)".
+    pub label: String,
+    /// Value at the left end.
+    pub min: f64,
+    /// Value at the right end.
+    pub max: f64,
+    /// The map sampled evenly from min to max.
+    pub colors: Vec<Color32>,
+}
+
+impl ColorBar {
+    /// Tick values: 5 evenly spaced "nice" numbers within [min, max].
+    pub fn ticks(&self) -> Vec<f64> {
+        let span = self.max - self.min;
+        if !(span > 0.0 && span.is_finite()) {
+            return vec![self.min];
+        }
+        let raw = span / 4.0;
+        let mag = 10f64.powf(raw.log10().floor());
+        let step = [1.0, 2.0, 2.5, 5.0, 10.0]
+            .iter()
+            .map(|m| m * mag)
+            .find(|s| span / s <= 5.0)
+            .unwrap_or(10.0 * mag);
+        let first = (self.min / step).ceil() * step;
+        (0..=10)
+            .map(|k| first + k as f64 * step)
+            .take_while(|v| *v <= self.max + 1e-9 * span)
+            .collect()
+    }
+}
+
+/// Paints `bar` as a strip `width` points wide, ticks and label under it.
+fn colorbar(ui: &mut egui::Ui, bar: &ColorBar) {
+    let width = (ui.available_width() * 0.5).max(120.0);
+    ui.vertical_centered(|ui| {
+        let (rect, _) = ui.allocate_exact_size(egui::vec2(width, 12.0), egui::Sense::hover());
+        let n = bar.colors.len().max(1);
+        for (k, c) in bar.colors.iter().enumerate() {
+            let x0 = rect.left() + rect.width() * k as f32 / n as f32;
+            let x1 = rect.left() + rect.width() * (k + 1) as f32 / n as f32;
+            let r = egui::Rect::from_min_max(
+                egui::pos2(x0, rect.top()),
+                egui::pos2(x1 + 0.5, rect.bottom()),
+            );
+            ui.painter().rect_filled(r, 0.0, *c);
+        }
+        let text = ui.visuals().text_color();
+        let span = (bar.max - bar.min).max(f64::MIN_POSITIVE);
+        for t in bar.ticks() {
+            let x = rect.left() + rect.width() * ((t - bar.min) / span) as f32;
+            ui.painter().line_segment(
+                [
+                    egui::pos2(x, rect.bottom()),
+                    egui::pos2(x, rect.bottom() + 4.0),
+                ],
+                egui::Stroke::new(1.0, text),
+            );
+            ui.painter().text(
+                egui::pos2(x, rect.bottom() + 5.0),
+                egui::Align2::CENTER_TOP,
+                format!("{}", (t * 1e6).round() / 1e6),
+                egui::FontId::proportional(11.0),
+                text,
+            );
+        }
+        ui.add_space(16.0);
+        ui.label(egui::RichText::new(&bar.label).small());
+    });
 }
 
 /// Shows `plot` in `ui`, with `image` (a raster covering exactly `plot.bounds`) under the curves.
@@ -64,6 +140,9 @@ pub fn show(ui: &mut egui::Ui, plot: &Plot2d, image: Option<egui::TextureId>) {
             ui.label(egui::RichText::new(&plot.subtitle).small());
         }
     });
+    if let Some(bar) = &plot.colorbar {
+        colorbar(ui, bar);
+    }
     let [x0, x1, y0, y1] = plot.bounds;
     let text_color = ui.visuals().text_color();
     let p = Plot::new(("figure", plot.title.as_str()))
