@@ -123,3 +123,71 @@ fn the_tab_runs_from_its_buttons() {
     h.run();
     assert!(h.query_by_label_contains("held-out after").is_some());
 }
+
+#[test]
+fn accuracy_maps_before_and_after() {
+    let puma = built_in("puma560").unwrap();
+    let mut lab = CalibrationLab::default();
+    lab.compute_maps(32, 5_000);
+    assert!(lab.maps.is_none() && lab.message.is_some(), "no result yet");
+    lab.run_simulated(&puma, &[0.0; 6]);
+    lab.compute_maps(32, 20_000);
+    let (before, after) = lab.maps.as_ref().unwrap();
+    let before = before
+        .as_ref()
+        .expect("simulated: nominal against the real arm");
+    assert!(
+        after.rms < 0.1 * before.rms,
+        "{} vs {}",
+        after.rms,
+        before.rms
+    );
+    assert_eq!(lab.maps_generation, 1);
+    // A new run drops the maps of the old one.
+    lab.run_simulated(&puma, &[0.0; 6]);
+    assert!(lab.maps.is_none());
+}
+
+#[test]
+fn the_map_button_computes_the_maps() {
+    let mut app = AppUi::new(AppState::from_spec("puma560").unwrap());
+    app.tab = Tab::Calibration;
+    let mut h = Harness::builder()
+        .with_size(egui::vec2(1280.0, 800.0))
+        .build_ui_state(|ui, app: &mut AppUi| app.show(ui, None), app);
+    h.run();
+    h.get_by_label("Run").click();
+    h.run();
+    h.get_by_label("Accuracy map (before / after)").click();
+    h.run();
+    h.run();
+    assert!(h.state().calibration.maps.is_some());
+    assert!(
+        h.query_by_label_contains("Accuracy after calibration")
+            .is_some()
+    );
+}
+
+#[test]
+fn measured_poses_are_drawn_as_tool_points_and_a_few_ghosts() {
+    use armlab::app::viewport::{MAX_POSE_GHOSTS, add_measured_poses, build_scene};
+    let state = AppState::from_spec("puma560").unwrap();
+    let mut lab = CalibrationLab::default();
+    lab.run_simulated(state.robot(), state.q());
+    let poses = &lab.result.as_ref().unwrap().poses;
+    let mut scene = build_scene(&state, None, false);
+    let (dots, meshes) = (scene.dots.len(), scene.meshes.len());
+    add_measured_poses(&mut scene, state.robot(), poses);
+    assert_eq!(scene.dots.len() - dots, poses.len());
+    // Each tool point where FK puts it.
+    for (d, q) in scene.dots[dots..].iter().zip(poses) {
+        let p = state.robot().fk(q).unwrap().translation.vector;
+        assert!((d.p[0] as f64 - p.x).abs() < 1e-5 && (d.p[2] as f64 - p.z).abs() < 1e-5);
+    }
+    let one_arm = armlab::scene::arm_scene(state.robot(), state.q(), &Default::default())
+        .unwrap()
+        .meshes
+        .len();
+    let ghosts = (scene.meshes.len() - meshes) / one_arm;
+    assert!(ghosts >= 1 && ghosts <= MAX_POSE_GHOSTS, "{ghosts} ghosts");
+}

@@ -3,8 +3,9 @@
 //! message; the previous result stays.
 
 use crate::calibration::{
-    CalibrationOptions, CalibrationReport, Criterion, Fit, Measurement, ParameterModel,
-    SimulationOptions, calibrate, fit, parse_measurements, select_poses, simulate,
+    AccuracyMap, CalibrationOptions, CalibrationReport, Criterion, Fit, Measurement,
+    ParameterModel, SimulationOptions, accuracy_map, calibrate, fit, parse_measurements,
+    select_poses, simulate,
 };
 use crate::kinematics::Robot;
 use crate::kinematics::pose::Pose;
@@ -93,6 +94,13 @@ pub struct CalibrationLab {
     pub measurements_path: String,
     /// Path typed for saving the calibrated model.
     pub save_path: String,
+    /// The accuracy maps of the last result, when computed: (before, after) against the real
+    /// arm when simulated; (none, correction) for measured data.
+    pub maps: Option<(Option<AccuracyMap>, AccuracyMap)>,
+    /// Counts the maps computed (the panel re-uploads its textures when it changes).
+    pub maps_generation: u64,
+    /// Draw the measured poses of the last run in the 3D view (tool points, some as ghosts).
+    pub show_poses: bool,
 }
 
 fn options(s: &LabSettings) -> CalibrationOptions {
@@ -150,7 +158,35 @@ impl CalibrationLab {
         match self.simulated(robot, q_now) {
             Ok(r) => {
                 self.result = Some(r);
+                self.maps = None;
                 self.message = None;
+            }
+            Err(e) => self.message = Some(e),
+        }
+    }
+
+    /// The accuracy maps of the last result (`cells` per side, `samples` joint vectors): the
+    /// nominal and the calibrated model against the real arm when simulated, the correction
+    /// (calibrated against nominal) for measured data.
+    pub fn compute_maps(&mut self, cells: usize, samples: usize) {
+        let Some(r) = &self.result else {
+            self.message = Some("run a calibration first".into());
+            return;
+        };
+        let nominal = r.model.nominal();
+        let map = |a: &[f64], b: &[f64]| {
+            accuracy_map(&r.model, a, b, [cells, cells], samples, 7).map_err(|e| e.to_string())
+        };
+        let maps = match &r.truth {
+            Some(t) => {
+                map(&nominal, t).and_then(|before| Ok((Some(before), map(&r.report.estimate, t)?)))
+            }
+            None => map(&r.report.estimate, &nominal).map(|after| (None, after)),
+        };
+        match maps {
+            Ok(m) => {
+                self.maps = Some(m);
+                self.maps_generation += 1;
             }
             Err(e) => self.message = Some(e),
         }
@@ -234,6 +270,7 @@ impl CalibrationLab {
         match result {
             Ok(r) => {
                 self.result = Some(r);
+                self.maps = None;
                 self.message = None;
             }
             Err(e) => self.message = Some(e),

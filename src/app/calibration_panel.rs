@@ -6,8 +6,27 @@ use crate::calibration::Fit;
 use crate::kinematics::Robot;
 use egui::{Color32, RichText};
 
+/// The textures of the accuracy maps shown, and the generation of the maps they show.
+#[derive(Default)]
+pub struct MapTextures {
+    generation: u64,
+    textures: Vec<(crate::figure::plot2d::Plot2d, egui::TextureHandle)>,
+}
+
+impl std::fmt::Debug for MapTextures {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "MapTextures({} maps)", self.textures.len())
+    }
+}
+
 /// The whole tab.
-pub fn show(lab: &mut CalibrationLab, robot: &Robot, q: &[f64], ui: &mut egui::Ui) {
+pub fn show(
+    lab: &mut CalibrationLab,
+    textures: &mut MapTextures,
+    robot: &Robot,
+    q: &[f64],
+    ui: &mut egui::Ui,
+) {
     egui::ScrollArea::vertical().show(ui, |ui| {
         ui.heading("Kinematic calibration (Sect. 2.11)");
         ui.label(
@@ -27,9 +46,58 @@ pub fn show(lab: &mut CalibrationLab, robot: &Robot, q: &[f64], ui: &mut egui::U
             };
             ui.colored_label(color, m);
         }
-        if let Some(r) = &lab.result {
+        if lab.result.is_some() {
             ui.separator();
+            ui.checkbox(
+                &mut lab.show_poses,
+                "Show the measured poses in the 3D view",
+            );
+            if ui
+                .button("Accuracy map (before / after)")
+                .on_hover_text("the position deviation against the real arm over the workspace")
+                .clicked()
+            {
+                lab.compute_maps(160, 400_000);
+            }
+            maps(lab, textures, ui);
+        }
+        if let Some(r) = &lab.result {
             report(r, ui);
+        }
+    });
+}
+
+/// The accuracy maps side by side, each with its colour bar.
+fn maps(lab: &CalibrationLab, textures: &mut MapTextures, ui: &mut egui::Ui) {
+    let Some((before, after)) = &lab.maps else {
+        return;
+    };
+    if textures.generation != lab.maps_generation || textures.textures.is_empty() {
+        textures.textures.clear();
+        let list = [
+            (before.as_ref(), "before calibration"),
+            (Some(after), "after calibration"),
+        ];
+        for (m, what) in list {
+            let Some(m) = m else { continue };
+            let (plot, img) =
+                crate::figure::accuracy::accuracy_plot(m, &format!("Accuracy {what}"));
+            let tex = ui.ctx().load_texture(
+                format!("accuracy {what}"),
+                img,
+                egui::TextureOptions::NEAREST,
+            );
+            textures.textures.push((plot, tex));
+        }
+        textures.generation = lab.maps_generation;
+    }
+    let w = ui.available_width() / textures.textures.len().max(1) as f32;
+    ui.horizontal(|ui| {
+        for (plot, tex) in &textures.textures {
+            ui.allocate_ui(egui::vec2(w - 8.0, 420.0), |ui| {
+                ui.set_min_size(egui::vec2(w - 8.0, 420.0));
+                ui.vertical(|ui| crate::figure::plot2d::show(ui, plot, Some(tex.id())));
+            });
         }
     });
 }

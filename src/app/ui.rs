@@ -45,6 +45,7 @@ pub struct AppUi {
     pub workspace: Option<WorkspaceJob>,
     /// The Calibration tab.
     pub calibration: super::calibration_lab::CalibrationLab,
+    calibration_maps: super::calibration_panel::MapTextures,
     workspace_texture: Option<egui::TextureHandle>,
     /// Labels of the scene rendered last (drawn by egui over the 3D view).
     scene_labels: Vec<crate::scene::Label>,
@@ -74,6 +75,7 @@ impl AppUi {
             gizmo: super::gizmo::Gizmo::default(),
             workspace: None,
             calibration: Default::default(),
+            calibration_maps: Default::default(),
             workspace_texture: None,
             scene_labels: Vec::new(),
             camera_fitted: false,
@@ -142,6 +144,12 @@ impl AppUi {
         self.frame_if_needed();
         let dots = self.workspace.as_ref().and_then(|w| w.dots());
         let mut scene = build_scene(&self.state, dots, self.projector);
+        if self.calibration.show_poses
+            && let Some(r) = &self.calibration.result
+            && r.model.nominal_robot().dof() == self.state.robot().dof()
+        {
+            super::viewport::add_measured_poses(&mut scene, self.state.robot(), &r.poses);
+        }
         let rendered = vp.render(registry, &scene, &self.camera, self.viewport_px, dark);
         self.scene_labels = std::mem::take(&mut scene.labels);
         match rendered {
@@ -324,6 +332,7 @@ impl AppUi {
             Tab::Workspace => self.workspace_tab(ui),
             Tab::Calibration => super::calibration_panel::show(
                 &mut self.calibration,
+                &mut self.calibration_maps,
                 self.state.robot(),
                 self.state.q(),
                 ui,

@@ -241,6 +241,37 @@ fn fingerprint(scene: &Scene, view: &ViewUniforms, dark: bool, size: [u32; 2]) -
     h.0
 }
 
+/// Most measured poses drawn as ghost arms (the others as tool points only): translucent arms
+/// cost fill on a software rasterizer.
+pub const MAX_POSE_GHOSTS: usize = 12;
+
+/// Adds the measured poses of a calibration to `scene`: every tool point as a dot, and up to
+/// [`MAX_POSE_GHOSTS`] of them, evenly chosen, as faint ghost arms.
+pub fn add_measured_poses(scene: &mut Scene, robot: &crate::kinematics::Robot, poses: &[Vec<f64>]) {
+    let ghost = ArmStyle {
+        frames: false,
+        frame_labels: false,
+        grid: false,
+        alpha: 0.12,
+        ..ArmStyle::default()
+    };
+    let every = poses.len().div_ceil(MAX_POSE_GHOSTS).max(1);
+    for (k, q) in poses.iter().enumerate() {
+        let Ok(t) = robot.fk(q) else { continue };
+        let p = crate::scene::point32(&t.translation.vector);
+        scene.dots.push(Dot {
+            p: [p.x, p.y, p.z],
+            color: [0.85, 0.35, 0.0, 1.0],
+            size_px: 6.0,
+        });
+        if k % every == 0
+            && let Ok(s) = arm_scene(robot, q, &ghost)
+        {
+            scene.meshes.extend(s.meshes);
+        }
+    }
+}
+
 /// The app's 3D scene for the current state: the arm, ghosts of the other solutions labelled
 /// with their posture (greyed when outside the limits), the targets, trails and workspace dots.
 pub fn build_scene(state: &AppState, workspace: Option<&[Dot]>, projector: bool) -> Scene {
