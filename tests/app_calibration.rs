@@ -189,5 +189,5 @@ fn measured_poses_are_drawn_as_tool_points_and_a_few_ghosts() {
         .meshes
         .len();
     let ghosts = (scene.meshes.len() - meshes) / one_arm;
-    assert!(ghosts >= 1 && ghosts <= MAX_POSE_GHOSTS, "{ghosts} ghosts");
+    assert!((1..=MAX_POSE_GHOSTS).contains(&ghosts), "{ghosts} ghosts");
 }
