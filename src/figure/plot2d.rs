@@ -60,7 +60,7 @@ pub struct Plot2d {
 /// A horizontal colour bar: the colour map from `min` to `max` with ticks and a label.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct ColorBar {
-    /// What the colours mean, with unit and the map's name, e.g. "deviation [mm] (viridis-like)".
+    /// What the colours mean, with unit and the map's name, e.g. `deviation [mm] (viridis-like)`.
     pub label: String,
     /// Value at the left end.
     pub min: f64,
