@@ -305,49 +305,7 @@ pub fn calibrate(
     let nominal = model.nominal();
     let mut zeta = nominal.clone();
     let before = fit(model, &zeta, ms)?;
-    let mut iterations = Vec::new();
-    let mut converged = false;
-    let mut reason = None;
-    let mut last_cost = f64::INFINITY;
-    for _ in 0..opts.max_iterations {
-        let (phi, res) = stacked(model, &zeta, ms, &free, opts)?;
-        // The weighted residual no longer changes (to 1e-10 relative): the least-squares fixed
-        // point is reached even where an ill-conditioned direction keeps the step above the
-        // tolerance with rounding noise.
-        let cost = res.norm_squared();
-        if cost > 0.0 && (last_cost - cost).abs() <= 1e-10 * cost {
-            converged = true;
-            break;
-        }
-        last_cost = cost;
-        let (dz, rank, condition) = step(&phi, &res, opts);
-        let now = fit(model, &zeta, ms)?;
-        let step_norm = dz.amax();
-        iterations.push(Iteration {
-            position_rms: now.position_rms,
-            orientation_rms: now.orientation_rms.unwrap_or(0.0),
-            step_norm,
-            condition,
-            rank,
-        });
-        if !step_norm.is_finite() {
-            reason = Some("the step is not finite (the system is singular)".into());
-            break;
-        }
-        for (c, &j) in free.iter().enumerate() {
-            zeta[j] += dz[c];
-        }
-        if step_norm <= opts.step_tolerance {
-            converged = true;
-            break;
-        }
-    }
-    if !converged && reason.is_none() {
-        reason = Some(format!(
-            "the step was still above {} after {} iterations",
-            opts.step_tolerance, opts.max_iterations
-        ));
-    }
+    let (iterations, converged, reason) = iterate(model, ms, &free, opts, &mut zeta)?;
     let after = fit(model, &zeta, ms)?;
     let at_nominal = identifiability_of(model, &nominal, ms, opts)?;
     let at_estimate = identifiability_of(model, &zeta, ms, opts)?;
@@ -366,6 +324,72 @@ pub fn calibrate(
         before,
         after,
     })
+}
+
+/// RMS of the position and orientation rows of a weighted residual, in m and rad.
+fn residual_rms(res: &DVector<f64>, ms: &[Measurement], opts: &CalibrationOptions) -> (f64, f64) {
+    let (mut p2, mut o2, mut at) = (0.0, 0.0, 0);
+    for m in ms {
+        for i in 0..m.rows() {
+            if i < 3 {
+                p2 += (res[at + i] * opts.position_sigma).powi(2);
+            } else {
+                o2 += (res[at + i] * opts.orientation_sigma).powi(2);
+            }
+        }
+        at += m.rows();
+    }
+    let l = ms.len().max(1) as f64;
+    ((p2 / l).sqrt(), (o2 / l).sqrt())
+}
+
+/// The iterations of (2.88)-(2.89) from `zeta` (updated in place): the record, whether they
+/// converged, and why not.
+fn iterate(
+    model: &ParameterModel,
+    ms: &[Measurement],
+    free: &[usize],
+    opts: &CalibrationOptions,
+    zeta: &mut [f64],
+) -> Result<(Vec<Iteration>, bool, Option<String>), CalibrationError> {
+    let mut iterations = Vec::new();
+    let mut last_cost = f64::INFINITY;
+    for _ in 0..opts.max_iterations {
+        let (phi, res) = stacked(model, zeta, ms, free, opts)?;
+        // The weighted residual no longer changes (to 1e-10 relative): the least-squares fixed
+        // point is reached even where an ill-conditioned direction keeps the step above the
+        // tolerance with rounding noise.
+        let cost = res.norm_squared();
+        if cost > 0.0 && (last_cost - cost).abs() <= 1e-10 * cost {
+            return Ok((iterations, true, None));
+        }
+        last_cost = cost;
+        let (dz, rank, condition) = step(&phi, &res, opts);
+        let (position_rms, orientation_rms) = residual_rms(&res, ms, opts);
+        let step_norm = dz.amax();
+        iterations.push(Iteration {
+            position_rms,
+            orientation_rms,
+            step_norm,
+            condition,
+            rank,
+        });
+        if !step_norm.is_finite() {
+            let why = "the step is not finite (the system is singular)".to_string();
+            return Ok((iterations, false, Some(why)));
+        }
+        for (c, &j) in free.iter().enumerate() {
+            zeta[j] += dz[c];
+        }
+        if step_norm <= opts.step_tolerance {
+            return Ok((iterations, true, None));
+        }
+    }
+    let why = format!(
+        "the step was still above {} after {} iterations",
+        opts.step_tolerance, opts.max_iterations
+    );
+    Ok((iterations, false, Some(why)))
 }
 
 type Uncertainty = (Vec<Option<f64>>, f64, Vec<(String, String, f64)>);

@@ -25,6 +25,19 @@ impl Robot {
         Ok(())
     }
 
+    /// End-effector `ee`, or the error naming how many there are.
+    pub fn end_effector(
+        &self,
+        ee: usize,
+    ) -> Result<&crate::kinematics::EndEffector, KinematicsError> {
+        self.end_effectors()
+            .get(ee)
+            .ok_or(KinematicsError::NoSuchEndEffector {
+                index: ee,
+                count: self.end_effectors().len(),
+            })
+    }
+
     /// The variable of joint `j` (before its offset) for the joint vector `q`: `q[k]` for an
     /// actuated joint, the linear combination for a coupled one, 0 for a fixed one.
     /// `q` must already be checked.
@@ -83,13 +96,7 @@ impl Robot {
     /// end-effector's chain are evaluated.
     pub fn fk_ee(&self, q: &[f64], ee: usize) -> Result<Pose, KinematicsError> {
         self.check_q(q)?;
-        let e = self
-            .end_effectors()
-            .get(ee)
-            .ok_or(KinematicsError::NoSuchEndEffector {
-                index: ee,
-                count: self.end_effectors().len(),
-            })?;
+        let e = self.end_effector(ee)?;
         let mut f = Frame::from_pose(&self.base);
         for &j in &self.chains[e.parent] {
             let l = &self.lowered[j];
@@ -146,13 +153,7 @@ impl Robot {
             });
         }
         debug_assert!(q.iter().all(|v| v.is_finite()));
-        let e = self
-            .end_effectors()
-            .get(ee)
-            .ok_or(KinematicsError::NoSuchEndEffector {
-                index: ee,
-                count: self.end_effectors().len(),
-            })?;
+        let e = self.end_effector(ee)?;
         let chain = &self.chains[e.parent];
         let split = shared.split.min(q.len());
         let (mut f, start) = match shared.frame {

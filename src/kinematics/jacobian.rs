@@ -67,13 +67,7 @@ impl Robot {
         jac: &mut Matrix6xX<f64>,
     ) -> Result<Pose, KinematicsError> {
         self.fk_frames_into(q, frames)?;
-        let e = self
-            .end_effectors()
-            .get(ee)
-            .ok_or(KinematicsError::NoSuchEndEffector {
-                index: ee,
-                count: self.end_effectors().len(),
-            })?;
+        let e = self.end_effector(ee)?;
         let world_from_tool = frames[e.parent] * e.tool;
         let pe = world_from_tool.translation.vector;
         assert_eq!(

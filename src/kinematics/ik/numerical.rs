@@ -551,6 +551,28 @@ const ACCELERATION_RATIO: f64 = 0.75;
 /// Finite-difference step (a fraction of the step) for the second directional derivative.
 const ACCELERATION_PROBE: f64 = 0.1;
 
+/// How an attempt fared over the last [`STALL_WINDOW`] iterations.
+enum Progress {
+    /// The error at least halved.
+    Good,
+    /// Far from the goal and the error not even halved: a local minimum (at a joint limit,
+    /// most often), and a restart is cheaper than crawling.
+    Stalled,
+    /// Slow beside the goal: the valley of a near-singular goal, where every step needs the
+    /// curvature correction; it goes on.
+    Crawling,
+}
+
+fn progress(cost: f64, cost_before: f64) -> Progress {
+    if cost <= 0.25 * cost_before {
+        Progress::Good
+    } else if cost > STALL_COST {
+        Progress::Stalled
+    } else {
+        Progress::Crawling
+    }
+}
+
 /// Adds half the geodesic acceleration to the step `s.dq` (Transtrum & Sethna 2012): the second
 /// directional derivative of the error along the step, by one extra forward kinematics, and the
 /// same damped solve; skipped when it is not small against the step (the model is too poor).
@@ -611,16 +633,10 @@ fn lm_attempt(
             return Ok((it - 1, e));
         }
         if it % STALL_WINDOW == 0 {
-            // Far from the goal and the error not even halved in a window: a local minimum (at a
-            // joint limit, most often), and a restart is cheaper than crawling. Close to the goal
-            // slow progress is the convergence beside a singularity and goes on.
-            if cost > 0.25 * cost_before {
-                if cost > STALL_COST {
-                    return Ok((it, e));
-                }
-                // Slow beside the goal: the valley of a near-singular goal, where every step
-                // needs the curvature correction.
-                crawling = true;
+            match progress(cost, cost_before) {
+                Progress::Stalled => return Ok((it, e)),
+                Progress::Crawling => crawling = true,
+                Progress::Good => {}
             }
             cost_before = cost;
         }

@@ -151,8 +151,8 @@ pub(super) fn normalize(robot: &Robot) -> Option<Chain> {
     normalize_checked(robot).ok()
 }
 
-/// [`normalize`], saying why a robot has no normal form.
-pub(super) fn normalize_checked(robot: &Robot) -> Result<Chain, NoClosedForm> {
+/// Why `robot` is not a serial chain of DH rows with one variable per joint, if it is not.
+fn check_serial(robot: &Robot) -> Result<(), NoClosedForm> {
     let joints = robot.joints();
     for j in joints {
         match (j.kind, &j.drive) {
@@ -172,6 +172,13 @@ pub(super) fn normalize_checked(robot: &Robot) -> Result<Chain, NoClosedForm> {
         };
         return Err(NoClosedForm::NotSerialDh(why));
     }
+    Ok(())
+}
+
+/// [`normalize`], saying why a robot has no normal form.
+pub(super) fn normalize_checked(robot: &Robot) -> Result<Chain, NoClosedForm> {
+    let joints = robot.joints();
+    check_serial(robot)?;
     let (conv, table) = robot.dh_table().ok_or(NoClosedForm::NotSerialDh(
         "its DH rows mix the standard and modified conventions",
     ))?;
