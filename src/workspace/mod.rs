@@ -22,6 +22,7 @@
 //! coordinates", which are the x-y coordinates of the robot's base frame for an arm that moves in
 //! that plane ([`PlanarFrame`]). Angles are in rad.
 
+pub mod exact;
 pub mod grid;
 pub mod planar;
 pub mod posture;
@@ -32,6 +33,7 @@ pub mod sample;
 pub mod stats;
 pub mod views;
 
+pub use exact::{Arc, ExactPlanar, ExactRegion, Membership, RegionSet};
 pub use grid::{
     DexterousSet, GridAnalysis, GridMethod, GridOptions, GridSpec, MethodChoice, analyze_grid,
 };
