@@ -24,6 +24,7 @@
 
 pub mod exact;
 pub mod grid;
+pub mod map;
 pub mod planar;
 pub mod posture;
 pub mod reach;
@@ -34,6 +35,10 @@ pub mod stats;
 pub mod views;
 
 pub use exact::{Arc, ExactPlanar, ExactRegion, Membership, RegionSet};
+pub use map::{
+    CellValues, CurveRole, MapCurve, MapRequest, MapValues, MapView, Section, TrackedPoint,
+    WorkspaceMap, compute_map, map_extent, map_statistics,
+};
 pub use grid::{
     DexterousSet, GridAnalysis, GridMethod, GridOptions, GridSpec, MethodChoice, analyze_grid,
 };

@@ -76,6 +76,11 @@ pub struct WorkspaceStats {
     pub samples: usize,
     /// How the grid was computed.
     pub method: GridMethod,
+    /// How the area or volume was computed, in words (e.g. "exact: Green's theorem over the
+    /// boundary arcs").
+    pub measure_method: String,
+    /// Estimated error of the area or volume (m^2 or m^3), when the method gives one.
+    pub measure_error: Option<f64>,
 }
 
 /// Computes the statistics: the grid of [`analyze_grid`] for the measures, the exact boundary
@@ -152,5 +157,15 @@ pub fn statistics(
         resolution: opts.grid.resolution,
         samples,
         method: grid.method,
+        measure_method: match grid.method {
+            GridMethod::ClosedForm { .. } => format!(
+                "closed-form IK at the centres of a {} grid",
+                opts.grid.resolution
+            ),
+            GridMethod::Sampling { samples } => {
+                format!("occupancy of {samples} joint-space samples on a {} grid", opts.grid.resolution)
+            }
+        },
+        measure_error: None,
     })
 }

@@ -430,6 +430,49 @@ impl ClosedForm {
         Ok(out.len)
     }
 
+    /// Solves the positioning arm alone for a world position: the tool point of a 3-DOF
+    /// position family (anthropomorphic, spherical, cylindrical arm), or the **wrist centre** of a
+    /// six-DOF arm with a spherical wrist (Sect. 2.12.2: the wrist centre depends on the first
+    /// three joints only). Writes q1..q3 (rad or m, joint offsets removed, not wrapped, the other
+    /// entries 0) and their postures into `out`; allocation-free. Other families: `TargetKind`.
+    pub fn solve_position_raw(
+        &self,
+        world_point: &Vector3<f64>,
+        out: &mut RawSolutions,
+    ) -> Result<usize, IkError> {
+        let arm = match &self.geometry {
+            Geometry::Arm(a) | Geometry::Decoupled { arm: a, .. } => a,
+            _ => {
+                return Err(IkError::TargetKind(format!(
+                    "the {} has no positioning arm solved apart",
+                    self.name()
+                )));
+            }
+        };
+        out.len = 0;
+        out.unreachable = None;
+        let local = (self.base_inv * Point3::from(*world_point)).coords;
+        let mut sols = [ArmSol::default(); 4];
+        match arm.solve(&local, &mut sols) {
+            Ok(n) => {
+                for (k, s) in sols[..n].iter().enumerate() {
+                    out.q[k] = [
+                        s.v[0] - self.offsets[0],
+                        s.v[1] - self.offsets[1],
+                        s.v[2] - self.offsets[2],
+                        0.0,
+                        0.0,
+                        0.0,
+                    ];
+                    out.postures[k] = s.posture;
+                }
+                out.len = n;
+            }
+            Err(d) => out.unreachable = Some(d),
+        }
+        Ok(out.len)
+    }
+
     fn goal_of_pose(&self, t: &Pose) -> Goal {
         if self.family.uses_frame() {
             let mut f = *t;

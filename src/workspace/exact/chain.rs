@@ -275,24 +275,84 @@ impl PlanarChain {
     /// `phi` (three links) or at all (two links, `phi` unused).
     #[inline]
     pub fn feasible(&self, p: [f64; 2], phi: f64, b: usize) -> bool {
+        self.solve(p, phi, b).is_some()
+    }
+
+    /// The absolute link angles (rad) of branch `b` reaching `p` (with the last link at `phi`
+    /// for three links) when that configuration is within the limits.
+    #[inline]
+    pub fn solve(&self, p: [f64; 2], phi: f64, b: usize) -> Option<[f64; 3]> {
         let mut w = [p[0] - self.c1[0], p[1] - self.c1[1]];
         if self.n == 3 {
             let e = cis(phi);
             w[0] -= self.len[2] * e[0];
             w[1] -= self.len[2] * e[1];
         }
-        let Some((a1, g2)) = self.two_link(w, b) else {
-            return false;
-        };
+        let (a1, g2) = self.two_link(w, b)?;
         let q1 = self.sign[0] * (a1 - self.beta[0]);
         let q2 = self.sign[1] * (g2 - self.beta[1] + self.beta[0]);
         if !(self.range[0].contains(q1) && self.range[1].contains(q2)) {
-            return false;
+            return None;
         }
-        self.n == 2 || {
+        if self.n == 3 {
             let q3 = self.sign[2] * (phi - a1 - g2 - self.beta[2] + self.beta[1]);
-            self.range[2].contains(q3)
+            if !self.range[2].contains(q3) {
+                return None;
+            }
         }
+        Some([a1, a1 + g2, phi])
+    }
+
+    /// Position manipulability sqrt(det(J_P J_P^T)) (m^2) at link angles `alpha`: by the
+    /// Cauchy-Binet formula the root of the sum of the squared cross products of the columns,
+    /// `(p - c_i) x (p - c_j)` for i < j.
+    pub fn manipulability(&self, alpha: &[f64; 3]) -> f64 {
+        let p = self.point(alpha, self.n);
+        let r: Vec<[f64; 2]> = (0..self.n)
+            .map(|k| {
+                let c = self.point(alpha, k);
+                [p[0] - c[0], p[1] - c[1]]
+            })
+            .collect();
+        let mut sum = 0.0;
+        for i in 0..self.n {
+            for j in i + 1..self.n {
+                let c = r[i][0] * r[j][1] - r[i][1] * r[j][0];
+                sum += c * c;
+            }
+        }
+        sum.sqrt()
+    }
+
+    /// Largest position manipulability (m^2) over the configurations reaching `p`: both branches
+    /// (two links); both branches at 96 orientations and at each breakpoint interval's midpoint
+    /// (three links). `None` when `p` is not reached.
+    pub fn max_manipulability(&self, p: [f64; 2]) -> Option<f64> {
+        let mut best: Option<f64> = None;
+        let mut try_phi = |phi: f64| {
+            for b in 0..2 {
+                if let Some(a) = self.solve(p, phi, b) {
+                    let m = self.manipulability(&a);
+                    best = Some(best.map_or(m, |x: f64| x.max(m)));
+                }
+            }
+        };
+        if self.n == 2 {
+            try_phi(0.0);
+            return best;
+        }
+        for k in 0..96 {
+            try_phi(k as f64 * TAU / 96.0);
+        }
+        let mut bp = [0.0; 16];
+        let n = self.breakpoints(p, &mut bp);
+        let bp = &mut bp[..n];
+        bp.sort_unstable_by(f64::total_cmp);
+        for i in 0..n {
+            let hi = if i + 1 < n { bp[i + 1] } else { bp[0] + TAU };
+            try_phi(0.5 * (bp[i] + hi));
+        }
+        best
     }
 
     /// The values of phi (absolute angle of the last link, rad, in [0, 2 pi)) where the set of

@@ -134,6 +134,14 @@ impl ExactPlanar {
         self.chain.membership(p)
     }
 
+    /// Largest position manipulability sqrt(det(J_P J_P^T)) (m^2) of the configurations
+    /// reaching `p` (plane coordinates): both postures of a two-link arm; for three links both
+    /// postures at 96 orientations phi and at the midpoint of each feasible interval. `None`
+    /// when `p` is not reached.
+    pub fn max_manipulability(&self, p: [f64; 2]) -> Option<f64> {
+        self.chain.max_manipulability(p)
+    }
+
     /// Every boundary candidate (arcs of the images of the box's edges, face folds and singular
     /// lines), the boundary of each region is made of pieces of them.
     pub fn candidates(&self) -> &[Arc] {

@@ -1,0 +1,256 @@
+//! Workspace maps: what a workspace figure, the app and `armlab reach` need, computed at the
+//! resolution asked for (pure computation; the figure layer only paints a map).
+//!
+//! A [`WorkspaceMap`] is a raster of cells over a rectangle of a view (the arm plane, a top view
+//! or the (r, z) side view), each with the posture classes reaching its centre, decided by an
+//! exact test where the arm has the structure for one:
+//! - two- and three-link planar arms: [`super::ExactPlanar`] (closed-form membership with the
+//!   orientation free, exact boundary arcs, areas by Green's theorem);
+//! - arms with a closed-form positioning arm (anthropomorphic with or without shoulder offset,
+//!   spherical, cylindrical; alone or with a spherical wrist, whose wrist centre is the tracked
+//!   point): the side view from the closed form of the arm with joint 1 free (the position
+//!   problem is planar in (r, z) after joint 1), the top view from the side view's radial extent
+//!   and joint 1's range, the volume by Pappus from the section ([`spatial`]);
+//! - any other arm: occupancy of joint-space samples.
+//!
+//! Cells along a region's edge are supersampled (4 x 4 exact tests) so that the painted edge is
+//! antialiased and lies on the exact boundary. Continuous values (the fraction of orientations,
+//! manipulability) come per cell with their name, unit and range.
+
+mod planar;
+mod raster;
+mod sampled;
+mod spatial;
+
+pub use spatial::Section;
+
+pub use raster::EdgeCell;
+
+use super::{Aabb, WorkspaceError, WorkspaceStats};
+use crate::kinematics::Robot;
+
+/// The view of a map.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MapView {
+    /// The arm plane of a planar arm, base-frame (x, y) (m).
+    Plane,
+    /// Top view, base-frame (x, y) (m).
+    Top,
+    /// Side view: (r, z) in the base frame, r the distance from the base z axis (m).
+    Side,
+}
+
+/// Which point of the arm the workspace is of.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum TrackedPoint {
+    /// The end-effector (tool or flange) position.
+    #[default]
+    Flange,
+    /// The wrist centre of an arm with a spherical wrist ("the manipulator workspace without
+    /// end-effector", Sect. 2.10.1); the flange for other arms.
+    WristCentre,
+}
+
+/// Continuous values per cell.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum MapValues {
+    /// Posture classes only.
+    #[default]
+    Classes,
+    /// Fraction of the orientations with which the point is reached (the dexterous workspace).
+    Dexterity,
+    /// Largest manipulability sqrt(det(J J^T)) of the configurations reaching the cell.
+    Manipulability,
+}
+
+/// What to compute.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MapRequest {
+    /// View.
+    pub view: MapView,
+    /// Tracked point.
+    pub point: TrackedPoint,
+    /// Values per cell.
+    pub values: MapValues,
+    /// Cells across and down.
+    pub cells: [usize; 2],
+    /// `[x_min, x_max, y_min, y_max]` of the view (m); `None`: [`map_extent`] padded by 6 %.
+    pub bounds: Option<[f64; 4]>,
+    /// Joint-space samples (sampled maps, manipulability).
+    pub samples: usize,
+    /// Sampler seed.
+    pub seed: u64,
+}
+
+impl Default for MapRequest {
+    fn default() -> Self {
+        Self {
+            view: MapView::Plane,
+            point: TrackedPoint::Flange,
+            values: MapValues::Classes,
+            cells: [800, 600],
+            bounds: None,
+            samples: 200_000,
+            seed: 1,
+        }
+    }
+}
+
+/// Continuous values of the cells.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CellValues {
+    /// Cells across and down of the values (the same rectangle as the map; may be coarser than
+    /// the class cells).
+    pub dims: [usize; 2],
+    /// Per cell, row-major from the top row; NaN where the cell is not reached.
+    pub data: Vec<f32>,
+    /// What the value is, e.g. "fraction of orientations phi reached".
+    pub name: String,
+    /// Unit, e.g. "m^2" or "" for a fraction.
+    pub unit: String,
+    /// Smallest and largest value of the colour scale.
+    pub range: [f64; 2],
+    /// How the values were computed.
+    pub method: String,
+}
+
+/// What a curve of a map is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CurveRole {
+    /// Boundary of the reachable set.
+    Boundary,
+    /// Boundary between posture regions (inside the reachable set).
+    PostureBoundary,
+    /// A boundary candidate that is not on the boundary (a singular or limit arc inside).
+    Candidate,
+}
+
+/// A curve of a map in view coordinates (m).
+#[derive(Debug, Clone, PartialEq)]
+pub struct MapCurve {
+    /// Points (view coordinates, m).
+    pub points: Vec<[f64; 2]>,
+    /// What it is.
+    pub role: CurveRole,
+}
+
+/// A workspace map (see the module documentation).
+#[derive(Debug, Clone, PartialEq)]
+pub struct WorkspaceMap {
+    /// View.
+    pub view: MapView,
+    /// `[x_min, x_max, y_min, y_max]` covered by the cells (m).
+    pub bounds: [f64; 4],
+    /// Cells across.
+    pub width: usize,
+    /// Cells down.
+    pub height: usize,
+    /// Class mask at each cell centre, row-major from the top row (bit k: class k reaches it).
+    pub masks: Vec<u8>,
+    /// Cells cut by an edge, with 4 x 4 sub-samples.
+    pub edges: Vec<EdgeCell>,
+    /// Names of the classes.
+    pub class_names: Vec<String>,
+    /// Values per cell, if asked for.
+    pub values: Option<CellValues>,
+    /// Curves to draw (exact boundaries where known).
+    pub curves: Vec<MapCurve>,
+    /// How the regions were decided, in words.
+    pub method: String,
+    /// Whether the regions are exact (decided by an exact test at each cell) rather than sampled.
+    pub exact: bool,
+}
+
+impl WorkspaceMap {
+    /// Centre of cell `(i, j)` (column, row from the top), view coordinates (m).
+    pub fn centre(&self, i: usize, j: usize) -> [f64; 2] {
+        raster::centre(self.bounds, [self.width, self.height], i, j)
+    }
+
+    /// Fraction of cell `k` covered by each mask value: `(mask, fraction)` pairs.
+    pub fn coverage(&self, k: usize) -> Vec<(u8, f32)> {
+        match self.edges.binary_search_by_key(&(k as u32), |e| e.index) {
+            Ok(e) => {
+                let mut out: Vec<(u8, f32)> = Vec::new();
+                for &m in &self.edges[e].sub {
+                    match out.iter_mut().find(|x| x.0 == m) {
+                        Some(x) => x.1 += 1.0 / 16.0,
+                        None => out.push((m, 1.0 / 16.0)),
+                    }
+                }
+                out
+            }
+            Err(_) => vec![(self.masks[k], 1.0)],
+        }
+    }
+}
+
+/// The extent of a view of the workspace (m): exact for planar arms and closed-form sections,
+/// else from samples.
+pub fn map_extent(
+    robot: &Robot,
+    view: MapView,
+    point: TrackedPoint,
+) -> Result<Aabb, WorkspaceError> {
+    if view == MapView::Plane {
+        if let Ok(e) = super::ExactPlanar::new(robot) {
+            return Ok(e.bounds());
+        }
+    }
+    if let Some(s) = spatial::Section::new(robot, point) {
+        return Ok(s.extent(view));
+    }
+    sampled::extent(robot, view)
+}
+
+/// Pads `[x0, x1, y0, y1]` of a box by `pad` times its larger side.
+pub fn padded(b: &Aabb, pad: f64) -> [f64; 4] {
+    let (x0, x1, y0, y1) = (b.min[0], b.max[0], b.min[1], b.max[1]);
+    let m = ((x1 - x0).max(y1 - y0) * pad).max(1e-3);
+    [x0 - m, x1 + m, y0 - m, y1 + m]
+}
+
+/// Computes a map.
+pub fn compute_map(robot: &Robot, req: &MapRequest) -> Result<WorkspaceMap, WorkspaceError> {
+    if req.cells[0] == 0 || req.cells[1] == 0 || req.cells[0] * req.cells[1] > 64_000_000 {
+        return Err(WorkspaceError::InvalidOption(format!(
+            "map size {}x{} cells: each side must be at least 1, at most 64 million cells",
+            req.cells[0], req.cells[1]
+        )));
+    }
+    let bounds = match req.bounds {
+        Some(b) => b,
+        None => padded(&map_extent(robot, req.view, req.point)?, 0.06),
+    };
+    if !(bounds[1] > bounds[0] && bounds[3] > bounds[2] && bounds.iter().all(|v| v.is_finite())) {
+        return Err(WorkspaceError::InvalidOption(format!(
+            "map bounds {bounds:?} are empty or not finite"
+        )));
+    }
+    if req.view == MapView::Plane {
+        if let Ok(e) = super::ExactPlanar::new(robot) {
+            return Ok(planar::map(robot, &e, req, bounds));
+        }
+    }
+    if let Some(s) = spatial::Section::new(robot, req.point) {
+        if req.view != MapView::Plane {
+            return s.map(robot, req, bounds);
+        }
+    }
+    sampled::map(robot, req, bounds)
+}
+
+/// Statistics of the workspace with the exact method where there is one: exact areas for planar
+/// arms, Pappus volumes for closed-form sections, the grid of [`super::statistics`] otherwise.
+pub fn map_statistics(
+    robot: &Robot,
+    point: TrackedPoint,
+) -> Result<WorkspaceStats, WorkspaceError> {
+    if let Ok(e) = super::ExactPlanar::new(robot) {
+        return Ok(planar::statistics(&e));
+    }
+    if let Some(s) = spatial::Section::new(robot, point) {
+        return Ok(s.statistics());
+    }
+    super::statistics(robot, &super::StatsOptions::default(), &|_| {})
+}

@@ -1,0 +1,95 @@
+//! Filling a map's cells from an exact point test, with the cells cut by an edge supersampled.
+
+use rayon::prelude::*;
+
+/// A cell cut by an edge: the class masks of a 4 x 4 grid of sub-samples inside it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct EdgeCell {
+    /// Cell index (row-major from the top row).
+    pub index: u32,
+    /// Masks of the sub-samples, row-major from the top.
+    pub sub: [u8; 16],
+}
+
+/// Centre of cell `(i, j)` (column, row from the top) of a raster over `bounds`.
+#[inline]
+pub(crate) fn centre(bounds: [f64; 4], dims: [usize; 2], i: usize, j: usize) -> [f64; 2] {
+    sub_point(bounds, dims, i, j, 0.5, 0.5)
+}
+
+/// The point at fractions `(fu, fv)` of cell `(i, j)`.
+#[inline]
+fn sub_point(bounds: [f64; 4], dims: [usize; 2], i: usize, j: usize, fu: f64, fv: f64) -> [f64; 2] {
+    let [x0, x1, y0, y1] = bounds;
+    [
+        x0 + (i as f64 + fu) / dims[0] as f64 * (x1 - x0),
+        y1 - (j as f64 + fv) / dims[1] as f64 * (y1 - y0),
+    ]
+}
+
+/// Masks at every cell centre, in parallel by rows.
+pub(crate) fn fill(
+    bounds: [f64; 4],
+    dims: [usize; 2],
+    test: &(dyn Fn([f64; 2]) -> u8 + Sync),
+) -> Vec<u8> {
+    let [w, h] = dims;
+    let mut masks = vec![0u8; w * h];
+    masks.par_chunks_mut(w).enumerate().for_each(|(j, row)| {
+        for (i, m) in row.iter_mut().enumerate() {
+            *m = test(centre(bounds, dims, i, j));
+        }
+    });
+    let _ = h;
+    masks
+}
+
+/// The cells whose mask differs from a 4-neighbour's, each supersampled 4 x 4 with `test`.
+pub(crate) fn edges(
+    masks: &[u8],
+    bounds: [f64; 4],
+    dims: [usize; 2],
+    test: &(dyn Fn([f64; 2]) -> u8 + Sync),
+) -> Vec<EdgeCell> {
+    let [w, h] = dims;
+    let cut = |k: usize| {
+        let (i, j) = (k % w, k / w);
+        let m = masks[k];
+        (i > 0 && masks[k - 1] != m)
+            || (i + 1 < w && masks[k + 1] != m)
+            || (j > 0 && masks[k - w] != m)
+            || (j + 1 < h && masks[k + w] != m)
+    };
+    (0..w * h)
+        .into_par_iter()
+        .filter(|&k| cut(k))
+        .map(|k| {
+            let (i, j) = (k % w, k / w);
+            let mut sub = [0u8; 16];
+            for (s, m) in sub.iter_mut().enumerate() {
+                let (fu, fv) = ((s % 4) as f64 * 0.25 + 0.125, (s / 4) as f64 * 0.25 + 0.125);
+                *m = test(sub_point(bounds, dims, i, j, fu, fv));
+            }
+            EdgeCell {
+                index: k as u32,
+                sub,
+            }
+        })
+        .collect()
+}
+
+/// Values at every cell centre (NaN where `f` gives none), in parallel by rows.
+pub(crate) fn values(
+    bounds: [f64; 4],
+    dims: [usize; 2],
+    f: &(dyn Fn([f64; 2]) -> Option<f32> + Sync),
+) -> Vec<f32> {
+    let w = dims[0];
+    let mut out = vec![f32::NAN; w * dims[1]];
+    out.par_chunks_mut(w).enumerate().for_each(|(j, row)| {
+        for (i, v) in row.iter_mut().enumerate() {
+            *v = f(centre(bounds, dims, i, j)).unwrap_or(f32::NAN);
+        }
+    });
+    out
+}

@@ -1,0 +1,168 @@
+//! Maps of arms with no structure to use: occupancy of joint-space samples, then refinement:
+//! every empty cell next to a reached one is tried with a position-only numerical IK started at
+//! the neighbour's sample, so the rim of the region is decided by IK instead of being left
+//! speckled. Each cell keeps the largest manipulability seen.
+
+use super::{CellValues, MapRequest, MapValues, MapView, WorkspaceMap};
+use crate::kinematics::Robot;
+use crate::kinematics::ik::numerical::{self, NumericalOptions, TaskMask};
+use crate::kinematics::ik::Target;
+use crate::workspace::{Aabb, SampleOptions, Samples, WorkspaceError, sample};
+use nalgebra::{Point3, Vector3};
+use rayon::prelude::*;
+
+/// View coordinates of a world point: plane/top (x_b, y_b), side (r, z_b).
+fn to_view(robot: &Robot, view: MapView, p: [f64; 3]) -> [f64; 2] {
+    let l = robot
+        .base
+        .inverse_transform_point(&Point3::new(p[0], p[1], p[2]));
+    match view {
+        MapView::Plane | MapView::Top => [l.x, l.y],
+        MapView::Side => [l.x.hypot(l.y), l.z],
+    }
+}
+
+fn samples(robot: &Robot, n: usize, seed: u64, manip: bool) -> Result<Samples, WorkspaceError> {
+    sample(
+        robot,
+        &SampleOptions {
+            samples: n,
+            seed,
+            end_effector: 0,
+            classes: false,
+            manipulability: manip,
+            keep_joints: true,
+        },
+        &|_| {},
+    )
+}
+
+/// Extent of the samples' view coordinates (50 000 samples, seed 1).
+pub(super) fn extent(robot: &Robot, view: MapView) -> Result<Aabb, WorkspaceError> {
+    let s = samples(robot, 50_000, 1, false)?;
+    let mut b = Aabb::EMPTY;
+    for p in &s.positions {
+        let v = to_view(robot, view, *p);
+        b.extend([v[0], v[1], 0.0]);
+    }
+    Ok(b)
+}
+
+/// The sampled map with refined rims (see the module documentation).
+pub(super) fn map(
+    robot: &Robot,
+    req: &MapRequest,
+    bounds: [f64; 4],
+) -> Result<WorkspaceMap, WorkspaceError> {
+    let [w, h] = req.cells;
+    let s = samples(robot, req.samples.max(1), req.seed, req.values == MapValues::Manipulability)?;
+    let cell_of = |v: [f64; 2]| -> Option<usize> {
+        let u = (v[0] - bounds[0]) / (bounds[1] - bounds[0]) * w as f64;
+        let t = (bounds[3] - v[1]) / (bounds[3] - bounds[2]) * h as f64;
+        (u >= 0.0 && t >= 0.0 && u < w as f64 && t < h as f64)
+            .then(|| t as usize * w + u as usize)
+    };
+    let mut owner = vec![u32::MAX; w * h];
+    let mut best = vec![f32::NAN; w * h];
+    for (k, p) in s.positions.iter().enumerate() {
+        if let Some(c) = cell_of(to_view(robot, req.view, *p)) {
+            owner[c] = k as u32;
+            if let Some(m) = &s.manipulability {
+                best[c] = if best[c].is_nan() { m[k] } else { best[c].max(m[k]) };
+            }
+        }
+    }
+    let refined = refine(robot, req.view, &s, &owner, bounds, [w, h]);
+    let masks: Vec<u8> = owner
+        .iter()
+        .zip(&refined)
+        .map(|(&o, &r)| u8::from(o != u32::MAX || r))
+        .collect();
+    let values = (req.values != MapValues::Classes).then(|| {
+        let hi = best.iter().copied().filter(|v| v.is_finite()).fold(0.0f32, f32::max);
+        CellValues {
+            dims: [w, h],
+            data: best,
+            name: "largest manipulability of the samples in the cell".into(),
+            unit: String::new(),
+            range: [0.0, f64::from(hi).max(1e-12)],
+            method: format!("{} joint-space samples", s.len()),
+        }
+    });
+    Ok(WorkspaceMap {
+        view: req.view,
+        bounds,
+        width: w,
+        height: h,
+        masks,
+        edges: Vec::new(),
+        class_names: vec!["all".into()],
+        values,
+        curves: Vec::new(),
+        method: format!(
+            "sampled: {} joint-space samples (seed {}), the rim refined by numerical IK",
+            s.len(),
+            req.seed
+        ),
+        exact: false,
+    })
+}
+
+/// Empty cells with a reached 8-neighbour, tried by position IK from that neighbour's sample.
+fn refine(
+    robot: &Robot,
+    view: MapView,
+    s: &Samples,
+    owner: &[u32],
+    bounds: [f64; 4],
+    [w, h]: [usize; 2],
+) -> Vec<bool> {
+    let opts = NumericalOptions {
+        max_iterations: 40,
+        restarts: 0,
+        tolerance: 1e-9,
+        mask: match view {
+            MapView::Top => TaskMask([true, true, false, false, false, false]),
+            _ => TaskMask::POSITION,
+        },
+        ..NumericalOptions::default()
+    };
+    (0..w * h)
+        .into_par_iter()
+        .map(|c| {
+            if owner[c] != u32::MAX {
+                return false;
+            }
+            let (i, j) = ((c % w) as isize, (c / w) as isize);
+            let nbr = (-1..=1)
+                .flat_map(|dj| (-1..=1).map(move |di| (i + di, j + dj)))
+                .filter(|&(x, y)| x >= 0 && y >= 0 && (x as usize) < w && (y as usize) < h)
+                .map(|(x, y)| owner[y as usize * w + x as usize])
+                .find(|&o| o != u32::MAX);
+            let Some(o) = nbr else {
+                return false;
+            };
+            let q0 = s.joint_vector(o as usize).unwrap_or(&[]);
+            let v = super::raster::centre(bounds, [w, h], c % w, c / w);
+            let target = world_target(robot, view, v, s.positions[o as usize]);
+            numerical::solve(robot, 0, &Target::Position(target), q0, &opts)
+                .is_ok_and(|r| r.converged)
+        })
+        .collect()
+}
+
+/// The world point of view coordinates `v`, at the height (top view) or azimuth (side view) of
+/// the neighbour's sample `near`.
+fn world_target(robot: &Robot, view: MapView, v: [f64; 2], near: [f64; 3]) -> Vector3<f64> {
+    let l = robot
+        .base
+        .inverse_transform_point(&Point3::new(near[0], near[1], near[2]));
+    let local = match view {
+        MapView::Plane | MapView::Top => Point3::new(v[0], v[1], l.z),
+        MapView::Side => {
+            let psi = l.y.atan2(l.x);
+            Point3::new(v[0] * psi.cos(), v[0] * psi.sin(), v[1])
+        }
+    };
+    (robot.base * local).coords
+}

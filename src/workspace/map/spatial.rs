@@ -1,0 +1,696 @@
+//! Side and top views of arms with a closed-form positioning arm (anthropomorphic with or
+//! without shoulder offset, spherical, cylindrical; alone or with a spherical wrist).
+//!
+//! Joint 1 turns the whole arm about the base z axis, so the position problem of the other
+//! joints is planar in (r, z) (Sect. 2.12.3-2.12.4: theta1 from the azimuth, then a planar
+//! problem): a point (r, z) of the side view is reached with a posture exactly when the closed
+//! form at (r, 0, z) has a solution of that posture with joints 2 and 3 (and the wrist, for the
+//! flange) within their limits; joint 1 then only decides the azimuths, `psi = s1 (q1 - q1_0)`
+//! for q1 in its range, where q1_0 is the solution's joint 1 at azimuth 0. The top view is a
+//! point (x, y) at radius r reached with a posture when some (r, z) is and q1 fits the azimuth;
+//! the volume is Pappus's integral of r times the azimuth measure over the section.
+//!
+//! Tracked point: the wrist centre (exact, position of the arm alone) or the flange. The
+//! flange of an arm with a spherical wrist and a flange offset is decided over the 64 approach
+//! directions of [`crate::workspace::approach_bin_centre`] (one roll each), which is not exact
+//! and is said so; with no offset the flange is the wrist centre.
+
+use super::raster;
+use super::{CellValues, MapRequest, MapValues, MapView, TrackedPoint, WorkspaceMap};
+use crate::kinematics::ik::closed_form::{
+    ClosedForm, Family, LIMIT_TOL, MAX_DOF, RawSolutions, wrap_into_limits,
+};
+use crate::kinematics::{JointKind, Pose, Robot};
+use crate::workspace::{
+    Aabb, ClassMeasure, GridMethod, PostureClassifier, WorkspaceError, WorkspaceStats,
+    approach_bin_centre,
+};
+use nalgebra::{Matrix3, Point3, Rotation3, Translation3, Vector3};
+use std::f64::consts::{PI, TAU};
+
+/// Approach directions of the flange scan.
+const APPROACHES: usize = 64;
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Mode {
+    /// The positioning arm alone (3-DOF arm, or the wrist centre of a 6-DOF arm).
+    Position,
+    /// The flange of a 6-DOF arm with a flange offset: approach directions scanned.
+    FlangeScan,
+}
+
+/// The section tester (see the module documentation).
+#[derive(Debug, Clone)]
+pub struct Section {
+    cf: ClosedForm,
+    classifier: PostureClassifier,
+    mode: Mode,
+    base: Pose,
+    limits: Vec<[f64; 2]>,
+    revolute: Vec<bool>,
+    /// Sense of joint 1 about the base z axis (+1 or -1).
+    s1: f64,
+    /// Joint 1 covers a full turn.
+    q1_full: bool,
+    scale: f64,
+    family: &'static str,
+    point: TrackedPoint,
+}
+
+/// One posture reaching a side-view point: its class bits and q1 at azimuth 0 (rad).
+#[derive(Debug, Clone, Copy, Default)]
+struct Hit {
+    mask: u8,
+    q1: f64,
+}
+
+impl Section {
+    /// The tester for a robot and tracked point, or `None` when the robot has no closed-form
+    /// positioning arm whose joint 1 is a revolute joint about the base z axis.
+    pub fn new(robot: &Robot, point: TrackedPoint) -> Option<Self> {
+        if robot.end_effectors().len() != 1 || robot.dof() < 3 {
+            return None;
+        }
+        let cf = ClosedForm::detect(robot).ok()?;
+        let mode = match (cf.family(), point) {
+            (Family::Anthropomorphic | Family::SphericalArm | Family::Cylindrical, _) => {
+                Mode::Position
+            }
+            (Family::Decoupled6 { .. }, TrackedPoint::WristCentre) => Mode::Position,
+            (Family::Decoupled6 { .. }, TrackedPoint::Flange) => {
+                if flange_is_wrist_centre(robot, &cf) {
+                    Mode::Position
+                } else {
+                    Mode::FlangeScan
+                }
+            }
+            _ => return None,
+        };
+        if robot.dof_joint(0).kind != JointKind::Revolute {
+            return None;
+        }
+        let s1 = joint1_sense(robot)?;
+        let limits = robot.limits();
+        let q1_full = !(limits[0][0].is_finite() && limits[0][1].is_finite())
+            || limits[0][1] - limits[0][0] >= TAU - 1e-12;
+        Some(Self {
+            classifier: PostureClassifier::new(robot),
+            mode,
+            base: robot.base,
+            revolute: (0..robot.dof())
+                .map(|k| robot.dof_joint(k).kind == JointKind::Revolute)
+                .collect(),
+            limits,
+            s1,
+            q1_full,
+            scale: robot.characteristic_length(),
+            family: cf.name(),
+            point,
+            cf,
+        })
+    }
+
+    /// Names of the posture classes.
+    pub fn class_names(&self) -> &[String] {
+        self.classifier.class_names()
+    }
+
+    /// Whether the side view is exact (the positioning arm), not an approach scan.
+    pub fn exact(&self) -> bool {
+        self.mode == Mode::Position
+    }
+
+    /// Joints `from..to` of a raw solution within their limits (revolute ones modulo 2 pi).
+    #[inline]
+    fn within(&self, q: &[f64; MAX_DOF], from: usize, to: usize) -> bool {
+        (from..to).all(|k| {
+            let v = if self.revolute[k] {
+                wrap_into_limits(q[k], self.limits[k])
+            } else {
+                q[k]
+            };
+            v >= self.limits[k][0] - LIMIT_TOL && v <= self.limits[k][1] + LIMIT_TOL
+        })
+    }
+
+    /// The postures reaching the base-frame point (r, 0, z) with joint 1 free; writes up to 8
+    /// hits and returns the count. Allocation-free.
+    fn hits(&self, r: f64, z: f64, out: &mut [Hit; 8]) -> usize {
+        let w = self.base * Point3::new(r, 0.0, z);
+        let mut raw = RawSolutions::default();
+        let mut n = 0;
+        match self.mode {
+            Mode::Position => {
+                if self.cf.solve_position_raw(&w.coords, &mut raw).is_err() {
+                    return 0;
+                }
+                for k in 0..raw.len {
+                    if n < 8 && self.within(&raw.q[k], 1, 3) {
+                        out[n] = Hit {
+                            mask: self.classifier.posture_mask(&raw.postures[k]),
+                            q1: raw.q[k][0],
+                        };
+                        n += 1;
+                    }
+                }
+            }
+            Mode::FlangeScan => {
+                let dof = self.limits.len();
+                for b in 0..APPROACHES {
+                    let pose = Pose::from_parts(Translation3::from(w.coords), approach(b));
+                    if self.cf.solve_raw(&pose, &mut raw).is_err() {
+                        continue;
+                    }
+                    for k in 0..raw.len {
+                        if !self.within(&raw.q[k], 1, dof) {
+                            continue;
+                        }
+                        let mask = self.classifier.posture_mask(&raw.postures[k]);
+                        let q1 = raw.q[k][0];
+                        if let Some(h) = out[..n]
+                            .iter_mut()
+                            .find(|h| h.mask == mask && (h.q1 - q1).abs() < 1e-9)
+                        {
+                            h.mask |= mask;
+                        } else if n < 8 {
+                            out[n] = Hit { mask, q1 };
+                            n += 1;
+                        }
+                    }
+                }
+            }
+        }
+        n
+    }
+
+    /// Class mask of a side-view point (r >= 0, z), base frame (m).
+    pub fn side_mask(&self, r: f64, z: f64) -> u8 {
+        let mut h = [Hit::default(); 8];
+        let n = self.hits(r, z, &mut h);
+        h[..n].iter().fold(0, |m, x| m | x.mask)
+    }
+
+    /// Whether q1 = q1_0 + psi / s1 fits joint 1's range (azimuth psi, rad).
+    #[inline]
+    fn q1_fits(&self, q1_0: f64, psi: f64) -> bool {
+        if self.q1_full {
+            return true;
+        }
+        let q = wrap_into_limits(q1_0 + psi * self.s1, self.limits[0]);
+        q >= self.limits[0][0] - LIMIT_TOL && q <= self.limits[0][1] + LIMIT_TOL
+    }
+
+    /// Measures (rad) of the azimuths reached at a side-view point: by any posture, by each
+    /// class, and by each class alone (no other class at that azimuth).
+    fn azimuths(&self, hits: &[Hit], classes: usize) -> (f64, [f64; 4], [f64; 4]) {
+        if hits.is_empty() {
+            return (0.0, [0.0; 4], [0.0; 4]);
+        }
+        // Each hit covers psi in s1 (range - q1_0): cut the circle at every end.
+        let mut cuts: Vec<f64> = vec![0.0];
+        if !self.q1_full {
+            for h in hits {
+                for l in self.limits[0] {
+                    cuts.push((self.s1 * (l - h.q1)).rem_euclid(TAU));
+                }
+            }
+        }
+        cuts.sort_by(f64::total_cmp);
+        let (mut any, mut with, mut only) = (0.0, [0.0; 4], [0.0; 4]);
+        for i in 0..cuts.len() {
+            let hi = if i + 1 < cuts.len() { cuts[i + 1] } else { TAU };
+            let width = hi - cuts[i];
+            if width <= 0.0 {
+                continue;
+            }
+            let mid = 0.5 * (cuts[i] + hi);
+            let mask = hits
+                .iter()
+                .filter(|h| self.q1_fits(h.q1, mid))
+                .fold(0u8, |m, h| m | h.mask);
+            if mask != 0 {
+                any += width;
+            }
+            for c in 0..classes.min(4) {
+                if mask >> c & 1 == 1 {
+                    with[c] += width;
+                    if mask == 1 << c {
+                        only[c] += width;
+                    }
+                }
+            }
+        }
+        (any, with, only)
+    }
+
+    /// Class mask of a top-view point (base-frame x, y) for a radial table (see [`Radial`]).
+    fn top_mask(&self, radial: &Radial, x: f64, y: f64) -> u8 {
+        let r = x.hypot(y);
+        let psi = y.atan2(x);
+        let Some(zs) = radial.at(r) else { return 0 };
+        let mut out = 0u8;
+        let mut h = [Hit::default(); 8];
+        for &z in zs.iter().filter(|z| z.is_finite()) {
+            let n = self.hits(r, z, &mut h);
+            for hit in &h[..n] {
+                if self.q1_fits(hit.q1, psi) {
+                    out |= hit.mask;
+                }
+            }
+        }
+        out
+    }
+
+    /// Bounding box of a view (m): the side view's reached cells on a 256 x 256 scan of
+    /// `[0, L] x [-L, L]` (L the arm's characteristic length) grown by a cell, or the disk of
+    /// the largest radius for the top view.
+    pub fn extent(&self, view: MapView) -> Aabb {
+        let l = self.scale;
+        let n = 256;
+        let bounds = [0.0, l, -l, l];
+        let masks = raster::fill(bounds, [n, n], &|p| self.side_mask(p[0], p[1]));
+        let mut b = Aabb::EMPTY;
+        let cell = [l / n as f64, 2.0 * l / n as f64];
+        for (k, &m) in masks.iter().enumerate() {
+            if m != 0 {
+                let c = raster::centre(bounds, [n, n], k % n, k / n);
+                b.extend([(c[0] - cell[0]).max(0.0), c[1] - cell[1], 0.0]);
+                b.extend([c[0] + cell[0], c[1] + cell[1], 0.0]);
+            }
+        }
+        match view {
+            MapView::Side | MapView::Plane => b,
+            MapView::Top => Aabb {
+                min: [-b.max[0], -b.max[0], 0.0],
+                max: [b.max[0], b.max[0], 0.0],
+            },
+        }
+    }
+}
+
+/// Is the flange at the wrist centre (no flange offset, no tool offset)?
+fn flange_is_wrist_centre(robot: &Robot, cf: &ClosedForm) -> bool {
+    let q = [0.3, -0.4, 0.5, 0.7, -0.6, 0.2];
+    let Ok(t) = robot.fk(&q[..robot.dof().min(6)]) else {
+        return false;
+    };
+    let mut raw = RawSolutions::default();
+    let p = t.translation.vector;
+    if cf.solve_position_raw(&p, &mut raw).is_err() {
+        return false;
+    }
+    (0..raw.len).any(|k| {
+        (0..3).all(|j| {
+            let d = (raw.q[k][j] - q[j]).rem_euclid(TAU);
+            d.min(TAU - d) < 1e-9
+        })
+    })
+}
+
+/// The sense of joint 1 about the base z axis, if its axis is that axis.
+fn joint1_sense(robot: &Robot) -> Option<f64> {
+    let mut q = vec![0.0; robot.dof()];
+    q[1] = 0.3;
+    q[2] = 0.2;
+    let p0 = robot.base.inverse() * robot.fk(&q).ok()?;
+    q[0] = 0.5;
+    let p1 = robot.base.inverse() * robot.fk(&q).ok()?;
+    let (a, b) = (p0.translation.vector, p1.translation.vector);
+    let (ra, rb) = (a.x.hypot(a.y), b.x.hypot(b.y));
+    if (a.z - b.z).abs() > 1e-9 || (ra - rb).abs() > 1e-9 || ra < 1e-6 {
+        return None;
+    }
+    let turn = (a.x * b.y - a.y * b.x).atan2(a.x * b.x + a.y * b.y);
+    if (turn.abs() - 0.5).abs() > 1e-9 {
+        return None;
+    }
+    Some(turn.signum())
+}
+
+/// The rotation with approach (z axis) along approach bin `k`, x axis perpendicular to it.
+fn approach(k: usize) -> Rotation3<f64> {
+    let a = Vector3::from(approach_bin_centre(k));
+    let helper = if a.x.abs() < 0.9 {
+        Vector3::x()
+    } else {
+        Vector3::y()
+    };
+    let x = (helper - a * a.dot(&helper)).normalize();
+    Rotation3::from_matrix_unchecked(Matrix3::from_columns(&[x, a.cross(&x), a]))
+}
+
+/// Per radius bin and class, a height z at which the class reaches (r, z) with joint 1 free
+/// (NaN if none): the radial extent of the section, for the top view.
+struct Radial {
+    r_max: f64,
+    bins: usize,
+    z: Vec<[f64; 4]>,
+}
+
+impl Radial {
+    fn new(s: &Section, side: [f64; 4], bins: usize, heights: usize) -> Self {
+        use rayon::prelude::*;
+        let r_max = side[1];
+        let z = (0..bins)
+            .into_par_iter()
+            .map(|i| {
+                let r = (i as f64 + 0.5) / bins as f64 * r_max;
+                // Per class the middle of the longest run of heights reached: the most interior
+                // height, robust to the radius varying across a bin.
+                let mut best = [(0usize, f64::NAN); 4];
+                let mut run = [(0usize, 0usize); 4];
+                for j in 0..=heights {
+                    let m = if j < heights {
+                        let z = side[2] + (j as f64 + 0.5) / heights as f64 * (side[3] - side[2]);
+                        s.side_mask(r, z)
+                    } else {
+                        0
+                    };
+                    for c in 0..4 {
+                        if m >> c & 1 == 1 {
+                            if run[c].1 == 0 {
+                                run[c].0 = j;
+                            }
+                            run[c].1 += 1;
+                        } else if run[c].1 > 0 {
+                            if run[c].1 > best[c].0 {
+                                let mid = run[c].0 as f64 + 0.5 * run[c].1 as f64;
+                                best[c] = (run[c].1, side[2] + mid / heights as f64 * (side[3] - side[2]));
+                            }
+                            run[c].1 = 0;
+                        }
+                    }
+                }
+                let found = best.map(|b| b.1);
+                found
+            })
+            .collect();
+        Self { r_max, bins, z }
+    }
+
+    fn at(&self, r: f64) -> Option<&[f64; 4]> {
+        let i = (r / self.r_max * self.bins as f64).floor();
+        (i >= 0.0 && (i as usize) < self.bins).then(|| &self.z[i as usize])
+    }
+}
+
+impl Section {
+    /// The map of a side or top view over `bounds`.
+    pub(super) fn map(
+        &self,
+        robot: &Robot,
+        req: &MapRequest,
+        bounds: [f64; 4],
+    ) -> Result<WorkspaceMap, WorkspaceError> {
+        if req.values == MapValues::Manipulability {
+            return super::sampled::map(robot, req, bounds);
+        }
+        let dims = req.cells;
+        let (masks, edges) = match req.view {
+            MapView::Top => {
+                let side = self.extent(MapView::Side);
+                let side = [0.0, side.max[0], side.min[1], side.max[1]];
+                let cell = (bounds[1] - bounds[0]) / dims[0] as f64;
+                let bins = ((side[1] / cell * 2.0).ceil() as usize).clamp(64, 8192);
+                let radial = Radial::new(self, side, bins, 1024);
+                let test = |p: [f64; 2]| self.top_mask(&radial, p[0], p[1]);
+                let masks = raster::fill(bounds, dims, &test);
+                let edges = raster::edges(&masks, bounds, dims, &test);
+                (masks, edges)
+            }
+            _ => {
+                let test = |p: [f64; 2]| {
+                    if p[0] < 0.0 { 0 } else { self.side_mask(p[0], p[1]) }
+                };
+                let masks = raster::fill(bounds, dims, &test);
+                let edges = raster::edges(&masks, bounds, dims, &test);
+                (masks, edges)
+            }
+        };
+        let values = match req.values {
+            MapValues::Dexterity => Some(self.dexterity(req.view, bounds, dims)?),
+            _ => None,
+        };
+        let point = match (self.mode, self.point) {
+            (Mode::FlangeScan, _) => "flange",
+            (_, TrackedPoint::WristCentre) => "wrist centre",
+            _ => "end-effector",
+        };
+        Ok(WorkspaceMap {
+            view: req.view,
+            bounds,
+            width: dims[0],
+            height: dims[1],
+            masks,
+            edges,
+            class_names: self.class_names().to_vec(),
+            values,
+            curves: Vec::new(),
+            method: match self.mode {
+                Mode::Position => format!(
+                    "exact: closed-form IK of the {} for the {point} at each cell, joint 1 \
+                     from the azimuth",
+                    self.family
+                ),
+                Mode::FlangeScan => format!(
+                    "closed-form IK of the {} for the flange over {APPROACHES} approach \
+                     directions at each cell (not exact: orientations between them are not tried)",
+                    self.family
+                ),
+            },
+            exact: self.mode == Mode::Position,
+        })
+    }
+
+    /// Volume (m^3) by Pappus: the integral of r times the azimuth measure over the (r, z)
+    /// section, on `n` x `n` cells (edge cells supersampled 4 x 4), with per-class measures.
+    fn pappus(&self, n: usize) -> (f64, [f64; 4], [f64; 4]) {
+        use rayon::prelude::*;
+        let e = self.extent(MapView::Side);
+        let bounds = [0.0, e.max[0], e.min[1], e.max[1]];
+        let dims = [n, n];
+        let test = |p: [f64; 2]| self.side_mask(p[0], p[1]);
+        let masks = raster::fill(bounds, dims, &test);
+        let edges = raster::edges(&masks, bounds, dims, &test);
+        let classes = self.class_names().len();
+        let da = (bounds[1] - bounds[0]) * (bounds[3] - bounds[2]) / (n * n) as f64;
+        let at = |p: [f64; 2], w: f64| {
+            let mut h = [Hit::default(); 8];
+            let k = self.hits(p[0], p[1], &mut h);
+            let (any, with, only) = self.azimuths(&h[..k], classes);
+            let f = p[0] * da * w;
+            (any * f, with.map(|x| x * f), only.map(|x| x * f))
+        };
+        let add = |a: (f64, [f64; 4], [f64; 4]), b: (f64, [f64; 4], [f64; 4])| {
+            (
+                a.0 + b.0,
+                std::array::from_fn(|c| a.1[c] + b.1[c]),
+                std::array::from_fn(|c| a.2[c] + b.2[c]),
+            )
+        };
+        let zero = (0.0, [0.0; 4], [0.0; 4]);
+        let edge_set: std::collections::HashSet<u32> = edges.iter().map(|e| e.index).collect();
+        let inner = (0..n * n)
+            .into_par_iter()
+            .filter(|k| masks[*k] != 0 && !edge_set.contains(&(*k as u32)))
+            .map(|k| at(raster::centre(bounds, dims, k % n, k / n), 1.0))
+            .reduce(|| zero, add);
+        let rim = edges
+            .par_iter()
+            .map(|e| {
+                let (i, j) = (e.index as usize % n, e.index as usize / n);
+                let c = raster::centre(bounds, dims, i, j);
+                let (dx, dy) = (
+                    (bounds[1] - bounds[0]) / n as f64,
+                    (bounds[3] - bounds[2]) / n as f64,
+                );
+                (0..16)
+                    .map(|s| {
+                        let p = [
+                            c[0] + ((s % 4) as f64 * 0.25 - 0.375) * dx,
+                            c[1] - ((s / 4) as f64 * 0.25 - 0.375) * dy,
+                        ];
+                        at(p, 1.0 / 16.0)
+                    })
+                    .fold(zero, add)
+            })
+            .reduce(|| zero, add);
+        add(inner, rim)
+    }
+
+    /// Statistics: the volume by Pappus (512 cells, the error from the 256-cell result), per
+    /// class volumes, bounds and reach of the section.
+    pub fn statistics(&self) -> WorkspaceStats {
+        let (v, with, only) = self.pappus(512);
+        let (v_half, _, _) = self.pappus(256);
+        let e = self.extent(MapView::Side);
+        let names = self.class_names();
+        let classes = names
+            .iter()
+            .enumerate()
+            .map(|(k, name)| ClassMeasure {
+                name: name.clone(),
+                with: if names.len() > 1 { with[k] } else { v },
+                only: if names.len() > 1 { only[k] } else { v },
+            })
+            .collect();
+        let r = e.max[0];
+        let base = self.base.translation.vector;
+        let bounds = Aabb {
+            min: [base.x - r, base.y - r, base.z + e.min[1]],
+            max: [base.x + r, base.y + r, base.z + e.max[1]],
+        };
+        let reach = [0.0f64, e.max[0].hypot(e.max[1].abs().max(e.min[1].abs()))];
+        WorkspaceStats {
+            planar: false,
+            area: None,
+            area_both_postures: None,
+            volume: Some(v),
+            measure_all_classes: 0.0,
+            classes,
+            dexterous_measure: 0.0,
+            bounds,
+            min_reach: reach[0],
+            max_reach: reach[1],
+            reach_exact: false,
+            cell_size: [0.0; 3],
+            resolution: 512,
+            samples: 0,
+            method: GridMethod::ClosedForm {
+                family: self.family,
+                orientations: if self.exact() { 1 } else { APPROACHES },
+            },
+            measure_method: format!(
+                "Pappus: r times the azimuths joint 1 allows, integrated over the {} (r, z) \
+                 section on 512 x 512 cells (edge cells 4 x 4); error from the 256-cell result",
+                if self.exact() { "exact" } else { "scanned" }
+            ),
+            measure_error: Some((v - v_half).abs()),
+        }
+    }
+
+    /// Fraction of the 64 approach directions reached (dexterity), per side-view cell, or per
+    /// top-view cell the largest over the heights with joint 1 fitting the azimuth.
+    fn dexterity(
+        &self,
+        view: MapView,
+        bounds: [f64; 4],
+        dims: [usize; 2],
+    ) -> Result<CellValues, WorkspaceError> {
+        if !matches!(self.cf.family(), Family::Decoupled6 { .. }) {
+            return Err(WorkspaceError::InvalidOption(format!(
+                "the {} controls position only: the dexterous workspace needs a wrist",
+                self.family
+            )));
+        }
+        // At most 256 cells across: the values are smooth, the classes carry the edges.
+        let k = (dims[0].max(dims[1]) as f64 / 256.0).max(1.0);
+        let dims = [
+            ((dims[0] as f64 / k).round() as usize).max(1),
+            ((dims[1] as f64 / k).round() as usize).max(1),
+        ];
+        let d = Dexterity::new(self, bounds, dims, view);
+        Ok(CellValues {
+            dims,
+            data: d.data,
+            name: "fraction of the approach directions reached".into(),
+            unit: String::new(),
+            range: [0.0, 1.0],
+            method: format!(
+                "closed-form IK over {APPROACHES} approach directions (one roll each) per \
+                 (r, z) cell, the wrist decoupled from the arm (Sect. 2.12.2){}",
+                if view == MapView::Top {
+                    "; top view: largest over 128 heights with joint 1 fitting the azimuth"
+                } else {
+                    ""
+                }
+            ),
+        })
+    }
+}
+
+/// Dexterity maps: per (r, z) point and shoulder branch (q1_0), the bit set of approach
+/// directions reached.
+struct Dexterity {
+    data: Vec<f32>,
+}
+
+impl Dexterity {
+    fn new(s: &Section, bounds: [f64; 4], dims: [usize; 2], view: MapView) -> Self {
+        let bits = |r: f64, z: f64| -> [(f64, u64); 4] {
+            let w = s.base * Point3::new(r, 0.0, z);
+            let mut raw = RawSolutions::default();
+            let mut out = [(f64::NAN, 0u64); 4];
+            for b in 0..APPROACHES {
+                let pose = Pose::from_parts(Translation3::from(w.coords), approach(b));
+                if s.cf.solve_raw(&pose, &mut raw).is_err() {
+                    continue;
+                }
+                for k in 0..raw.len {
+                    if !s.within(&raw.q[k], 1, s.limits.len()) {
+                        continue;
+                    }
+                    let q1 = raw.q[k][0];
+                    let slot = out
+                        .iter()
+                        .position(|o| o.0.is_nan() || (o.0 - q1).rem_euclid(TAU).min((q1 - o.0).rem_euclid(TAU)) < 1e-6)
+                        .unwrap_or(3);
+                    out[slot].0 = q1;
+                    out[slot].1 |= 1 << b;
+                }
+            }
+            out
+        };
+        let frac = |m: u64| m.count_ones() as f32 / APPROACHES as f32;
+        let data = match view {
+            MapView::Top => {
+                let e = s.extent(MapView::Side);
+                let nr = dims[0].max(dims[1]).min(256);
+                let nz = 128;
+                let table: Vec<Vec<[(f64, u64); 4]>> = {
+                    use rayon::prelude::*;
+                    (0..nr)
+                        .into_par_iter()
+                        .map(|i| {
+                            let r = (i as f64 + 0.5) / nr as f64 * e.max[0];
+                            (0..nz)
+                                .map(|j| {
+                                    let z = e.min[1] + (j as f64 + 0.5) / nz as f64 * (e.max[1] - e.min[1]);
+                                    bits(r, z)
+                                })
+                                .collect()
+                        })
+                        .collect()
+                };
+                let f = |p: [f64; 2]| {
+                    let r = p[0].hypot(p[1]);
+                    let psi = p[1].atan2(p[0]);
+                    let i = (r / e.max[0] * nr as f64) as usize;
+                    let col = table.get(i)?;
+                    let best = col
+                        .iter()
+                        .map(|b| {
+                            b.iter()
+                                .filter(|(q1, _)| q1.is_finite() && s.q1_fits(*q1, psi))
+                                .fold(0u64, |m, (_, x)| m | x)
+                        })
+                        .max_by_key(|m| m.count_ones())?;
+                    (best != 0).then(|| frac(best))
+                };
+                raster::values(bounds, dims, &f)
+            }
+            _ => {
+                let f = |p: [f64; 2]| {
+                    if p[0] < 0.0 {
+                        return None;
+                    }
+                    let m = bits(p[0], p[1]).iter().fold(0u64, |m, (_, x)| m | x);
+                    (m != 0).then(|| frac(m))
+                };
+                raster::values(bounds, dims, &f)
+            }
+        };
+        let _ = PI;
+        Self { data }
+    }
+}
