@@ -96,7 +96,9 @@ fn maps(lab: &CalibrationLab, textures: &mut MapTextures, ui: &mut egui::Ui) {
         for (plot, tex) in &textures.textures {
             ui.allocate_ui(egui::vec2(w - 8.0, 420.0), |ui| {
                 ui.set_min_size(egui::vec2(w - 8.0, 420.0));
-                ui.vertical(|ui| crate::figure::plot2d::show(ui, plot, Some(tex.id())));
+                ui.vertical(|ui| {
+                    crate::figure::plot2d::show(ui, plot, Some(tex.id()));
+                });
             });
         }
     });

@@ -129,6 +129,7 @@ fn compute(robot: &Robot, title: &str, progress: &AtomicU32) -> Result<Workspace
             size: [1200, 900],
             theme: Theme::Light,
             end_effector: 0,
+            point: Default::default(),
         };
         workspace_figure(&mut f, robot, &title.replace('_', " "), &o, &|x| {
             progress.store(500 + (x * 500.0) as u32, Ordering::Relaxed)

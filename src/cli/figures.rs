@@ -208,6 +208,16 @@ pub enum ColorByArg {
     None,
 }
 
+/// Tracked point of the workspace views.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
+pub enum PointArg {
+    /// The wrist centre (the flange when the arm has no spherical wrist).
+    #[default]
+    WristCentre,
+    /// The flange (end-effector).
+    Flange,
+}
+
 /// Arguments of `armlab workspace`.
 #[derive(Debug, clap::Args)]
 pub struct WorkspaceArgs {
@@ -234,6 +244,11 @@ pub struct WorkspaceArgs {
     /// Colours.
     #[arg(long, value_enum, default_value_t)]
     pub theme: ThemeArg,
+    /// The point whose workspace the side and top views show: the wrist centre of an arm with a
+    /// spherical wrist ("the manipulator workspace without end-effector", exact), or the
+    /// flange. Arms without a wrist have one point.
+    #[arg(long, value_enum, default_value_t)]
+    pub point: PointArg,
     /// Print the statistics as JSON (area, bounds, reach, ...) instead of a summary line.
     #[arg(long, value_enum, default_value_t)]
     pub format: super::Format,
@@ -270,6 +285,10 @@ pub(super) fn workspace(
         size: args.size.0,
         theme: args.theme.into(),
         end_effector: 0,
+        point: match args.point {
+            PointArg::WristCentre => crate::workspace::TrackedPoint::WristCentre,
+            PointArg::Flange => crate::workspace::TrackedPoint::Flange,
+        },
     };
     let bar = crate::headless::Progress::new(1000, "workspace");
     let mut figures = Figures::new()?;
@@ -305,6 +324,14 @@ pub(super) fn workspace(
             if let Some(vol) = s.volume {
                 v["volume"] = serde_json::json!(vol);
             }
+            v["measure_method"] = serde_json::json!(s.measure_method);
+            if let Some(e) = s.measure_error {
+                v["measure_error"] = serde_json::json!(e);
+            }
+            v["point"] = serde_json::json!(match args.point {
+                PointArg::WristCentre => "wrist centre",
+                PointArg::Flange => "flange",
+            });
             serde_json::to_writer_pretty(&mut *out, &v).map_err(std::io::Error::from)?;
             writeln!(out)?;
         }

@@ -67,7 +67,53 @@ impl Figures {
         let ppp = pixels_per_point(size[0]);
         self.offscreen
             .render(&self.gpu.device, &self.gpu.queue, size, ppp, |ui| {
-                egui::CentralPanel::default().show(ui, |ui| plot2d::show(ui, plot, id));
+                egui::CentralPanel::default().show(ui, |ui| {
+                    plot2d::show(ui, plot, id);
+                });
+            })
+    }
+
+    /// A plot whose raster is made for the plot's own frame: a layout pass finds the frame's
+    /// size in pixels and the data bounds shown (grown for an equal aspect), `fill(plot, bounds,
+    /// pixels)` makes the raster for exactly those (and may add curves to the plot), and the
+    /// plot is drawn with it.
+    pub fn plot_fitted(
+        &mut self,
+        size: [u32; 2],
+        theme: Theme,
+        plot: &mut Plot2d,
+        fill: &mut dyn FnMut(
+            &mut Plot2d,
+            [f64; 4],
+            [usize; 2],
+        ) -> Result<Option<egui::ColorImage>, FigureError>,
+    ) -> Result<image::RgbaImage, FigureError> {
+        apply_style(&self.offscreen.ctx, theme);
+        let ppp = pixels_per_point(size[0]);
+        let mut frame = None;
+        self.offscreen.layout(&self.gpu.device, size, ppp, |ui| {
+            egui::CentralPanel::default().show(ui, |ui| {
+                frame = Some(plot2d::show(ui, plot, None));
+            });
+        })?;
+        let frame = frame.ok_or_else(|| FigureError::Layout("the plot was not laid out".into()))?;
+        let px = [
+            ((frame.rect.width() * ppp).round() as usize).max(1),
+            ((frame.rect.height() * ppp).round() as usize).max(1),
+        ];
+        let raster = fill(plot, frame.bounds, px)?;
+        let tex = raster.map(|img| {
+            self.offscreen
+                .ctx
+                .load_texture("raster", img, egui::TextureOptions::NEAREST)
+        });
+        let image = tex.as_ref().map(|t| (t.id(), frame.bounds));
+        let plot = &*plot;
+        self.offscreen
+            .render(&self.gpu.device, &self.gpu.queue, size, ppp, |ui| {
+                egui::CentralPanel::default().show(ui, |ui| {
+                    plot2d::show_at(ui, plot, image);
+                });
             })
     }
 

@@ -34,6 +34,9 @@ pub enum FigureError {
     /// Bad robot input (wrong joint count, NaN).
     #[error(transparent)]
     Kinematics(#[from] crate::kinematics::KinematicsError),
+    /// The figure's layout could not be measured.
+    #[error("figure layout: {0}")]
+    Layout(String),
 }
 
 /// Light or dark colours.

@@ -13,6 +13,8 @@ pub struct Offscreen {
     pub ctx: egui::Context,
     renderer: egui_wgpu::Renderer,
     background: Option<egui::Color32>,
+    /// Texture updates of layout-only passes ([`Self::layout`]), applied by the next render.
+    pending: TexturesDelta,
 }
 
 impl Offscreen {
@@ -31,6 +33,7 @@ impl Offscreen {
             ctx,
             renderer,
             background: None,
+            pending: TexturesDelta::default(),
         }
     }
 
@@ -74,7 +77,7 @@ impl Offscreen {
         mut ui: impl FnMut(&mut egui::Ui),
     ) -> Result<image::RgbaImage, FigureError> {
         let input = raw_input(device, size, pixels_per_point)?;
-        let mut deltas = TexturesDelta::default();
+        let mut deltas = std::mem::take(&mut self.pending);
         let mut output = self.ctx.run_ui(input.clone(), &mut ui);
         deltas.append(std::mem::take(&mut output.textures_delta));
         let mut output = self.ctx.run_ui(input, &mut ui);
@@ -84,6 +87,25 @@ impl Offscreen {
         let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
         self.paint(device, queue, &view, size, output);
         crate::render::read_texture_rgba(device, queue, &texture).map_err(FigureError::Render)
+    }
+
+    /// Lays `ui` out as [`Self::render`] would (two passes) without painting: for a figure that
+    /// needs the size of a widget before it can make its content. Texture updates are kept for
+    /// the next render.
+    pub fn layout(
+        &mut self,
+        device: &wgpu::Device,
+        size: [u32; 2],
+        pixels_per_point: f32,
+        mut ui: impl FnMut(&mut egui::Ui),
+    ) -> Result<(), FigureError> {
+        let input = raw_input(device, size, pixels_per_point)?;
+        for _ in 0..2 {
+            let mut output = self.ctx.run_ui(input.clone(), &mut ui);
+            self.pending
+                .append(std::mem::take(&mut output.textures_delta));
+        }
+        Ok(())
     }
 
     /// One frame as a window draws it: a single layout pass, tessellation, and painting into

@@ -1,7 +1,7 @@
 //! Colours of workspace figures: posture classes (colour-blind safe), "several postures",
 //! pixels with too few samples to tell, plain points, and a sequential map for scalar fields.
 
-use super::raster::{ClassRaster, UNSURE};
+use super::raster::UNSURE;
 use egui::Color32;
 
 /// Colours of posture classes (colour-blind safe), of "several postures", and of plain points.
@@ -68,28 +68,3 @@ pub(crate) fn class_palette(names: &[String]) -> (Vec<(String, Color32)>, impl F
     (legend, palette)
 }
 
-/// The entries of `legend` (from [`class_palette`] for `classes` class names) that `raster`
-/// shows, plus "too few samples to tell" if it has [`UNSURE`] pixels: after
-/// [`ClassRaster::mark_unsure`] an "X only" class may have no pixel left.
-pub(crate) fn shown_legend(
-    legend: Vec<(String, Color32)>,
-    classes: usize,
-    raster: &ClassRaster,
-) -> Vec<(String, Color32)> {
-    let shown = |mask: u32| raster.masks.contains(&mask);
-    let several = raster
-        .masks
-        .iter()
-        .any(|&m| m != UNSURE && m.count_ones() > 1);
-    let classes = classes.min(legend.len());
-    let mut out: Vec<_> = legend
-        .into_iter()
-        .enumerate()
-        .filter(|(k, _)| if *k < classes { shown(1 << k) } else { several })
-        .map(|(_, e)| e)
-        .collect();
-    if shown(UNSURE) {
-        out.push(("too few samples to tell".into(), c32(UNSURE_GREY)));
-    }
-    out
-}

@@ -131,8 +131,28 @@ fn colorbar(ui: &mut egui::Ui, bar: &ColorBar) {
     });
 }
 
+/// Where a plot was drawn: its frame (points, in the ui's coordinates) and the data bounds
+/// shown in it `[x_min, x_max, y_min, y_max]` (after growing for an equal aspect).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlotFrame {
+    /// The frame rectangle (points).
+    pub rect: egui::Rect,
+    /// The data bounds shown.
+    pub bounds: [f64; 4],
+}
+
 /// Shows `plot` in `ui`, with `image` (a raster covering exactly `plot.bounds`) under the curves.
-pub fn show(ui: &mut egui::Ui, plot: &Plot2d, image: Option<egui::TextureId>) {
+pub fn show(ui: &mut egui::Ui, plot: &Plot2d, image: Option<egui::TextureId>) -> PlotFrame {
+    show_at(ui, plot, image.map(|id| (id, plot.bounds)))
+}
+
+/// Shows `plot` in `ui` with `image` covering the given bounds under the curves; returns the
+/// frame.
+pub fn show_at(
+    ui: &mut egui::Ui,
+    plot: &Plot2d,
+    image: Option<(egui::TextureId, [f64; 4])>,
+) -> PlotFrame {
     ui.vertical_centered(|ui| {
         ui.add_space(4.0);
         ui.heading(&plot.title);
@@ -164,7 +184,7 @@ pub fn show(ui: &mut egui::Ui, plot: &Plot2d, image: Option<egui::TextureId>) {
         .default_y_bounds(y0, y1)
         .set_margin_fraction(egui::vec2(0.0, 0.0));
     let equal = plot.equal_aspect;
-    p.show(ui, |pui| {
+    let resp = p.show(ui, |pui| {
         if equal {
             // One metre as long in x as in y: grow the shorter side of the bounds to the frame's
             // aspect (egui_plot's data_aspect would crop instead).
@@ -182,7 +202,7 @@ pub fn show(ui: &mut egui::Ui, plot: &Plot2d, image: Option<egui::TextureId>) {
                 [cx + 0.5 * w, cy + 0.5 * h],
             ));
         }
-        if let Some(id) = image {
+        if let Some((id, [x0, x1, y0, y1])) = image {
             let c = PlotPoint::new(0.5 * (x0 + x1), 0.5 * (y0 + y1));
             pui.image(PlotImage::new(
                 "",
@@ -229,4 +249,9 @@ pub fn show(ui: &mut egui::Ui, plot: &Plot2d, image: Option<egui::TextureId>) {
             );
         }
     });
+    let b = resp.transform.bounds();
+    PlotFrame {
+        rect: *resp.transform.frame(),
+        bounds: [b.min()[0], b.max()[0], b.min()[1], b.max()[1]],
+    }
 }

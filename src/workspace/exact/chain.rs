@@ -406,7 +406,18 @@ impl PlanarChain {
     /// feasibility of each branch is constant (the solution is continuous and no joint crosses a
     /// limit), so one test at each interval's midpoint and one at each breakpoint decide it.
     pub fn membership(&self, p: [f64; 2]) -> Membership {
+        self.decide(p, false)
+    }
+
+    /// The class mask of [`Self::membership`] alone (stops as soon as every class is found).
+    #[inline]
+    pub fn mask(&self, p: [f64; 2]) -> u8 {
+        self.decide(p, true).mask
+    }
+
+    fn decide(&self, p: [f64; 2], mask_only: bool) -> Membership {
         let mut m = Membership::default();
+        let all = (1u8 << self.branch_class[0]) | (1u8 << self.branch_class[1]);
         if self.n == 2 {
             for b in 0..2 {
                 if self.feasible(p, 0.0, b) {
@@ -428,29 +439,33 @@ impl PlanarChain {
             }
             return m;
         }
+        // Interval midpoints decide every point off the boundary; a branch feasible at a single
+        // breakpoint only (a boundary point) is found by testing the breakpoints afterwards.
         for i in 0..bp.len() {
-            let (lo, hi) = (
-                bp[i],
-                if i + 1 < bp.len() {
-                    bp[i + 1]
-                } else {
-                    bp[0] + TAU
-                },
-            );
-            let width = hi - lo;
-            let mid = lo + 0.5 * width;
+            let (lo, hi) = (bp[i], if i + 1 < bp.len() { bp[i + 1] } else { bp[0] + TAU });
+            let mid = lo + 0.5 * (hi - lo);
             let mut any = false;
             for b in 0..2 {
-                if self.feasible(p, mid, b) {
-                    m.mask |= 1 << self.branch_class[b];
-                    any = true;
+                let bit = 1 << self.branch_class[b];
+                if (mask_only && m.mask & bit != 0) || !self.feasible(p, mid, b) {
+                    continue;
                 }
-                if self.feasible(p, lo, b) {
-                    m.mask |= 1 << self.branch_class[b];
-                }
+                m.mask |= bit;
+                any = true;
             }
             if any {
-                m.orientations += width;
+                m.orientations += hi - lo;
+            }
+            if mask_only && m.mask == all {
+                return m;
+            }
+        }
+        for &lo in bp.iter() {
+            for b in 0..2 {
+                let bit = 1 << self.branch_class[b];
+                if m.mask & bit == 0 && self.feasible(p, lo, b) {
+                    m.mask |= bit;
+                }
             }
         }
         m

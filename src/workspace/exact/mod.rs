@@ -99,7 +99,7 @@ impl ExactPlanar {
 
     fn region_of(&self, set: RegionSet) -> ExactRegion {
         let k = self.class_names.len();
-        let inside = |p: [f64; 2]| set.contains(self.chain.membership(p).mask, k);
+        let inside = |p: [f64; 2]| set.contains(self.chain.mask(p), k);
         let arcs = arcs::boundary(&self.candidates, self.chain.scale, &inside);
         let area: f64 = arcs.iter().map(Arc::green).sum();
         let perimeter: f64 = arcs.iter().map(Arc::length).sum();
@@ -132,6 +132,12 @@ impl ExactPlanar {
     #[inline]
     pub fn membership(&self, p: [f64; 2]) -> Membership {
         self.chain.membership(p)
+    }
+
+    /// The class mask of [`Self::membership`] alone: faster, it stops once every class is found.
+    #[inline]
+    pub fn mask(&self, p: [f64; 2]) -> u8 {
+        self.chain.mask(p)
     }
 
     /// Largest position manipulability sqrt(det(J_P J_P^T)) (m^2) of the configurations
@@ -167,7 +173,7 @@ impl ExactPlanar {
             .iter()
             .map(|a| a.distance(p))
             .fold(f64::INFINITY, f64::min);
-        if self.membership(p).mask != 0 { d } else { -d }
+        if self.mask(p) != 0 { d } else { -d }
     }
 
     /// Bounding box of the reachable set in plane coordinates (z = 0), from the boundary arcs

@@ -80,6 +80,8 @@ pub struct MapRequest {
     pub samples: usize,
     /// Sampler seed.
     pub seed: u64,
+    /// End-effector (the exact methods need end-effector 0 of a single-tool robot).
+    pub end_effector: usize,
 }
 
 impl Default for MapRequest {
@@ -92,6 +94,7 @@ impl Default for MapRequest {
             bounds: None,
             samples: 200_000,
             seed: 1,
+            end_effector: 0,
         }
     }
 }
@@ -191,7 +194,12 @@ pub fn map_extent(
     robot: &Robot,
     view: MapView,
     point: TrackedPoint,
+    end_effector: usize,
 ) -> Result<Aabb, WorkspaceError> {
+    super::check_ee(robot, end_effector)?;
+    if end_effector > 0 {
+        return sampled::extent(robot, view, end_effector);
+    }
     if view == MapView::Plane {
         if let Ok(e) = super::ExactPlanar::new(robot) {
             return Ok(e.bounds());
@@ -200,7 +208,7 @@ pub fn map_extent(
     if let Some(s) = spatial::Section::new(robot, point) {
         return Ok(s.extent(view));
     }
-    sampled::extent(robot, view)
+    sampled::extent(robot, view, 0)
 }
 
 /// Pads `[x0, x1, y0, y1]` of a box by `pad` times its larger side.
@@ -220,37 +228,44 @@ pub fn compute_map(robot: &Robot, req: &MapRequest) -> Result<WorkspaceMap, Work
     }
     let bounds = match req.bounds {
         Some(b) => b,
-        None => padded(&map_extent(robot, req.view, req.point)?, 0.06),
+        None => padded(&map_extent(robot, req.view, req.point, req.end_effector)?, 0.06),
     };
     if !(bounds[1] > bounds[0] && bounds[3] > bounds[2] && bounds.iter().all(|v| v.is_finite())) {
         return Err(WorkspaceError::InvalidOption(format!(
             "map bounds {bounds:?} are empty or not finite"
         )));
     }
-    if req.view == MapView::Plane {
-        if let Ok(e) = super::ExactPlanar::new(robot) {
-            return Ok(planar::map(robot, &e, req, bounds));
+    super::check_ee(robot, req.end_effector)?;
+    if req.end_effector == 0 {
+        if req.view == MapView::Plane {
+            if let Ok(e) = super::ExactPlanar::new(robot) {
+                return Ok(planar::map(&e, req, bounds));
+            }
         }
-    }
-    if let Some(s) = spatial::Section::new(robot, req.point) {
-        if req.view != MapView::Plane {
-            return s.map(robot, req, bounds);
+        if let Some(s) = spatial::Section::new(robot, req.point) {
+            if req.view != MapView::Plane {
+                return s.map(robot, req, bounds);
+            }
         }
     }
     sampled::map(robot, req, bounds)
 }
 
 /// Statistics of the workspace with the exact method where there is one: exact areas for planar
-/// arms, Pappus volumes for closed-form sections, the grid of [`super::statistics`] otherwise.
+/// arms, Pappus volumes for closed-form sections (end-effector 0), the grid of
+/// [`super::statistics`] with `fallback` otherwise.
 pub fn map_statistics(
     robot: &Robot,
     point: TrackedPoint,
+    fallback: &super::StatsOptions,
 ) -> Result<WorkspaceStats, WorkspaceError> {
-    if let Ok(e) = super::ExactPlanar::new(robot) {
-        return Ok(planar::statistics(&e));
+    if fallback.grid.end_effector == 0 {
+        if let Ok(e) = super::ExactPlanar::new(robot) {
+            return Ok(planar::statistics(&e));
+        }
+        if let Some(s) = spatial::Section::new(robot, point) {
+            return Ok(s.statistics());
+        }
     }
-    if let Some(s) = spatial::Section::new(robot, point) {
-        return Ok(s.statistics());
-    }
-    super::statistics(robot, &super::StatsOptions::default(), &|_| {})
+    super::statistics(robot, fallback, &|_| {})
 }

@@ -2,21 +2,22 @@
 
 use super::raster;
 use super::{CellValues, CurveRole, MapCurve, MapRequest, MapValues, MapView, WorkspaceMap};
-use crate::kinematics::Robot;
 use crate::workspace::exact::{Arc, ExactPlanar, RegionSet};
 use crate::workspace::{Aabb, ClassMeasure, GridMethod, WorkspaceStats};
 use std::f64::consts::TAU;
 
 /// The exact map of a planar arm over `bounds` (plane coordinates).
 pub(super) fn map(
-    robot: &Robot,
     e: &ExactPlanar,
     req: &MapRequest,
     bounds: [f64; 4],
 ) -> WorkspaceMap {
     let dims = req.cells;
-    let test = |p: [f64; 2]| e.membership(p).mask;
-    let masks = raster::fill(bounds, dims, &test);
+    let test = |p: [f64; 2]| e.mask(p);
+    // A block far from every boundary candidate has one mask: the classes change only across
+    // candidates.
+    let uniform = |c: [f64; 2], r: f64| e.candidates().iter().all(|a| a.distance(c) > r);
+    let masks = raster::fill_blocks(bounds, dims, &test, Some(&uniform));
     let edges = raster::edges(&masks, bounds, dims, &test);
     let step = 0.5 * ((bounds[1] - bounds[0]) / dims[0] as f64).min((bounds[3] - bounds[2]) / dims[1] as f64);
     let values = match req.values {
@@ -24,7 +25,6 @@ pub(super) fn map(
         MapValues::Dexterity => Some(dexterity(e, bounds, dims)),
         MapValues::Manipulability => Some(manipulability(e, bounds, dims)),
     };
-    let _ = robot;
     WorkspaceMap {
         view: MapView::Plane,
         bounds,
@@ -191,7 +191,7 @@ pub(super) fn statistics(e: &ExactPlanar) -> WorkspaceStats {
     }
 }
 
-/// Area (m^2) where at least half of the orientations are reached, on a 512 x 512 grid of exact
+/// Area (m^2) where at least half of the orientations are reached, on a 256 x 256 grid of exact
 /// tests (0 for a two-link arm).
 fn dexterous_area(e: &ExactPlanar) -> f64 {
     if !e.orientation_free() {
@@ -199,9 +199,9 @@ fn dexterous_area(e: &ExactPlanar) -> f64 {
     }
     let b = e.bounds();
     let bounds = [b.min[0], b.max[0], b.min[1], b.max[1]];
-    let dims = [512, 512];
+    let dims = [256, 256];
     let half = |p: [f64; 2]| u8::from(e.membership(p).orientations >= 0.5 * TAU);
     let cells = raster::fill(bounds, dims, &half);
-    let cell = (bounds[1] - bounds[0]) * (bounds[3] - bounds[2]) / (512.0 * 512.0);
+    let cell = (bounds[1] - bounds[0]) * (bounds[3] - bounds[2]) / (256.0 * 256.0);
     cells.iter().filter(|&&m| m != 0).count() as f64 * cell
 }

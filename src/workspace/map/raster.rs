@@ -93,3 +93,58 @@ pub(crate) fn values(
     });
     out
 }
+
+/// Side of the blocks of [`fill_blocks`] (cells).
+const BLOCK: usize = 8;
+
+/// Masks at every cell centre, block by block: a block of 8 x 8 cells for which `uniform(centre,
+/// radius)` says no edge comes within `radius` (m) of its centre takes the mask of its centre
+/// cell; the others are tested cell by cell. With `uniform = None`, a block is taken as uniform
+/// when its centre cell and its four corner cells agree (a heuristic, for tests that are not
+/// exact anyway).
+pub(crate) fn fill_blocks(
+    bounds: [f64; 4],
+    dims: [usize; 2],
+    test: &(dyn Fn([f64; 2]) -> u8 + Sync),
+    uniform: Option<&(dyn Fn([f64; 2], f64) -> bool + Sync)>,
+) -> Vec<u8> {
+    let [w, h] = dims;
+    let (bw, bh) = (w.div_ceil(BLOCK), h.div_ceil(BLOCK));
+    let cell = [(bounds[1] - bounds[0]) / w as f64, (bounds[3] - bounds[2]) / h as f64];
+    let blocks: Vec<(usize, Vec<u8>)> = (0..bw * bh)
+        .into_par_iter()
+        .map(|b| {
+            let (i0, j0) = ((b % bw) * BLOCK, (b / bw) * BLOCK);
+            let (i1, j1) = ((i0 + BLOCK).min(w), (j0 + BLOCK).min(h));
+            let (ic, jc) = ((i0 + i1) / 2, (j0 + j1) / 2);
+            let c = centre(bounds, dims, ic, jc);
+            let m = test(c);
+            let same = match uniform {
+                Some(u) => {
+                    let reach = [
+                        (ic - i0).max(i1 - ic) as f64 * cell[0],
+                        (jc - j0).max(j1 - jc) as f64 * cell[1],
+                    ];
+                    u(c, reach[0].hypot(reach[1]))
+                }
+                None => [(i0, j0), (i1 - 1, j0), (i0, j1 - 1), (i1 - 1, j1 - 1)]
+                    .iter()
+                    .all(|&(i, j)| test(centre(bounds, dims, i, j)) == m),
+            };
+            let cells = (j0..j1)
+                .flat_map(|j| (i0..i1).map(move |i| (i, j)))
+                .map(|(i, j)| if same { m } else { test(centre(bounds, dims, i, j)) })
+                .collect();
+            (b, cells)
+        })
+        .collect();
+    let mut masks = vec![0u8; w * h];
+    for (b, cells) in blocks {
+        let (i0, j0) = ((b % bw) * BLOCK, (b / bw) * BLOCK);
+        let iw = (i0 + BLOCK).min(w) - i0;
+        for (k, m) in cells.into_iter().enumerate() {
+            masks[(j0 + k / iw) * w + i0 + k % iw] = m;
+        }
+    }
+    masks
+}

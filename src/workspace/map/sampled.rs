@@ -22,13 +22,19 @@ fn to_view(robot: &Robot, view: MapView, p: [f64; 3]) -> [f64; 2] {
     }
 }
 
-fn samples(robot: &Robot, n: usize, seed: u64, manip: bool) -> Result<Samples, WorkspaceError> {
+fn samples(
+    robot: &Robot,
+    n: usize,
+    seed: u64,
+    manip: bool,
+    ee: usize,
+) -> Result<Samples, WorkspaceError> {
     sample(
         robot,
         &SampleOptions {
             samples: n,
             seed,
-            end_effector: 0,
+            end_effector: ee,
             classes: false,
             manipulability: manip,
             keep_joints: true,
@@ -38,8 +44,8 @@ fn samples(robot: &Robot, n: usize, seed: u64, manip: bool) -> Result<Samples, W
 }
 
 /// Extent of the samples' view coordinates (50 000 samples, seed 1).
-pub(super) fn extent(robot: &Robot, view: MapView) -> Result<Aabb, WorkspaceError> {
-    let s = samples(robot, 50_000, 1, false)?;
+pub(super) fn extent(robot: &Robot, view: MapView, ee: usize) -> Result<Aabb, WorkspaceError> {
+    let s = samples(robot, 50_000, 1, false, ee)?;
     let mut b = Aabb::EMPTY;
     for p in &s.positions {
         let v = to_view(robot, view, *p);
@@ -55,7 +61,13 @@ pub(super) fn map(
     bounds: [f64; 4],
 ) -> Result<WorkspaceMap, WorkspaceError> {
     let [w, h] = req.cells;
-    let s = samples(robot, req.samples.max(1), req.seed, req.values == MapValues::Manipulability)?;
+    let s = samples(
+        robot,
+        req.samples.max(1),
+        req.seed,
+        req.values == MapValues::Manipulability,
+        req.end_effector,
+    )?;
     let cell_of = |v: [f64; 2]| -> Option<usize> {
         let u = (v[0] - bounds[0]) / (bounds[1] - bounds[0]) * w as f64;
         let t = (bounds[3] - v[1]) / (bounds[3] - bounds[2]) * h as f64;
@@ -72,7 +84,7 @@ pub(super) fn map(
             }
         }
     }
-    let refined = refine(robot, req.view, &s, &owner, bounds, [w, h]);
+    let refined = refine(robot, req, &s, &owner, bounds);
     let masks: Vec<u8> = owner
         .iter()
         .zip(&refined)
@@ -111,12 +123,12 @@ pub(super) fn map(
 /// Empty cells with a reached 8-neighbour, tried by position IK from that neighbour's sample.
 fn refine(
     robot: &Robot,
-    view: MapView,
+    req: &MapRequest,
     s: &Samples,
     owner: &[u32],
     bounds: [f64; 4],
-    [w, h]: [usize; 2],
 ) -> Vec<bool> {
+    let (view, [w, h]) = (req.view, req.cells);
     let opts = NumericalOptions {
         max_iterations: 40,
         restarts: 0,
@@ -145,7 +157,7 @@ fn refine(
             let q0 = s.joint_vector(o as usize).unwrap_or(&[]);
             let v = super::raster::centre(bounds, [w, h], c % w, c / w);
             let target = world_target(robot, view, v, s.positions[o as usize]);
-            numerical::solve(robot, 0, &Target::Position(target), q0, &opts)
+            numerical::solve(robot, req.end_effector, &Target::Position(target), q0, &opts)
                 .is_ok_and(|r| r.converged)
         })
         .collect()

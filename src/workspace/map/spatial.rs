@@ -422,7 +422,10 @@ impl Section {
                 let test = |p: [f64; 2]| {
                     if p[0] < 0.0 { 0 } else { self.side_mask(p[0], p[1]) }
                 };
-                let masks = raster::fill(bounds, dims, &test);
+                let masks = match self.mode {
+                    Mode::Position => raster::fill(bounds, dims, &test),
+                    Mode::FlangeScan => raster::fill_blocks(bounds, dims, &test, None),
+                };
                 let edges = raster::edges(&masks, bounds, dims, &test);
                 (masks, edges)
             }
@@ -534,13 +537,13 @@ impl Section {
                 only: if names.len() > 1 { only[k] } else { v },
             })
             .collect();
+        let reach = self.reach_range(&e);
         let r = e.max[0];
         let base = self.base.translation.vector;
         let bounds = Aabb {
             min: [base.x - r, base.y - r, base.z + e.min[1]],
             max: [base.x + r, base.y + r, base.z + e.max[1]],
         };
-        let reach = [0.0f64, e.max[0].hypot(e.max[1].abs().max(e.min[1].abs()))];
         WorkspaceStats {
             planar: false,
             area: None,
@@ -567,6 +570,23 @@ impl Section {
             ),
             measure_error: Some((v - v_half).abs()),
         }
+    }
+
+    /// Smallest and largest distance (m) from the base origin over the reached points of a
+    /// 512 x 512 scan of the section (cell centres; within a cell of the true values).
+    fn reach_range(&self, e: &Aabb) -> [f64; 2] {
+        let bounds = [0.0, e.max[0], e.min[1], e.max[1]];
+        let dims = [512, 512];
+        let masks = raster::fill(bounds, dims, &|p| self.side_mask(p[0], p[1]));
+        masks
+            .iter()
+            .enumerate()
+            .filter(|(_, m)| **m != 0)
+            .map(|(k, _)| {
+                let c = raster::centre(bounds, dims, k % 512, k / 512);
+                c[0].hypot(c[1])
+            })
+            .fold([f64::INFINITY, 0.0], |[lo, hi], d| [lo.min(d), hi.max(d)])
     }
 
     /// Fraction of the 64 approach directions reached (dexterity), per side-view cell, or per
