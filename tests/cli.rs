@@ -649,3 +649,73 @@ fn calibrate_pose_selection_beats_random_poses() {
     let (random, chosen) = (o1("random"), o1("o1"));
     assert!(chosen > random, "O1 chosen {chosen} vs random {random}");
 }
+
+#[test]
+fn reach_answers_each_point_with_postures_and_distance() {
+    let input = "# Problem 2.17\n0.9,0\n\n2.0, 0.0  # far\n0.5,0.2\n";
+    let v = json(&armlab_stdin(
+        &["reach", "planar3", "--input", "-", "--format", "json"],
+        input,
+    ));
+    let a = v.as_array().unwrap();
+    assert_eq!(a.len(), 3);
+    for p in a {
+        for key in ["point", "reachable", "postures", "distance"] {
+            assert!(p.get(key).is_some(), "missing {key}: {p}");
+        }
+    }
+    assert_eq!(a[0]["point"], serde_json::json!([0.9, 0.0]));
+    assert_eq!(a[0]["reachable"], true);
+    assert_eq!(
+        a[0]["postures"],
+        serde_json::json!(["elbow down", "elbow up"])
+    );
+    assert!((a[0]["distance"].as_f64().unwrap() - 0.1).abs() < 1e-12);
+    assert_eq!(a[1]["reachable"], false);
+    assert!((a[1]["distance"].as_f64().unwrap() + 1.0).abs() < 1e-12);
+    // Three coordinates for a spatial arm.
+    let v = json(&armlab_stdin(
+        &["reach", "puma560", "--input", "-", "--format", "json"],
+        "0.5,0.1,0.8\n",
+    ));
+    assert_eq!(v[0]["point"].as_array().unwrap().len(), 3);
+    // Bad input: one line naming the file and line.
+    let dir = std::env::temp_dir().join(format!("armlab-reach-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let f = dir.join("pts.txt");
+    std::fs::write(&f, "0.5,0.2\n# ok\n0.5,0.2,0.1\n").unwrap();
+    bad(
+        &armlab(&["reach", "planar3", "--input", f.to_str().unwrap()]),
+        "pts.txt:3: expected 2 coordinates (x,y), got 3",
+    );
+    std::fs::write(&f, "0.5,abc\n").unwrap();
+    bad(
+        &armlab(&["reach", "planar3", "--input", f.to_str().unwrap()]),
+        "pts.txt:1: value 2",
+    );
+    bad(
+        &armlab(&["reach", "dlr", "--input", f.to_str().unwrap()]),
+        "point queries need",
+    );
+}
+
+#[test]
+fn workspace_json_says_how_the_measure_was_computed() {
+    let dir = std::env::temp_dir().join(format!("armlab-wsj-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = dir.join("p.png");
+    let v = json(&armlab(&[
+        "workspace",
+        "planar3",
+        "--out",
+        out.to_str().unwrap(),
+        "--size",
+        "400x300",
+        "--format",
+        "json",
+    ]));
+    assert!(v["measure_method"].as_str().unwrap().starts_with("exact"));
+    assert!(v["measure_error"].as_f64().unwrap() < 1e-6);
+    let area = v["area"].as_f64().unwrap();
+    assert!((area - 1.672_313_7).abs() < 1e-6, "{area}");
+}

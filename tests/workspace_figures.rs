@@ -8,6 +8,7 @@ use armlab::figure::figures::Figures;
 use armlab::figure::workspace::{ColorBy, WsFigureOptions, WsView, workspace_figure};
 use armlab::kinematics::Robot;
 use armlab::kinematics::models::built_in;
+use armlab::workspace::TrackedPoint;
 use common::golden::assert_golden;
 use std::f64::consts::PI;
 
@@ -20,15 +21,25 @@ fn limited_two_link() -> Robot {
 }
 
 fn figure(robot: &Robot, view: WsView, samples: usize) -> armlab::figure::workspace::WsFigure {
+    sized(robot, view, samples, [800, 600])
+}
+
+fn sized(
+    robot: &Robot,
+    view: WsView,
+    samples: usize,
+    size: [u32; 2],
+) -> armlab::figure::workspace::WsFigure {
     let mut f = Figures::new().unwrap_or_else(|e| panic!("{e}"));
     let opts = WsFigureOptions {
         view,
         color_by: ColorBy::Posture,
         samples,
         seed: 1,
-        size: [800, 600],
+        size,
         theme: Theme::Light,
         end_effector: 0,
+        point: TrackedPoint::WristCentre,
     };
     workspace_figure(&mut f, robot, &robot.name.to_lowercase(), &opts, &|_| {}).unwrap()
 }
@@ -63,14 +74,15 @@ fn two_link_with_limits_coloured_by_posture() {
     assert!((fractions[0] - only / all).abs() < 0.02, "{fractions:?}");
     assert!((fractions[1] - only / all).abs() < 0.02, "{fractions:?}");
     assert!((fractions[2] - both / all).abs() < 0.02, "{fractions:?}");
-    // Areas within 0.5 % of the closed forms.
+    // Exact areas (Green's theorem over the boundary arcs) equal the closed forms.
     let area = fig.stats.area.unwrap();
-    assert!((area - all).abs() / all < 0.005, "area {area} vs {all}");
+    assert!((area - all).abs() / all < 1e-10, "area {area} vs {all}");
     let both_measured = fig.stats.area_both_postures.unwrap();
     assert!(
-        (both_measured - both).abs() / both < 0.005,
+        (both_measured - both).abs() / both < 1e-10,
         "both {both_measured} vs {both}"
     );
+    assert!(fig.stats.measure_method.starts_with("exact"));
 }
 
 #[test]
@@ -78,6 +90,14 @@ fn three_link_arm_of_problem_2_17() {
     let fig = figure(&built_in("planar3").unwrap(), WsView::Plane, 50_000);
     assert_golden("workspace_planar3_problem_2_17", &fig.image);
     assert!((fig.stats.max_reach - 1.0).abs() < 1e-9);
+    // Print size: the same exact regions at 2400 x 1800.
+    let big = sized(
+        &built_in("planar3").unwrap(),
+        WsView::Plane,
+        50_000,
+        [2400, 1800],
+    );
+    assert_golden("workspace_planar3_problem_2_17_2400x1800", &big.image);
 }
 
 #[test]
@@ -88,7 +108,35 @@ fn top_view_of_the_anthropomorphic_arm_with_spherical_wrist() {
         100_000,
     );
     assert_golden("workspace_anthropomorphic_spherical_wrist_top", &fig.image);
-    assert!(fig.stats.max_reach <= 1.1 + 1e-9 && fig.stats.max_reach > 1.05);
+    // The wrist centre reaches a2 + d4 = 1 m from the shoulder.
+    assert!(
+        fig.stats.max_reach <= 1.0 + 1e-2 && fig.stats.max_reach > 0.98,
+        "{}",
+        fig.stats.max_reach
+    );
+}
+
+#[test]
+fn side_view_of_the_puma_560() {
+    let fig = figure(&built_in("puma560").unwrap(), WsView::Side, 1000);
+    assert_golden("workspace_puma560_side", &fig.image);
+    assert!(fig.stats.measure_method.starts_with("Pappus"));
+    // Decided exactly at every cell (no "too few samples to tell" left to paint grey).
+    let map = armlab::workspace::compute_map(
+        &built_in("puma560").unwrap(),
+        &armlab::workspace::MapRequest {
+            view: armlab::workspace::MapView::Side,
+            point: TrackedPoint::WristCentre,
+            cells: [400, 300],
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    assert!(
+        map.exact && map.method.starts_with("exact"),
+        "{}",
+        map.method
+    );
 }
 
 #[test]
@@ -156,6 +204,7 @@ fn dexterous_workspace_is_shown() {
         size: [640, 480],
         theme: Theme::Light,
         end_effector: 0,
+        point: TrackedPoint::Flange,
     };
     let fig = workspace_figure(&mut f, &robot, "arm", &opts, &|_| {}).unwrap();
     let yellow = fig

@@ -7,6 +7,7 @@ mod fk;
 mod ik;
 mod info;
 pub mod input;
+mod reach;
 mod view;
 
 use crate::kinematics::{KinematicsError, Robot};
@@ -117,6 +118,9 @@ pub enum Command {
     Render(figures::RenderArgs),
     /// Compute the workspace (Sect. 2.10.1) and draw it to PNG, headlessly.
     Workspace(figures::WorkspaceArgs),
+    /// Which postures reach each point of a file, and its distance to the workspace boundary
+    /// (positive inside, negative outside).
+    Reach(reach::ReachArgs),
     /// Kinematic calibration (Sect. 2.11): estimate the DH parameters from measured poses (or a
     /// simulated robot), with what can and cannot be identified.
     Calibrate(Box<calibrate::CalibrateArgs>),
@@ -207,6 +211,7 @@ pub fn run(cli: Cli, out: &mut dyn std::io::Write) -> Result<(), CliError> {
         Some(Command::Render(args)) => figures::render(&args, out),
         Some(Command::Ik(args)) => ik::run(&args, out),
         Some(Command::Calibrate(args)) => calibrate::run(&args, out),
+        Some(Command::Reach(args)) => reach::run(&args, out),
     }
 }
 

@@ -67,4 +67,3 @@ pub(crate) fn class_palette(names: &[String]) -> (Vec<(String, Color32)>, impl F
     };
     (legend, palette)
 }
-

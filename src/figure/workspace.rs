@@ -377,7 +377,11 @@ fn decorate(
     opts: &WsFigureOptions,
     text: Color32,
 ) {
-    let how = if map.exact { "exact regions" } else { "sampled regions" };
+    let how = if map.exact {
+        "exact regions"
+    } else {
+        "sampled regions"
+    };
     plot.subtitle = format!(
         "{how}, {}, reach {:.3}-{:.3} m",
         measure_text(stats),

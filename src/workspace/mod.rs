@@ -35,12 +35,12 @@ pub mod stats;
 pub mod views;
 
 pub use exact::{Arc, ExactPlanar, ExactRegion, Membership, RegionSet};
-pub use map::{
-    CellValues, CurveRole, MapCurve, MapRequest, MapValues, MapView, Section, TrackedPoint,
-    WorkspaceMap, compute_map, map_extent, map_statistics,
-};
 pub use grid::{
     DexterousSet, GridAnalysis, GridMethod, GridOptions, GridSpec, MethodChoice, analyze_grid,
+};
+pub use map::{
+    CellValues, CurveRole, MapCurve, MapRequest, MapValues, MapView, PointQuery, ReachAnswer,
+    Section, TrackedPoint, WorkspaceMap, compute_map, map_extent, map_statistics,
 };
 pub use planar::{
     BoundaryCurve, BoundaryOptions, CurveKind, PlanarBoundary, PostureLoop, planar_boundary,

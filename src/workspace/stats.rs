@@ -163,7 +163,10 @@ pub fn statistics(
                 opts.grid.resolution
             ),
             GridMethod::Sampling { samples } => {
-                format!("occupancy of {samples} joint-space samples on a {} grid", opts.grid.resolution)
+                format!(
+                    "occupancy of {samples} joint-space samples on a {} grid",
+                    opts.grid.resolution
+                )
             }
         },
         measure_error: None,

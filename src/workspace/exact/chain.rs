@@ -442,7 +442,14 @@ impl PlanarChain {
         // Interval midpoints decide every point off the boundary; a branch feasible at a single
         // breakpoint only (a boundary point) is found by testing the breakpoints afterwards.
         for i in 0..bp.len() {
-            let (lo, hi) = (bp[i], if i + 1 < bp.len() { bp[i + 1] } else { bp[0] + TAU });
+            let (lo, hi) = (
+                bp[i],
+                if i + 1 < bp.len() {
+                    bp[i + 1]
+                } else {
+                    bp[0] + TAU
+                },
+            );
             let mid = lo + 0.5 * (hi - lo);
             let mut any = false;
             for b in 0..2 {

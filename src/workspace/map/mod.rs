@@ -18,10 +18,12 @@
 //! manipulability) come per cell with their name, unit and range.
 
 mod planar;
+mod query;
 mod raster;
 mod sampled;
 mod spatial;
 
+pub use query::{PointQuery, ReachAnswer};
 pub use spatial::Section;
 
 pub use raster::EdgeCell;
@@ -228,7 +230,10 @@ pub fn compute_map(robot: &Robot, req: &MapRequest) -> Result<WorkspaceMap, Work
     }
     let bounds = match req.bounds {
         Some(b) => b,
-        None => padded(&map_extent(robot, req.view, req.point, req.end_effector)?, 0.06),
+        None => padded(
+            &map_extent(robot, req.view, req.point, req.end_effector)?,
+            0.06,
+        ),
     };
     if !(bounds[1] > bounds[0] && bounds[3] > bounds[2] && bounds.iter().all(|v| v.is_finite())) {
         return Err(WorkspaceError::InvalidOption(format!(

@@ -7,11 +7,7 @@ use crate::workspace::{Aabb, ClassMeasure, GridMethod, WorkspaceStats};
 use std::f64::consts::TAU;
 
 /// The exact map of a planar arm over `bounds` (plane coordinates).
-pub(super) fn map(
-    e: &ExactPlanar,
-    req: &MapRequest,
-    bounds: [f64; 4],
-) -> WorkspaceMap {
+pub(super) fn map(e: &ExactPlanar, req: &MapRequest, bounds: [f64; 4]) -> WorkspaceMap {
     let dims = req.cells;
     let test = |p: [f64; 2]| e.mask(p);
     // A block far from every boundary candidate has one mask: the classes change only across
@@ -19,7 +15,8 @@ pub(super) fn map(
     let uniform = |c: [f64; 2], r: f64| e.candidates().iter().all(|a| a.distance(c) > r);
     let masks = raster::fill_blocks(bounds, dims, &test, Some(&uniform));
     let edges = raster::edges(&masks, bounds, dims, &test);
-    let step = 0.5 * ((bounds[1] - bounds[0]) / dims[0] as f64).min((bounds[3] - bounds[2]) / dims[1] as f64);
+    let step = 0.5
+        * ((bounds[1] - bounds[0]) / dims[0] as f64).min((bounds[3] - bounds[2]) / dims[1] as f64);
     let values = match req.values {
         MapValues::Classes => None,
         MapValues::Dexterity => Some(dexterity(e, bounds, dims)),

@@ -110,7 +110,10 @@ pub(crate) fn fill_blocks(
 ) -> Vec<u8> {
     let [w, h] = dims;
     let (bw, bh) = (w.div_ceil(BLOCK), h.div_ceil(BLOCK));
-    let cell = [(bounds[1] - bounds[0]) / w as f64, (bounds[3] - bounds[2]) / h as f64];
+    let cell = [
+        (bounds[1] - bounds[0]) / w as f64,
+        (bounds[3] - bounds[2]) / h as f64,
+    ];
     let blocks: Vec<(usize, Vec<u8>)> = (0..bw * bh)
         .into_par_iter()
         .map(|b| {
@@ -133,7 +136,13 @@ pub(crate) fn fill_blocks(
             };
             let cells = (j0..j1)
                 .flat_map(|j| (i0..i1).map(move |i| (i, j)))
-                .map(|(i, j)| if same { m } else { test(centre(bounds, dims, i, j)) })
+                .map(|(i, j)| {
+                    if same {
+                        m
+                    } else {
+                        test(centre(bounds, dims, i, j))
+                    }
+                })
                 .collect();
             (b, cells)
         })

@@ -5,8 +5,8 @@
 
 use super::{CellValues, MapRequest, MapValues, MapView, WorkspaceMap};
 use crate::kinematics::Robot;
-use crate::kinematics::ik::numerical::{self, NumericalOptions, TaskMask};
 use crate::kinematics::ik::Target;
+use crate::kinematics::ik::numerical::{self, NumericalOptions, TaskMask};
 use crate::workspace::{Aabb, SampleOptions, Samples, WorkspaceError, sample};
 use nalgebra::{Point3, Vector3};
 use rayon::prelude::*;
@@ -71,8 +71,7 @@ pub(super) fn map(
     let cell_of = |v: [f64; 2]| -> Option<usize> {
         let u = (v[0] - bounds[0]) / (bounds[1] - bounds[0]) * w as f64;
         let t = (bounds[3] - v[1]) / (bounds[3] - bounds[2]) * h as f64;
-        (u >= 0.0 && t >= 0.0 && u < w as f64 && t < h as f64)
-            .then(|| t as usize * w + u as usize)
+        (u >= 0.0 && t >= 0.0 && u < w as f64 && t < h as f64).then(|| t as usize * w + u as usize)
     };
     let mut owner = vec![u32::MAX; w * h];
     let mut best = vec![f32::NAN; w * h];
@@ -80,7 +79,11 @@ pub(super) fn map(
         if let Some(c) = cell_of(to_view(robot, req.view, *p)) {
             owner[c] = k as u32;
             if let Some(m) = &s.manipulability {
-                best[c] = if best[c].is_nan() { m[k] } else { best[c].max(m[k]) };
+                best[c] = if best[c].is_nan() {
+                    m[k]
+                } else {
+                    best[c].max(m[k])
+                };
             }
         }
     }
@@ -91,7 +94,11 @@ pub(super) fn map(
         .map(|(&o, &r)| u8::from(o != u32::MAX || r))
         .collect();
     let values = (req.values != MapValues::Classes).then(|| {
-        let hi = best.iter().copied().filter(|v| v.is_finite()).fold(0.0f32, f32::max);
+        let hi = best
+            .iter()
+            .copied()
+            .filter(|v| v.is_finite())
+            .fold(0.0f32, f32::max);
         CellValues {
             dims: [w, h],
             data: best,
@@ -157,8 +164,14 @@ fn refine(
             let q0 = s.joint_vector(o as usize).unwrap_or(&[]);
             let v = super::raster::centre(bounds, [w, h], c % w, c / w);
             let target = world_target(robot, view, v, s.positions[o as usize]);
-            numerical::solve(robot, req.end_effector, &Target::Position(target), q0, &opts)
-                .is_ok_and(|r| r.converged)
+            numerical::solve(
+                robot,
+                req.end_effector,
+                &Target::Position(target),
+                q0,
+                &opts,
+            )
+            .is_ok_and(|r| r.converged)
         })
         .collect()
 }

@@ -55,6 +55,8 @@ pub struct Section {
     scale: f64,
     family: &'static str,
     point: TrackedPoint,
+    /// The side view's extent, computed once.
+    side_extent: std::sync::OnceLock<Aabb>,
 }
 
 /// One posture reaching a side-view point: its class bits and q1 at azimuth 0 (rad).
@@ -106,6 +108,7 @@ impl Section {
             scale: robot.characteristic_length(),
             family: cf.name(),
             point,
+            side_extent: std::sync::OnceLock::new(),
             cf,
         })
     }
@@ -190,6 +193,24 @@ impl Section {
         h[..n].iter().fold(0, |m, x| m | x.mask)
     }
 
+    /// Base-frame coordinates of a world point (m).
+    pub(super) fn base_from_world(&self, p: [f64; 3]) -> [f64; 3] {
+        let l = self
+            .base
+            .inverse_transform_point(&Point3::new(p[0], p[1], p[2]));
+        [l.x, l.y, l.z]
+    }
+
+    /// Class mask at radius r, height z and azimuth psi (base frame; m, rad).
+    pub(super) fn mask_at(&self, r: f64, z: f64, psi: f64) -> u8 {
+        let mut h = [Hit::default(); 8];
+        let n = self.hits(r, z, &mut h);
+        h[..n]
+            .iter()
+            .filter(|x| self.q1_fits(x.q1, psi))
+            .fold(0, |m, x| m | x.mask)
+    }
+
     /// Whether q1 = q1_0 + psi / s1 fits joint 1's range (azimuth psi, rad).
     #[inline]
     fn q1_fits(&self, q1_0: f64, psi: f64) -> bool {
@@ -265,8 +286,28 @@ impl Section {
     /// `[0, L] x [-L, L]` (L the arm's characteristic length) grown by a cell, or the disk of
     /// the largest radius for the top view.
     pub fn extent(&self, view: MapView) -> Aabb {
+        let b = *self.side_extent.get_or_init(|| self.scan_extent());
+        match view {
+            MapView::Side | MapView::Plane => b,
+            MapView::Top => Aabb {
+                min: [-b.max[0], -b.max[0], 0.0],
+                max: [b.max[0], b.max[0], 0.0],
+            },
+        }
+    }
+}
+
+impl Section {
+    /// Cells per side of the scans behind the statistics: fewer for the approach scan, which
+    /// costs 64 solves per point.
+    fn scan_cells(&self, exact: usize) -> usize {
+        if self.exact() { exact } else { exact / 4 }
+    }
+
+    /// The side view's reached cells on a scan of `[0, L] x [-L, L]`, grown by a cell.
+    fn scan_extent(&self) -> Aabb {
         let l = self.scale;
-        let n = 256;
+        let n = self.scan_cells(256);
         let bounds = [0.0, l, -l, l];
         let masks = raster::fill(bounds, [n, n], &|p| self.side_mask(p[0], p[1]));
         let mut b = Aabb::EMPTY;
@@ -278,13 +319,7 @@ impl Section {
                 b.extend([c[0] + cell[0], c[1] + cell[1], 0.0]);
             }
         }
-        match view {
-            MapView::Side | MapView::Plane => b,
-            MapView::Top => Aabb {
-                min: [-b.max[0], -b.max[0], 0.0],
-                max: [b.max[0], b.max[0], 0.0],
-            },
-        }
+        b
     }
 }
 
@@ -375,7 +410,10 @@ impl Radial {
                         } else if run[c].1 > 0 {
                             if run[c].1 > best[c].0 {
                                 let mid = run[c].0 as f64 + 0.5 * run[c].1 as f64;
-                                best[c] = (run[c].1, side[2] + mid / heights as f64 * (side[3] - side[2]));
+                                best[c] = (
+                                    run[c].1,
+                                    side[2] + mid / heights as f64 * (side[3] - side[2]),
+                                );
                             }
                             run[c].1 = 0;
                         }
@@ -420,7 +458,11 @@ impl Section {
             }
             _ => {
                 let test = |p: [f64; 2]| {
-                    if p[0] < 0.0 { 0 } else { self.side_mask(p[0], p[1]) }
+                    if p[0] < 0.0 {
+                        0
+                    } else {
+                        self.side_mask(p[0], p[1])
+                    }
                 };
                 let masks = match self.mode {
                     Mode::Position => raster::fill(bounds, dims, &test),
@@ -524,8 +566,9 @@ impl Section {
     /// Statistics: the volume by Pappus (512 cells, the error from the 256-cell result), per
     /// class volumes, bounds and reach of the section.
     pub fn statistics(&self) -> WorkspaceStats {
-        let (v, with, only) = self.pappus(512);
-        let (v_half, _, _) = self.pappus(256);
+        let n = self.scan_cells(512);
+        let (v, with, only) = self.pappus(n);
+        let (v_half, _, _) = self.pappus(n / 2);
         let e = self.extent(MapView::Side);
         let names = self.class_names();
         let classes = names
@@ -551,13 +594,13 @@ impl Section {
             volume: Some(v),
             measure_all_classes: 0.0,
             classes,
-            dexterous_measure: 0.0,
+            dexterous_measure: self.dexterous_volume(&e),
             bounds,
             min_reach: reach[0],
             max_reach: reach[1],
             reach_exact: false,
             cell_size: [0.0; 3],
-            resolution: 512,
+            resolution: n,
             samples: 0,
             method: GridMethod::ClosedForm {
                 family: self.family,
@@ -565,8 +608,9 @@ impl Section {
             },
             measure_method: format!(
                 "Pappus: r times the azimuths joint 1 allows, integrated over the {} (r, z) \
-                 section on 512 x 512 cells (edge cells 4 x 4); error from the 256-cell result",
-                if self.exact() { "exact" } else { "scanned" }
+                 section on {n} x {n} cells (edge cells 4 x 4); error from the {}-cell result",
+                if self.exact() { "exact" } else { "scanned" },
+                n / 2
             ),
             measure_error: Some((v - v_half).abs()),
         }
@@ -576,14 +620,15 @@ impl Section {
     /// 512 x 512 scan of the section (cell centres; within a cell of the true values).
     fn reach_range(&self, e: &Aabb) -> [f64; 2] {
         let bounds = [0.0, e.max[0], e.min[1], e.max[1]];
-        let dims = [512, 512];
+        let n = self.scan_cells(512);
+        let dims = [n, n];
         let masks = raster::fill(bounds, dims, &|p| self.side_mask(p[0], p[1]));
         masks
             .iter()
             .enumerate()
             .filter(|(_, m)| **m != 0)
             .map(|(k, _)| {
-                let c = raster::centre(bounds, dims, k % 512, k / 512);
+                let c = raster::centre(bounds, dims, k % n, k / n);
                 c[0].hypot(c[1])
             })
             .fold([f64::INFINITY, 0.0], |[lo, hi], d| [lo.min(d), hi.max(d)])
@@ -629,6 +674,69 @@ impl Section {
     }
 }
 
+impl Section {
+    /// Per branch of joint 1 (its value q1_0 at azimuth 0, NaN for an unused slot) the bit set
+    /// of the approach directions with which the flange reaches (r, 0, z) within the limits of
+    /// joints 2 to 6.
+    fn approach_bits(&self, r: f64, z: f64) -> [(f64, u64); 4] {
+        let w = self.base * Point3::new(r, 0.0, z);
+        let mut raw = RawSolutions::default();
+        let mut out = [(f64::NAN, 0u64); 4];
+        for b in 0..APPROACHES {
+            let pose = Pose::from_parts(Translation3::from(w.coords), approach(b));
+            if self.cf.solve_raw(&pose, &mut raw).is_err() {
+                continue;
+            }
+            for k in 0..raw.len {
+                if !self.within(&raw.q[k], 1, self.limits.len()) {
+                    continue;
+                }
+                let q1 = raw.q[k][0];
+                let same = |o: f64| {
+                    let d = (o - q1).rem_euclid(TAU);
+                    d.min(TAU - d) < 1e-6
+                };
+                let slot = out
+                    .iter()
+                    .position(|o| o.0.is_nan() || same(o.0))
+                    .unwrap_or(3);
+                out[slot].0 = q1;
+                out[slot].1 |= 1 << b;
+            }
+        }
+        out
+    }
+
+    /// Volume (m^3) of the dexterous workspace: where at least half of the approach directions
+    /// are reached, Pappus over a 48 x 48 section (an estimate; 0 for arms without a wrist).
+    fn dexterous_volume(&self, e: &Aabb) -> f64 {
+        use rayon::prelude::*;
+        if !matches!(self.cf.family(), Family::Decoupled6 { .. }) {
+            return 0.0;
+        }
+        let n = 48;
+        let bounds = [0.0, e.max[0], e.min[1], e.max[1]];
+        let da = (bounds[1] - bounds[0]) * (bounds[3] - bounds[2]) / (n * n) as f64;
+        (0..n * n)
+            .into_par_iter()
+            .map(|k| {
+                let c = raster::centre(bounds, [n, n], k % n, k / n);
+                let bits = self.approach_bits(c[0], c[1]);
+                let all = bits.iter().fold(0u64, |m, b| m | b.1);
+                if (all.count_ones() as usize) * 2 < APPROACHES {
+                    return 0.0;
+                }
+                let hits: Vec<Hit> = bits
+                    .iter()
+                    .filter(|b| b.0.is_finite())
+                    .map(|b| Hit { mask: 1, q1: b.0 })
+                    .collect();
+                self.azimuths(&hits, 1).0 * c[0] * da
+            })
+            .sum()
+    }
+}
+
 /// Dexterity maps: per (r, z) point and shoulder branch (q1_0), the bit set of approach
 /// directions reached.
 struct Dexterity {
@@ -637,30 +745,7 @@ struct Dexterity {
 
 impl Dexterity {
     fn new(s: &Section, bounds: [f64; 4], dims: [usize; 2], view: MapView) -> Self {
-        let bits = |r: f64, z: f64| -> [(f64, u64); 4] {
-            let w = s.base * Point3::new(r, 0.0, z);
-            let mut raw = RawSolutions::default();
-            let mut out = [(f64::NAN, 0u64); 4];
-            for b in 0..APPROACHES {
-                let pose = Pose::from_parts(Translation3::from(w.coords), approach(b));
-                if s.cf.solve_raw(&pose, &mut raw).is_err() {
-                    continue;
-                }
-                for k in 0..raw.len {
-                    if !s.within(&raw.q[k], 1, s.limits.len()) {
-                        continue;
-                    }
-                    let q1 = raw.q[k][0];
-                    let slot = out
-                        .iter()
-                        .position(|o| o.0.is_nan() || (o.0 - q1).rem_euclid(TAU).min((q1 - o.0).rem_euclid(TAU)) < 1e-6)
-                        .unwrap_or(3);
-                    out[slot].0 = q1;
-                    out[slot].1 |= 1 << b;
-                }
-            }
-            out
-        };
+        let bits = |r: f64, z: f64| s.approach_bits(r, z);
         let frac = |m: u64| m.count_ones() as f32 / APPROACHES as f32;
         let data = match view {
             MapView::Top => {
@@ -675,7 +760,8 @@ impl Dexterity {
                             let r = (i as f64 + 0.5) / nr as f64 * e.max[0];
                             (0..nz)
                                 .map(|j| {
-                                    let z = e.min[1] + (j as f64 + 0.5) / nz as f64 * (e.max[1] - e.min[1]);
+                                    let z = e.min[1]
+                                        + (j as f64 + 0.5) / nz as f64 * (e.max[1] - e.min[1]);
                                     bits(r, z)
                                 })
                                 .collect()
