@@ -9,6 +9,11 @@ use crate::render::{Gpu, RenderSettings, RenderTarget, Renderer, ViewUniforms};
 use crate::scene::Scene;
 use egui::Color32;
 
+/// Makes the raster of a plot for the data bounds and pixel size of its frame (see
+/// [`Figures::plot_fitted`]); may add curves or labels to the plot.
+pub type RasterFill<'a> = dyn FnMut(&mut Plot2d, [f64; 4], [usize; 2]) -> Result<Option<egui::ColorImage>, FigureError>
+    + 'a;
+
 /// Multisampling of 3D figures (4x: smooth edges; lavapipe renders it deterministically).
 pub const FIGURE_MSAA: u32 = 4;
 
@@ -82,11 +87,7 @@ impl Figures {
         size: [u32; 2],
         theme: Theme,
         plot: &mut Plot2d,
-        fill: &mut dyn FnMut(
-            &mut Plot2d,
-            [f64; 4],
-            [usize; 2],
-        ) -> Result<Option<egui::ColorImage>, FigureError>,
+        fill: &mut RasterFill<'_>,
     ) -> Result<image::RgbaImage, FigureError> {
         apply_style(&self.offscreen.ctx, theme);
         let ppp = pixels_per_point(size[0]);

@@ -366,7 +366,7 @@ fn map_figure(
         }
         Ok(Some(paint(&map, opts.color_by)))
     };
-    Ok(figs.plot_fitted(opts.size, opts.theme, &mut plot, &mut fill)?)
+    figs.plot_fitted(opts.size, opts.theme, &mut plot, &mut fill)
 }
 
 /// Subtitle, legend or colour bar, and the map's curves.

@@ -202,10 +202,8 @@ pub fn map_extent(
     if end_effector > 0 {
         return sampled::extent(robot, view, end_effector);
     }
-    if view == MapView::Plane {
-        if let Ok(e) = super::ExactPlanar::new(robot) {
-            return Ok(e.bounds());
-        }
+    if let (MapView::Plane, Ok(e)) = (view, super::ExactPlanar::new(robot)) {
+        return Ok(e.bounds());
     }
     if let Some(s) = spatial::Section::new(robot, point) {
         return Ok(s.extent(view));
@@ -246,11 +244,8 @@ pub fn compute_map(robot: &Robot, req: &MapRequest) -> Result<WorkspaceMap, Work
             if let Ok(e) = super::ExactPlanar::new(robot) {
                 return Ok(planar::map(&e, req, bounds));
             }
-        }
-        if let Some(s) = spatial::Section::new(robot, req.point) {
-            if req.view != MapView::Plane {
-                return s.map(robot, req, bounds);
-            }
+        } else if let Some(s) = spatial::Section::new(robot, req.point) {
+            return s.map(robot, req, bounds);
         }
     }
     sampled::map(robot, req, bounds)

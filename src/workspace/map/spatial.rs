@@ -419,8 +419,7 @@ impl Radial {
                         }
                     }
                 }
-                let found = best.map(|b| b.1);
-                found
+                best.map(|b| b.1)
             })
             .collect();
         Self { r_max, bins, z }
