@@ -252,3 +252,32 @@ fn dexterity_of_the_spherical_wrist_arm_is_a_continuous_map() {
         "a low-dexterity rim"
     );
 }
+
+/// Traced boundaries of a closed-form view lie on the exact boundary: the wrist centre of the
+/// anthropomorphic arm with spherical wrist (a2 = d4 = 0.5 m, full joint 1) reaches the ball of
+/// radius 1 m about the shoulder on the base axis, so the top view's boundary is the unit circle.
+#[test]
+fn traced_boundary_of_a_closed_form_view_is_on_the_exact_boundary() {
+    let r = robot("anthropomorphic_spherical_wrist");
+    let map = compute_map(
+        &r,
+        &MapRequest {
+            view: MapView::Top,
+            point: TrackedPoint::WristCentre,
+            cells: [300, 300],
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    let pts: Vec<[f64; 2]> = map
+        .curves
+        .iter()
+        .filter(|c| c.role == CurveRole::Boundary)
+        .flat_map(|c| c.points.iter().copied())
+        .collect();
+    assert!(pts.len() > 500, "{}", pts.len());
+    for p in pts {
+        let rho = p[0].hypot(p[1]);
+        assert!((rho - 1.0).abs() < 1e-6, "{p:?} at {rho}");
+    }
+}

@@ -183,75 +183,85 @@ pub fn show_at(
         .default_x_bounds(x0, x1)
         .default_y_bounds(y0, y1)
         .set_margin_fraction(egui::vec2(0.0, 0.0));
-    let equal = plot.equal_aspect;
-    let resp = p.show(ui, |pui| {
-        if equal {
-            // One metre as long in x as in y: grow the shorter side of the bounds to the frame's
-            // aspect (egui_plot's data_aspect would crop instead).
-            let frame = *pui.transform().frame();
-            let aspect = (frame.width() / frame.height().max(1.0)) as f64;
-            let (w, h) = (x1 - x0, y1 - y0);
-            let (cx, cy) = (0.5 * (x0 + x1), 0.5 * (y0 + y1));
-            let (w, h) = if w / h < aspect {
-                (h * aspect, h)
-            } else {
-                (w, w / aspect)
-            };
-            pui.set_plot_bounds(egui_plot::PlotBounds::from_min_max(
-                [cx - 0.5 * w, cy - 0.5 * h],
-                [cx + 0.5 * w, cy + 0.5 * h],
-            ));
-        }
-        if let Some((id, [x0, x1, y0, y1])) = image {
-            let c = PlotPoint::new(0.5 * (x0 + x1), 0.5 * (y0 + y1));
-            pui.image(PlotImage::new(
-                "",
-                id,
-                c,
-                egui::vec2((x1 - x0) as f32, (y1 - y0) as f32),
-            ));
-        }
-        for a in &plot.areas {
-            pui.polygon(
-                egui_plot::Polygon::new(a.name.clone(), a.points.clone())
-                    .fill_color(a.fill)
-                    .stroke(egui::Stroke::new(0.0, a.fill)),
-            );
-        }
-        for (name, color) in &plot.legend {
-            // A swatch in the legend: one invisible point of the class colour.
-            pui.points(
-                Points::new(name.clone(), vec![[x0, y0]])
-                    .color(*color)
-                    .radius(0.0),
-            );
-        }
-        for c in &plot.curves {
-            let mut line = Line::new(c.name.clone().unwrap_or_default(), c.points.clone())
-                .color(c.color)
-                .width(c.width);
-            if c.dashed {
-                line = line.style(LineStyle::dashed_loose());
-            }
-            if c.name.is_none() {
-                line = line.allow_hover(false);
-            }
-            pui.line(line);
-        }
-        for (text, at) in &plot.labels {
-            pui.text(
-                Text::new(
-                    "",
-                    PlotPoint::new(at[0], at[1]),
-                    egui::RichText::new(text).strong().size(15.0),
-                )
-                .color(text_color),
-            );
-        }
-    });
+    let resp = p.show(ui, |pui| draw_items(pui, plot, image, text_color));
     let b = resp.transform.bounds();
     PlotFrame {
         rect: *resp.transform.frame(),
         bounds: [b.min()[0], b.max()[0], b.min()[1], b.max()[1]],
+    }
+}
+
+/// The items of a plot: the equal-aspect bounds, the raster image, areas, legend swatches,
+/// curves and labels.
+fn draw_items(
+    pui: &mut egui_plot::PlotUi<'_>,
+    plot: &Plot2d,
+    image: Option<(egui::TextureId, [f64; 4])>,
+    text_color: Color32,
+) {
+    let [x0, x1, y0, y1] = plot.bounds;
+    let equal = plot.equal_aspect;
+    if equal {
+        // One metre as long in x as in y: grow the shorter side of the bounds to the frame's
+        // aspect (egui_plot's data_aspect would crop instead).
+        let frame = *pui.transform().frame();
+        let aspect = (frame.width() / frame.height().max(1.0)) as f64;
+        let (w, h) = (x1 - x0, y1 - y0);
+        let (cx, cy) = (0.5 * (x0 + x1), 0.5 * (y0 + y1));
+        let (w, h) = if w / h < aspect {
+            (h * aspect, h)
+        } else {
+            (w, w / aspect)
+        };
+        pui.set_plot_bounds(egui_plot::PlotBounds::from_min_max(
+            [cx - 0.5 * w, cy - 0.5 * h],
+            [cx + 0.5 * w, cy + 0.5 * h],
+        ));
+    }
+    if let Some((id, [x0, x1, y0, y1])) = image {
+        let c = PlotPoint::new(0.5 * (x0 + x1), 0.5 * (y0 + y1));
+        pui.image(PlotImage::new(
+            "",
+            id,
+            c,
+            egui::vec2((x1 - x0) as f32, (y1 - y0) as f32),
+        ));
+    }
+    for a in &plot.areas {
+        pui.polygon(
+            egui_plot::Polygon::new(a.name.clone(), a.points.clone())
+                .fill_color(a.fill)
+                .stroke(egui::Stroke::new(0.0, a.fill)),
+        );
+    }
+    for (name, color) in &plot.legend {
+        // A swatch in the legend: one invisible point of the class colour.
+        pui.points(
+            Points::new(name.clone(), vec![[x0, y0]])
+                .color(*color)
+                .radius(0.0),
+        );
+    }
+    for c in &plot.curves {
+        let mut line = Line::new(c.name.clone().unwrap_or_default(), c.points.clone())
+            .color(c.color)
+            .width(c.width);
+        if c.dashed {
+            line = line.style(LineStyle::dashed_loose());
+        }
+        if c.name.is_none() {
+            line = line.allow_hover(false);
+        }
+        pui.line(line);
+    }
+    for (text, at) in &plot.labels {
+        pui.text(
+            Text::new(
+                "",
+                PlotPoint::new(at[0], at[1]),
+                egui::RichText::new(text).strong().size(15.0),
+            )
+            .color(text_color),
+        );
     }
 }

@@ -184,35 +184,7 @@ fn three_d(
         },
     )?;
     let cloud = workspace::point_cloud(&samples);
-    let stride = (cloud.positions.len() / 300_000).max(1);
-    let (legend, palette) = class_palette(&cloud.class_names);
-    let mmax = cloud
-        .manipulability
-        .as_ref()
-        .map_or(1.0, |m| m.iter().copied().fold(1e-12, f32::max));
-    for (i, p) in cloud.positions.iter().enumerate().step_by(stride) {
-        let c = match (opts.color_by, &cloud.manipulability) {
-            (ColorBy::Manipulability, Some(m)) => sequential(m[i] / mmax),
-            (ColorBy::Posture, _)
-                if !cloud.class_names.is_empty() && (cloud.classes[i] as usize) < 8 =>
-            {
-                let [r, g, b, _] = palette(1 << cloud.classes[i]);
-                [r, g, b]
-            }
-            _ => PLAIN,
-        };
-        let color = [
-            c[0] as f32 / 255.0,
-            c[1] as f32 / 255.0,
-            c[2] as f32 / 255.0,
-            1.0,
-        ];
-        scene.dots.push(Dot {
-            p: *p,
-            color: srgb_to_linear(color),
-            size_px: 2.0,
-        });
-    }
+    let legend = cloud_dots(&mut scene, &cloud, opts.color_by);
     let pts: Vec<_> = cloud
         .positions
         .iter()
@@ -238,6 +210,45 @@ fn three_d(
             legend,
         },
     )
+}
+
+/// Adds the cloud's points (at most 300 000) to the scene as dots coloured by class or
+/// manipulability; returns the class legend.
+fn cloud_dots(
+    scene: &mut crate::scene::Scene,
+    cloud: &workspace::PointCloud,
+    color_by: ColorBy,
+) -> Vec<(String, Color32)> {
+    let stride = (cloud.positions.len() / 300_000).max(1);
+    let (legend, palette) = class_palette(&cloud.class_names);
+    let mmax = cloud
+        .manipulability
+        .as_ref()
+        .map_or(1.0, |m| m.iter().copied().fold(1e-12, f32::max));
+    for (i, p) in cloud.positions.iter().enumerate().step_by(stride) {
+        let c = match (color_by, &cloud.manipulability) {
+            (ColorBy::Manipulability, Some(m)) => sequential(m[i] / mmax),
+            (ColorBy::Posture, _)
+                if !cloud.class_names.is_empty() && (cloud.classes[i] as usize) < 8 =>
+            {
+                let [r, g, b, _] = palette(1 << cloud.classes[i]);
+                [r, g, b]
+            }
+            _ => PLAIN,
+        };
+        let color = [
+            c[0] as f32 / 255.0,
+            c[1] as f32 / 255.0,
+            c[2] as f32 / 255.0,
+            1.0,
+        ];
+        scene.dots.push(Dot {
+            p: *p,
+            color: srgb_to_linear(color),
+            size_px: 2.0,
+        });
+    }
+    legend
 }
 
 fn joint_space(
@@ -331,9 +342,15 @@ fn map_figure(
         _ => MapValues::Classes,
     };
     let (xl, yl, which) = view_labels(view);
+    let wrist = matches!(
+        crate::kinematics::ik::closed_form::ClosedForm::detect(robot).map(|c| *c.family()),
+        Ok(crate::kinematics::ik::closed_form::Family::Decoupled6 { .. })
+    );
     let point = match (view, opts.point) {
-        (MapView::Plane, _) | (_, TrackedPoint::Flange) => "",
-        _ => " (wrist centre)",
+        (MapView::Plane, _) => "",
+        (_, TrackedPoint::WristCentre) if wrist => " (wrist centre)",
+        _ if wrist => " (flange)",
+        _ => "",
     };
     let mut plot = Plot2d {
         title: format!("Workspace of the {title}{point}{which}"),

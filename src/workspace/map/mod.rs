@@ -17,6 +17,7 @@
 //! antialiased and lies on the exact boundary. Continuous values (the fraction of orientations,
 //! manipulability) come per cell with their name, unit and range.
 
+mod contour;
 mod planar;
 mod query;
 mod raster;

@@ -16,7 +16,7 @@
 //! and is said so; with no offset the flange is the wrist centre.
 
 use super::raster;
-use super::{CellValues, MapRequest, MapValues, MapView, TrackedPoint, WorkspaceMap};
+use super::{CellValues, CurveRole, MapRequest, MapValues, MapView, TrackedPoint, WorkspaceMap};
 use crate::kinematics::ik::closed_form::{
     ClosedForm, Family, LIMIT_TOL, MAX_DOF, RawSolutions, wrap_into_limits,
 };
@@ -37,6 +37,9 @@ enum Mode {
     Position,
     /// The flange of a 6-DOF arm with a flange offset: approach directions scanned.
     FlangeScan,
+    /// A SCARA whose tool point lies on the last (roll) axis: the closed form at a vertical
+    /// tool orientation; the roll joint does not move the point.
+    Scara,
 }
 
 /// The section tester (see the module documentation).
@@ -57,6 +60,8 @@ pub struct Section {
     point: TrackedPoint,
     /// The side view's extent, computed once.
     side_extent: std::sync::OnceLock<Aabb>,
+    /// World rotation of the tool at q = 0 (SCARA targets).
+    tool_rot0: Rotation3<f64>,
 }
 
 /// One posture reaching a side-view point: its class bits and q1 at azimuth 0 (rad).
@@ -79,6 +84,7 @@ impl Section {
                 Mode::Position
             }
             (Family::Decoupled6 { .. }, TrackedPoint::WristCentre) => Mode::Position,
+            (Family::Scara, _) if roll_keeps_position(robot) => Mode::Scara,
             (Family::Decoupled6 { .. }, TrackedPoint::Flange) => {
                 if flange_is_wrist_centre(robot, &cf) {
                     Mode::Position
@@ -109,6 +115,7 @@ impl Section {
             family: cf.name(),
             point,
             side_extent: std::sync::OnceLock::new(),
+            tool_rot0: robot.fk(&vec![0.0; robot.dof()]).ok()?.rotation,
             cf,
         })
     }
@@ -120,7 +127,7 @@ impl Section {
 
     /// Whether the side view is exact (the positioning arm), not an approach scan.
     pub fn exact(&self) -> bool {
-        self.mode == Mode::Position
+        self.mode != Mode::FlangeScan
     }
 
     /// Joints `from..to` of a raw solution within their limits (revolute ones modulo 2 pi).
@@ -145,6 +152,21 @@ impl Section {
         match self.mode {
             Mode::Position => {
                 if self.cf.solve_position_raw(&w.coords, &mut raw).is_err() {
+                    return 0;
+                }
+                for k in 0..raw.len {
+                    if n < 8 && self.within(&raw.q[k], 1, 3) {
+                        out[n] = Hit {
+                            mask: self.classifier.posture_mask(&raw.postures[k]),
+                            q1: raw.q[k][0],
+                        };
+                        n += 1;
+                    }
+                }
+            }
+            Mode::Scara => {
+                let pose = Pose::from_parts(Translation3::from(w.coords), self.tool_rot0);
+                if self.cf.solve_raw(&pose, &mut raw).is_err() {
                     return 0;
                 }
                 for k in 0..raw.len {
@@ -268,10 +290,16 @@ impl Section {
     fn top_mask(&self, radial: &Radial, x: f64, y: f64) -> u8 {
         let r = x.hypot(y);
         let psi = y.atan2(x);
-        let Some(zs) = radial.at(r) else { return 0 };
         let mut out = 0u8;
         let mut h = [Hit::default(); 8];
-        for &z in zs.iter().filter(|z| z.is_finite()) {
+        // Heights of this radius bin and of its neighbours, each tested at the point's own
+        // radius: a true point of the section whenever it is reached.
+        let mut tried = [f64::NAN; 12];
+        for (k, z) in radial.near(r).enumerate() {
+            if !z.is_finite() || tried.iter().any(|t| *t == z) {
+                continue;
+            }
+            tried[k.min(11)] = z;
             let n = self.hits(r, z, &mut h);
             for hit in &h[..n] {
                 if self.q1_fits(hit.q1, psi) {
@@ -321,6 +349,16 @@ impl Section {
         }
         b
     }
+}
+
+/// Does the last joint (a SCARA's roll) leave the tool position unchanged?
+fn roll_keeps_position(robot: &Robot) -> bool {
+    let n = robot.dof();
+    let mut q = vec![0.3; n];
+    let Ok(a) = robot.fk(&q) else { return false };
+    q[n - 1] += 1.0;
+    let Ok(b) = robot.fk(&q) else { return false };
+    (a.translation.vector - b.translation.vector).norm() < 1e-12 * robot.characteristic_length()
 }
 
 /// Is the flange at the wrist centre (no flange offset, no tool offset)?
@@ -425,9 +463,13 @@ impl Radial {
         Self { r_max, bins, z }
     }
 
-    fn at(&self, r: f64) -> Option<&[f64; 4]> {
+    /// The heights of the bin of radius `r` and of the two bins beside it.
+    fn near(&self, r: f64) -> impl Iterator<Item = f64> + '_ {
         let i = (r / self.r_max * self.bins as f64).floor();
-        (i >= 0.0 && (i as usize) < self.bins).then(|| &self.z[i as usize])
+        let i = if i.is_finite() { i as isize } else { -10 };
+        (i - 1..=i + 1)
+            .filter(|&k| k >= 0 && (k as usize) < self.bins)
+            .flat_map(move |k| self.z[k as usize].into_iter())
     }
 }
 
@@ -443,7 +485,7 @@ impl Section {
             return super::sampled::map(robot, req, bounds);
         }
         let dims = req.cells;
-        let (masks, edges) = match req.view {
+        let (masks, edges, curves) = match req.view {
             MapView::Top => {
                 let side = self.extent(MapView::Side);
                 let side = [0.0, side.max[0], side.min[1], side.max[1]];
@@ -453,7 +495,8 @@ impl Section {
                 let test = |p: [f64; 2]| self.top_mask(&radial, p[0], p[1]);
                 let masks = raster::fill(bounds, dims, &test);
                 let edges = raster::edges(&masks, bounds, dims, &test);
-                (masks, edges)
+                let curves = self.curves(&masks, bounds, dims, &test);
+                (masks, edges, curves)
             }
             _ => {
                 let test = |p: [f64; 2]| {
@@ -464,11 +507,12 @@ impl Section {
                     }
                 };
                 let masks = match self.mode {
-                    Mode::Position => raster::fill(bounds, dims, &test),
                     Mode::FlangeScan => raster::fill_blocks(bounds, dims, &test, None),
+                    _ => raster::fill(bounds, dims, &test),
                 };
                 let edges = raster::edges(&masks, bounds, dims, &test);
-                (masks, edges)
+                let curves = self.curves(&masks, bounds, dims, &test);
+                (masks, edges, curves)
             }
         };
         let values = match req.values {
@@ -489,9 +533,9 @@ impl Section {
             edges,
             class_names: self.class_names().to_vec(),
             values,
-            curves: Vec::new(),
+            curves,
             method: match self.mode {
-                Mode::Position => format!(
+                Mode::Position | Mode::Scara => format!(
                     "exact: closed-form IK of the {} for the {point} at each cell, joint 1 \
                      from the azimuth",
                     self.family
@@ -502,8 +546,33 @@ impl Section {
                     self.family
                 ),
             },
-            exact: self.mode == Mode::Position,
+            exact: self.exact(),
         })
+    }
+
+    /// The reachable boundary and the posture boundaries traced on the exact test (exact
+    /// modes only; the approach scan would need 64 solves per bisection step).
+    fn curves(
+        &self,
+        masks: &[u8],
+        bounds: [f64; 4],
+        dims: [usize; 2],
+        test: &(dyn Fn([f64; 2]) -> u8 + Sync),
+    ) -> Vec<super::MapCurve> {
+        if !self.exact() {
+            return Vec::new();
+        }
+        let mut out = super::contour::contours(masks, bounds, dims, test, CurveRole::Boundary);
+        if self.class_names().len() > 1 {
+            out.extend(super::contour::contours(
+                masks,
+                bounds,
+                dims,
+                test,
+                CurveRole::PostureBoundary,
+            ));
+        }
+        out
     }
 
     /// Volume (m^3) by Pappus: the integral of r times the azimuth measure over the (r, z)
@@ -616,10 +685,10 @@ impl Section {
     }
 
     /// Smallest and largest distance (m) from the base origin over the reached points of a
-    /// 512 x 512 scan of the section (cell centres; within a cell of the true values).
+    /// 256 x 256 scan of the section (cell centres; within a cell of the true values).
     fn reach_range(&self, e: &Aabb) -> [f64; 2] {
         let bounds = [0.0, e.max[0], e.min[1], e.max[1]];
-        let n = self.scan_cells(512);
+        let n = self.scan_cells(256);
         let dims = [n, n];
         let masks = raster::fill(bounds, dims, &|p| self.side_mask(p[0], p[1]));
         masks
