@@ -97,10 +97,10 @@ fn chain(
         let mut line = vec![points[&s]];
         let mut at = s;
         while let Some(next) = links.get_mut(&at).and_then(Vec::pop) {
-            if let Some(back) = links.get_mut(&next) {
-                if let Some(k) = back.iter().position(|x| *x == at) {
-                    back.swap_remove(k);
-                }
+            if let Some(back) = links.get_mut(&next)
+                && let Some(k) = back.iter().position(|x| *x == at)
+            {
+                back.swap_remove(k);
             }
             line.push(points[&next]);
             at = next;

@@ -296,7 +296,7 @@ impl Section {
         // radius: a true point of the section whenever it is reached.
         let mut tried = [f64::NAN; 12];
         for (k, z) in radial.near(r).enumerate() {
-            if !z.is_finite() || tried.iter().any(|t| *t == z) {
+            if !z.is_finite() || tried.contains(&z) {
                 continue;
             }
             tried[k.min(11)] = z;
