@@ -77,7 +77,7 @@ pub struct WsFigure {
     pub stats: WorkspaceStats,
 }
 
-/// Name of the colour map of [`sequential`].
+/// Name of the sequential colour map of the continuous colourings.
 pub const COLOR_MAP: &str = "viridis";
 
 /// Makes a workspace figure. `progress(fraction)` is called as work proceeds.

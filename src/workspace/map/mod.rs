@@ -10,7 +10,7 @@
 //!   spherical, cylindrical; alone or with a spherical wrist, whose wrist centre is the tracked
 //!   point): the side view from the closed form of the arm with joint 1 free (the position
 //!   problem is planar in (r, z) after joint 1), the top view from the side view's radial extent
-//!   and joint 1's range, the volume by Pappus from the section ([`spatial`]);
+//!   and joint 1's range, the volume by Pappus from the section ([`Section`]);
 //! - any other arm: occupancy of joint-space samples.
 //!
 //! Cells along a region's edge are supersampled (4 x 4 exact tests) so that the painted edge is
