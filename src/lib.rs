@@ -91,6 +91,7 @@ pub mod figure;
 pub mod headless;
 pub mod kinematics;
 pub mod model_file;
+pub mod redundancy;
 #[cfg(feature = "app")]
 pub mod render;
 #[cfg(feature = "app")]

@@ -719,3 +719,86 @@ fn workspace_json_says_how_the_measure_was_computed() {
     let area = v["area"].as_f64().unwrap();
     assert!((area - 1.672_313_7).abs() < 1e-6, "{area}");
 }
+
+#[test]
+fn self_motion_json_has_the_documented_shape() {
+    let pose = "1,0,0,0.6, 0,1,0,0.1, 0,0,1,0, 0,0,0,1";
+    let v = json(&armlab(&[
+        "self-motion",
+        "planar3",
+        "--pose",
+        pose,
+        "--samples",
+        "8",
+        "--format",
+        "json",
+    ]));
+    assert_eq!(v["parameter"], "phi");
+    let samples = v["samples"].as_array().unwrap();
+    assert_eq!(samples.len(), 8);
+    assert!((samples[0]["value"].as_f64().unwrap() + std::f64::consts::PI).abs() < 1e-15);
+    for s in samples {
+        for b in s["branches"].as_array().unwrap() {
+            for key in [
+                "name",
+                "q",
+                "within_limits",
+                "position_error",
+                "orientation_error",
+            ] {
+                assert!(b.get(key).is_some(), "missing {key}");
+            }
+            assert!(b["position_error"].as_f64().unwrap() < 1e-12);
+        }
+    }
+    for (name, ivs) in v["feasible"].as_object().unwrap() {
+        for iv in ivs.as_array().unwrap() {
+            let (lo, hi) = (iv[0].as_f64().unwrap(), iv[1].as_f64().unwrap());
+            assert!(
+                -std::f64::consts::PI <= lo && lo <= hi && hi <= std::f64::consts::PI,
+                "{name}"
+            );
+        }
+    }
+    assert!(v["manifolds"].as_u64().unwrap() >= 1);
+    assert_eq!(v["singular"], false);
+    // One branch only.
+    let v = json(&armlab(&[
+        "self-motion",
+        "planar3",
+        "--pose",
+        pose,
+        "--samples",
+        "4",
+        "--branch",
+        "elbow up",
+        "--format",
+        "json",
+    ]));
+    assert_eq!(v["feasible"].as_object().unwrap().len(), 1);
+    bad(
+        &armlab(&["self-motion", "planar3", "--pose", pose, "--branch", "nope"]),
+        "no branch \"nope\"",
+    );
+    bad(
+        &armlab(&["self-motion", "planar2", "--pose", pose]),
+        "leaves no self-motion",
+    );
+    bad(
+        &armlab(&["self-motion", "planar3", "--pose", "1,2,3"]),
+        "expected 16 numbers",
+    );
+    bad(
+        &armlab(&[
+            "ik",
+            "puma560",
+            "--pose",
+            pose,
+            "--task",
+            "position+axis",
+            "--solver",
+            "closed-form",
+        ]),
+        "needs the numerical solver",
+    );
+}

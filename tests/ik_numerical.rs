@@ -132,7 +132,7 @@ fn position_only_task_for_a_redundant_arm() {
     // A custom mask: position plus the z axis rotation only (r = 4 < m = 6).
     let goal = r.fk(&[0.2, 0.1, -0.3, -1.5, 0.2, 1.8, 0.4]).unwrap();
     let opts = NumericalOptions {
-        mask: TaskMask([true, true, true, false, false, true]),
+        mask: TaskMask([true, true, true, false, false, true], MaskFrame::World),
         ..Default::default()
     };
     let rep = solve(&r, 0, &Target::Pose(goal), &seed_q, &opts).unwrap();

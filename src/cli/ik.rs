@@ -90,9 +90,45 @@ pub struct IkArgs {
     /// Numerical update rule.
     #[arg(long, value_enum, default_value_t)]
     pub method: MethodArg,
+    /// The task, in the tool frame (Sect. 2.10.2): `position+axis` leaves the rotation about the
+    /// approach axis free (laser cutting, r = 5). Tasks other than `pose` use the numerical
+    /// solver with that mask.
+    #[arg(long, value_enum, default_value_t)]
+    pub task: TaskArg,
     /// Output format.
     #[arg(long, value_enum, default_value_t)]
     pub format: Format,
+}
+
+/// `--task` values.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
+pub enum TaskArg {
+    /// Position and orientation.
+    #[default]
+    Pose,
+    /// Position only.
+    Position,
+    /// Position and approach axis, free about the tool axis.
+    #[value(name = "position+axis")]
+    PositionAxis,
+    /// Position in the plane.
+    Planar,
+    /// Position in the plane and phi.
+    #[value(name = "planar+phi")]
+    PlanarPhi,
+}
+
+impl From<TaskArg> for crate::kinematics::redundancy::Task {
+    fn from(t: TaskArg) -> Self {
+        use crate::kinematics::redundancy::Task;
+        match t {
+            TaskArg::Pose => Task::Pose,
+            TaskArg::Position => Task::Position,
+            TaskArg::PositionAxis => Task::PositionAxis,
+            TaskArg::Planar => Task::Planar,
+            TaskArg::PlanarPhi => Task::PlanarPhi,
+        }
+    }
 }
 
 fn target_from(values: &[f64], kind: TargetKind, source: &str) -> Result<Target, CliError> {
@@ -210,10 +246,18 @@ pub(super) fn run(args: &IkArgs, out: &mut dyn Write) -> Result<(), CliError> {
         Some(t) => Some(parse_row(t, "--seed-q", robot.dof(), "joint values")?),
         None => None,
     };
-    let choice = match args.solver {
-        SolverArg::Auto => SolverChoice::Auto,
-        SolverArg::ClosedForm => SolverChoice::ClosedForm,
-        SolverArg::Numerical => SolverChoice::Numerical,
+    let task: crate::kinematics::redundancy::Task = args.task.into();
+    let choice = match (args.solver, args.task) {
+        (SolverArg::ClosedForm, t) if t != TaskArg::Pose => {
+            return Err(CliError::Usage(
+                "the closed form solves whole targets; a --task other than pose needs the \
+                 numerical solver",
+            ));
+        }
+        (_, t) if t != TaskArg::Pose => SolverChoice::Numerical,
+        (SolverArg::Auto, _) => SolverChoice::Auto,
+        (SolverArg::ClosedForm, _) => SolverChoice::ClosedForm,
+        (SolverArg::Numerical, _) => SolverChoice::Numerical,
     };
     let method = match args.method {
         MethodArg::Lm => Method::LevenbergMarquardt,
@@ -223,6 +267,11 @@ pub(super) fn run(args: &IkArgs, out: &mut dyn Write) -> Result<(), CliError> {
     };
     let opts = NumericalOptions {
         method,
+        mask: if task == crate::kinematics::redundancy::Task::Pose {
+            crate::kinematics::ik::numerical::TaskMask::FULL
+        } else {
+            crate::kinematics::ik::numerical::TaskMask::of_task(task)
+        },
         ..Default::default()
     };
     let reference = seed.clone().unwrap_or_else(|| vec![0.0; robot.dof()]);

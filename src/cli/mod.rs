@@ -8,6 +8,7 @@ mod ik;
 mod info;
 pub mod input;
 mod reach;
+mod self_motion;
 mod view;
 
 use crate::kinematics::{KinematicsError, Robot};
@@ -121,6 +122,10 @@ pub enum Command {
     /// Which postures reach each point of a file, and its distance to the workspace boundary
     /// (positive inside, negative outside).
     Reach(reach::ReachArgs),
+    /// Exact self-motion of a redundant arm holding its hand still (Sect. 2.10.2): every branch
+    /// over the free parameter, the feasible intervals inside the joint limits, the number of
+    /// disjoint self-motion curves.
+    SelfMotion(self_motion::SelfMotionArgs),
     /// Kinematic calibration (Sect. 2.11): estimate the DH parameters from measured poses (or a
     /// simulated robot), with what can and cannot be identified.
     Calibrate(Box<calibrate::CalibrateArgs>),
@@ -212,6 +217,7 @@ pub fn run(cli: Cli, out: &mut dyn std::io::Write) -> Result<(), CliError> {
         Some(Command::Ik(args)) => ik::run(&args, out),
         Some(Command::Calibrate(args)) => calibrate::run(&args, out),
         Some(Command::Reach(args)) => reach::run(&args, out),
+        Some(Command::SelfMotion(args)) => self_motion::run(&args, out),
     }
 }
 

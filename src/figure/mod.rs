@@ -9,6 +9,7 @@ pub mod offscreen;
 mod palette;
 pub mod plot2d;
 pub mod raster;
+pub mod self_motion;
 pub mod ui_painter;
 pub mod workspace;
 

@@ -13,6 +13,7 @@ pub mod jacobian;
 pub mod models;
 pub mod orientation;
 pub mod pose;
+pub mod redundancy;
 pub mod robot;
 pub mod trig;
 

@@ -36,6 +36,11 @@ pub const BUILT_INS: &[BuiltIn] = &[
         build: planar3,
     },
     BuiltIn {
+        name: "planar4",
+        summary: "four-link planar arm, a = 0.35, 0.3, 0.2, 0.15 m: intrinsically redundant for (x, y, phi) (Sect. 2.10.2)",
+        build: planar4,
+    },
+    BuiltIn {
         name: "parallelogram",
         summary: "parallelogram arm, closed chain opened at joint 4 (Sect. 2.9.2, Fig. 2.21)",
         build: parallelogram,
@@ -162,6 +167,25 @@ pub fn planar3() -> Robot {
     )
     .with_config("ready", vec![FRAC_PI_6, FRAC_PI_3, -FRAC_PI_6])
     .with_config("figure", vec![FRAC_PI_6, FRAC_PI_4, FRAC_PI_4])
+}
+
+/// Four-link planar arm: the excerpt's example of intrinsic redundancy (Sect. 2.10.2, n = 4,
+/// m = 3). Chosen numbers: a = 0.35, 0.3, 0.2, 0.15 m (1 m in all), every joint within
+/// [-pi, pi].
+pub fn planar4() -> Robot {
+    serial(
+        "Four-link planar arm",
+        Convention::Standard,
+        &[
+            row(R, 0.35, 0.0, 0.0, 0.0, FULL),
+            row(R, 0.3, 0.0, 0.0, 0.0, FULL),
+            row(R, 0.2, 0.0, 0.0, 0.0, FULL),
+            row(R, 0.15, 0.0, 0.0, 0.0, FULL),
+        ],
+        Pose::identity(),
+        "Four-link planar arm (Sect. 2.10.2): intrinsically redundant for the planar task (x, y, phi),          n = 4, m = 3; a = 0.35, 0.3, 0.2, 0.15 m, joint limits [-pi, pi].",
+    )
+    .with_config("ready", vec![FRAC_PI_6, FRAC_PI_4, FRAC_PI_4, -FRAC_PI_6])
 }
 
 /// Parallelogram arm (Table 2.2, Fig. 2.21): the closed chain is opened at joint 4 and the

@@ -26,17 +26,36 @@ pub enum Method {
     Transpose,
 }
 
-/// Which components of the 6-vector error `[p; orientation]` (world frame) the task constrains.
+/// The frame in which a [`TaskMask`] names its components.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum MaskFrame {
+    /// World axes: x, y, z and rotations about them.
+    #[default]
+    World,
+    /// Tool axes at the current configuration: e.g. "free about the approach axis z_e", which a
+    /// world-frame mask cannot say (Sect. 2.10.2's laser cutting).
+    Tool,
+}
+
+/// Which components of the 6-vector error `[p; orientation]` the task constrains, and in which
+/// frame (field 1).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct TaskMask(pub [bool; 6]);
+pub struct TaskMask(pub [bool; 6], pub MaskFrame);
 
 impl TaskMask {
     /// All six components (a full pose).
-    pub const FULL: TaskMask = TaskMask([true; 6]);
+    pub const FULL: TaskMask = TaskMask([true; 6], MaskFrame::World);
     /// Position only (x, y, z).
-    pub const POSITION: TaskMask = TaskMask([true, true, true, false, false, false]);
+    pub const POSITION: TaskMask =
+        TaskMask([true, true, true, false, false, false], MaskFrame::World);
     /// Planar task (x, y and rotation about z).
-    pub const PLANAR: TaskMask = TaskMask([true, true, false, false, false, true]);
+    pub const PLANAR: TaskMask =
+        TaskMask([true, true, false, false, false, true], MaskFrame::World);
+
+    /// The mask of a task of Sect. 2.10.2, in the tool frame.
+    pub fn of_task(task: crate::kinematics::redundancy::Task) -> Self {
+        TaskMask(task.tool_components(), MaskFrame::Tool)
+    }
 
     /// Number of constrained components r.
     pub fn count(&self) -> usize {
@@ -147,7 +166,7 @@ impl SplitMix {
 
 /// The desired pose and the mask a target implies (the mask of `opts` is intersected with it).
 fn desired(target: &Target, mask: TaskMask) -> (Pose, TaskMask) {
-    let and = |m: TaskMask| TaskMask(std::array::from_fn(|i| m.0[i] && mask.0[i]));
+    let and = |m: TaskMask| TaskMask(std::array::from_fn(|i| m.0[i] && mask.0[i]), mask.1);
     match *target {
         Target::Pose(p) => (p, mask),
         Target::Position(p) => (Pose::translation(p.x, p.y, p.z), and(TaskMask::POSITION)),
@@ -158,7 +177,8 @@ fn desired(target: &Target, mask: TaskMask) -> (Pose, TaskMask) {
     }
 }
 
-/// Error `[p_d - p; r theta]` with `R_d R^T = Rot(r, theta)` (world frame), masked.
+/// Error `[p_d - p; r theta]` with `R_d R^T = Rot(r, theta)` (world frame; rotated into the
+/// tool frame `R^T` for a tool-frame mask), masked.
 fn error(d: &Pose, t: &Pose, mask: &TaskMask) -> Vector6<f64> {
     let ep = d.translation.vector - t.translation.vector;
     let re: Rotation3<f64> = d.rotation * t.rotation.inverse();
@@ -166,6 +186,13 @@ fn error(d: &Pose, t: &Pose, mask: &TaskMask) -> Vector6<f64> {
     // half the digits near zero).
     let aa = crate::kinematics::orientation::angle_axis_from_rotation(&re);
     let eo = aa.axis.into_inner() * aa.angle;
+    let (ep, eo) = match mask.1 {
+        MaskFrame::World => (ep, eo),
+        MaskFrame::Tool => {
+            let r = t.rotation.inverse();
+            (r * ep, r * eo)
+        }
+    };
     let mut e = Vector6::new(ep.x, ep.y, ep.z, eo.x, eo.y, eo.z);
     for (i, on) in mask.0.iter().enumerate() {
         if !on {
@@ -173,6 +200,25 @@ fn error(d: &Pose, t: &Pose, mask: &TaskMask) -> Vector6<f64> {
         }
     }
     e
+}
+
+/// The Jacobian's rows in the mask's frame (`diag(R^T, R^T) J` for a tool-frame mask, R the
+/// tool's rotation at the same configuration), the rows the mask leaves out zeroed.
+fn mask_rows(jac: &mut Matrix6xX<f64>, t: &Pose, mask: &TaskMask) {
+    if mask.1 == MaskFrame::Tool {
+        let r = t.rotation.inverse();
+        for c in 0..jac.ncols() {
+            let mut col = jac.column_mut(c);
+            let lin = r * Vector3::new(col[0], col[1], col[2]);
+            let ang = r * Vector3::new(col[3], col[4], col[5]);
+            col.copy_from_slice(&[lin.x, lin.y, lin.z, ang.x, ang.y, ang.z]);
+        }
+    }
+    for (i, l) in mask.0.iter().enumerate() {
+        if !l {
+            jac.row_mut(i).fill(0.0);
+        }
+    }
 }
 
 fn split_norms(e: &Vector6<f64>) -> (f64, f64) {
@@ -367,11 +413,7 @@ fn attempt_solve(
     let t = robot.jacobian_into(q, ee, &mut s.frames, &mut s.jac)?;
     let mut e = error(goal, &t, mask);
     let mut cost = e.norm_squared();
-    for (i, l) in mask.0.iter().enumerate() {
-        if !l {
-            s.jac.row_mut(i).fill(0.0);
-        }
-    }
+    mask_rows(&mut s.jac, &t, mask);
     for it in 1..=opts.max_iterations {
         let (pe, oe) = split_norms(&e);
         if pe <= opts.tolerance && oe <= opts.tolerance {
@@ -410,11 +452,7 @@ fn attempt_solve(
             let t = robot.jacobian_into(q, ee, &mut s.frames, &mut s.jac)?;
             e = error(goal, &t, mask);
             cost = e.norm_squared();
-            for (i, l) in mask.0.iter().enumerate() {
-                if !l {
-                    s.jac.row_mut(i).fill(0.0);
-                }
-            }
+            mask_rows(&mut s.jac, &t, mask);
             lambda = (lambda * 0.1).max(1e-12);
         } else {
             lambda *= 10.0;
@@ -491,11 +529,7 @@ fn masked_jacobian(
     s: &mut Scratch,
 ) -> Result<Vector6<f64>, IkError> {
     let t = robot.jacobian_into(q, ee, &mut s.frames, &mut s.jac)?;
-    for (i, l) in mask.0.iter().enumerate() {
-        if !l {
-            s.jac.row_mut(i).fill(0.0);
-        }
-    }
+    mask_rows(&mut s.jac, &t, mask);
     Ok(error(goal, &t, mask))
 }
 
@@ -727,12 +761,11 @@ fn objective(
 }
 
 fn manipulability(robot: &Robot, ee: usize, q: &[f64], mask: &TaskMask) -> f64 {
+    let Ok(t) = robot.fk_ee(q, ee) else {
+        return 0.0;
+    };
     robot.jacobian(q, ee).map_or(0.0, |mut j| {
-        for (i, l) in mask.0.iter().enumerate() {
-            if !l {
-                j.row_mut(i).fill(0.0);
-            }
-        }
+        mask_rows(&mut j, &t, mask);
         let mut m = j.clone() * j.transpose();
         for i in 0..6 {
             if !mask.0[i] {
@@ -767,12 +800,8 @@ fn improve_secondary(
         ..*opts
     };
     for _ in 0..opts.max_iterations {
-        robot.jacobian_into(&q, ee, &mut s.frames, &mut s.jac)?;
-        for (i, l) in mask.0.iter().enumerate() {
-            if !l {
-                s.jac.row_mut(i).fill(0.0);
-            }
-        }
+        let t = robot.jacobian_into(&q, ee, &mut s.frames, &mut s.jac)?;
+        mask_rows(&mut s.jac, &t, mask);
         s.dq.fill(0.0);
         add_null_space(
             robot,

@@ -303,6 +303,42 @@ impl PlanarChain {
         Some([a1, a1 + g2, phi])
     }
 
+    /// Branch `b`'s joint vector (rad) reaching `p` with the last link at absolute angle `phi`
+    /// (three links) whether or not it is within the limits, and whether it is; `None` when the
+    /// wrist point is out of the two-link reach.
+    pub fn solve_unlimited(&self, p: [f64; 2], phi: f64, b: usize) -> Option<([f64; 3], bool)> {
+        let mut w = [p[0] - self.c1[0], p[1] - self.c1[1]];
+        if self.n == 3 {
+            let e = cis(phi);
+            w[0] -= self.len[2] * e[0];
+            w[1] -= self.len[2] * e[1];
+        }
+        let (a1, g2) = self.two_link(w, b)?;
+        let q = self.q_of_alpha(&[a1, a1 + g2, phi]);
+        let within = (0..self.n).all(|k| self.range[k].contains(q[k]));
+        let wrapped = std::array::from_fn(|k| {
+            if k < self.n {
+                self.range[k]
+                    .representative(q[k])
+                    .unwrap_or_else(|| crate::kinematics::orientation::wrap_angle(q[k]))
+            } else {
+                0.0
+            }
+        });
+        Some((wrapped, within))
+    }
+
+    /// The last link's absolute angles (rad, [0, 2 pi)) at which the two elbow branches merge
+    /// for the point `p`: the wrist point on the two-link arm's outer or inner circle.
+    pub fn merge_angles(&self, p: [f64; 2]) -> Vec<f64> {
+        let mut bp = [0.0; 16];
+        let mut me = self.clone();
+        // Only the two reach circles: no limits.
+        me.range = [Range::of([f64::NEG_INFINITY, f64::INFINITY]); 3];
+        let n = me.breakpoints(p, &mut bp);
+        bp[..n].to_vec()
+    }
+
     /// Position manipulability sqrt(det(J_P J_P^T)) (m^2) at link angles `alpha`: by the
     /// Cauchy-Binet formula the root of the sum of the squared cross products of the columns,
     /// `(p - c_i) x (p - c_j)` for i < j.
@@ -359,7 +395,7 @@ impl PlanarChain {
     /// feasible orientations of some branch can change: a joint at a limit, or the wrist point
     /// on the inner or outer circle of the two-link arm (branches merge). Each is a root of
     /// `|A - B e^{i phi}| = R`. Returns the count written into `out` (at most 16).
-    fn breakpoints(&self, p: [f64; 2], out: &mut [f64; 16]) -> usize {
+    pub(crate) fn breakpoints(&self, p: [f64; 2], out: &mut [f64; 16]) -> usize {
         let (l1, l2, l3) = (self.len[0], self.len[1], self.len[2]);
         let a = [p[0] - self.c1[0], p[1] - self.c1[1]];
         let mut n = 0;

@@ -15,7 +15,7 @@
 //!   the closure gap of the loops times the perimeter (rounding only, for a closed boundary).
 
 mod arcs;
-mod chain;
+pub(crate) mod chain;
 
 pub use arcs::Arc;
 pub use chain::Membership;

@@ -6,7 +6,7 @@
 use super::{CellValues, MapRequest, MapValues, MapView, WorkspaceMap};
 use crate::kinematics::Robot;
 use crate::kinematics::ik::Target;
-use crate::kinematics::ik::numerical::{self, NumericalOptions, TaskMask};
+use crate::kinematics::ik::numerical::{self, MaskFrame, NumericalOptions, TaskMask};
 use crate::workspace::{Aabb, SampleOptions, Samples, WorkspaceError, sample};
 use nalgebra::{Point3, Vector3};
 use rayon::prelude::*;
@@ -141,7 +141,7 @@ fn refine(
         restarts: 0,
         tolerance: 1e-9,
         mask: match view {
-            MapView::Top => TaskMask([true, true, false, false, false, false]),
+            MapView::Top => TaskMask([true, true, false, false, false, false], MaskFrame::World),
             _ => TaskMask::POSITION,
         },
         ..NumericalOptions::default()

@@ -1,0 +1,95 @@
+//! The self-motion figure: every joint against the redundancy parameter for every branch, the
+//! joint limits as dashed lines, the feasible stretches of each branch as bars under the curves.
+
+use super::figures::Figures;
+use super::palette::CLASS_COLORS;
+use super::plot2d::{Area, Curve, Plot2d};
+use super::{FigureError, Theme};
+use crate::kinematics::Robot;
+use crate::redundancy::BranchSolution;
+use egui::Color32;
+
+/// Joint colours (colour-blind safe), by joint index.
+const JOINT_COLORS: [[u8; 3]; 4] = [[0, 114, 178], [213, 94, 0], [0, 158, 115], [204, 121, 167]];
+
+/// The figure (1200 x 800, light theme) for `samples` (parameter value, solutions), the feasible
+/// intervals of each branch (rad) and the branch names.
+pub fn figure(
+    robot: &Robot,
+    samples: &[(f64, Vec<BranchSolution>)],
+    feasible: &[Vec<[f64; 2]>; 2],
+    names: &[String; 2],
+) -> Result<image::RgbaImage, FigureError> {
+    let mut plot = Plot2d {
+        title: format!("Self-motion of the {}", robot.name.to_lowercase()),
+        subtitle: "hand fixed; solid: first branch, dashed: second; bars: feasible phi inside the \
+                   joint limits"
+            .into(),
+        x_label: "phi [deg] (end-effector orientation, the free parameter)".into(),
+        y_label: "joint angle [deg]".into(),
+        bounds: [-180.0, 180.0, -200.0, 200.0],
+        ..Plot2d::default()
+    };
+    let dof = robot.dof().min(JOINT_COLORS.len());
+    for (b, name) in names.iter().enumerate() {
+        for j in 0..dof {
+            let c = JOINT_COLORS[j];
+            let mut run: Vec<[f64; 2]> = Vec::new();
+            let mut labelled = false;
+            let mut flush = |run: &mut Vec<[f64; 2]>| {
+                if run.len() > 1 {
+                    plot.curves.push(Curve {
+                        name: (!labelled).then(|| format!("q{} ({name})", j + 1)),
+                        points: std::mem::take(run),
+                        color: Color32::from_rgb(c[0], c[1], c[2]),
+                        width: 1.8,
+                        dashed: b == 1,
+                    });
+                    labelled = true;
+                }
+                run.clear();
+            };
+            for (phi, sols) in samples {
+                match sols.iter().find(|s| &s.name == name) {
+                    Some(s) => {
+                        let p = [phi.to_degrees(), s.q[j].to_degrees()];
+                        if run.last().is_some_and(|l| (l[1] - p[1]).abs() > 180.0) {
+                            flush(&mut run);
+                        }
+                        run.push(p);
+                    }
+                    None => flush(&mut run),
+                }
+            }
+            flush(&mut run);
+        }
+        let c = CLASS_COLORS[b % CLASS_COLORS.len()];
+        for iv in &feasible[b] {
+            let y = -190.0 + 6.0 * b as f64;
+            plot.areas.push(Area {
+                name: format!("{name} feasible"),
+                points: vec![
+                    [iv[0].to_degrees(), y],
+                    [iv[1].to_degrees(), y],
+                    [iv[1].to_degrees(), y + 4.0],
+                    [iv[0].to_degrees(), y + 4.0],
+                ],
+                fill: Color32::from_rgb(c[0], c[1], c[2]),
+            });
+        }
+    }
+    for (j, l) in robot.limits().iter().enumerate().take(dof) {
+        let c = JOINT_COLORS[j];
+        for v in l.iter().filter(|v| v.is_finite() && v.abs() < 3.5) {
+            plot.curves.push(Curve {
+                name: None,
+                points: vec![[-180.0, v.to_degrees()], [180.0, v.to_degrees()]],
+                color: Color32::from_rgba_unmultiplied(c[0], c[1], c[2], 140),
+                width: 1.0,
+                dashed: true,
+            });
+        }
+    }
+    let mut figs = Figures::new()?;
+    figs.plot([1200, 800], Theme::Light, &plot, None)
+}

@@ -1,0 +1,277 @@
+//! Kinematic redundancy (Sect. 2.10.2), pure computation: exact self-motion of redundant arms.
+//!
+//! [`planar_self_motion`]: the three-link planar arm with a position-only task (n = m = 3, r = 2).
+//! The free parameter is the orientation phi of the end-effector in the plane (the angle of (2.83),
+//! q1 + q2 + q3 for the textbook arm): for a fixed hand position and a value of phi the closed form
+//! of Sect. 2.12.1 gives two solutions (elbow down, elbow up), and the values of phi where a joint
+//! meets a limit or the two branches merge are closed-form roots, so the feasible intervals of
+//! each branch are exact and the self-motion curves inside the limits are counted exactly.
+
+use crate::kinematics::{KinematicsError, Robot};
+use crate::workspace::exact::chain::PlanarChain;
+use std::f64::consts::{PI, TAU};
+use thiserror::Error;
+
+/// Why a self-motion cannot be computed.
+#[derive(Debug, Error)]
+#[non_exhaustive]
+pub enum RedundancyError {
+    /// The robot has no exact self-motion for this task (not redundant, or no structure).
+    #[error("{0}")]
+    NotSupported(String),
+    /// The point is not reachable at all (no branch, any phi).
+    #[error("the point ({x}, {y}) is out of reach of the arm (distance {distance:.6} m)")]
+    Unreachable {
+        /// x (m).
+        x: f64,
+        /// y (m).
+        y: f64,
+        /// Distance to the reach of the arm's outer circle or inner hole (m).
+        distance: f64,
+    },
+    /// Bad robot input.
+    #[error(transparent)]
+    Kinematics(#[from] KinematicsError),
+}
+
+/// One solution of the self-motion at one value of the parameter.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BranchSolution {
+    /// Branch name, e.g. "elbow down".
+    pub name: String,
+    /// Joint vector (rad).
+    pub q: Vec<f64>,
+    /// Every joint within its limits.
+    pub within_limits: bool,
+    /// |p(q) - p_target| by forward kinematics (m).
+    pub position_error: f64,
+    /// |phi(q) - phi| by forward kinematics (rad).
+    pub orientation_error: f64,
+}
+
+/// The self-motion of the three-link planar arm holding its hand at a point.
+#[derive(Debug, Clone)]
+pub struct PlanarSelfMotion {
+    chain: PlanarChain,
+    frame_z: f64,
+    /// Tool x-axis angle at q = 0 in the plane (rad): phi = phi0 + sum s_k q_k.
+    phi0: f64,
+    names: Vec<String>,
+    target: [f64; 2],
+    world_from_base: crate::kinematics::Pose,
+}
+
+/// Wraps an angle into [-pi, pi).
+fn wrap(a: f64) -> f64 {
+    (a + PI).rem_euclid(TAU) - PI
+}
+
+impl PlanarSelfMotion {
+    /// The self-motion of a three-link planar arm (closed-form family) holding its end-effector
+    /// at `target` (plane coordinates, m).
+    pub fn new(robot: &Robot, target: [f64; 2]) -> Result<Self, RedundancyError> {
+        let (chain, frame) = PlanarChain::from_robot(robot)
+            .map_err(|e| RedundancyError::NotSupported(e.to_string()))?;
+        if chain.n != 3 {
+            return Err(RedundancyError::NotSupported(format!(
+                "{} has {} joints: a planar position task (r = 2) leaves no self-motion",
+                robot.name, chain.n
+            )));
+        }
+        let t0 = robot.fk(&[0.0; 3])?;
+        let x = frame.world_from_base.rotation.inverse() * t0.rotation * nalgebra::Vector3::x();
+        let me = Self {
+            names: crate::workspace::PostureClassifier::new(robot)
+                .class_names()
+                .to_vec(),
+            phi0: x.y.atan2(x.x),
+            frame_z: frame.z,
+            world_from_base: frame.world_from_base,
+            target,
+            chain,
+        };
+        let d = me.reach_gap();
+        if d > 1e-12 * me.chain.scale {
+            return Err(RedundancyError::Unreachable {
+                x: target[0],
+                y: target[1],
+                distance: d,
+            });
+        }
+        Ok(me)
+    }
+
+    /// Distance (m) of the target outside the reach of the links, limits ignored (0 inside).
+    fn reach_gap(&self) -> f64 {
+        let l = self.chain.len;
+        let d = (self.target[0] - self.chain.c1[0]).hypot(self.target[1] - self.chain.c1[1]);
+        let outer = l[0] + l[1] + l[2];
+        let inner = (2.0 * l.iter().copied().fold(0.0, f64::max) - outer).max(0.0);
+        (d - outer).max(inner - d).max(0.0)
+    }
+
+    /// Name of the parameter: "phi".
+    pub fn parameter(&self) -> &'static str {
+        "phi"
+    }
+
+    /// Branch names (elbow down, elbow up) in branch order.
+    pub fn branch_names(&self) -> [String; 2] {
+        [0, 1].map(|b| {
+            self.names
+                .get(self.chain.branch_class[b] as usize)
+                .cloned()
+                .unwrap_or_else(|| format!("branch {b}"))
+        })
+    }
+
+    /// The last link's absolute angle for end-effector orientation `phi` (rad).
+    fn alpha3(&self, phi: f64) -> f64 {
+        phi - self.phi0 + self.chain.beta[2]
+    }
+
+    /// Both branches at orientation `phi` (rad), each FK-checked; a branch is missing where the
+    /// wrist point is out of the two-link reach.
+    pub fn solutions(&self, robot: &Robot, phi: f64) -> Vec<BranchSolution> {
+        let names = self.branch_names();
+        let a3 = self.alpha3(phi);
+        (0..2)
+            .filter_map(|b| {
+                let (q, within) = self.chain.solve_unlimited(self.target, a3, b)?;
+                let (pe, oe) = self.errors(robot, &q, phi);
+                Some(BranchSolution {
+                    name: names[b].clone(),
+                    q: q.to_vec(),
+                    within_limits: within,
+                    position_error: pe,
+                    orientation_error: oe,
+                })
+            })
+            .collect()
+    }
+
+    fn errors(&self, robot: &Robot, q: &[f64; 3], phi: f64) -> (f64, f64) {
+        let Ok(t) = robot.fk(q) else {
+            return (f64::INFINITY, f64::INFINITY);
+        };
+        let want = self.world_from_base
+            * nalgebra::Point3::new(self.target[0], self.target[1], self.frame_z);
+        let pe = (t.translation.vector - want.coords).norm();
+        let x = self.world_from_base.rotation.inverse() * t.rotation * nalgebra::Vector3::x();
+        (pe, wrap(x.y.atan2(x.x) - phi).abs())
+    }
+
+    /// The feasible intervals of phi (rad) of each branch inside the joint limits, as pieces of
+    /// [-pi, pi] (an interval across +-pi given as two), and the values of phi where the two
+    /// branches merge (the wrist point on the two-link arm's outer or inner circle).
+    pub fn feasible(&self) -> ([Vec<[f64; 2]>; 2], Vec<f64>) {
+        let mut bp = [0.0; 16];
+        let n = self.chain.breakpoints(self.target, &mut bp);
+        let mut cuts: Vec<f64> = bp[..n].to_vec();
+        cuts.push(0.0);
+        cuts.sort_by(f64::total_cmp);
+        cuts.dedup_by(|a, b| (*a - *b).abs() < 1e-15);
+        let mut pieces: [Vec<[f64; 2]>; 2] = [Vec::new(), Vec::new()];
+        for i in 0..cuts.len() {
+            let (lo, hi) = (cuts[i], if i + 1 < cuts.len() { cuts[i + 1] } else { TAU });
+            if hi - lo <= 0.0 {
+                continue;
+            }
+            for (b, list) in pieces.iter_mut().enumerate() {
+                if self.chain.feasible(self.target, 0.5 * (lo + hi), b) {
+                    match list.last_mut() {
+                        Some(l) if (l[1] - lo).abs() < 1e-15 => l[1] = hi,
+                        _ => list.push([lo, hi]),
+                    }
+                }
+            }
+        }
+        let merges: Vec<f64> = self.chain.merge_angles(self.target);
+        let to_phi = |a: f64| a + self.phi0 - self.chain.beta[2];
+        let pieces = pieces.map(|list| split_at_pi(&circular_merge(list), to_phi));
+        (
+            pieces,
+            merges.into_iter().map(|a| wrap(to_phi(a))).collect(),
+        )
+    }
+
+    /// The number of disjoint self-motion curves inside the limits: the feasible intervals of
+    /// both branches, joined where the branches merge (one or two without limits, Lenarcic).
+    pub fn manifolds(&self) -> usize {
+        let (pieces, merges) = self.feasible();
+        // Work on the circle: unsplit intervals per branch.
+        let circ: Vec<(usize, [f64; 2])> = (0..2)
+            .flat_map(|b| join_across_pi(&pieces[b]).into_iter().map(move |i| (b, i)))
+            .collect();
+        let mut parent: Vec<usize> = (0..circ.len()).collect();
+        fn find(p: &mut [usize], i: usize) -> usize {
+            let mut i = i;
+            while p[i] != i {
+                p[i] = p[p[i]];
+                i = p[i];
+            }
+            i
+        }
+        let on = |iv: [f64; 2], a: f64| {
+            let t = (a - iv[0]).rem_euclid(TAU);
+            t <= (iv[1] - iv[0]) + 1e-9 || t >= TAU - 1e-9
+        };
+        for &m in &merges {
+            let at: Vec<usize> = (0..circ.len()).filter(|&k| on(circ[k].1, m)).collect();
+            for w in at.windows(2) {
+                let (a, b) = (find(&mut parent, w[0]), find(&mut parent, w[1]));
+                parent[a] = b;
+            }
+        }
+        (0..circ.len())
+            .filter(|&k| find(&mut parent, k) == k)
+            .count()
+    }
+}
+
+/// Merges the last and first intervals of a list on [0, 2 pi) when they meet across 0.
+fn circular_merge(mut list: Vec<[f64; 2]>) -> Vec<[f64; 2]> {
+    if list.len() >= 2 {
+        let (first, last) = (list[0], list[list.len() - 1]);
+        if first[0] <= 1e-15 && (last[1] - TAU).abs() <= 1e-15 {
+            list.pop();
+            list[0] = [last[0] - TAU, first[1]];
+        }
+    }
+    list
+}
+
+/// Maps intervals of the last link's angle to intervals of phi in [-pi, pi], splitting at +-pi.
+fn split_at_pi(list: &[[f64; 2]], to_phi: impl Fn(f64) -> f64) -> Vec<[f64; 2]> {
+    let mut out = Vec::new();
+    for iv in list {
+        let width = iv[1] - iv[0];
+        if width >= TAU - 1e-12 {
+            out.push([-PI, PI]);
+            continue;
+        }
+        let lo = wrap(to_phi(iv[0]));
+        let hi = lo + width;
+        if hi <= PI {
+            out.push([lo, hi]);
+        } else {
+            out.push([lo, PI]);
+            out.push([-PI, hi - TAU]);
+        }
+    }
+    out.sort_by(|a, b| a[0].total_cmp(&b[0]));
+    out
+}
+
+/// Joins intervals that touch at +-pi back into one (for counting on the circle).
+fn join_across_pi(list: &[[f64; 2]]) -> Vec<[f64; 2]> {
+    let mut v = list.to_vec();
+    if v.len() >= 2 {
+        let (first, last) = (v[0], v[v.len() - 1]);
+        if (first[0] + PI).abs() < 1e-12 && (last[1] - PI).abs() < 1e-12 {
+            v.pop();
+            v[0] = [last[0] - TAU, first[1]];
+        }
+    }
+    v
+}
