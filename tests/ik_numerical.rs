@@ -1,7 +1,9 @@
 //! Numerical IK: success rate on random reachable poses, every answer verified by FK, the
 //! teaching variants, task masks, the null-space objective, and reports instead of errors.
 
-use armlab::kinematics::ik::numerical::{Method, NumericalOptions, Secondary, TaskMask, solve};
+use armlab::kinematics::ik::numerical::{
+    MaskFrame, Method, NumericalOptions, Secondary, TaskMask, solve,
+};
 use armlab::kinematics::ik::{IkError, Target};
 use armlab::kinematics::models::built_in;
 use armlab::kinematics::{Pose, Robot};

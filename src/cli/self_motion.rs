@@ -69,13 +69,13 @@ pub(super) fn run(args: &SelfMotionArgs, out: &mut dyn std::io::Write) -> Result
     let xy = frame.to_plane([p.x, p.y, p.z]);
     let motion = PlanarSelfMotion::new(&robot, xy).map_err(|e| bad(e.to_string()))?;
     let names = motion.branch_names();
-    if let Some(b) = &args.branch {
-        if !names.iter().any(|n| n == b) {
-            return Err(bad(format!(
-                "no branch {b:?} (the branches are: {})",
-                names.join(", ")
-            )));
-        }
+    if let Some(b) = &args.branch
+        && !names.iter().any(|n| n == b)
+    {
+        return Err(bad(format!(
+            "no branch {b:?} (the branches are: {})",
+            names.join(", ")
+        )));
     }
     let keep = |name: &str| args.branch.as_deref().is_none_or(|b| b == name);
     let n = args.samples;

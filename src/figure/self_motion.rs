@@ -32,8 +32,7 @@ pub fn figure(
     };
     let dof = robot.dof().min(JOINT_COLORS.len());
     for (b, name) in names.iter().enumerate() {
-        for j in 0..dof {
-            let c = JOINT_COLORS[j];
+        for (j, c) in JOINT_COLORS.iter().copied().enumerate().take(dof) {
             let mut run: Vec<[f64; 2]> = Vec::new();
             let mut labelled = false;
             let mut flush = |run: &mut Vec<[f64; 2]>| {

@@ -35,6 +35,19 @@ pub fn approach_bin_centre(k: usize) -> [f64; 3] {
     [r * lon.cos(), r * lon.sin(), z]
 }
 
+/// The rotation whose approach (z axis) is the centre of approach bin `k`, its x axis
+/// perpendicular to it (world x projected, or y when the approach is near x).
+pub(crate) fn approach_rotation(k: usize) -> Rotation3<f64> {
+    let a = Vector3::from(approach_bin_centre(k));
+    let helper = if a.x.abs() < 0.9 {
+        Vector3::x()
+    } else {
+        Vector3::y()
+    };
+    let x = (helper - a * a.dot(&helper)).normalize();
+    Rotation3::from_matrix_unchecked(Matrix3::from_columns(&[x, a.cross(&x), a]))
+}
+
 /// Bin of an in-plane angle phi (rad): `floor((phi + pi) / (2 pi) * 64)` modulo 64.
 pub fn phi_bin(phi: f64) -> usize {
     let b = ((phi + PI) / TAU * ORIENTATION_BINS as f64).floor() as isize;
@@ -185,15 +198,7 @@ impl<'a> ReachTester<'a> {
             }
             Mode::ApproachScan => {
                 for k in 0..ORIENTATION_BINS {
-                    let a = Vector3::from(approach_bin_centre(k));
-                    let helper = if a.x.abs() < 0.9 {
-                        Vector3::x()
-                    } else {
-                        Vector3::y()
-                    };
-                    let x = (helper - a * a.dot(&helper)).normalize();
-                    let y = a.cross(&x);
-                    let r = Rotation3::from_matrix_unchecked(Matrix3::from_columns(&[x, y, a]));
+                    let r = approach_rotation(k);
                     out.reached +=
                         self.scan_one(&Pose::from_parts(t, r), &mut raw, &mut q, &mut out.mask);
                 }

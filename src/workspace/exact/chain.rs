@@ -271,6 +271,19 @@ impl PlanarChain {
         Some((a1, s.atan2(c)))
     }
 
+    /// The wrist point `p - a_3 (cos phi, sin phi)` (three links) solved as a two-link arm:
+    /// (alpha1, gamma2) of branch `b`, limits not checked.
+    #[inline]
+    fn arm_angles(&self, p: [f64; 2], phi: f64, b: usize) -> Option<(f64, f64)> {
+        let mut w = [p[0] - self.c1[0], p[1] - self.c1[1]];
+        if self.n == 3 {
+            let e = cis(phi);
+            w[0] -= self.len[2] * e[0];
+            w[1] -= self.len[2] * e[1];
+        }
+        self.two_link(w, b)
+    }
+
     /// Whether branch `b` reaches `p` within the limits with the last link at absolute angle
     /// `phi` (three links) or at all (two links, `phi` unused).
     #[inline]
@@ -282,13 +295,7 @@ impl PlanarChain {
     /// for three links) when that configuration is within the limits.
     #[inline]
     pub fn solve(&self, p: [f64; 2], phi: f64, b: usize) -> Option<[f64; 3]> {
-        let mut w = [p[0] - self.c1[0], p[1] - self.c1[1]];
-        if self.n == 3 {
-            let e = cis(phi);
-            w[0] -= self.len[2] * e[0];
-            w[1] -= self.len[2] * e[1];
-        }
-        let (a1, g2) = self.two_link(w, b)?;
+        let (a1, g2) = self.arm_angles(p, phi, b)?;
         let q1 = self.sign[0] * (a1 - self.beta[0]);
         let q2 = self.sign[1] * (g2 - self.beta[1] + self.beta[0]);
         if !(self.range[0].contains(q1) && self.range[1].contains(q2)) {
@@ -307,13 +314,7 @@ impl PlanarChain {
     /// (three links) whether or not it is within the limits, and whether it is; `None` when the
     /// wrist point is out of the two-link reach.
     pub fn solve_unlimited(&self, p: [f64; 2], phi: f64, b: usize) -> Option<([f64; 3], bool)> {
-        let mut w = [p[0] - self.c1[0], p[1] - self.c1[1]];
-        if self.n == 3 {
-            let e = cis(phi);
-            w[0] -= self.len[2] * e[0];
-            w[1] -= self.len[2] * e[1];
-        }
-        let (a1, g2) = self.two_link(w, b)?;
+        let (a1, g2) = self.arm_angles(p, phi, b)?;
         let q = self.q_of_alpha(&[a1, a1 + g2, phi]);
         let within = (0..self.n).all(|k| self.range[k].contains(q[k]));
         let wrapped = std::array::from_fn(|k| {

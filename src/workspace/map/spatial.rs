@@ -23,9 +23,8 @@ use crate::kinematics::ik::closed_form::{
 use crate::kinematics::{JointKind, Pose, Robot};
 use crate::workspace::{
     Aabb, ClassMeasure, GridMethod, PostureClassifier, WorkspaceError, WorkspaceStats,
-    approach_bin_centre,
 };
-use nalgebra::{Matrix3, Point3, Rotation3, Translation3, Vector3};
+use nalgebra::{Point3, Rotation3, Translation3};
 use std::f64::consts::{PI, TAU};
 
 /// Approach directions of the flange scan.
@@ -150,23 +149,14 @@ impl Section {
         let mut raw = RawSolutions::default();
         let mut n = 0;
         match self.mode {
-            Mode::Position => {
-                if self.cf.solve_position_raw(&w.coords, &mut raw).is_err() {
-                    return 0;
-                }
-                for k in 0..raw.len {
-                    if n < 8 && self.within(&raw.q[k], 1, 3) {
-                        out[n] = Hit {
-                            mask: self.classifier.posture_mask(&raw.postures[k]),
-                            q1: raw.q[k][0],
-                        };
-                        n += 1;
-                    }
-                }
-            }
-            Mode::Scara => {
-                let pose = Pose::from_parts(Translation3::from(w.coords), self.tool_rot0);
-                if self.cf.solve_raw(&pose, &mut raw).is_err() {
+            Mode::Position | Mode::Scara => {
+                let solved = if self.mode == Mode::Scara {
+                    let pose = Pose::from_parts(Translation3::from(w.coords), self.tool_rot0);
+                    self.cf.solve_raw(&pose, &mut raw)
+                } else {
+                    self.cf.solve_position_raw(&w.coords, &mut raw)
+                };
+                if solved.is_err() {
                     return 0;
                 }
                 for k in 0..raw.len {
@@ -402,14 +392,7 @@ fn joint1_sense(robot: &Robot) -> Option<f64> {
 
 /// The rotation with approach (z axis) along approach bin `k`, x axis perpendicular to it.
 fn approach(k: usize) -> Rotation3<f64> {
-    let a = Vector3::from(approach_bin_centre(k));
-    let helper = if a.x.abs() < 0.9 {
-        Vector3::x()
-    } else {
-        Vector3::y()
-    };
-    let x = (helper - a * a.dot(&helper)).normalize();
-    Rotation3::from_matrix_unchecked(Matrix3::from_columns(&[x, a.cross(&x), a]))
+    crate::workspace::reach::approach_rotation(k)
 }
 
 /// Per radius bin and class, a height z at which the class reaches (r, z) with joint 1 free
