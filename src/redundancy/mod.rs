@@ -1,6 +1,6 @@
 //! Kinematic redundancy (Sect. 2.10.2), pure computation: exact self-motion of redundant arms.
 //!
-//! [`planar_self_motion`]: the three-link planar arm with a position-only task (n = m = 3, r = 2).
+//! [`PlanarSelfMotion`]: the three-link planar arm with a position-only task (n = m = 3, r = 2).
 //! The free parameter is the orientation phi of the end-effector in the plane (the angle of (2.83),
 //! q1 + q2 + q3 for the textbook arm): for a fixed hand position and a value of phi the closed form
 //! of Sect. 2.12.1 gives two solutions (elbow down, elbow up), and the values of phi where a joint
