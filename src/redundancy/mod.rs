@@ -7,6 +7,8 @@
 //! meets a limit or the two branches merge are closed-form roots, so the feasible intervals of
 //! each branch are exact and the self-motion curves inside the limits are counted exactly.
 
+pub mod srs;
+
 use crate::kinematics::{KinematicsError, Robot};
 use crate::workspace::exact::chain::PlanarChain;
 use std::f64::consts::{PI, TAU};

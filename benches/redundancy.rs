@@ -1,0 +1,42 @@
+//! Redundancy (Sect. 2.10.2): all 8 SRS branches at one arm angle (goal <= 1 us), a 360-sample
+//! manifold of all branches (goal <= 0.5 ms), and the planar arm's exact feasible phi intervals.
+//! Run: `cargo bench --bench redundancy`.
+
+use armlab::kinematics::models::built_in;
+use armlab::redundancy::PlanarSelfMotion;
+use armlab::redundancy::srs::SrsArm;
+use criterion::{Criterion, criterion_group, criterion_main};
+use std::hint::black_box;
+
+fn srs(c: &mut Criterion) {
+    let robot = built_in("dlr").unwrap();
+    let arm = SrsArm::detect(&robot).unwrap();
+    let target = robot.fk(&[0.3, 0.6, -0.4, 1.1, 0.5, -0.7, 0.2]).unwrap();
+    let mut out = [[0.0; 7]; 8];
+    let mut g = c.benchmark_group("redundancy/srs");
+    g.bench_function("dlr all 8 branches at one psi (solve_raw)", |b| {
+        b.iter(|| arm.solve_raw(black_box(&target), black_box(0.4), &mut out))
+    });
+    g.bench_function("dlr 360-sample manifold, all branches", |b| {
+        b.iter(|| {
+            let mut n = 0u32;
+            for k in 0..360 {
+                let psi = -std::f64::consts::PI + k as f64 * std::f64::consts::TAU / 360.0;
+                n += arm.solve_raw(&target, psi, &mut out).count_ones();
+            }
+            n
+        })
+    });
+    g.finish();
+}
+
+fn planar(c: &mut Criterion) {
+    let robot = built_in("planar3").unwrap();
+    let m = PlanarSelfMotion::new(&robot, [0.6, 0.1]).unwrap();
+    c.bench_function("redundancy/planar3 feasible phi intervals", |b| {
+        b.iter(|| black_box(&m).feasible())
+    });
+}
+
+criterion_group!(benches, srs, planar);
+criterion_main!(benches);

@@ -1,0 +1,90 @@
+//! The SRS arm angle (Shimizu et al. 2008) on the DLR arm and the KUKA LWR4: every branch at any
+//! psi reproduces the target pose by forward kinematics, the arm angle measured back from FK is
+//! psi, and the configuration the pose came from is one of the branches at its own arm angle.
+
+use armlab::kinematics::models::built_in;
+use armlab::kinematics::{Pose, Robot};
+use armlab::redundancy::srs::SrsArm;
+use std::f64::consts::{PI, TAU};
+
+fn lcg(s: &mut u64) -> f64 {
+    *s = s
+        .wrapping_mul(6364136223846793005)
+        .wrapping_add(1442695040888963407);
+    (*s >> 11) as f64 / (1u64 << 53) as f64
+}
+
+fn models() -> Vec<Robot> {
+    vec![
+        built_in("dlr").unwrap(),
+        armlab::model_file::load_model(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/assets/robots/lwr4.toml"
+        ))
+        .unwrap(),
+    ]
+}
+
+fn pose_gap(a: &Pose, b: &Pose) -> (f64, f64) {
+    let p = (a.translation.vector - b.translation.vector).norm();
+    // Frobenius norm of the difference of the rotation matrices (about the angle for small ones).
+    let r = (a.rotation.matrix() - b.rotation.matrix()).norm();
+    (p, r)
+}
+
+fn angle_gap(a: f64, b: f64) -> f64 {
+    let d = (a - b).rem_euclid(TAU);
+    d.min(TAU - d)
+}
+
+#[test]
+fn every_branch_reaches_the_target_at_every_arm_angle() {
+    for robot in models() {
+        let arm = SrsArm::detect(&robot).expect("an SRS arm");
+        let lim = robot.limits();
+        let mut s = 5u64;
+        let (mut poses, mut branches) = (0, 0);
+        while poses < 10_000 {
+            let q: Vec<f64> = lim
+                .iter()
+                .map(|l| l[0] + (l[1] - l[0]) * lcg(&mut s))
+                .collect();
+            let target = robot.fk(&q).unwrap();
+            if arm.singular(&target) {
+                continue;
+            }
+            poses += 1;
+            let psi = -PI + TAU * lcg(&mut s);
+            let sols = arm.solve(&target, psi);
+            assert!(sols.len() >= 2, "{}: {} branches", robot.name, sols.len());
+            for b in &sols {
+                let (p, r) = pose_gap(&robot.fk(&b.q).unwrap(), &target);
+                assert!(
+                    p < 1e-12 && r < 1e-11,
+                    "{} {}: {p} m, {r} rad",
+                    robot.name,
+                    b.name
+                );
+                let back = arm.arm_angle(&b.q).unwrap();
+                assert!(
+                    angle_gap(back, psi) < 1e-9,
+                    "{}: psi {psi} measured {back}",
+                    b.name
+                );
+                branches += 1;
+            }
+            // The configuration the pose came from is a branch at its own arm angle.
+            let own = arm.arm_angle(&q).unwrap();
+            let found = arm
+                .solve(&target, own)
+                .iter()
+                .any(|b| b.q.iter().zip(&q).all(|(a, c)| angle_gap(*a, *c) < 1e-8));
+            assert!(
+                found,
+                "{}: q {q:?} not among the branches at psi {own}",
+                robot.name
+            );
+        }
+        assert!(branches >= 8 * 10_000 - 1000, "{}: {branches}", robot.name);
+    }
+}
