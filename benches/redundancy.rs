@@ -1,5 +1,6 @@
-//! Redundancy (Sect. 2.10.2): all 8 SRS branches at one arm angle (goal <= 1 us), a 360-sample
-//! manifold of all branches (goal <= 0.5 ms), and the planar arm's exact feasible phi intervals.
+//! Redundancy (Sect. 2.10.2): all 8 SRS branches at one arm angle (goal <= 1 us), the feasible
+//! arm angles of all branches (goal <= 20 us), a 360-sample manifold of all branches (goal
+//! <= 0.5 ms), and the planar arm's exact feasible phi intervals.
 //! Run: `cargo bench --bench redundancy`.
 
 use armlab::kinematics::models::built_in;
@@ -16,6 +17,9 @@ fn srs(c: &mut Criterion) {
     let mut g = c.benchmark_group("redundancy/srs");
     g.bench_function("dlr all 8 branches at one psi (solve_raw)", |b| {
         b.iter(|| arm.solve_raw(black_box(&target), black_box(0.4), &mut out))
+    });
+    g.bench_function("dlr feasible arm angles of all branches", |b| {
+        b.iter(|| arm.feasible_intervals(black_box(&target)))
     });
     g.bench_function("dlr 360-sample manifold, all branches", |b| {
         b.iter(|| {

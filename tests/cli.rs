@@ -785,6 +785,10 @@ fn self_motion_json_has_the_documented_shape() {
         "leaves no self-motion",
     );
     bad(
+        &armlab(&["self-motion", "puma560", "--pose", pose]),
+        "exact self-motion is available for SRS 7R arms",
+    );
+    bad(
         &armlab(&["self-motion", "planar3", "--pose", "1,2,3"]),
         "expected 16 numbers",
     );
@@ -801,4 +805,46 @@ fn self_motion_json_has_the_documented_shape() {
         ]),
         "needs the numerical solver",
     );
+}
+
+#[test]
+fn self_motion_of_an_srs_arm_by_the_arm_angle() {
+    let fk = json(&armlab(&[
+        "fk", "dlr", "--config", "ready", "--format", "json",
+    ]));
+    let pose: Vec<String> = fk[0]["T"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .flat_map(|r| r.as_array().unwrap().iter().map(|x| x.to_string()))
+        .collect();
+    let v = json(&armlab(&[
+        "self-motion",
+        "dlr",
+        "--pose",
+        &pose.join(","),
+        "--samples",
+        "36",
+        "--format",
+        "json",
+    ]));
+    assert_eq!(v["parameter"], "arm angle");
+    assert_eq!(v["singular"], false);
+    assert_eq!(v["feasible"].as_object().unwrap().len(), 8);
+    for s in v["samples"].as_array().unwrap() {
+        assert_eq!(s["branches"].as_array().unwrap().len(), 8);
+        for b in s["branches"].as_array().unwrap() {
+            assert!(b["position_error"].as_f64().unwrap() < 1e-12, "{b}");
+            assert!(b["orientation_error"].as_f64().unwrap() < 1e-11, "{b}");
+        }
+    }
+    // The ready configuration is inside the limits, so some branch is at some arm angle.
+    assert!(v["samples"].as_array().unwrap().iter().any(|s| {
+        s["branches"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|b| b["within_limits"] == true)
+    }));
+    assert!(v["manifolds"].as_u64().unwrap() >= 1);
 }

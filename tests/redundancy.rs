@@ -209,18 +209,18 @@ fn self_motion_curves_are_counted() {
     let r = free_planar3();
     // |p| = 0.5: the wrist circle (radius 0.2) spans 0.3..0.7, inside the annulus 0.2..0.8.
     assert_eq!(
-        PlanarSelfMotion::new(&r, [0.5, 0.0]).unwrap().manifolds(),
+        PlanarSelfMotion::new(&r, [0.5, 0.0]).unwrap().manifolds(&r),
         2
     );
     // |p| = 0.9: the circle 0.7..1.1 crosses the outer edge 0.8, the branches meet.
     assert_eq!(
-        PlanarSelfMotion::new(&r, [0.0, 0.9]).unwrap().manifolds(),
+        PlanarSelfMotion::new(&r, [0.0, 0.9]).unwrap().manifolds(&r),
         1
     );
     // With the limits of Problem 2.17 the count is between 1 and 2 where reachable.
     let p3 = robot("planar3");
     for p in [[0.6, 0.1], [0.3, 0.5], [0.45, 0.0]] {
-        let k = PlanarSelfMotion::new(&p3, p).unwrap().manifolds();
+        let k = PlanarSelfMotion::new(&p3, p).unwrap().manifolds(&p3);
         assert!((1..=3).contains(&k), "{p:?}: {k}");
     }
     // Out of reach, and a non-redundant arm, are errors.

@@ -88,3 +88,75 @@ fn every_branch_reaches_the_target_at_every_arm_angle() {
         assert!(branches >= 8 * 10_000 - 1000, "{}: {branches}", robot.name);
     }
 }
+
+/// Feasible arm angles against 10^5 samples of psi: away from the interval ends, a sample is
+/// inside an interval exactly when the branch there is within every joint limit (checked here
+/// on the joint values the solver returns, wrapped by 2 pi).
+#[test]
+fn feasible_arm_angles_match_dense_sampling() {
+    for robot in models() {
+        let arm = SrsArm::detect(&robot).unwrap();
+        let lim = robot.limits();
+        let within = |q: &[f64; 7]| {
+            q.iter().zip(&lim).all(|(v, l)| {
+                [*v, v - TAU, v + TAU]
+                    .iter()
+                    .any(|x| *x >= l[0] - 1e-12 && *x <= l[1] + 1e-12)
+            })
+        };
+        let mut s = 17u64;
+        let mut poses = 0;
+        let mut partial = 0;
+        while poses < 6 {
+            let q: Vec<f64> = lim
+                .iter()
+                .map(|l| l[0] + (l[1] - l[0]) * lcg(&mut s))
+                .collect();
+            let target = robot.fk(&q).unwrap();
+            if arm.singular(&target) {
+                continue;
+            }
+            poses += 1;
+            let feasible = arm.feasible_intervals(&target);
+            let n = 100_000;
+            let mut raw = [[0.0; 7]; 8];
+            let mut measure = [0.0f64; 8];
+            for k in 0..n {
+                let psi = -PI + TAU * (k as f64 + 0.5) / n as f64;
+                let mask = arm.solve_raw(&target, psi, &mut raw);
+                for b in 0..8 {
+                    let ok = mask >> b & 1 == 1 && within(&raw[b]);
+                    measure[b] += if ok { TAU / n as f64 } else { 0.0 };
+                    let inside = feasible[b].iter().any(|iv| psi >= iv[0] && psi <= iv[1]);
+                    let near = feasible[b]
+                        .iter()
+                        .any(|iv| (psi - iv[0]).abs() < 1e-4 || (psi - iv[1]).abs() < 1e-4);
+                    assert!(
+                        near || ok == inside,
+                        "{} branch {b} psi {psi}: {ok} vs {inside}",
+                        robot.name
+                    );
+                }
+            }
+            for b in 0..8 {
+                let total: f64 = feasible[b].iter().map(|iv| iv[1] - iv[0]).sum();
+                partial += usize::from(total > 1e-3 && total < TAU - 1e-3);
+                assert!(
+                    (total - measure[b]).abs() < 1e-3,
+                    "{} branch {b}: {total} vs {}",
+                    robot.name,
+                    measure[b]
+                );
+                for iv in &feasible[b] {
+                    assert!(-PI <= iv[0] && iv[0] <= iv[1] && iv[1] <= PI);
+                }
+            }
+        }
+        // The limits cut the arm angle: most branches have some infeasible stretch.
+        assert!(
+            partial >= 12,
+            "{}: only {partial} partial branches",
+            robot.name
+        );
+    }
+}

@@ -1,7 +1,9 @@
 //! `armlab self-motion`: the exact self-motion of a redundant arm holding its hand still.
 
 use super::{CliError, Format};
-use crate::redundancy::PlanarSelfMotion;
+use crate::kinematics::{Pose, Robot};
+use crate::redundancy::srs::SrsArm;
+use crate::redundancy::{BranchSolution, PlanarSelfMotion};
 use std::path::PathBuf;
 
 /// Arguments of `armlab self-motion`.
@@ -28,6 +30,70 @@ pub struct SelfMotionArgs {
     /// Write the self-motion figure (every joint over the parameter, limit bands) to this PNG.
     #[arg(long)]
     pub out: Option<PathBuf>,
+}
+
+/// A computed self-motion, whatever the arm.
+struct Motion {
+    parameter: &'static str,
+    names: Vec<String>,
+    samples: Vec<(f64, Vec<BranchSolution>)>,
+    feasible: Vec<Vec<[f64; 2]>>,
+    manifolds: usize,
+    singular: bool,
+    what: String,
+}
+
+/// The parameter values: `n` samples covering [-pi, pi) evenly.
+fn grid(n: usize) -> impl Iterator<Item = f64> {
+    (0..n).map(move |k| -std::f64::consts::PI + std::f64::consts::TAU * k as f64 / n as f64)
+}
+
+/// The SRS arm angle of a 7R arm.
+fn srs(robot: &Robot, arm: &SrsArm, target: &Pose, n: usize) -> Motion {
+    let p = target.translation.vector;
+    Motion {
+        parameter: "arm angle",
+        names: SrsArm::branch_names().to_vec(),
+        samples: grid(n)
+            .map(|psi| (psi, arm.branch_solutions(robot, target, psi)))
+            .collect(),
+        feasible: arm.feasible_intervals(target).to_vec(),
+        manifolds: arm.manifolds(target),
+        singular: arm.singular(target),
+        what: format!("holding its hand at ({:.6}, {:.6}, {:.6}) m", p.x, p.y, p.z),
+    }
+}
+
+/// The orientation phi of a three-link planar arm with a position task.
+fn planar(
+    robot: &Robot,
+    target: &Pose,
+    n: usize,
+    bad: &dyn Fn(String) -> CliError,
+) -> Result<Motion, CliError> {
+    let frame = crate::workspace::planar_frame(robot, 0).ok_or_else(|| {
+        bad(format!(
+            "exact self-motion is available for SRS 7R arms (arm angle) and three-link planar \
+             arms (phi); {} is neither (the Panda's q7 and numerical self-motion are not \
+             implemented yet)",
+            robot.name
+        ))
+    })?;
+    let p = target.translation.vector;
+    let xy = frame.to_plane([p.x, p.y, p.z]);
+    let motion = PlanarSelfMotion::new(robot, xy).map_err(|e| bad(e.to_string()))?;
+    let (feasible, _) = motion.feasible();
+    Ok(Motion {
+        parameter: "phi",
+        names: motion.branch_names().to_vec(),
+        samples: grid(n)
+            .map(|phi| (phi, motion.solutions(robot, phi)))
+            .collect(),
+        feasible: feasible.to_vec(),
+        manifolds: motion.manifolds(robot),
+        singular: false,
+        what: format!("holding its hand at ({:.6}, {:.6}) m", xy[0], xy[1]),
+    })
 }
 
 /// Runs `self-motion`.
@@ -57,89 +123,96 @@ pub(super) fn run(args: &SelfMotionArgs, out: &mut dyn std::io::Write) -> Result
         source_name: args.model.clone(),
         reason,
     };
-    let frame = crate::workspace::planar_frame(&robot, 0).ok_or_else(|| {
-        bad(format!(
-            "exact self-motion is available for three-link planar arms with a position task; {} \
-             is not one (the SRS arm angle, the Panda's q7 and numerical self-motion are not \
-             implemented yet)",
-            robot.name
-        ))
-    })?;
-    let p = pose.translation.vector;
-    let xy = frame.to_plane([p.x, p.y, p.z]);
-    let motion = PlanarSelfMotion::new(&robot, xy).map_err(|e| bad(e.to_string()))?;
-    let names = motion.branch_names();
-    if let Some(b) = &args.branch
-        && !names.iter().any(|n| n == b)
-    {
-        return Err(bad(format!(
-            "no branch {b:?} (the branches are: {})",
-            names.join(", ")
-        )));
+    let mut motion = match SrsArm::detect(&robot) {
+        Some(arm) => {
+            if arm.solve(&pose, 0.0).is_empty() && !arm.singular(&pose) {
+                return Err(bad("the pose's wrist centre is out of reach".into()));
+            }
+            srs(&robot, &arm, &pose, args.samples)
+        }
+        None => planar(&robot, &pose, args.samples, &bad)?,
+    };
+    if let Some(b) = &args.branch {
+        let Some(k) = motion.names.iter().position(|n| n == b) else {
+            return Err(bad(format!(
+                "no branch {b:?} (the branches are: {})",
+                motion.names.join("; ")
+            )));
+        };
+        for (_, s) in &mut motion.samples {
+            s.retain(|x| &x.name == b);
+        }
+        motion.names = vec![motion.names[k].clone()];
+        motion.feasible = vec![motion.feasible[k].clone()];
     }
-    let keep = |name: &str| args.branch.as_deref().is_none_or(|b| b == name);
-    let n = args.samples;
-    let samples: Vec<(f64, Vec<crate::redundancy::BranchSolution>)> = (0..n)
-        .map(|k| {
-            let phi = -std::f64::consts::PI + std::f64::consts::TAU * k as f64 / n as f64;
-            let mut s = motion.solutions(&robot, phi);
-            s.retain(|b| keep(&b.name));
-            (phi, s)
-        })
-        .collect();
-    let (feasible, _merges) = motion.feasible();
-    let manifolds = motion.manifolds();
     if let Some(path) = &args.out {
-        let img = crate::figure::self_motion::figure(&robot, &samples, &feasible, &names)?;
+        let img = crate::figure::self_motion::figure(
+            &robot,
+            motion.parameter,
+            &motion.samples,
+            &motion.feasible,
+            &motion.names,
+        )?;
         crate::headless::write_png(&img, path)?;
     }
     match args.format {
-        Format::Json => {
-            let mut feas = serde_json::Map::new();
-            for (b, name) in names.iter().enumerate() {
-                if keep(name) {
-                    feas.insert(name.clone(), serde_json::json!(feasible[b]));
-                }
-            }
-            let v = serde_json::json!({
-                "parameter": motion.parameter(),
-                "samples": samples.iter().map(|(phi, s)| serde_json::json!({
-                    "value": phi,
-                    "branches": s.iter().map(|b| serde_json::json!({
-                        "name": b.name,
-                        "q": b.q,
-                        "within_limits": b.within_limits,
-                        "position_error": b.position_error,
-                        "orientation_error": b.orientation_error,
-                    })).collect::<Vec<_>>(),
-                })).collect::<Vec<_>>(),
-                "feasible": feas,
-                "manifolds": manifolds,
-                "singular": false,
-            });
-            serde_json::to_writer(&mut *out, &v).map_err(std::io::Error::from)?;
-            writeln!(out)?;
+        Format::Json => write_json(&motion, out),
+        Format::Text => write_text(&robot, &motion, out),
+    }
+}
+
+fn write_json(m: &Motion, out: &mut dyn std::io::Write) -> Result<(), CliError> {
+    let mut feas = serde_json::Map::new();
+    for (name, iv) in m.names.iter().zip(&m.feasible) {
+        feas.insert(name.clone(), serde_json::json!(iv));
+    }
+    let v = serde_json::json!({
+        "parameter": m.parameter,
+        "samples": m.samples.iter().map(|(value, s)| serde_json::json!({
+            "value": value,
+            "branches": s.iter().map(|b| serde_json::json!({
+                "name": b.name,
+                "q": b.q,
+                "within_limits": b.within_limits,
+                "position_error": b.position_error,
+                "orientation_error": b.orientation_error,
+            })).collect::<Vec<_>>(),
+        })).collect::<Vec<_>>(),
+        "feasible": feas,
+        "manifolds": m.manifolds,
+        "singular": m.singular,
+    });
+    serde_json::to_writer(&mut *out, &v).map_err(std::io::Error::from)?;
+    writeln!(out)?;
+    Ok(())
+}
+
+fn write_text(robot: &Robot, m: &Motion, out: &mut dyn std::io::Write) -> Result<(), CliError> {
+    writeln!(
+        out,
+        "self-motion of the {} {}: parameter {}, {} disjoint self-motion curve(s) inside the \
+         limits{}",
+        robot.name.to_lowercase(),
+        m.what,
+        m.parameter,
+        m.manifolds,
+        if m.singular {
+            " (algorithmic singularity: the shoulder-wrist line is along axis 1)"
+        } else {
+            ""
         }
-        Format::Text => {
-            writeln!(
-                out,
-                "self-motion of the {} holding its hand at ({:.6}, {:.6}) m: parameter phi, {} \
-                 disjoint self-motion curve(s) inside the limits",
-                robot.name.to_lowercase(),
-                xy[0],
-                xy[1],
-                manifolds
-            )?;
-            for (b, name) in names.iter().enumerate() {
-                if keep(name) {
-                    let iv: Vec<String> = feasible[b]
-                        .iter()
-                        .map(|i| format!("[{:.3}, {:.3}]", i[0].to_degrees(), i[1].to_degrees()))
-                        .collect();
-                    writeln!(out, "  {name}: feasible phi (deg) {}", iv.join(" "))?;
-                }
-            }
-        }
+    )?;
+    for (name, iv) in m.names.iter().zip(&m.feasible) {
+        let iv: Vec<String> = iv
+            .iter()
+            .map(|i| format!("[{:.3}, {:.3}]", i[0].to_degrees(), i[1].to_degrees()))
+            .collect();
+        writeln!(
+            out,
+            "  {name}: feasible {} (deg) {}",
+            m.parameter,
+            iv.join(" ")
+        )?;
     }
     Ok(())
 }

@@ -10,22 +10,32 @@ use crate::redundancy::BranchSolution;
 use egui::Color32;
 
 /// Joint colours (colour-blind safe), by joint index.
-const JOINT_COLORS: [[u8; 3]; 4] = [[0, 114, 178], [213, 94, 0], [0, 158, 115], [204, 121, 167]];
+const JOINT_COLORS: [[u8; 3]; 7] = [
+    [0, 114, 178],
+    [213, 94, 0],
+    [0, 158, 115],
+    [204, 121, 167],
+    [230, 159, 0],
+    [86, 180, 233],
+    [120, 120, 120],
+];
 
 /// The figure (1200 x 800, light theme) for `samples` (parameter value, solutions), the feasible
 /// intervals of each branch (rad) and the branch names.
 pub fn figure(
     robot: &Robot,
+    parameter: &str,
     samples: &[(f64, Vec<BranchSolution>)],
-    feasible: &[Vec<[f64; 2]>; 2],
-    names: &[String; 2],
+    feasible: &[Vec<[f64; 2]>],
+    names: &[String],
 ) -> Result<image::RgbaImage, FigureError> {
     let mut plot = Plot2d {
         title: format!("Self-motion of the {}", robot.name.to_lowercase()),
-        subtitle: "hand fixed; solid: first branch, dashed: second; bars: feasible phi inside the \
-                   joint limits"
-            .into(),
-        x_label: "phi [deg] (end-effector orientation, the free parameter)".into(),
+        subtitle: format!(
+            "hand fixed; solid and dashed lines alternate by branch; bars: feasible {parameter} \
+             inside the joint limits"
+        ),
+        x_label: format!("{parameter} [deg] (the free parameter)"),
         y_label: "joint angle [deg]".into(),
         bounds: [-180.0, 180.0, -200.0, 200.0],
         ..Plot2d::default()
@@ -42,7 +52,7 @@ pub fn figure(
                         points: std::mem::take(run),
                         color: Color32::from_rgb(c[0], c[1], c[2]),
                         width: 1.8,
-                        dashed: b == 1,
+                        dashed: b % 2 == 1,
                     });
                     labelled = true;
                 }
@@ -64,14 +74,14 @@ pub fn figure(
         }
         let c = CLASS_COLORS[b % CLASS_COLORS.len()];
         for iv in &feasible[b] {
-            let y = -190.0 + 6.0 * b as f64;
+            let y = -196.0 + 3.0 * b as f64;
             plot.areas.push(Area {
                 name: format!("{name} feasible"),
                 points: vec![
                     [iv[0].to_degrees(), y],
                     [iv[1].to_degrees(), y],
-                    [iv[1].to_degrees(), y + 4.0],
-                    [iv[0].to_degrees(), y + 4.0],
+                    [iv[1].to_degrees(), y + 2.0],
+                    [iv[0].to_degrees(), y + 2.0],
                 ],
                 fill: Color32::from_rgb(c[0], c[1], c[2]),
             });

@@ -199,36 +199,64 @@ impl PlanarSelfMotion {
 
     /// The number of disjoint self-motion curves inside the limits: the feasible intervals of
     /// both branches, joined where the branches merge (one or two without limits, Lenarcic).
-    pub fn manifolds(&self) -> usize {
+    pub fn manifolds(&self, robot: &Robot) -> usize {
         let (pieces, merges) = self.feasible();
-        // Work on the circle: unsplit intervals per branch.
-        let circ: Vec<(usize, [f64; 2])> = (0..2)
-            .flat_map(|b| join_across_pi(&pieces[b]).into_iter().map(move |i| (b, i)))
-            .collect();
-        let mut parent: Vec<usize> = (0..circ.len()).collect();
-        fn find(p: &mut [usize], i: usize) -> usize {
-            let mut i = i;
-            while p[i] != i {
-                p[i] = p[p[i]];
-                i = p[i];
+        let same = |a: usize, b: usize, phi: f64| {
+            let s = self.solutions(robot, phi);
+            let names = self.branch_names();
+            let q = |k: usize| s.iter().find(|x| x.name == names[k]).map(|x| x.q.clone());
+            match (q(a), q(b)) {
+                (Some(x), Some(y)) => x.iter().zip(&y).all(|(u, v)| {
+                    let d = (u - v).rem_euclid(TAU);
+                    d.min(TAU - d) < 1e-6
+                }),
+                _ => false,
             }
-            i
-        }
-        let on = |iv: [f64; 2], a: f64| {
-            let t = (a - iv[0]).rem_euclid(TAU);
-            t <= (iv[1] - iv[0]) + 1e-9 || t >= TAU - 1e-9
         };
-        for &m in &merges {
-            let at: Vec<usize> = (0..circ.len()).filter(|&k| on(circ[k].1, m)).collect();
-            for w in at.windows(2) {
-                let (a, b) = (find(&mut parent, w[0]), find(&mut parent, w[1]));
-                parent[a] = b;
+        count_manifolds(&pieces, &merges, &same)
+    }
+}
+
+/// Connected self-motion curves: the feasible intervals of every branch (pieces of [-pi, pi],
+/// joined across +-pi), two intervals of different branches joined at a candidate point both
+/// contain where `same(a, b, psi)` says the branches' solutions coincide.
+pub(crate) fn count_manifolds(
+    pieces: &[Vec<[f64; 2]>],
+    points: &[f64],
+    same: &dyn Fn(usize, usize, f64) -> bool,
+) -> usize {
+    let circ: Vec<(usize, [f64; 2])> = pieces
+        .iter()
+        .enumerate()
+        .flat_map(|(b, p)| join_across_pi(p).into_iter().map(move |i| (b, i)))
+        .collect();
+    let mut parent: Vec<usize> = (0..circ.len()).collect();
+    fn find(p: &mut [usize], i: usize) -> usize {
+        let mut i = i;
+        while p[i] != i {
+            p[i] = p[p[i]];
+            i = p[i];
+        }
+        i
+    }
+    let on = |iv: [f64; 2], a: f64| {
+        let t = (a - iv[0]).rem_euclid(TAU);
+        t <= (iv[1] - iv[0]) + 1e-9 || t >= TAU - 1e-9
+    };
+    for &m in points {
+        let at: Vec<usize> = (0..circ.len()).filter(|&k| on(circ[k].1, m)).collect();
+        for (x, &i) in at.iter().enumerate() {
+            for &j in &at[x + 1..] {
+                if circ[i].0 != circ[j].0 && same(circ[i].0, circ[j].0, m) {
+                    let (a, b) = (find(&mut parent, i), find(&mut parent, j));
+                    parent[a] = b;
+                }
             }
         }
-        (0..circ.len())
-            .filter(|&k| find(&mut parent, k) == k)
-            .count()
     }
+    (0..circ.len())
+        .filter(|&k| find(&mut parent, k) == k)
+        .count()
 }
 
 /// Merges the last and first intervals of a list on [0, 2 pi) when they meet across 0.
@@ -266,7 +294,7 @@ fn split_at_pi(list: &[[f64; 2]], to_phi: impl Fn(f64) -> f64) -> Vec<[f64; 2]> 
 }
 
 /// Joins intervals that touch at +-pi back into one (for counting on the circle).
-fn join_across_pi(list: &[[f64; 2]]) -> Vec<[f64; 2]> {
+pub(crate) fn join_across_pi(list: &[[f64; 2]]) -> Vec<[f64; 2]> {
     let mut v = list.to_vec();
     if v.len() >= 2 {
         let (first, last) = (v[0], v[v.len() - 1]);

@@ -340,3 +340,239 @@ impl SrsArm {
         Some(u.dot(&a.cross(&b)).atan2(a.dot(&b)))
     }
 }
+
+/// The roots psi (rad) of `a sin psi + b cos psi + c = 0`.
+fn trig_roots(a: f64, b: f64, c: f64, out: &mut Vec<f64>) {
+    let r = a.hypot(b);
+    if r < 1e-14 || c.abs() > r {
+        return;
+    }
+    let phase = a.atan2(b);
+    let d = (-c / r).clamp(-1.0, 1.0).acos();
+    out.push(phase + d);
+    out.push(phase - d);
+}
+
+/// A rotation that depends on psi as `C + sin(psi) A + cos(psi) B`.
+struct TrigRotation {
+    c: Matrix3<f64>,
+    a: Matrix3<f64>,
+    b: Matrix3<f64>,
+}
+
+impl TrigRotation {
+    /// The psi where `x . R(psi) y = v`.
+    fn roots(&self, x: &Vector3<f64>, y: &Vector3<f64>, v: f64, out: &mut Vec<f64>) {
+        let f = |m: &Matrix3<f64>| x.dot(&(m * y));
+        trig_roots(f(&self.a), f(&self.b), f(&self.c) - v, out);
+    }
+}
+
+impl SrsArm {
+    /// The psi where a joint of a spherical triple (axes `w[i]`, `w[i+1]`, `w[i+2]`, rotation
+    /// `m(psi)` = R_i R_{i+1} R_{i+2}) meets one of its limits or the triple is singular (its two
+    /// branches meet).
+    fn triple_roots(&self, i: usize, m: &TrigRotation, out: &mut Vec<f64>) {
+        let (w1, w2, w3) = (self.w[i], self.w[i + 1], self.w[i + 2]);
+        let finite = |k: usize| {
+            let [lo, hi] = self.limits[k];
+            (lo.is_finite() && hi.is_finite() && hi - lo < TAU - 1e-12)
+                .then_some([lo, hi])
+                .into_iter()
+                .flatten()
+        };
+        // Middle joint: w1 . R w3 = w1 . R_mid(t) w3.
+        for t in finite(i + 1) {
+            m.roots(&w1, &w3, w1.dot(&(rot(&w2, t) * w3)), out);
+        }
+        // First joint: (R_first(t) w2) . R w3 = w2 . w3.
+        for t in finite(i) {
+            m.roots(&(rot(&w1, t) * w2), &w3, w2.dot(&w3), out);
+        }
+        // Last joint: w1 . R (R_last(t)^T w2) = w1 . w2.
+        for t in finite(i + 2) {
+            m.roots(&w1, &(rot(&w3, -t) * w2), w1.dot(&w2), out);
+        }
+        // Singular: gamma^2 = 0 in subproblem 2, a quadratic in s = w1 . R w3.
+        let c12 = w1.dot(&w2);
+        let den = c12 * c12 - 1.0;
+        if den.abs() > 1e-12 {
+            let k = w2.dot(&w3);
+            // alpha = (c12 k - s) / den, beta = (c12 s - k) / den.
+            let (a1, a0) = (-1.0 / den, c12 * k / den);
+            let (b1, b0) = (c12 / den, -k / den);
+            // 1 - (a1 s + a0)^2 - (b1 s + b0)^2 - 2 c12 (a1 s + a0)(b1 s + b0) = 0
+            let qa = -(a1 * a1 + b1 * b1 + 2.0 * c12 * a1 * b1);
+            let qb = -(2.0 * a1 * a0 + 2.0 * b1 * b0 + 2.0 * c12 * (a1 * b0 + a0 * b1));
+            let qc = 1.0 - a0 * a0 - b0 * b0 - 2.0 * c12 * a0 * b0;
+            let disc = qb * qb - 4.0 * qa * qc;
+            if disc >= 0.0 && qa.abs() > 1e-14 {
+                for sgn in [1.0, -1.0] {
+                    let s = (-qb + sgn * disc.sqrt()) / (2.0 * qa);
+                    m.roots(&w1, &w3, s, out);
+                }
+            }
+        }
+    }
+
+    /// Every psi (rad, in [0, 2 pi)) where the joint-limit feasibility of a branch can change
+    /// for `target`: a joint at a limit, a branch merge of the shoulder or the wrist (joint 4
+    /// does not move with psi). Each is a root of `a sin psi + b cos psi + c = 0`: the shoulder's
+    /// rotation is `Rot(u, psi) R_sh(0)` and the wrist's `R_4^T R_sh^T R_e R(0)^T`, both of the
+    /// form `C + sin(psi) A + cos(psi) B`.
+    pub fn breakpoints(&self, target: &Pose) -> Vec<f64> {
+        let wc = self.wrist_of(target);
+        let sw = wc - self.s;
+        let u = sw.normalize();
+        let k = u.cross_matrix();
+        let k2 = k * k;
+        let m = (target.rotation * self.r0.inverse()).into_inner();
+        let mut out = Vec::new();
+        for se in [1.0, -1.0] {
+            let (Some(q4), true) = (self.elbow(sw.norm(), se), !self.singular(target)) else {
+                continue;
+            };
+            let Some(reference) = self.reference(&wc, q4) else {
+                continue;
+            };
+            let r0 = triad(&reference, &sw) * triad(&(self.e0 - self.s), &self.w4(q4)).transpose();
+            let sh = TrigRotation {
+                c: (Matrix3::identity() + k2) * r0,
+                a: k * r0,
+                b: -k2 * r0,
+            };
+            self.triple_roots(0, &sh, &mut out);
+            let r4t = rot(&self.w[3], -q4).into_inner();
+            let wr = TrigRotation {
+                c: r4t * sh.c.transpose() * m,
+                a: r4t * sh.a.transpose() * m,
+                b: r4t * sh.b.transpose() * m,
+            };
+            self.triple_roots(4, &wr, &mut out);
+        }
+        let mut out: Vec<f64> = out.into_iter().map(|p| p.rem_euclid(TAU)).collect();
+        out.sort_by(f64::total_cmp);
+        out.dedup_by(|a, b| (*a - *b).abs() < 1e-13);
+        out
+    }
+
+    /// The feasible arm angles of every branch inside the joint limits, exactly: between
+    /// consecutive [`Self::breakpoints`] no joint crosses a limit, so one test at each
+    /// interval's midpoint decides it. Intervals are pieces of [-pi, pi] (one across +-pi given
+    /// as two), in branch order ([`Self::branch_names`]).
+    pub fn feasible_intervals(&self, target: &Pose) -> [Vec<[f64; 2]>; 8] {
+        let mut cuts = self.breakpoints(target);
+        cuts.push(0.0);
+        cuts.sort_by(f64::total_cmp);
+        cuts.dedup_by(|a, b| (*a - *b).abs() < 1e-13);
+        let mut out: [Vec<[f64; 2]>; 8] = Default::default();
+        let mut raw = [[0.0; 7]; 8];
+        for i in 0..cuts.len() {
+            let (lo, hi) = (cuts[i], if i + 1 < cuts.len() { cuts[i + 1] } else { TAU });
+            if hi <= lo {
+                continue;
+            }
+            let mask = self.solve_raw(target, 0.5 * (lo + hi), &mut raw);
+            for (k, list) in out.iter_mut().enumerate() {
+                let ok = mask >> k & 1 == 1 && {
+                    let q = self.wrapped(raw[k]);
+                    q.iter()
+                        .zip(&self.limits)
+                        .all(|(v, l)| *v >= l[0] - 1e-12 && *v <= l[1] + 1e-12)
+                };
+                if ok {
+                    match list.last_mut() {
+                        Some(l) if l[1] == lo => l[1] = hi,
+                        _ => list.push([lo, hi]),
+                    }
+                }
+            }
+        }
+        out.map(|list| to_signed(&list))
+    }
+}
+
+/// Intervals of [0, 2 pi] as pieces of [-pi, pi]: an interval across pi is split in two, and
+/// the pieces touching at +-pi stay two.
+fn to_signed(list: &[[f64; 2]]) -> Vec<[f64; 2]> {
+    let mut out = Vec::new();
+    for &[lo, hi] in list {
+        if hi <= PI {
+            out.push([lo, hi]);
+        } else if lo >= PI {
+            out.push([lo - TAU, hi - TAU]);
+        } else {
+            out.push([lo, PI]);
+            out.push([-PI, hi - TAU]);
+        }
+    }
+    out.sort_by(|a, b| a[0].total_cmp(&b[0]));
+    // Pieces that meet at 0 (the cut added there) join again.
+    let mut merged: Vec<[f64; 2]> = Vec::new();
+    for iv in out {
+        match merged.last_mut() {
+            Some(l) if (l[1] - iv[0]).abs() < 1e-13 => l[1] = iv[1],
+            _ => merged.push(iv),
+        }
+    }
+    merged
+}
+
+impl SrsArm {
+    /// The number of disjoint self-motion manifolds inside the limits for `target`: the feasible
+    /// intervals of the 8 branches, joined where two branches' solutions coincide (a shoulder or
+    /// wrist branch merge).
+    pub fn manifolds(&self, target: &Pose) -> usize {
+        let pieces = self.feasible_intervals(target);
+        let points: Vec<f64> = self
+            .breakpoints(target)
+            .into_iter()
+            .map(|p| if p > PI { p - TAU } else { p })
+            .collect();
+        let same = |a: usize, b: usize, psi: f64| {
+            let mut raw = [[0.0; 7]; 8];
+            let mask = self.solve_raw(target, psi, &mut raw);
+            mask >> a & 1 == 1
+                && mask >> b & 1 == 1
+                && raw[a].iter().zip(&raw[b]).all(|(u, v)| {
+                    let d = (u - v).rem_euclid(TAU);
+                    d.min(TAU - d) < 1e-6
+                })
+        };
+        super::count_manifolds(&pieces, &points, &same)
+    }
+}
+
+impl SrsArm {
+    /// [`Self::solve`] with each branch FK-checked against `target`: position error (m) and
+    /// rotation angle of `R^T R_target` (rad).
+    pub fn branch_solutions(
+        &self,
+        robot: &Robot,
+        target: &Pose,
+        psi: f64,
+    ) -> Vec<super::BranchSolution> {
+        self.solve(target, psi)
+            .into_iter()
+            .map(|s| {
+                let (pe, oe) = match robot.fk(&s.q) {
+                    Ok(t) => (
+                        (t.translation.vector - target.translation.vector).norm(),
+                        crate::kinematics::orientation::angle_axis_from_rotation(
+                            &(t.rotation.inverse() * target.rotation),
+                        )
+                        .angle,
+                    ),
+                    Err(_) => (f64::INFINITY, f64::INFINITY),
+                };
+                super::BranchSolution {
+                    name: s.name,
+                    q: s.q.to_vec(),
+                    within_limits: s.within_limits,
+                    position_error: pe,
+                    orientation_error: oe,
+                }
+            })
+            .collect()
+    }
+}
