@@ -42,5 +42,22 @@ fn planar(c: &mut Criterion) {
     });
 }
 
-criterion_group!(benches, srs, planar);
+/// One numerical self-motion step (tangent + Newton correction) of the humanoid's arm with its
+/// torso (10 joints move the hand; goal <= 20 us).
+fn numerical(c: &mut Criterion) {
+    let robot = built_in("humanoid").unwrap();
+    let q0 = robot
+        .config("ready")
+        .map_or_else(|| vec![0.1; robot.dof()], <[f64]>::to_vec);
+    let mut m = armlab::redundancy::numerical::NullSpaceMotion::new(&robot, 0, &q0, None).unwrap();
+    let mut sign = 1.0;
+    c.bench_function("redundancy/humanoid arm+torso one self-motion step", |b| {
+        b.iter(|| {
+            sign = -sign;
+            m.step(black_box(sign * 1e-3)).unwrap()
+        })
+    });
+}
+
+criterion_group!(benches, srs, planar, numerical);
 criterion_main!(benches);

@@ -227,3 +227,61 @@ fn self_motion_curves_are_counted() {
     assert!(PlanarSelfMotion::new(&r, [1.5, 0.0]).is_err());
     assert!(PlanarSelfMotion::new(&robot("planar2"), [1.0, 0.0]).is_err());
 }
+
+/// Numerical self-motion of the humanoid's arm with its torso (10 joints move the hand): after
+/// 10,000 steps the hand is still where it was to 1e-12 m and 1e-12 rad, and the arm has moved.
+#[test]
+fn numerical_self_motion_does_not_drift() {
+    let r = robot("humanoid");
+    let q0 = r
+        .config("ready")
+        .map_or_else(|| vec![0.1; r.dof()], <[f64]>::to_vec);
+    let mut m = armlab::redundancy::numerical::NullSpaceMotion::new(&r, 0, &q0, None).unwrap();
+    let start = m.q().to_vec();
+    let gap = |q: &[f64]| {
+        q.iter()
+            .zip(&start)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max)
+    };
+    let mut widest: f64 = 0.0;
+    for k in 0..10_000 {
+        // Back and forth, as a slider is dragged: out 2500 steps, back, out, back.
+        let ds = if (k / 2500) % 2 == 0 { 4e-4 } else { -4e-4 };
+        m.step(ds).unwrap();
+        widest = widest.max(gap(m.q()));
+        let (pe, oe) = m.errors().unwrap();
+        assert!(pe < 1e-12 && oe < 1e-12, "step {k}: drift {pe} m, {oe} rad");
+    }
+    // The arm swung, and dragging back returns near the start (the null space is 4-dimensional
+    // here, so the transported tangent need not retrace the path exactly).
+    assert!(widest > 0.2, "widest excursion {widest} rad");
+    assert!(gap(m.q()) < 1e-3, "back at {}", gap(m.q()));
+    // Degree 1 (the DLR arm, a full pose): the null space is a line, so going back retraces
+    // the path exactly.
+    let dlr = robot("dlr");
+    let q0 = dlr.config("ready").unwrap().to_vec();
+    let mut m = armlab::redundancy::numerical::NullSpaceMotion::new(&dlr, 0, &q0, None).unwrap();
+    for k in 0..2000 {
+        m.step(if k < 1000 { 1e-3 } else { -1e-3 }).unwrap();
+    }
+    let back = m
+        .q()
+        .iter()
+        .zip(&q0)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max);
+    assert!(back < 1e-9, "DLR back at {back}");
+    let (pe, oe) = m.errors().unwrap();
+    assert!(pe < 1e-12 && oe < 1e-12);
+    // A non-redundant arm has no self-motion.
+    assert!(
+        armlab::redundancy::numerical::NullSpaceMotion::new(
+            &robot("puma560"),
+            0,
+            &[0.1, -0.4, 0.3, 0.5, -0.6, 0.2],
+            None
+        )
+        .is_err()
+    );
+}

@@ -7,6 +7,7 @@
 //! meets a limit or the two branches merge are closed-form roots, so the feasible intervals of
 //! each branch are exact and the self-motion curves inside the limits are counted exactly.
 
+pub mod numerical;
 pub mod srs;
 
 use crate::kinematics::{KinematicsError, Robot};

@@ -1,0 +1,192 @@
+//! Numerical self-motion of any redundant chain that does not drift: a tangent step along the
+//! Jacobian's null space, then Newton (Gauss-Newton) corrections back onto the task until the
+//! hand is where it was to rounding, every step. (MoveIt's null-space sliders step along the null
+//! space without the correction and drift off it, moveit/moveit#2970.)
+//!
+//! The tangent is the previous tangent projected on the null space, `t = (I - J^+ J) t_prev`,
+//! normalised, so the direction moves continuously through turning points of any coordinate and
+//! never flips; for a degree of redundancy 1 it is the null space's only direction. The
+//! parameter is the arc length s in joint space (rad).
+
+use super::RedundancyError;
+use crate::kinematics::orientation::angle_axis_from_rotation;
+use crate::kinematics::{Pose, Robot};
+use nalgebra::{DVector, Matrix6, Matrix6xX, Vector6};
+
+/// Newton corrections per step at most.
+const MAX_CORRECTIONS: usize = 30;
+
+/// A self-motion in progress (see the module documentation).
+#[derive(Debug, Clone)]
+pub struct NullSpaceMotion<'a> {
+    robot: &'a Robot,
+    ee: usize,
+    target: Pose,
+    q: Vec<f64>,
+    tangent: DVector<f64>,
+    frames: Vec<Pose>,
+    jac: Matrix6xX<f64>,
+    trial: Vec<f64>,
+    scale: f64,
+}
+
+impl<'a> NullSpaceMotion<'a> {
+    /// Starts at `q0` holding end-effector `ee` at its pose there; `direction` (joint space,
+    /// one value per joint) is projected on the null space to choose the first tangent (default:
+    /// every joint that moves the hand, equally; joints of other branches of a tree stay).
+    pub fn new(
+        robot: &'a Robot,
+        ee: usize,
+        q0: &[f64],
+        direction: Option<&[f64]>,
+    ) -> Result<Self, RedundancyError> {
+        robot.check_q(q0)?;
+        let n = robot.dof();
+        let target = robot.fk_ee(q0, ee)?;
+        let dir = match direction {
+            Some(d) if d.len() == n => DVector::from_column_slice(d),
+            Some(d) => {
+                return Err(RedundancyError::NotSupported(format!(
+                    "a direction of {} values for {n} joints",
+                    d.len()
+                )));
+            }
+            None => {
+                // Every joint that moves the hand, equally; the others stay.
+                let jac = robot.jacobian(q0, ee)?;
+                DVector::from_iterator(
+                    n,
+                    jac.column_iter()
+                        .map(|c| if c.norm() > 0.0 { 1.0 } else { 0.0 }),
+                )
+            }
+        };
+        let mut me = Self {
+            robot,
+            ee,
+            target,
+            q: q0.to_vec(),
+            tangent: dir,
+            frames: vec![Pose::identity(); robot.joints().len()],
+            jac: Matrix6xX::zeros(n),
+            trial: vec![0.0; n],
+            scale: robot.characteristic_length(),
+        };
+        if !me.update_tangent()? {
+            return Err(RedundancyError::NotSupported(format!(
+                "{} has no self-motion at this configuration for a full pose (the null space of \
+                 its Jacobian is empty)",
+                robot.name
+            )));
+        }
+        Ok(me)
+    }
+
+    /// The current joint vector (rad or m).
+    pub fn q(&self) -> &[f64] {
+        &self.q
+    }
+
+    /// The current tangent (unit, joint space).
+    pub fn tangent(&self) -> &[f64] {
+        self.tangent.as_slice()
+    }
+
+    /// Position (m) and orientation (rad) errors of the hand from the pose it holds.
+    pub fn errors(&self) -> Result<(f64, f64), RedundancyError> {
+        let e = self.error(&self.q)?;
+        Ok((e.fixed_rows::<3>(0).norm(), e.fixed_rows::<3>(3).norm()))
+    }
+
+    fn error(&self, q: &[f64]) -> Result<Vector6<f64>, RedundancyError> {
+        let t = self.robot.fk_ee(q, self.ee)?;
+        let ep = self.target.translation.vector - t.translation.vector;
+        let aa = angle_axis_from_rotation(&(self.target.rotation * t.rotation.inverse()));
+        let eo = aa.axis.into_inner() * aa.angle;
+        Ok(Vector6::new(ep.x, ep.y, ep.z, eo.x, eo.y, eo.z))
+    }
+
+    /// `J J^T` at the current Jacobian, factored; `None` at a singularity.
+    fn jjt(&self) -> Option<nalgebra::Cholesky<f64, nalgebra::Const<6>>> {
+        let mut m = Matrix6::zeros();
+        for c in self.jac.column_iter() {
+            m += c * c.transpose();
+        }
+        m.cholesky()
+    }
+
+    /// Projects the tangent on the null space at the current q; false when it vanishes.
+    fn update_tangent(&mut self) -> Result<bool, RedundancyError> {
+        self.robot
+            .jacobian_into(&self.q, self.ee, &mut self.frames, &mut self.jac)?;
+        let Some(ch) = self.jjt() else {
+            return Ok(false);
+        };
+        let jt = &self.jac * &self.tangent;
+        let y = ch.solve(&Vector6::from_column_slice(jt.as_slice()));
+        let t = &self.tangent - self.jac.transpose() * y;
+        let norm = t.norm();
+        if norm < 1e-9 {
+            return Ok(false);
+        }
+        self.tangent = t / norm;
+        Ok(true)
+    }
+
+    /// One step of arc length `ds` (rad): along the tangent, then Newton corrections onto the
+    /// task (`q += J^+ e`) until the error stops decreasing below 1e-15 of the arm's size.
+    pub fn step(&mut self, ds: f64) -> Result<(), RedundancyError> {
+        if !ds.is_finite() {
+            return Err(RedundancyError::NotSupported(format!(
+                "step {ds} is not finite"
+            )));
+        }
+        for (t, (q, d)) in self
+            .trial
+            .iter_mut()
+            .zip(self.q.iter().zip(self.tangent.iter()))
+        {
+            *t = q + ds * d;
+        }
+        let mut q = std::mem::take(&mut self.trial);
+        let mut best = f64::INFINITY;
+        let mut last: Option<DVector<f64>> = None;
+        for _ in 0..MAX_CORRECTIONS {
+            let e = self.error(&q)?;
+            let size = e.norm();
+            if size >= best {
+                // The last correction did not help (rounding): undo it.
+                if let Some(d) = &last {
+                    for (v, x) in q.iter_mut().zip(d.iter()) {
+                        *v -= x;
+                    }
+                }
+                break;
+            }
+            best = size;
+            if size < 1e-15 * self.scale {
+                break;
+            }
+            self.robot
+                .jacobian_into(&q, self.ee, &mut self.frames, &mut self.jac)?;
+            let Some(ch) = self.jjt() else {
+                break;
+            };
+            let y = ch.solve(&e);
+            let dq = self.jac.transpose() * y;
+            for (v, d) in q.iter_mut().zip(dq.iter()) {
+                *v += d;
+            }
+            last = Some(dq);
+        }
+        self.trial = std::mem::replace(&mut self.q, q);
+        if !self.update_tangent()? {
+            return Err(RedundancyError::NotSupported(
+                "the self-motion reached a singularity (the null space of the Jacobian changed \
+                 dimension)"
+                    .into(),
+            ));
+        }
+        Ok(())
+    }
+}
