@@ -96,6 +96,110 @@ fn planar(
     })
 }
 
+/// Any other redundant chain: numerical IK to the pose from the "ready" configuration (or
+/// zero), then the drift-free numerical self-motion, sampled by arc length in joint space.
+fn numerical(
+    robot: &Robot,
+    target: &Pose,
+    n: usize,
+    bad: &dyn Fn(String) -> CliError,
+) -> Result<Motion, CliError> {
+    use crate::kinematics::ik::numerical::{NumericalOptions, solve};
+    use crate::redundancy::numerical::NullSpaceMotion;
+    let red = crate::kinematics::redundancy::Redundancy::of(
+        robot,
+        crate::kinematics::redundancy::Task::Pose,
+    );
+    if red.degree() <= 0 {
+        return Err(bad(format!(
+            "{} is not redundant for a full pose ({red}): it has no self-motion",
+            robot.name
+        )));
+    }
+    let seed = robot
+        .config("ready")
+        .map_or_else(|| vec![0.0; robot.dof()], <[f64]>::to_vec);
+    let rep = solve(
+        robot,
+        0,
+        &crate::kinematics::ik::Target::Pose(*target),
+        &seed,
+        &NumericalOptions::default(),
+    )
+    .map_err(|e| bad(e.to_string()))?;
+    if !rep.converged {
+        return Err(bad(format!(
+            "numerical IK did not reach the pose (error {:.3e} m, {:.3e} rad)",
+            rep.position_error, rep.orientation_error
+        )));
+    }
+    let start = NullSpaceMotion::new(robot, 0, &rep.q, None).map_err(|e| bad(e.to_string()))?;
+    let name = "self-motion".to_string();
+    let h = std::f64::consts::TAU / n as f64;
+    let sol = |m: &NullSpaceMotion| -> Result<BranchSolution, CliError> {
+        let (pe, oe) = m.errors().map_err(|e| bad(e.to_string()))?;
+        Ok(BranchSolution {
+            name: name.clone(),
+            q: m.q().to_vec(),
+            within_limits: robot.within_limits(m.q(), 1e-12),
+            position_error: pe,
+            orientation_error: oe,
+        })
+    };
+    // From s = 0 forwards to just under pi and backwards to -pi, sub-steps of at most 0.01.
+    let mut values: Vec<(f64, Vec<BranchSolution>)> = Vec::with_capacity(n);
+    for dir in [1.0, -1.0] {
+        let mut m = start.clone();
+        let mut s = 0.0;
+        let ks: Vec<usize> = if dir > 0.0 {
+            (n / 2..n).collect()
+        } else {
+            (0..n / 2).rev().collect()
+        };
+        for k in ks {
+            let value = -std::f64::consts::PI + h * k as f64;
+            while (value - s).abs() > 1e-12 {
+                let ds = (value - s).clamp(-0.01, 0.01);
+                if m.step(ds).is_err() {
+                    break;
+                }
+                s += ds;
+            }
+            let branch = if (value - s).abs() <= 1e-12 {
+                vec![sol(&m)?]
+            } else {
+                Vec::new()
+            };
+            values.push((value, branch));
+        }
+    }
+    values.sort_by(|a, b| a.0.total_cmp(&b.0));
+    // Feasible stretches from the samples (not exact: the numerical case has no closed form).
+    let mut feasible: Vec<[f64; 2]> = Vec::new();
+    for (v, b) in &values {
+        if b.first().is_some_and(|x| x.within_limits) {
+            match feasible.last_mut() {
+                Some(l) if (l[1] - (v - h)).abs() < 1e-9 => l[1] = *v,
+                _ => feasible.push([*v, *v]),
+            }
+        }
+    }
+    let p = target.translation.vector;
+    Ok(Motion {
+        parameter: "arc length",
+        names: vec![name.clone()],
+        samples: values,
+        feasible: vec![feasible],
+        manifolds: 1,
+        singular: false,
+        what: format!(
+            "holding its hand at ({:.6}, {:.6}, {:.6}) m (numerical: the curve through the IK \
+             solution; feasible stretches from the samples)",
+            p.x, p.y, p.z
+        ),
+    })
+}
+
 /// Runs `self-motion`.
 pub(super) fn run(args: &SelfMotionArgs, out: &mut dyn std::io::Write) -> Result<(), CliError> {
     let robot = crate::model_file::load_model(&args.model)?;
@@ -130,7 +234,10 @@ pub(super) fn run(args: &SelfMotionArgs, out: &mut dyn std::io::Write) -> Result
             }
             srs(&robot, &arm, &pose, args.samples)
         }
-        None => planar(&robot, &pose, args.samples, &bad)?,
+        None if crate::workspace::planar_frame(&robot, 0).is_some() && robot.dof() <= 3 => {
+            planar(&robot, &pose, args.samples, &bad)?
+        }
+        None => numerical(&robot, &pose, args.samples, &bad)?,
     };
     if let Some(b) = &args.branch {
         let Some(k) = motion.names.iter().position(|n| n == b) else {
