@@ -298,44 +298,14 @@ pub(super) fn workspace(
     })?;
     bar.finish();
     write_png(&fig.image, &args.out)?;
-    let s = &fig.stats;
     match args.format {
         super::Format::Json => {
-            let mut v = serde_json::json!({
-                "model": robot.name,
-                "out": args.out.display().to_string(),
-                "samples": args.samples,
-                "seed": args.seed,
-                "bbox": { "min": s.bounds.min, "max": s.bounds.max },
-                "max_reach": s.max_reach,
-                "min_reach": s.min_reach,
-                "reach_exact": s.reach_exact,
-                "resolution": s.resolution,
-                "cell_size": s.cell_size,
-                "dexterous": s.dexterous_measure,
-                "classes": s.classes.iter().map(|c| serde_json::json!({"name": c.name, "with": c.with, "only": c.only})).collect::<Vec<_>>(),
-            });
-            if let Some(a) = s.area {
-                v["area"] = serde_json::json!(a);
-            }
-            if let Some(a) = s.area_both_postures {
-                v["area_both_postures"] = serde_json::json!(a);
-            }
-            if let Some(vol) = s.volume {
-                v["volume"] = serde_json::json!(vol);
-            }
-            v["measure_method"] = serde_json::json!(s.measure_method);
-            if let Some(e) = s.measure_error {
-                v["measure_error"] = serde_json::json!(e);
-            }
-            v["point"] = serde_json::json!(match args.point {
-                PointArg::WristCentre => "wrist centre",
-                PointArg::Flange => "flange",
-            });
+            let v = stats_json(&robot, args, &fig.stats);
             serde_json::to_writer_pretty(&mut *out, &v).map_err(std::io::Error::from)?;
             writeln!(out)?;
         }
         super::Format::Text => {
+            let s = &fig.stats;
             let measure = match (s.area, s.volume) {
                 (Some(a), _) => format!("area {a:.6} m^2"),
                 (_, Some(v)) => format!("volume {v:.6} m^3"),
@@ -351,4 +321,42 @@ pub(super) fn workspace(
         }
     }
     Ok(())
+}
+
+/// The statistics of `armlab workspace --format json`.
+fn stats_json(
+    robot: &crate::kinematics::Robot,
+    args: &WorkspaceArgs,
+    s: &crate::workspace::WorkspaceStats,
+) -> serde_json::Value {
+    let mut v = serde_json::json!({
+        "model": robot.name,
+        "out": args.out.display().to_string(),
+        "samples": args.samples,
+        "seed": args.seed,
+        "bbox": { "min": s.bounds.min, "max": s.bounds.max },
+        "max_reach": s.max_reach,
+        "min_reach": s.min_reach,
+        "reach_exact": s.reach_exact,
+        "resolution": s.resolution,
+        "cell_size": s.cell_size,
+        "dexterous": s.dexterous_measure,
+        "classes": s.classes.iter().map(|c| serde_json::json!({"name": c.name, "with": c.with, "only": c.only})).collect::<Vec<_>>(),
+        "measure_method": s.measure_method,
+        "point": match args.point {
+            PointArg::WristCentre => "wrist centre",
+            PointArg::Flange => "flange",
+        },
+    });
+    for (key, value) in [
+        ("area", s.area),
+        ("area_both_postures", s.area_both_postures),
+        ("volume", s.volume),
+        ("measure_error", s.measure_error),
+    ] {
+        if let Some(x) = value {
+            v[key] = serde_json::json!(x);
+        }
+    }
+    v
 }

@@ -238,14 +238,8 @@ fn end_effector(robot: &Robot, spec: Option<&str>) -> Result<usize, CliError> {
 }
 
 /// Runs `ik`. All targets are parsed before anything is solved or printed.
-pub(super) fn run(args: &IkArgs, out: &mut dyn Write) -> Result<(), CliError> {
-    let robot = crate::model_file::load_model(&args.model)?;
-    let targets = targets(args)?;
-    let ee = end_effector(&robot, args.ee.as_deref())?;
-    let seed = match &args.seed_q {
-        Some(t) => Some(parse_row(t, "--seed-q", robot.dof(), "joint values")?),
-        None => None,
-    };
+/// The solver and its options from `--solver`, `--method` and `--task`.
+fn solver_setup(args: &IkArgs) -> Result<(SolverChoice, NumericalOptions), CliError> {
     let task: crate::kinematics::redundancy::Task = args.task.into();
     let choice = match (args.solver, args.task) {
         (SolverArg::ClosedForm, t) if t != TaskArg::Pose => {
@@ -274,6 +268,18 @@ pub(super) fn run(args: &IkArgs, out: &mut dyn Write) -> Result<(), CliError> {
         },
         ..Default::default()
     };
+    Ok((choice, opts))
+}
+
+pub(super) fn run(args: &IkArgs, out: &mut dyn Write) -> Result<(), CliError> {
+    let robot = crate::model_file::load_model(&args.model)?;
+    let targets = targets(args)?;
+    let ee = end_effector(&robot, args.ee.as_deref())?;
+    let seed = match &args.seed_q {
+        Some(t) => Some(parse_row(t, "--seed-q", robot.dof(), "joint values")?),
+        None => None,
+    };
+    let (choice, opts) = solver_setup(args)?;
     let reference = seed.clone().unwrap_or_else(|| vec![0.0; robot.dof()]);
     let mut answers = Vec::with_capacity(targets.len());
     for (src, t) in &targets {

@@ -146,7 +146,45 @@ fn numerical(
             orientation_error: oe,
         })
     };
-    // From s = 0 forwards to just under pi and backwards to -pi, sub-steps of at most 0.01.
+    let mut values = walk(&start, n, &sol)?;
+    values.sort_by(|a, b| a.0.total_cmp(&b.0));
+    // Feasible stretches from the samples (not exact: the numerical case has no closed form).
+    let mut feasible: Vec<[f64; 2]> = Vec::new();
+    for (v, b) in &values {
+        if b.first().is_some_and(|x| x.within_limits) {
+            match feasible.last_mut() {
+                Some(l) if (l[1] - (v - h)).abs() < 1e-9 => l[1] = *v,
+                _ => feasible.push([*v, *v]),
+            }
+        }
+    }
+    let p = target.translation.vector;
+    Ok(Motion {
+        parameter: "arc length",
+        names: vec![name.clone()],
+        samples: values,
+        feasible: vec![feasible],
+        manifolds: 1,
+        singular: false,
+        what: format!(
+            "holding its hand at ({:.6}, {:.6}, {:.6}) m (numerical: the curve through the IK \
+             solution; feasible stretches from the samples)",
+            p.x, p.y, p.z
+        ),
+    })
+}
+
+/// Samples of the numerical self-motion at `n` arc lengths covering [-pi, pi): from s = 0
+/// forwards and backwards, in sub-steps of at most 0.01 rad; a sample past a singularity has no
+/// branch.
+fn walk(
+    start: &crate::redundancy::numerical::NullSpaceMotion,
+    n: usize,
+    sol: &dyn Fn(
+        &crate::redundancy::numerical::NullSpaceMotion,
+    ) -> Result<BranchSolution, CliError>,
+) -> Result<Vec<(f64, Vec<BranchSolution>)>, CliError> {
+    let h = std::f64::consts::TAU / n as f64;
     let mut values: Vec<(f64, Vec<BranchSolution>)> = Vec::with_capacity(n);
     for dir in [1.0, -1.0] {
         let mut m = start.clone();
@@ -173,31 +211,7 @@ fn numerical(
             values.push((value, branch));
         }
     }
-    values.sort_by(|a, b| a.0.total_cmp(&b.0));
-    // Feasible stretches from the samples (not exact: the numerical case has no closed form).
-    let mut feasible: Vec<[f64; 2]> = Vec::new();
-    for (v, b) in &values {
-        if b.first().is_some_and(|x| x.within_limits) {
-            match feasible.last_mut() {
-                Some(l) if (l[1] - (v - h)).abs() < 1e-9 => l[1] = *v,
-                _ => feasible.push([*v, *v]),
-            }
-        }
-    }
-    let p = target.translation.vector;
-    Ok(Motion {
-        parameter: "arc length",
-        names: vec![name.clone()],
-        samples: values,
-        feasible: vec![feasible],
-        manifolds: 1,
-        singular: false,
-        what: format!(
-            "holding its hand at ({:.6}, {:.6}, {:.6}) m (numerical: the curve through the IK \
-             solution; feasible stretches from the samples)",
-            p.x, p.y, p.z
-        ),
-    })
+    Ok(values)
 }
 
 /// Runs `self-motion`.
