@@ -28,6 +28,13 @@ fn rot(w: &Vector3<f64>, t: f64) -> Rotation3<f64> {
     Rotation3::from_axis_angle(&Unit::new_unchecked(*w), t)
 }
 
+/// `Rot(w, t) v` by Rodrigues' formula (no matrix).
+#[inline]
+fn rotv(w: &Vector3<f64>, t: f64, v: &Vector3<f64>) -> Vector3<f64> {
+    let (st, ct) = t.sin_cos();
+    v * ct + w.cross(v) * st + w * (w.dot(v) * (1.0 - ct))
+}
+
 /// Subproblem 1: the angle t with Rot(w, t) p = q (p, q of equal components along w).
 fn sub1(w: &Vector3<f64>, p: &Vector3<f64>, q: &Vector3<f64>) -> f64 {
     let pp = p - w * w.dot(p);
@@ -249,8 +256,8 @@ impl SrsArm {
         let sw = wc - self.s;
         let u = sw.normalize();
         let rot_psi = rot(&u, psi);
+        let m = target.rotation.into_inner() * self.r0.inverse().into_inner();
         let mut mask = 0u8;
-        // Shared work: the elbow (2), then the shoulder (2 per elbow), then the wrist (2 each).
         for (ie, se) in [1.0, -1.0].into_iter().enumerate() {
             let Some(q4) = self.elbow(sw.norm(), se) else {
                 continue;
@@ -259,35 +266,39 @@ impl SrsArm {
                 continue;
             };
             let e = rot_psi * reference;
-            let w4 = self.w4(q4);
+            let r4 = rot(&self.w[3], q4);
+            let w4 = self.e0 - self.s + r4 * (self.w0 - self.e0);
             let r_sh = triad(&e, &sw) * triad(&(self.e0 - self.s), &w4).transpose();
+            // R_1 R_2 R_3 = R_sh whichever the shoulder branch, so the wrist sees the same
+            // rotation from both: R_5 R_6 R_7 = (R_sh R_4)^T R_e R(0)^T.
+            let r_w = (r_sh * r4.into_inner()).transpose() * m;
+            let wrists = [1.0, -1.0].map(|sign| self.triple(4, &r_w, sign));
             for (is, ss) in [1.0, -1.0].into_iter().enumerate() {
-                let Some((q1, q2)) =
-                    sub2(&self.w[0], &self.w[1], &self.w[2], &(r_sh * self.w[2]), ss)
-                else {
+                let Some([q1, q2, q3]) = self.triple(0, &r_sh, ss) else {
                     continue;
                 };
-                let r12 = rot(&self.w[0], q1) * rot(&self.w[1], q2);
-                let x = self.probe[2];
-                let q3 = sub1(&self.w[2], &x, &(r12.inverse() * (r_sh * x)));
-                let r14 = r12 * rot(&self.w[2], q3) * rot(&self.w[3], q4);
-                let r_w = (r14.inverse() * target.rotation * self.r0.inverse()).into_inner();
-                for (iw, sws) in [1.0, -1.0].into_iter().enumerate() {
-                    let Some((q5, q6)) =
-                        sub2(&self.w[4], &self.w[5], &self.w[6], &(r_w * self.w[6]), sws)
-                    else {
-                        continue;
-                    };
-                    let r56 = rot(&self.w[4], q5) * rot(&self.w[5], q6);
-                    let y = self.probe[6];
-                    let q7 = sub1(&self.w[6], &y, &(r56.inverse() * (r_w * y)));
-                    let k = is << 2 | ie << 1 | iw;
-                    out[k] = [q1, q2, q3, q4, q5, q6, q7];
-                    mask |= 1 << k;
+                for (iw, w) in wrists.iter().enumerate() {
+                    if let Some([q5, q6, q7]) = *w {
+                        let k = is << 2 | ie << 1 | iw;
+                        out[k] = [q1, q2, q3, q4, q5, q6, q7];
+                        mask |= 1 << k;
+                    }
                 }
             }
         }
         mask
+    }
+
+    /// The angles of the spherical triple of axes `i`, `i + 1`, `i + 2` whose product of
+    /// rotations is `r`, branch `sign` of subproblem 2.
+    #[inline]
+    fn triple(&self, i: usize, r: &Matrix3<f64>, sign: f64) -> Option<[f64; 3]> {
+        let (w1, w2, w3) = (&self.w[i], &self.w[i + 1], &self.w[i + 2]);
+        let (t1, t2) = sub2(w1, w2, w3, &(r * w3), sign)?;
+        let x = self.probe[i + 2];
+        // R_2^T R_1^T (r x), rotating the vector only.
+        let v = rotv(w2, -t2, &rotv(w1, -t1, &(r * x)));
+        Some([t1, t2, sub1(w3, &x, &v)])
     }
 
     /// Every branch (up to 8) reaching `target` with arm angle `psi` (rad), named, wrapped into
