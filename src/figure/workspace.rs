@@ -396,8 +396,10 @@ fn decorate(
 ) {
     let how = if map.exact {
         "exact regions"
-    } else {
+    } else if map.method.starts_with("sampled") {
         "sampled regions"
+    } else {
+        "regions from a 64-direction approach scan"
     };
     plot.subtitle = format!(
         "{how}, {}, reach {:.3}-{:.3} m",
