@@ -807,17 +807,22 @@ fn self_motion_json_has_the_documented_shape() {
     );
 }
 
-#[test]
-fn self_motion_of_an_srs_arm_by_the_arm_angle() {
+/// The pose of a model's "ready" configuration as the 16 numbers of `--pose`.
+fn ready_pose(model: &str) -> Vec<String> {
     let fk = json(&armlab(&[
-        "fk", "dlr", "--config", "ready", "--format", "json",
+        "fk", model, "--config", "ready", "--format", "json",
     ]));
-    let pose: Vec<String> = fk[0]["T"]
+    fk[0]["T"]
         .as_array()
         .unwrap()
         .iter()
         .flat_map(|r| r.as_array().unwrap().iter().map(|x| x.to_string()))
-        .collect();
+        .collect()
+}
+
+#[test]
+fn self_motion_of_an_srs_arm_by_the_arm_angle() {
+    let pose = ready_pose("dlr");
     let v = json(&armlab(&[
         "self-motion",
         "dlr",
@@ -851,15 +856,7 @@ fn self_motion_of_an_srs_arm_by_the_arm_angle() {
 
 #[test]
 fn numerical_self_motion_of_the_humanoid_arm() {
-    let fk = json(&armlab(&[
-        "fk", "humanoid", "--config", "ready", "--format", "json",
-    ]));
-    let pose: Vec<String> = fk[0]["T"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .flat_map(|r| r.as_array().unwrap().iter().map(|x| x.to_string()))
-        .collect();
+    let pose = ready_pose("humanoid");
     let v = json(&armlab(&[
         "self-motion",
         "humanoid",

@@ -25,6 +25,11 @@ fn models() -> Vec<Robot> {
     ]
 }
 
+/// A joint vector drawn uniformly within the limits.
+fn random_q(lim: &[[f64; 2]], s: &mut u64) -> Vec<f64> {
+    lim.iter().map(|l| l[0] + (l[1] - l[0]) * lcg(s)).collect()
+}
+
 fn pose_gap(a: &Pose, b: &Pose) -> (f64, f64) {
     let p = (a.translation.vector - b.translation.vector).norm();
     // Frobenius norm of the difference of the rotation matrices (about the angle for small ones).
@@ -45,10 +50,7 @@ fn every_branch_reaches_the_target_at_every_arm_angle() {
         let mut s = 5u64;
         let (mut poses, mut branches) = (0, 0);
         while poses < 10_000 {
-            let q: Vec<f64> = lim
-                .iter()
-                .map(|l| l[0] + (l[1] - l[0]) * lcg(&mut s))
-                .collect();
+            let q = random_q(&lim, &mut s);
             let target = robot.fk(&q).unwrap();
             if arm.singular(&target) {
                 continue;
@@ -108,10 +110,7 @@ fn feasible_arm_angles_match_dense_sampling() {
         let mut poses = 0;
         let mut partial = 0;
         while poses < 6 {
-            let q: Vec<f64> = lim
-                .iter()
-                .map(|l| l[0] + (l[1] - l[0]) * lcg(&mut s))
-                .collect();
+            let q = random_q(&lim, &mut s);
             let target = robot.fk(&q).unwrap();
             if arm.singular(&target) {
                 continue;

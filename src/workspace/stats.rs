@@ -157,18 +157,19 @@ pub fn statistics(
         resolution: opts.grid.resolution,
         samples,
         method: grid.method,
-        measure_method: match grid.method {
-            GridMethod::ClosedForm { .. } => format!(
-                "closed-form IK at the centres of a {} grid",
-                opts.grid.resolution
-            ),
-            GridMethod::Sampling { samples } => {
-                format!(
-                    "occupancy of {samples} joint-space samples on a {} grid",
-                    opts.grid.resolution
-                )
-            }
-        },
+        measure_method: method_words(grid.method, opts.grid.resolution),
         measure_error: None,
     })
+}
+
+/// How a grid measure was computed, in words.
+fn method_words(method: GridMethod, resolution: usize) -> String {
+    match method {
+        GridMethod::ClosedForm { .. } => {
+            format!("closed-form IK at the centres of a {resolution} grid")
+        }
+        GridMethod::Sampling { samples } => {
+            format!("occupancy of {samples} joint-space samples on a {resolution} grid")
+        }
+    }
 }
