@@ -285,3 +285,126 @@ fn numerical_self_motion_does_not_drift() {
         .is_err()
     );
 }
+
+/// A four-link planar arm with limits on every joint (a = 0.35, 0.3, 0.2, 0.15 m).
+fn limited_planar4() -> Robot {
+    let lim = [[-2.0, 2.0], [-2.5, 2.5], [-1.5, 1.5], [-1.0, 1.2]];
+    let rows: Vec<DhJoint> = [0.35, 0.3, 0.2, 0.15]
+        .iter()
+        .zip(lim)
+        .map(|(&a, l)| {
+            DhJoint::revolute(DhRow {
+                a,
+                alpha: 0.0,
+                d: 0.0,
+                theta: 0.0,
+            })
+            .limits(l[0], l[1])
+        })
+        .collect();
+    Robot::from_dh(
+        "limited four-link arm",
+        armlab::kinematics::Convention::Standard,
+        &rows,
+        Pose::identity(),
+        Pose::identity(),
+    )
+    .unwrap()
+}
+
+/// The four-link arm holding (x, y, phi): every branch at every phi_3 reproduces the hand by
+/// the forward kinematics (2.63) extended to four links, written out here; the configuration a
+/// hand pose came from is among the branches at its own phi_3 = q1 + q2 + q3.
+#[test]
+fn four_link_self_motion_keeps_the_hand_exactly_still() {
+    use armlab::redundancy::four_link::FourLinkSelfMotion;
+    let a = [0.35, 0.3, 0.2, 0.15];
+    let fk = |q: &[f64]| {
+        let (mut x, mut y, mut t) = (0.0, 0.0, 0.0);
+        for k in 0..4 {
+            t += q[k];
+            x += a[k] * t.cos();
+            y += a[k] * t.sin();
+        }
+        (x, y, t)
+    };
+    for r in [robot("planar4"), limited_planar4()] {
+        let lim = r.limits();
+        let mut s = 17u64;
+        let mut checked = 0;
+        for _ in 0..2000 {
+            let q: Vec<f64> = lim
+                .iter()
+                .map(|l| l[0] + (l[1] - l[0]) * lcg(&mut s))
+                .collect();
+            let (x, y, phi) = fk(&q);
+            let target = r.fk(&q).unwrap();
+            let m = FourLinkSelfMotion::new(&r, &target).unwrap();
+            let own = m.solutions(&r, q[0] + q[1] + q[2]);
+            assert!(own.iter().any(|b| b.q.iter().zip(&q).all(|(u, v)| {
+                (u - v).rem_euclid(TAU).min(TAU - (u - v).rem_euclid(TAU)) < 1e-9
+            })));
+            let phi3 = -PI + TAU * lcg(&mut s);
+            for b in m.solutions(&r, phi3) {
+                let (bx, by, bt) = fk(&b.q);
+                assert!((bx - x).hypot(by - y) < 1e-12, "{b:?}");
+                let d = (bt - phi).rem_euclid(TAU);
+                assert!(d.min(TAU - d) < 1e-12);
+                let d3 = (b.q[0] + b.q[1] + b.q[2] - phi3).rem_euclid(TAU);
+                assert!(d3.min(TAU - d3) < 1e-12);
+                assert!(b.position_error < 1e-12 && b.orientation_error < 1e-12);
+                checked += 1;
+            }
+        }
+        assert!(checked > 1000, "{checked}");
+    }
+}
+
+/// Feasible phi_3 intervals of the limited four-link arm against 10^5 samples, limits checked
+/// on the joint values in the test.
+#[test]
+fn four_link_feasible_intervals_match_dense_sampling() {
+    use armlab::redundancy::four_link::FourLinkSelfMotion;
+    let r = limited_planar4();
+    let lim = r.limits();
+    for q in [
+        [0.3, 0.8, 0.5, -0.4],
+        [-1.2, 1.9, -0.7, 0.9],
+        [1.5, -2.0, 1.2, 0.1],
+    ] {
+        let target = r.fk(&q).unwrap();
+        let m = FourLinkSelfMotion::new(&r, &target).unwrap();
+        let (feasible, _) = m.feasible();
+        for (b, name) in m.branch_names().iter().enumerate() {
+            let n = 100_000;
+            let mut hits = 0;
+            for k in 0..n {
+                let phi = -PI + TAU * (k as f64 + 0.5) / n as f64;
+                let sol = m.solutions(&r, phi).into_iter().find(|x| &x.name == name);
+                let ok = sol.is_some_and(|x| {
+                    (0..4).all(|j| x.q[j] >= lim[j][0] - 1e-12 && x.q[j] <= lim[j][1] + 1e-12)
+                });
+                let inside = feasible[b].iter().any(|iv| phi >= iv[0] && phi <= iv[1]);
+                let near_end = feasible[b]
+                    .iter()
+                    .any(|iv| (phi - iv[0]).abs() < 1e-4 || (phi - iv[1]).abs() < 1e-4);
+                if !near_end {
+                    assert_eq!(ok, inside, "{q:?} {name} phi {phi}");
+                }
+                hits += usize::from(ok);
+            }
+            let measure: f64 = feasible[b].iter().map(|iv| iv[1] - iv[0]).sum();
+            let sampled = hits as f64 / n as f64 * TAU;
+            assert!(
+                (measure - sampled).abs() < 1e-3,
+                "{q:?} {name}: {measure} vs {sampled}"
+            );
+            // The limits bite: neither nothing nor the whole circle.
+            assert!(
+                measure > 0.01 && measure < TAU - 0.01,
+                "{q:?} {name}: {measure}"
+            );
+        }
+        assert!(m.manifolds(&r) >= 1);
+    }
+}

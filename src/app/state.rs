@@ -31,11 +31,13 @@
 
 mod dh;
 mod select;
+mod self_motion;
 mod track;
 mod types;
 mod units;
 
 pub use dh::{DH_FIELDS, DhCell, DhField, DhRowCells};
+pub use self_motion::{SELF_MOTION_SAMPLES, SelfMotionView, full_task, tasks_for};
 pub use track::{
     BRANCH_SWITCH_MARGIN, BRANCH_SWITCH_MEASURE, is_degenerate_label, tracking_options,
 };
@@ -78,6 +80,11 @@ pub struct AppState {
     trails: Vec<VecDeque<Vector3<f64>>>,
     messages: VecDeque<StatusMessage>,
     analyzer: SingularityAnalyzer,
+    /// The task the gizmo's IK obeys.
+    task: crate::kinematics::redundancy::Task,
+    /// Counts model changes (loads, DH edits), so caches know when they are stale.
+    generation: u64,
+    self_motion: Option<self_motion::SelfMotionCache>,
 }
 
 impl AppState {
@@ -99,6 +106,9 @@ impl AppState {
             trails: Vec::new(),
             messages: VecDeque::new(),
             analyzer,
+            task: full_task(&robot),
+            generation: 0,
+            self_motion: None,
             robot,
         };
         me.install_q();
@@ -124,7 +134,9 @@ impl AppState {
                 self.spec = spec.to_string();
                 self.analyzer = SingularityAnalyzer::new(&robot);
                 self.dh = dh::build_cells(&robot, self.angle_unit);
+                self.task = full_task(&robot);
                 self.robot = robot;
+                self.generation += 1;
                 self.trails.clear();
                 self.install_q();
                 let msg = format!("loaded {} ({} DOF)", self.robot.name, self.robot.dof());
@@ -459,6 +471,7 @@ impl AppState {
     /// targets synced.
     fn after_model_edit(&mut self) {
         self.analyzer = SingularityAnalyzer::new(&self.robot);
+        self.generation += 1;
         let mut q = self.q.clone();
         clamp_into(&mut q, &self.robot.limits());
         self.q = q;

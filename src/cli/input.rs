@@ -45,7 +45,7 @@ pub enum InputError {
     },
 }
 
-/// Parses `"1, 2.5, -3e-2"` into numbers: every field must be a finite number and there must be
+/// Parses `"1, 2.5, -3e-2"` (or `"1 2.5 -3e-2"`, whitespace alone) into numbers: every field must be a finite number and there must be
 /// exactly `expected` of them. `scale[k]` multiplies field k (e.g. degrees to radians).
 pub fn parse_row(
     text: &str,
@@ -53,7 +53,12 @@ pub fn parse_row(
     expected: usize,
     what: &'static str,
 ) -> Result<Vec<f64>, InputError> {
-    let fields: Vec<&str> = text.split(',').map(str::trim).collect();
+    // Commas, or whitespace alone ("16 numbers" as a pose is usually written).
+    let fields: Vec<&str> = if text.contains(',') {
+        text.split(',').map(str::trim).collect()
+    } else {
+        text.split_whitespace().collect()
+    };
     let fields: Vec<&str> = if fields.len() == 1 && fields[0].is_empty() {
         Vec::new()
     } else {

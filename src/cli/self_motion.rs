@@ -2,8 +2,8 @@
 
 use super::{CliError, Format};
 use crate::kinematics::{Pose, Robot};
-use crate::redundancy::srs::SrsArm;
-use crate::redundancy::{BranchSolution, PlanarSelfMotion};
+use crate::redundancy::motion::ExactSelfMotion;
+use crate::redundancy::{BranchSolution, RedundancyError};
 use std::path::PathBuf;
 
 /// Arguments of `armlab self-motion`.
@@ -48,52 +48,24 @@ fn grid(n: usize) -> impl Iterator<Item = f64> {
     (0..n).map(move |k| -std::f64::consts::PI + std::f64::consts::TAU * k as f64 / n as f64)
 }
 
-/// The SRS arm angle of a 7R arm.
-fn srs(robot: &Robot, arm: &SrsArm, target: &Pose, n: usize) -> Motion {
-    let p = target.translation.vector;
+/// An exact self-motion (SRS arm angle, offset-elbow q7, planar phi), sampled.
+fn exact(robot: &Robot, m: &ExactSelfMotion, n: usize) -> Motion {
+    let p = m.target().translation.vector;
     Motion {
-        parameter: "arm angle",
-        names: SrsArm::branch_names().to_vec(),
-        samples: grid(n)
-            .map(|psi| (psi, arm.branch_solutions(robot, target, psi)))
-            .collect(),
-        feasible: arm.feasible_intervals(target).to_vec(),
-        manifolds: arm.manifolds(target),
-        singular: arm.singular(target),
-        what: format!("holding its hand at ({:.6}, {:.6}, {:.6}) m", p.x, p.y, p.z),
+        parameter: m.parameter(),
+        names: m.names().to_vec(),
+        samples: grid(n).map(|v| (v, m.solutions(robot, v))).collect(),
+        feasible: m.feasible().to_vec(),
+        manifolds: m.manifolds(),
+        singular: m.singular(),
+        what: format!(
+            "holding its hand at ({:.6}, {:.6}, {:.6}) m; {}",
+            p.x,
+            p.y,
+            p.z,
+            m.parameter_meaning()
+        ),
     }
-}
-
-/// The orientation phi of a three-link planar arm with a position task.
-fn planar(
-    robot: &Robot,
-    target: &Pose,
-    n: usize,
-    bad: &dyn Fn(String) -> CliError,
-) -> Result<Motion, CliError> {
-    let frame = crate::workspace::planar_frame(robot, 0).ok_or_else(|| {
-        bad(format!(
-            "exact self-motion is available for SRS 7R arms (arm angle) and three-link planar \
-             arms (phi); {} is neither (the Panda's q7 and numerical self-motion are not \
-             implemented yet)",
-            robot.name
-        ))
-    })?;
-    let p = target.translation.vector;
-    let xy = frame.to_plane([p.x, p.y, p.z]);
-    let motion = PlanarSelfMotion::new(robot, xy).map_err(|e| bad(e.to_string()))?;
-    let (feasible, _) = motion.feasible();
-    Ok(Motion {
-        parameter: "phi",
-        names: motion.branch_names().to_vec(),
-        samples: grid(n)
-            .map(|phi| (phi, motion.solutions(robot, phi)))
-            .collect(),
-        feasible: feasible.to_vec(),
-        manifolds: motion.manifolds(robot),
-        singular: false,
-        what: format!("holding its hand at ({:.6}, {:.6}) m", xy[0], xy[1]),
-    })
 }
 
 /// Any other redundant chain: numerical IK to the pose from the "ready" configuration (or
@@ -214,6 +186,14 @@ fn walk(
     Ok(values)
 }
 
+/// Whether the robot has the shape of an exact self-motion (so that a failure is the pose's, not
+/// a reason to fall back on the numerical one).
+fn exact_shape(robot: &Robot) -> bool {
+    crate::redundancy::srs::SrsArm::detect(robot).is_some()
+        || crate::redundancy::offset_elbow::OffsetElbowArm::detect(robot).is_some()
+        || (crate::workspace::planar_frame(robot, 0).is_some() && matches!(robot.dof(), 3 | 4))
+}
+
 /// Runs `self-motion`.
 pub(super) fn run(args: &SelfMotionArgs, out: &mut dyn std::io::Write) -> Result<(), CliError> {
     let robot = crate::model_file::load_model(&args.model)?;
@@ -241,17 +221,11 @@ pub(super) fn run(args: &SelfMotionArgs, out: &mut dyn std::io::Write) -> Result
         source_name: args.model.clone(),
         reason,
     };
-    let mut motion = match SrsArm::detect(&robot) {
-        Some(arm) => {
-            if arm.solve(&pose, 0.0).is_empty() && !arm.singular(&pose) {
-                return Err(bad("the pose's wrist centre is out of reach".into()));
-            }
-            srs(&robot, &arm, &pose, args.samples)
-        }
-        None if crate::workspace::planar_frame(&robot, 0).is_some() && robot.dof() <= 3 => {
-            planar(&robot, &pose, args.samples, &bad)?
-        }
-        None => numerical(&robot, &pose, args.samples, &bad)?,
+    let mut motion = match ExactSelfMotion::new(&robot, &pose) {
+        Ok(m) => exact(&robot, &m, args.samples),
+        Err(RedundancyError::NotSupported(why)) if exact_shape(&robot) => return Err(bad(why)),
+        Err(RedundancyError::NotSupported(_)) => numerical(&robot, &pose, args.samples, &bad)?,
+        Err(e) => return Err(bad(e.to_string())),
     };
     if let Some(b) = &args.branch {
         let Some(k) = motion.names.iter().position(|n| n == b) else {

@@ -7,7 +7,11 @@
 //! meets a limit or the two branches merge are closed-form roots, so the feasible intervals of
 //! each branch are exact and the self-motion curves inside the limits are counted exactly.
 
+pub mod four_link;
+mod geometry;
+pub mod motion;
 pub mod numerical;
+pub mod offset_elbow;
 pub mod srs;
 
 use crate::kinematics::{KinematicsError, Robot};
@@ -102,6 +106,13 @@ impl PlanarSelfMotion {
             });
         }
         Ok(me)
+    }
+
+    /// The orientation phi (rad) of configuration `q`: the tool x axis's angle in the plane.
+    pub fn phi_of(&self, robot: &Robot, q: &[f64]) -> Option<f64> {
+        let t = robot.fk(q).ok()?;
+        let x = self.world_from_base.rotation.inverse() * t.rotation * nalgebra::Vector3::x();
+        Some(x.y.atan2(x.x))
     }
 
     /// Distance (m) of the target outside the reach of the links, limits ignored (0 inside).
@@ -216,6 +227,42 @@ impl PlanarSelfMotion {
         };
         count_manifolds(&pieces, &merges, &same)
     }
+}
+
+/// A branch's joint vector `q` checked by forward kinematics against `target`: position error
+/// (m), rotation angle of `R^T R_target` (rad), and the limits.
+pub(crate) fn checked(
+    robot: &Robot,
+    target: &crate::kinematics::Pose,
+    name: String,
+    q: &[f64],
+    limits: &[[f64; 2]],
+) -> BranchSolution {
+    let (pe, oe) = match robot.fk(q) {
+        Ok(t) => (
+            (t.translation.vector - target.translation.vector).norm(),
+            crate::kinematics::orientation::angle_axis_from_rotation(
+                &(t.rotation.inverse() * target.rotation),
+            )
+            .angle,
+        ),
+        Err(_) => (f64::INFINITY, f64::INFINITY),
+    };
+    BranchSolution {
+        name,
+        q: q.to_vec(),
+        within_limits: geometry::within(q, limits),
+        position_error: pe,
+        orientation_error: oe,
+    }
+}
+
+/// Whether two joint vectors are the same configuration (each angle equal modulo 2 pi, 1e-6).
+pub(crate) fn same_angles(a: &[f64], b: &[f64]) -> bool {
+    a.iter().zip(b).all(|(u, v)| {
+        let d = (u - v).rem_euclid(TAU);
+        d.min(TAU - d) < 1e-6
+    })
 }
 
 /// Connected self-motion curves: the feasible intervals of every branch (pieces of [-pi, pi],

@@ -87,6 +87,12 @@ impl<'a> NullSpaceMotion<'a> {
         &self.q
     }
 
+    /// Holds `target` from now on (world, m): the next step's corrections go onto it (the app
+    /// keeps one pose across many short walks, so rounding cannot accumulate between them).
+    pub fn hold(&mut self, target: Pose) {
+        self.target = target;
+    }
+
     /// The current tangent (unit, joint space).
     pub fn tangent(&self) -> &[f64] {
         self.tangent.as_slice()

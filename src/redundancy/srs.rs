@@ -19,83 +19,10 @@
 //!
 //! Eight branches in all, labelled by the three signs.
 
+use super::geometry::{meet, rot, rotv, sub1, sub2, triad, trig_roots, within, wrap_into};
 use crate::kinematics::{JointKind, Pose, Robot};
-use nalgebra::{Matrix3, Point3, Rotation3, Unit, Vector3};
+use nalgebra::{Matrix3, Point3, Rotation3, Vector3};
 use std::f64::consts::{PI, TAU};
-
-/// Rotation about unit axis `w` by `t` (rad).
-fn rot(w: &Vector3<f64>, t: f64) -> Rotation3<f64> {
-    Rotation3::from_axis_angle(&Unit::new_unchecked(*w), t)
-}
-
-/// `Rot(w, t) v` by Rodrigues' formula (no matrix).
-#[inline]
-fn rotv(w: &Vector3<f64>, t: f64, v: &Vector3<f64>) -> Vector3<f64> {
-    let (st, ct) = t.sin_cos();
-    v * ct + w.cross(v) * st + w * (w.dot(v) * (1.0 - ct))
-}
-
-/// Subproblem 1: the angle t with Rot(w, t) p = q (p, q of equal components along w).
-fn sub1(w: &Vector3<f64>, p: &Vector3<f64>, q: &Vector3<f64>) -> f64 {
-    let pp = p - w * w.dot(p);
-    let qq = q - w * w.dot(q);
-    w.dot(&pp.cross(&qq)).atan2(pp.dot(&qq))
-}
-
-/// Subproblem 2: the angles (t1, t2) with Rot(w1, t1) Rot(w2, t2) p = q, for `sign` = +1 or -1
-/// (the two solutions); `None` when there is none (beyond rounding).
-fn sub2(
-    w1: &Vector3<f64>,
-    w2: &Vector3<f64>,
-    p: &Vector3<f64>,
-    q: &Vector3<f64>,
-    sign: f64,
-) -> Option<(f64, f64)> {
-    let c12 = w1.dot(w2);
-    let den = c12 * c12 - 1.0;
-    if den.abs() < 1e-12 {
-        return None;
-    }
-    let alpha = (c12 * w2.dot(p) - w1.dot(q)) / den;
-    let beta = (c12 * w1.dot(q) - w2.dot(p)) / den;
-    let x = w1.cross(w2);
-    let g2 = (p.norm_squared() - alpha * alpha - beta * beta - 2.0 * alpha * beta * c12)
-        / x.norm_squared();
-    if g2 < -1e-10 * p.norm_squared().max(1e-30) {
-        return None;
-    }
-    let c = w1 * alpha + w2 * beta + x * (sign * g2.max(0.0).sqrt());
-    Some((sub1(w1, &c, q), sub1(w2, p, &c)))
-}
-
-/// Closest point of line (a, u) to line (b, v) (points, unit directions), and the gap between
-/// the lines (m).
-fn meet(
-    a: &Vector3<f64>,
-    u: &Vector3<f64>,
-    b: &Vector3<f64>,
-    v: &Vector3<f64>,
-) -> (Vector3<f64>, f64) {
-    let w0 = a - b;
-    let (uu, uv, vv) = (u.dot(u), u.dot(v), v.dot(v));
-    let (du, dv) = (u.dot(&w0), v.dot(&w0));
-    let den = uu * vv - uv * uv;
-    if den.abs() < 1e-12 {
-        return (*a, f64::INFINITY);
-    }
-    let s = (uv * dv - vv * du) / den;
-    let t = (uu * dv - uv * du) / den;
-    let pa = a + u * s;
-    let pb = b + v * t;
-    (0.5 * (pa + pb), (pa - pb).norm())
-}
-
-/// The orthonormal frame of `a` and the part of `b` perpendicular to it, as columns.
-fn triad(a: &Vector3<f64>, b: &Vector3<f64>) -> Matrix3<f64> {
-    let x = a.normalize();
-    let y = (b - x * x.dot(b)).normalize();
-    Matrix3::from_columns(&[x, y, x.cross(&y)])
-}
 
 /// One branch at one arm angle.
 #[derive(Debug, Clone, PartialEq)]
@@ -314,10 +241,7 @@ impl SrsArm {
                 let q = self.wrapped(q);
                 out.push(SrsSolution {
                     name: names[k].clone(),
-                    within_limits: q
-                        .iter()
-                        .zip(&self.limits)
-                        .all(|(v, l)| *v >= l[0] - 1e-12 && *v <= l[1] + 1e-12),
+                    within_limits: within(&q, &self.limits),
                     q,
                 });
             }
@@ -328,14 +252,7 @@ impl SrsArm {
     /// Each angle shifted by a multiple of 2 pi into its limits where one fits, else wrapped to
     /// (-pi, pi].
     fn wrapped(&self, q: [f64; 7]) -> [f64; 7] {
-        std::array::from_fn(|k| {
-            let [lo, hi] = self.limits[k];
-            let base = q[k] - TAU * ((q[k] + PI) / TAU).floor();
-            [base, base - TAU, base + TAU]
-                .into_iter()
-                .find(|v| *v >= lo - 1e-12 && *v <= hi + 1e-12)
-                .unwrap_or(base)
-        })
+        wrap_into(q, &self.limits)
     }
 
     /// The arm angle (rad) of a configuration: the signed angle about S->W from the reference
@@ -350,18 +267,6 @@ impl SrsArm {
         let b = e - u * u.dot(&e);
         Some(u.dot(&a.cross(&b)).atan2(a.dot(&b)))
     }
-}
-
-/// The roots psi (rad) of `a sin psi + b cos psi + c = 0`.
-fn trig_roots(a: f64, b: f64, c: f64, out: &mut Vec<f64>) {
-    let r = a.hypot(b);
-    if r < 1e-14 || c.abs() > r {
-        return;
-    }
-    let phase = a.atan2(b);
-    let d = (-c / r).clamp(-1.0, 1.0).acos();
-    out.push(phase + d);
-    out.push(phase - d);
 }
 
 /// A rotation that depends on psi as `C + sin(psi) A + cos(psi) B`.
@@ -472,40 +377,48 @@ impl SrsArm {
     /// interval's midpoint decides it. Intervals are pieces of [-pi, pi] (one across +-pi given
     /// as two), in branch order ([`Self::branch_names`]).
     pub fn feasible_intervals(&self, target: &Pose) -> [Vec<[f64; 2]>; 8] {
-        let mut cuts = self.breakpoints(target);
-        cuts.push(0.0);
-        cuts.sort_by(f64::total_cmp);
-        cuts.dedup_by(|a, b| (*a - *b).abs() < 1e-13);
-        let mut out: [Vec<[f64; 2]>; 8] = Default::default();
+        let cuts = self.breakpoints(target);
         let mut raw = [[0.0; 7]; 8];
-        for i in 0..cuts.len() {
-            let (lo, hi) = (cuts[i], if i + 1 < cuts.len() { cuts[i + 1] } else { TAU });
-            if hi <= lo {
-                continue;
+        midpoint_intervals(cuts, |psi, ok: &mut [bool; 8]| {
+            let mask = self.solve_raw(target, psi, &mut raw);
+            for (k, v) in ok.iter_mut().enumerate() {
+                *v = mask >> k & 1 == 1 && within(&self.wrapped(raw[k]), &self.limits);
             }
-            let mask = self.solve_raw(target, 0.5 * (lo + hi), &mut raw);
-            for (k, list) in out.iter_mut().enumerate() {
-                let ok = mask >> k & 1 == 1 && {
-                    let q = self.wrapped(raw[k]);
-                    q.iter()
-                        .zip(&self.limits)
-                        .all(|(v, l)| *v >= l[0] - 1e-12 && *v <= l[1] + 1e-12)
-                };
-                if ok {
-                    match list.last_mut() {
-                        Some(l) if l[1] == lo => l[1] = hi,
-                        _ => list.push([lo, hi]),
-                    }
-                }
+        })
+    }
+}
+
+/// The feasible intervals of 8 branches from the `cuts` (in [0, 2 pi)) between which no branch's
+/// feasibility changes: `test(t, ok)` decides each branch at one interval's midpoint t. Pieces
+/// of [-pi, pi] in branch order.
+pub(super) fn midpoint_intervals(
+    mut cuts: Vec<f64>,
+    mut test: impl FnMut(f64, &mut [bool; 8]),
+) -> [Vec<[f64; 2]>; 8] {
+    cuts.push(0.0);
+    cuts.sort_by(f64::total_cmp);
+    cuts.dedup_by(|a, b| (*a - *b).abs() < 1e-13);
+    let mut out: [Vec<[f64; 2]>; 8] = Default::default();
+    let mut ok = [false; 8];
+    for i in 0..cuts.len() {
+        let (lo, hi) = (cuts[i], if i + 1 < cuts.len() { cuts[i + 1] } else { TAU });
+        if hi <= lo {
+            continue;
+        }
+        test(0.5 * (lo + hi), &mut ok);
+        for (list, _) in out.iter_mut().zip(ok).filter(|(_, v)| *v) {
+            match list.last_mut() {
+                Some(l) if l[1] == lo => l[1] = hi,
+                _ => list.push([lo, hi]),
             }
         }
-        out.map(|list| to_signed(&list))
     }
+    out.map(|list| to_signed(&list))
 }
 
 /// Intervals of [0, 2 pi] as pieces of [-pi, pi]: an interval across pi is split in two, and
 /// the pieces touching at +-pi stay two.
-fn to_signed(list: &[[f64; 2]]) -> Vec<[f64; 2]> {
+pub(super) fn to_signed(list: &[[f64; 2]]) -> Vec<[f64; 2]> {
     let mut out = Vec::new();
     for &[lo, hi] in list {
         if hi <= PI {
@@ -543,12 +456,7 @@ impl SrsArm {
         let same = |a: usize, b: usize, psi: f64| {
             let mut raw = [[0.0; 7]; 8];
             let mask = self.solve_raw(target, psi, &mut raw);
-            mask >> a & 1 == 1
-                && mask >> b & 1 == 1
-                && raw[a].iter().zip(&raw[b]).all(|(u, v)| {
-                    let d = (u - v).rem_euclid(TAU);
-                    d.min(TAU - d) < 1e-6
-                })
+            mask >> a & 1 == 1 && mask >> b & 1 == 1 && super::same_angles(&raw[a], &raw[b])
         };
         super::count_manifolds(&pieces, &points, &same)
     }
@@ -565,25 +473,7 @@ impl SrsArm {
     ) -> Vec<super::BranchSolution> {
         self.solve(target, psi)
             .into_iter()
-            .map(|s| {
-                let (pe, oe) = match robot.fk(&s.q) {
-                    Ok(t) => (
-                        (t.translation.vector - target.translation.vector).norm(),
-                        crate::kinematics::orientation::angle_axis_from_rotation(
-                            &(t.rotation.inverse() * target.rotation),
-                        )
-                        .angle,
-                    ),
-                    Err(_) => (f64::INFINITY, f64::INFINITY),
-                };
-                super::BranchSolution {
-                    name: s.name,
-                    q: s.q.to_vec(),
-                    within_limits: s.within_limits,
-                    position_error: pe,
-                    orientation_error: oe,
-                }
-            })
+            .map(|s| super::checked(robot, target, s.name, &s.q, &self.limits))
             .collect()
     }
 }

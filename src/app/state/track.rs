@@ -97,7 +97,10 @@ fn solves_frame(family: Option<Family>) -> bool {
 impl AppState {
     /// Whether the closed-form path applies to end-effector `ee`.
     pub(super) fn uses_closed_form(&self, ee: usize) -> bool {
-        ee == 0 && self.robot.end_effectors().len() == 1 && self.analyzer.family().is_some()
+        ee == 0
+            && self.robot.end_effectors().len() == 1
+            && self.analyzer.family().is_some()
+            && self.task == super::full_task(&self.robot)
     }
 
     /// Solves IK for target `ee` and moves the arm (or freezes it).
@@ -326,7 +329,12 @@ impl AppState {
 
     fn track_numerical(&mut self, ee: usize) {
         let t = self.targets[ee].world_from_tool;
-        let target = if self.analyzer.task_rank(ee) >= 6 {
+        let mut options = tracking_options();
+        let target = if self.task != super::full_task(&self.robot) {
+            // A task that leaves components free, in the tool frame (Sect. 2.10.2).
+            options.mask = numerical::TaskMask::of_task(self.task);
+            Target::Pose(t)
+        } else if self.analyzer.task_rank(ee) >= 6 {
             Target::Pose(t)
         } else {
             Target::Position(t.translation.vector)
@@ -337,7 +345,7 @@ impl AppState {
             None => (&self.robot, (0..self.robot.dof()).collect()),
         };
         let seed: Vec<f64> = free.iter().map(|&k| self.q[k]).collect();
-        let rep = match numerical::solve(robot, ee, &target, &seed, &tracking_options()) {
+        let rep = match numerical::solve(robot, ee, &target, &seed, &options) {
             Ok(r) => r,
             Err(e) => {
                 let reason = e.to_string();
@@ -362,8 +370,12 @@ impl AppState {
         for (i, &k) in free.iter().enumerate() {
             q[k] = rep.q[i];
         }
-        let (position_error, orientation_error) =
-            numerical::pose_errors(&self.robot, ee, &q, &Target::Pose(t)).unwrap_or((0.0, 0.0));
+        let (position_error, orientation_error) = if self.task == super::full_task(&self.robot) {
+            numerical::pose_errors(&self.robot, ee, &q, &Target::Pose(t)).unwrap_or((0.0, 0.0))
+        } else {
+            // The errors of the components the task constrains.
+            (rep.position_error, rep.orientation_error)
+        };
         let sol = IkSolution {
             within_limits: self.robot.within_limits(&q, LIMIT_SLACK),
             q,

@@ -247,6 +247,9 @@ pub enum StateError {
         /// Labels available, separated by "; ".
         available: String,
     },
+    /// A task or self-motion request that does not apply (the reason in words).
+    #[error("{0}")]
+    Task(String),
     /// The chosen solution violates the joint limits.
     #[error("IK solution {index} (\"{posture}\") is outside the joint limits")]
     SolutionOutsideLimits {

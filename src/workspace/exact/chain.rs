@@ -29,7 +29,7 @@ pub(crate) struct Range {
 }
 
 impl Range {
-    fn of(l: [f64; 2]) -> Self {
+    pub(crate) fn of(l: [f64; 2]) -> Self {
         let full = !(l[0].is_finite() && l[1].is_finite()) || l[1] - l[0] >= TAU - 1e-12;
         let (lo, hi) = if full { (-PI, PI) } else { (l[0], l[1]) };
         Self { lo, hi, full }

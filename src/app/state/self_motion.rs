@@ -1,0 +1,419 @@
+//! The task the gizmo's IK obeys (Sect. 2.10.2) and the self-motion slider: the hand held at its
+//! pose while a free parameter moves the rest of the arm.
+//!
+//! The slider's value and branch are never stored apart from q: they are read back from q each
+//! time ([`crate::redundancy::motion::ExactSelfMotion::locate`]), and the cached solver is
+//! rebuilt whenever the robot (its generation) or the held pose changes, so a stale value cannot
+//! survive a model edit or a moved target. The numerical case (any other redundant chain, full
+//! pose) keeps the arc length walked since the pose was last changed and the last tangent, so
+//! the direction never flips between drags.
+
+use super::{AppState, Ghost, Level, StateError};
+use crate::kinematics::Pose;
+use crate::kinematics::redundancy::{Redundancy, Task};
+use crate::redundancy::BranchSolution;
+use crate::redundancy::motion::ExactSelfMotion;
+use crate::redundancy::numerical::NullSpaceMotion;
+use nalgebra::Vector3;
+use std::f64::consts::{PI, TAU};
+
+/// Samples of the parameter over [-pi, pi) for the curves of the Self-motion tab and the
+/// traced path.
+pub const SELF_MOTION_SAMPLES: usize = 360;
+/// Largest numerical self-motion sub-step (rad of arc length).
+const ARC_STEP: f64 = 0.01;
+
+/// Which self-motion a robot and task have.
+#[derive(Debug, Clone)]
+enum Kind {
+    /// Exact (closed-form parameter).
+    Exact(Box<ExactSelfMotion>),
+    /// Numerical, by arc length: the arc length walked and the last tangent.
+    Numerical { arc: f64, tangent: Option<Vec<f64>> },
+    /// None, and why.
+    None(String),
+}
+
+/// The cached self-motion of one end-effector's held pose.
+#[derive(Debug, Clone)]
+pub(super) struct SelfMotionCache {
+    generation: u64,
+    ee: usize,
+    task: Task,
+    pose: Pose,
+    kind: Kind,
+    /// Per sample of [`SELF_MOTION_SAMPLES`]: the parameter and every branch there.
+    samples: Vec<(f64, Vec<BranchSolution>)>,
+    /// Points visited by the numerical self-motion (world, m).
+    visited: Vec<Vector3<f64>>,
+}
+
+/// What the slider, the readouts and the Self-motion tab show.
+#[derive(Debug, Clone)]
+pub struct SelfMotionView {
+    /// The parameter's name: "arm angle", "q7", "phi" or "arc length".
+    pub parameter: &'static str,
+    /// The parameter in words.
+    pub meaning: String,
+    /// Exact (closed form) or numerical.
+    pub exact: bool,
+    /// Current value (rad): the parameter of q, or the arc length walked.
+    pub value: f64,
+    /// Slider range (rad).
+    pub range: [f64; 2],
+    /// Index of q's branch in `names`.
+    pub branch: usize,
+    /// Branch names.
+    pub names: Vec<String>,
+    /// Feasible intervals of each branch (rad; empty lists for the numerical case, which has
+    /// none known).
+    pub feasible: Vec<Vec<[f64; 2]>>,
+    /// Disjoint self-motion curves inside the limits (exact case).
+    pub manifolds: Option<usize>,
+    /// At the arm angle's algorithmic singularity.
+    pub singular: bool,
+    /// |p(q) - p_held| (m) and the rotation angle between R(q) and the held R (rad).
+    pub position_error: f64,
+    /// See `position_error`.
+    pub orientation_error: f64,
+    /// Samples of every branch over the range: the Self-motion tab's curves.
+    pub samples: Vec<(f64, Vec<BranchSolution>)>,
+    /// The traced point over the range for the current branch (world, m; `None` where the
+    /// branch does not exist), with whether each sample is within the limits; for the
+    /// numerical case the points visited.
+    pub path: Vec<(Option<Vector3<f64>>, bool)>,
+}
+
+/// The tasks that make sense for a robot: planar tasks for a planar arm, spatial ones otherwise.
+pub fn tasks_for(robot: &crate::kinematics::Robot) -> Vec<Task> {
+    if crate::workspace::planar_frame(robot, 0).is_some() && robot.end_effectors().len() == 1 {
+        vec![Task::Planar, Task::PlanarPhi]
+    } else {
+        vec![Task::Pose, Task::Position, Task::PositionAxis]
+    }
+}
+
+/// The full task of a robot: position and phi for a planar arm of three or more joints,
+/// position for a two-link one, the whole pose otherwise.
+pub fn full_task(robot: &crate::kinematics::Robot) -> Task {
+    match tasks_for(robot)[0] {
+        Task::Planar if robot.dof() >= 3 => Task::PlanarPhi,
+        t => t,
+    }
+}
+
+impl AppState {
+    /// The task the gizmo's IK obeys.
+    pub fn task(&self) -> Task {
+        self.task
+    }
+
+    /// The tasks offered for the current robot.
+    pub fn tasks(&self) -> Vec<Task> {
+        tasks_for(&self.robot)
+    }
+
+    /// Chooses the task (it must be one of [`AppState::tasks`]); the target is solved again.
+    pub fn set_task(&mut self, task: Task) -> Result<(), StateError> {
+        if !self.tasks().contains(&task) {
+            return Err(StateError::Task(format!(
+                "the task \"{}\" does not apply to {} (its tasks: {})",
+                task.name(),
+                self.robot.name,
+                self.tasks()
+                    .iter()
+                    .map(|t| t.name())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )));
+        }
+        self.task = task;
+        self.self_motion = None;
+        Ok(())
+    }
+
+    /// n, m, r of the robot for the current task.
+    pub fn redundancy(&self) -> Redundancy {
+        Redundancy::of(&self.robot, self.task)
+    }
+
+    /// The pose the self-motion of `ee` holds: the end-effector's pose at q.
+    fn held_pose(&self, ee: usize) -> Option<Pose> {
+        self.robot.fk_ee(&self.q, ee).ok()
+    }
+
+    /// The self-motion cache for `ee`, rebuilt if the robot, the task or the held pose changed.
+    fn self_motion_cache(&mut self, ee: usize) -> Option<&mut SelfMotionCache> {
+        let pose = self.held_pose(ee)?;
+        let fresh = self.self_motion.as_ref().is_some_and(|c| {
+            c.generation == self.generation
+                && c.ee == ee
+                && c.task == self.task
+                && pose_close(&c.pose, &pose)
+        });
+        if !fresh {
+            let kind = self.self_motion_kind(ee, &pose);
+            let samples = match &kind {
+                Kind::Exact(m) => (0..SELF_MOTION_SAMPLES)
+                    .map(|k| {
+                        let v = -PI + TAU * k as f64 / SELF_MOTION_SAMPLES as f64;
+                        (v, m.solutions(&self.robot, v))
+                    })
+                    .collect(),
+                _ => Vec::new(),
+            };
+            self.self_motion = Some(SelfMotionCache {
+                generation: self.generation,
+                ee,
+                task: self.task,
+                pose,
+                kind,
+                samples,
+                visited: Vec::new(),
+            });
+        }
+        self.self_motion.as_mut()
+    }
+
+    /// Which self-motion the robot has for the task at `pose`.
+    fn self_motion_kind(&self, ee: usize, pose: &Pose) -> Kind {
+        let red = self.redundancy();
+        if red.degree() <= 0 {
+            return Kind::None(format!("{red}: no self-motion for this task"));
+        }
+        let wants_exact = match ExactSelfMotion::new(&self.robot, pose) {
+            Ok(m) => {
+                let task = match m.parameter() {
+                    "phi" if self.robot.dof() == 3 => Task::Planar,
+                    "phi" => Task::PlanarPhi,
+                    _ => Task::Pose,
+                };
+                if task == self.task && ee == 0 {
+                    return Kind::Exact(Box::new(m));
+                }
+                Some(task)
+            }
+            Err(_) => None,
+        };
+        if self.task == Task::Pose {
+            return Kind::Numerical {
+                arc: 0.0,
+                tangent: None,
+            };
+        }
+        Kind::None(match wants_exact {
+            Some(t) => format!(
+                "the exact self-motion of this arm holds the task \"{}\"; the task \"{}\" \
+                 leaves {} free parameters",
+                t.name(),
+                self.task.name(),
+                red.degree()
+            ),
+            None => format!(
+                "the slider holds a full pose; the task \"{}\" leaves {} free parameters (use \
+                 the gizmo)",
+                self.task.name(),
+                red.degree()
+            ),
+        })
+    }
+
+    /// What the self-motion slider of `ee` shows, or why there is none.
+    pub fn self_motion(&mut self, ee: usize) -> Result<SelfMotionView, String> {
+        let q = self.q.clone();
+        let robot = self.robot.clone();
+        let cache = self
+            .self_motion_cache(ee)
+            .ok_or_else(|| "no end-effector pose".to_string())?;
+        let (pe, oe) = errors(&robot, ee, &q, &cache.pose);
+        match &cache.kind {
+            Kind::None(why) => Err(why.clone()),
+            Kind::Exact(m) => {
+                let (branch, value) = m
+                    .locate(&robot, &q)
+                    .ok_or_else(|| "the arm is not on its self-motion (moved?)".to_string())?;
+                let name = &m.names()[branch];
+                let path = cache
+                    .samples
+                    .iter()
+                    .map(|(_, s)| match s.iter().find(|b| &b.name == name) {
+                        Some(b) => (m.traced_point(&robot, &b.q), b.within_limits),
+                        None => (None, false),
+                    })
+                    .collect();
+                Ok(SelfMotionView {
+                    parameter: m.parameter(),
+                    meaning: m.parameter_meaning().into(),
+                    exact: true,
+                    value,
+                    range: [-PI, PI],
+                    branch,
+                    names: m.names().to_vec(),
+                    feasible: m.feasible().to_vec(),
+                    manifolds: Some(m.manifolds()),
+                    singular: m.singular(),
+                    position_error: pe,
+                    orientation_error: oe,
+                    samples: cache.samples.clone(),
+                    path,
+                })
+            }
+            Kind::Numerical { arc, .. } => Ok(SelfMotionView {
+                parameter: "arc length",
+                meaning: "arc length s walked in joint space along the null space (numerical: \
+                          tangent step, then Newton back onto the pose)"
+                    .into(),
+                exact: false,
+                value: *arc,
+                range: [-PI, PI],
+                branch: 0,
+                names: vec!["self-motion".into()],
+                feasible: vec![Vec::new()],
+                manifolds: None,
+                singular: false,
+                position_error: pe,
+                orientation_error: oe,
+                samples: Vec::new(),
+                path: cache.visited.iter().map(|p| (Some(*p), true)).collect(),
+            }),
+        }
+    }
+
+    /// Moves the self-motion parameter of `ee` to `value` (rad), the hand held. An exact
+    /// self-motion stays on q's branch and stops at the end of its feasible interval (the arm
+    /// never leaves its limits); the numerical one walks the arc length in steps of 0.01 rad and
+    /// stops where a step would leave the limits or fail. Returns the value reached.
+    pub fn set_self_motion(&mut self, ee: usize, value: f64) -> Result<f64, StateError> {
+        let view = self.self_motion(ee).map_err(StateError::Task)?;
+        if !value.is_finite() {
+            return Err(StateError::Task(
+                "the self-motion value is not a number".into(),
+            ));
+        }
+        if view.exact {
+            self.set_exact(ee, &view, value)
+        } else {
+            self.walk_numerical(ee, value)
+        }
+    }
+
+    fn set_exact(
+        &mut self,
+        ee: usize,
+        view: &SelfMotionView,
+        value: f64,
+    ) -> Result<f64, StateError> {
+        let Some(Kind::Exact(m)) = self.self_motion.as_ref().map(|c| c.kind.clone()) else {
+            return Err(StateError::Task("no exact self-motion".into()));
+        };
+        let feasible = &view.feasible[view.branch];
+        let here = feasible
+            .iter()
+            .find(|iv| view.value >= iv[0] - 1e-9 && view.value <= iv[1] + 1e-9)
+            .copied();
+        let target = match here {
+            Some([lo, hi]) => value.clamp(lo, hi),
+            None => view.value,
+        };
+        let name = &view.names[view.branch];
+        let sols = m.solutions(&self.robot, target);
+        let Some(sol) = sols.iter().find(|s| &s.name == name && s.within_limits) else {
+            return Ok(view.value);
+        };
+        let mut q = sol.q.clone();
+        self.shift_towards_q(&mut q);
+        if (target - value).abs() > 1e-9 {
+            self.push_message(
+                Level::Info,
+                format!(
+                    "{} stops at {:.2} deg: the end of the feasible stretch of \"{name}\"",
+                    view.parameter,
+                    target.to_degrees()
+                ),
+            );
+        }
+        self.apply_q(q, Some(ee));
+        Ok(target)
+    }
+
+    fn walk_numerical(&mut self, ee: usize, value: f64) -> Result<f64, StateError> {
+        let Some(cache) = self.self_motion.as_ref() else {
+            return Err(StateError::Task("no self-motion".into()));
+        };
+        let Kind::Numerical { arc, tangent } = cache.kind.clone() else {
+            return Err(StateError::Task("no numerical self-motion".into()));
+        };
+        let mut m = NullSpaceMotion::new(&self.robot, ee, &self.q, tangent.as_deref())
+            .map_err(|e| StateError::Task(e.to_string()))?;
+        m.hold(cache.pose);
+        let mut s = arc;
+        let mut visited = Vec::new();
+        while (value - s).abs() > 1e-12 {
+            let ds = (value - s).clamp(-ARC_STEP, ARC_STEP);
+            let before = m.clone();
+            if m.step(ds).is_err() || !self.robot.within_limits(m.q(), 1e-12) {
+                m = before;
+                break;
+            }
+            s += ds;
+            if let Some(p) = self
+                .robot
+                .fk_ee(m.q(), ee)
+                .ok()
+                .map(|t| t.translation.vector)
+            {
+                visited.push(p);
+            }
+        }
+        let (q, t) = (m.q().to_vec(), m.tangent().to_vec());
+        if let Some(c) = self.self_motion.as_mut() {
+            c.kind = Kind::Numerical {
+                arc: s,
+                tangent: Some(t),
+            };
+            c.visited.extend(visited);
+        }
+        self.apply_q(q, Some(ee));
+        Ok(s)
+    }
+
+    /// The other branches at the current parameter, as ghosts (exact self-motion only).
+    pub fn self_motion_ghosts(&mut self, ee: usize) -> Vec<Ghost> {
+        let Ok(view) = self.self_motion(ee) else {
+            return Vec::new();
+        };
+        let Some(Kind::Exact(m)) = self.self_motion.as_ref().map(|c| &c.kind) else {
+            return Vec::new();
+        };
+        m.solutions(&self.robot, view.value)
+            .into_iter()
+            .filter(|s| s.name != view.names[view.branch])
+            .map(|s| Ghost {
+                q: s.q,
+                posture: s.name,
+                within_limits: s.within_limits,
+                selected: false,
+            })
+            .collect()
+    }
+}
+
+/// Whether two poses agree to 1e-9 (m, and rotation-matrix entries).
+fn pose_close(a: &Pose, b: &Pose) -> bool {
+    (a.translation.vector - b.translation.vector).norm() < 1e-9
+        && (a.rotation.matrix() - b.rotation.matrix()).abs().max() < 1e-9
+}
+
+/// Position (m) and orientation (rad) error of `q`'s end-effector `ee` from `pose`.
+fn errors(robot: &crate::kinematics::Robot, ee: usize, q: &[f64], pose: &Pose) -> (f64, f64) {
+    match robot.fk_ee(q, ee) {
+        Ok(t) => (
+            (t.translation.vector - pose.translation.vector).norm(),
+            crate::kinematics::orientation::angle_axis_from_rotation(
+                &(t.rotation.inverse() * pose.rotation),
+            )
+            .angle,
+        ),
+        Err(_) => (f64::INFINITY, f64::INFINITY),
+    }
+}

@@ -1,0 +1,111 @@
+//! Geometry shared by the exact self-motion solvers: rotations about axes, Paden-Kahan
+//! subproblems 1 and 2, closest points of lines, and angle bookkeeping.
+
+use nalgebra::{Matrix3, Rotation3, Unit, Vector3};
+use std::f64::consts::{PI, TAU};
+
+/// Rotation about unit axis `w` by `t` (rad).
+pub(crate) fn rot(w: &Vector3<f64>, t: f64) -> Rotation3<f64> {
+    Rotation3::from_axis_angle(&Unit::new_unchecked(*w), t)
+}
+
+/// `Rot(w, t) v` by Rodrigues' formula (no matrix).
+#[inline]
+pub(crate) fn rotv(w: &Vector3<f64>, t: f64, v: &Vector3<f64>) -> Vector3<f64> {
+    let (st, ct) = t.sin_cos();
+    v * ct + w.cross(v) * st + w * (w.dot(v) * (1.0 - ct))
+}
+
+/// Subproblem 1: the angle t with Rot(w, t) p = q (p, q of equal components along w).
+pub(crate) fn sub1(w: &Vector3<f64>, p: &Vector3<f64>, q: &Vector3<f64>) -> f64 {
+    let pp = p - w * w.dot(p);
+    let qq = q - w * w.dot(q);
+    w.dot(&pp.cross(&qq)).atan2(pp.dot(&qq))
+}
+
+/// Subproblem 2: the angles (t1, t2) with Rot(w1, t1) Rot(w2, t2) p = q, for `sign` = +1 or -1
+/// (the two solutions); `None` when there is none (beyond rounding).
+pub(crate) fn sub2(
+    w1: &Vector3<f64>,
+    w2: &Vector3<f64>,
+    p: &Vector3<f64>,
+    q: &Vector3<f64>,
+    sign: f64,
+) -> Option<(f64, f64)> {
+    let c12 = w1.dot(w2);
+    let den = c12 * c12 - 1.0;
+    if den.abs() < 1e-12 {
+        return None;
+    }
+    let alpha = (c12 * w2.dot(p) - w1.dot(q)) / den;
+    let beta = (c12 * w1.dot(q) - w2.dot(p)) / den;
+    let x = w1.cross(w2);
+    let g2 = (p.norm_squared() - alpha * alpha - beta * beta - 2.0 * alpha * beta * c12)
+        / x.norm_squared();
+    if g2 < -1e-10 * p.norm_squared().max(1e-30) {
+        return None;
+    }
+    let c = w1 * alpha + w2 * beta + x * (sign * g2.max(0.0).sqrt());
+    Some((sub1(w1, &c, q), sub1(w2, p, &c)))
+}
+
+/// Closest point of line (a, u) to line (b, v) (points, unit directions), and the gap between
+/// the lines (m).
+pub(crate) fn meet(
+    a: &Vector3<f64>,
+    u: &Vector3<f64>,
+    b: &Vector3<f64>,
+    v: &Vector3<f64>,
+) -> (Vector3<f64>, f64) {
+    let w0 = a - b;
+    let (uu, uv, vv) = (u.dot(u), u.dot(v), v.dot(v));
+    let (du, dv) = (u.dot(&w0), v.dot(&w0));
+    let den = uu * vv - uv * uv;
+    if den.abs() < 1e-12 {
+        return (*a, f64::INFINITY);
+    }
+    let s = (uv * dv - vv * du) / den;
+    let t = (uu * dv - uv * du) / den;
+    let pa = a + u * s;
+    let pb = b + v * t;
+    (0.5 * (pa + pb), (pa - pb).norm())
+}
+
+/// The orthonormal frame of `a` and the part of `b` perpendicular to it, as columns.
+pub(crate) fn triad(a: &Vector3<f64>, b: &Vector3<f64>) -> Matrix3<f64> {
+    let x = a.normalize();
+    let y = (b - x * x.dot(b)).normalize();
+    Matrix3::from_columns(&[x, y, x.cross(&y)])
+}
+
+/// The roots psi (rad) of `a sin psi + b cos psi + c = 0`.
+pub(crate) fn trig_roots(a: f64, b: f64, c: f64, out: &mut Vec<f64>) {
+    let r = a.hypot(b);
+    if r < 1e-14 || c.abs() > r {
+        return;
+    }
+    let phase = a.atan2(b);
+    let d = (-c / r).clamp(-1.0, 1.0).acos();
+    out.push(phase + d);
+    out.push(phase - d);
+}
+
+/// Each angle shifted by a multiple of 2 pi into its limits where one fits, else wrapped to
+/// (-pi, pi].
+pub(crate) fn wrap_into<const N: usize>(q: [f64; N], limits: &[[f64; 2]]) -> [f64; N] {
+    std::array::from_fn(|k| {
+        let [lo, hi] = limits[k];
+        let base = q[k] - TAU * ((q[k] + PI) / TAU).floor();
+        [base, base - TAU, base + TAU]
+            .into_iter()
+            .find(|v| *v >= lo - 1e-12 && *v <= hi + 1e-12)
+            .unwrap_or(base)
+    })
+}
+
+/// Whether every angle lies within its limits (slack 1e-12 rad).
+pub(crate) fn within(q: &[f64], limits: &[[f64; 2]]) -> bool {
+    q.iter()
+        .zip(limits)
+        .all(|(v, l)| *v >= l[0] - 1e-12 && *v <= l[1] + 1e-12)
+}

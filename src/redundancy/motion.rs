@@ -1,0 +1,204 @@
+//! One entry point for the exact self-motions: the structure of a robot picks the solver (SRS
+//! arm angle, the offset-elbow arm's q7, the three-link planar arm's phi, the four-link planar
+//! arm's phi_3), and the result is named, sampled and located the same way for each, so that the
+//! CLI and the app's slider do not care which it is.
+
+use super::four_link::FourLinkSelfMotion;
+use super::offset_elbow::OffsetElbowArm;
+use super::srs::SrsArm;
+use super::{BranchSolution, PlanarSelfMotion, RedundancyError};
+use crate::kinematics::{Pose, Robot};
+use nalgebra::Vector3;
+use std::f64::consts::{PI, TAU};
+
+/// The solver behind an [`ExactSelfMotion`].
+#[derive(Debug, Clone)]
+enum Solver {
+    Srs(SrsArm),
+    OffsetElbow(OffsetElbowArm),
+    Planar(PlanarSelfMotion),
+    FourLink(FourLinkSelfMotion),
+}
+
+/// The exact self-motion of a redundant arm holding its hand at one pose.
+#[derive(Debug, Clone)]
+pub struct ExactSelfMotion {
+    solver: Solver,
+    target: Pose,
+    names: Vec<String>,
+    feasible: Vec<Vec<[f64; 2]>>,
+    manifolds: usize,
+    singular: bool,
+}
+
+impl ExactSelfMotion {
+    /// The exact self-motion of `robot` holding its (only) end-effector at `target`: SRS 7R
+    /// arms by the arm angle, offset-elbow 7R arms (the Panda) by q7, three-link planar arms
+    /// with a position task by phi, four-link planar arms with a position-and-phi task by phi_3.
+    /// Other arms are [`RedundancyError::NotSupported`] (they have the numerical self-motion).
+    pub fn new(robot: &Robot, target: &Pose) -> Result<Self, RedundancyError> {
+        let (solver, names, feasible, manifolds, singular) =
+            if let Some(arm) = SrsArm::detect(robot) {
+                if arm.solve(target, 0.0).is_empty() && !arm.singular(target) {
+                    return Err(RedundancyError::NotSupported(
+                        "the pose's wrist centre is out of reach".into(),
+                    ));
+                }
+                let f = arm.feasible_intervals(target).to_vec();
+                let (m, s) = (arm.manifolds(target), arm.singular(target));
+                (Solver::Srs(arm), SrsArm::branch_names().to_vec(), f, m, s)
+            } else if let Some(arm) = OffsetElbowArm::detect(robot) {
+                let f = arm.feasible_intervals(target).to_vec();
+                let reach = (0..64).any(|k| {
+                    let t = -PI + TAU * k as f64 / 64.0;
+                    arm.solve_raw(target, t, &mut [[0.0; 7]; 8]) & 0xff != 0
+                });
+                if !reach && f.iter().all(Vec::is_empty) {
+                    return Err(RedundancyError::NotSupported(
+                        "the pose is out of reach for every q7".into(),
+                    ));
+                }
+                let m = arm.manifolds(target);
+                let names = OffsetElbowArm::branch_names().to_vec();
+                (Solver::OffsetElbow(arm), names, f, m, false)
+            } else if robot.dof() == 4 {
+                let m = FourLinkSelfMotion::new(robot, target)?;
+                let (f, _) = m.feasible();
+                let k = m.manifolds(robot);
+                (
+                    Solver::FourLink(m.clone()),
+                    m.branch_names().to_vec(),
+                    f.to_vec(),
+                    k,
+                    false,
+                )
+            } else {
+                let frame = crate::workspace::planar_frame(robot, 0).ok_or_else(|| {
+                    RedundancyError::NotSupported(format!(
+                        "{} is neither an SRS or offset-elbow 7R arm nor a three- or four-link \
+                     planar arm",
+                        robot.name
+                    ))
+                })?;
+                let p = target.translation.vector;
+                let m = PlanarSelfMotion::new(robot, frame.to_plane([p.x, p.y, p.z]))?;
+                let (f, _) = m.feasible();
+                let k = m.manifolds(robot);
+                (
+                    Solver::Planar(m.clone()),
+                    m.branch_names().to_vec(),
+                    f.to_vec(),
+                    k,
+                    false,
+                )
+            };
+        Ok(Self {
+            solver,
+            target: *target,
+            names,
+            feasible,
+            manifolds,
+            singular,
+        })
+    }
+
+    /// The parameter's name: "arm angle", "q7" or "phi".
+    pub fn parameter(&self) -> &'static str {
+        match &self.solver {
+            Solver::Srs(_) => "arm angle",
+            Solver::OffsetElbow(_) => "q7",
+            Solver::Planar(_) | Solver::FourLink(_) => "phi",
+        }
+    }
+
+    /// The parameter in words (what it measures).
+    pub fn parameter_meaning(&self) -> &'static str {
+        match &self.solver {
+            Solver::Srs(_) => {
+                "arm angle psi: the elbow's rotation about the shoulder-wrist axis from the plane \
+                 it spans with joint 3 at zero"
+            }
+            Solver::OffsetElbow(_) => "q7: the last joint's angle, every other joint solved for it",
+            Solver::Planar(_) => "phi: the end-effector's orientation in the plane (2.83)",
+            Solver::FourLink(_) => {
+                "phi_3: the third link's orientation in the plane (the hand's own phi is held)"
+            }
+        }
+    }
+
+    /// The hand pose held (world, m).
+    pub fn target(&self) -> &Pose {
+        &self.target
+    }
+
+    /// Branch names in branch order.
+    pub fn names(&self) -> &[String] {
+        &self.names
+    }
+
+    /// Feasible intervals of the parameter (rad) of each branch inside the joint limits, pieces
+    /// of [-pi, pi], in branch order.
+    pub fn feasible(&self) -> &[Vec<[f64; 2]>] {
+        &self.feasible
+    }
+
+    /// The number of disjoint self-motion curves inside the limits.
+    pub fn manifolds(&self) -> usize {
+        self.manifolds
+    }
+
+    /// At the algorithmic singularity of the arm angle (the shoulder-wrist line along axis 1).
+    pub fn singular(&self) -> bool {
+        self.singular
+    }
+
+    /// Every branch at parameter `value` (rad), FK-checked against the target.
+    pub fn solutions(&self, robot: &Robot, value: f64) -> Vec<BranchSolution> {
+        match &self.solver {
+            Solver::Srs(a) => a.branch_solutions(robot, &self.target, value),
+            Solver::OffsetElbow(a) => a.branch_solutions(robot, &self.target, value),
+            Solver::Planar(m) => m.solutions(robot, value),
+            Solver::FourLink(m) => m.solutions(robot, value),
+        }
+    }
+
+    /// The parameter (rad, in [-pi, pi)) of configuration `q` and the index of its branch, when
+    /// `q` holds the target (to 1e-6 in joint space).
+    pub fn locate(&self, robot: &Robot, q: &[f64]) -> Option<(usize, f64)> {
+        let value = match &self.solver {
+            Solver::Srs(a) => a.arm_angle(q)?,
+            Solver::OffsetElbow(_) => q[6],
+            Solver::Planar(m) => m.phi_of(robot, q)?,
+            Solver::FourLink(m) => m.phi3_of(q)?,
+        };
+        let value = super::wrap(value);
+        let sols = self.solutions(robot, value);
+        let k = sols
+            .iter()
+            .filter(|s| super::same_angles(&s.q, q))
+            .find_map(|s| self.names.iter().position(|n| *n == s.name))?;
+        Some((k, value))
+    }
+
+    /// The point the app traces while the parameter moves (world, m): the elbow of a 7R arm (the
+    /// point of axis 4 nearest the shoulder), the start of the last link of the three-link arm,
+    /// and that of the third link of the four-link arm (both on a circle).
+    pub fn traced_point(&self, robot: &Robot, q: &[f64]) -> Option<Vector3<f64>> {
+        let axis = |k: usize| -> Option<(Vector3<f64>, Vector3<f64>)> {
+            let pe = robot.fk(q).ok()?.translation.vector;
+            let j = robot.jacobian(q, 0).ok()?;
+            let c = j.column(k);
+            let w = Vector3::new(c[3], c[4], c[5]);
+            Some((pe + w.cross(&Vector3::new(c[0], c[1], c[2])), w))
+        };
+        let elbow = |s: Vector3<f64>| {
+            let (o, w) = axis(3)?;
+            Some(o + w * w.dot(&(s - o)))
+        };
+        match &self.solver {
+            Solver::Srs(a) => elbow(a.shoulder()),
+            Solver::OffsetElbow(a) => elbow(a.shoulder()),
+            Solver::Planar(_) | Solver::FourLink(_) => axis(2).map(|(o, _)| o),
+        }
+    }
+}

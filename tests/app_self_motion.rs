@@ -1,0 +1,198 @@
+//! The app's Redundancy panel and self-motion slider, as state logic (no GUI): the task the
+//! gizmo obeys, n/m/r in words, the slider holding the hand exactly, its value read back from q
+//! (never stale after a moved target or a new model), feasible stretches as walls, the numerical
+//! case without drift.
+
+use armlab::app::state::{AppState, Reach, StateError};
+use armlab::kinematics::Pose;
+use armlab::kinematics::redundancy::Task;
+use armlab::redundancy::srs::SrsArm;
+use nalgebra::{Rotation3, Translation3, Vector3};
+use std::f64::consts::PI;
+
+fn state(spec: &str) -> AppState {
+    AppState::from_spec(spec).expect("built-in model")
+}
+
+fn fk(s: &AppState, ee: usize) -> Pose {
+    s.robot().fk_ee(s.q(), ee).unwrap()
+}
+
+fn gap(a: &Pose, b: &Pose) -> (f64, f64) {
+    (
+        (a.translation.vector - b.translation.vector).norm(),
+        (a.rotation.matrix() - b.rotation.matrix()).abs().max(),
+    )
+}
+
+#[test]
+fn redundancy_is_named_for_the_task_and_tasks_are_checked() {
+    let mut s = state("planar3");
+    assert_eq!(s.tasks(), vec![Task::Planar, Task::PlanarPhi]);
+    assert_eq!(s.task(), Task::PlanarPhi);
+    assert_eq!(s.redundancy().words(), "not redundant");
+    let why = s.self_motion(0).unwrap_err();
+    assert!(why.contains("no self-motion"), "{why}");
+    s.set_task(Task::Planar).unwrap();
+    let r = s.redundancy();
+    assert_eq!((r.n, r.m, r.r), (3, 3, 2));
+    assert_eq!(r.words(), "functionally redundant");
+    assert_eq!(s.self_motion(0).unwrap().parameter, "phi");
+    assert!(matches!(s.set_task(Task::Pose), Err(StateError::Task(_))));
+    assert_eq!(s.task(), Task::Planar);
+    // A new model starts with its full task.
+    s.load_model("dlr").unwrap();
+    assert_eq!(s.task(), Task::Pose);
+    assert_eq!(s.redundancy().words(), "intrinsically redundant");
+    s.load_model("planar4").unwrap();
+    let r = s.redundancy();
+    assert_eq!(
+        (r.n, r.m, r.r, r.words()),
+        (4, 3, 3, "intrinsically redundant")
+    );
+    assert_eq!(s.self_motion(0).unwrap().parameter, "phi");
+}
+
+#[test]
+fn the_arm_angle_slider_holds_the_hand_and_reads_back_from_q() {
+    let mut s = state("dlr");
+    let held = fk(&s, 0);
+    let v = s.self_motion(0).unwrap();
+    assert!(v.exact && v.parameter == "arm angle");
+    let arm = SrsArm::detect(s.robot()).unwrap();
+    assert!((v.value - arm.arm_angle(s.q()).unwrap()).abs() < 1e-9);
+    // Drag in small steps inside the feasible stretch, then back.
+    let iv = v.feasible[v.branch]
+        .iter()
+        .find(|iv| v.value >= iv[0] && v.value <= iv[1])
+        .copied()
+        .unwrap();
+    let mut want = v.value;
+    for k in 0..400 {
+        want = if k < 200 {
+            (want + 0.003).min(iv[1])
+        } else {
+            (want - 0.003).max(iv[0])
+        };
+        let got = s.set_self_motion(0, want).unwrap();
+        assert!((got - want).abs() < 1e-12);
+        let now = s.self_motion(0).unwrap();
+        assert!((now.value - want).abs() < 1e-9, "{} vs {want}", now.value);
+        assert!((arm.arm_angle(s.q()).unwrap() - want).abs() < 1e-9);
+        let (dp, dr) = gap(&fk(&s, 0), &held);
+        assert!(dp < 1e-12 && dr < 1e-12, "hand moved {dp} m {dr}");
+        assert!(now.position_error < 1e-12 && now.orientation_error < 1e-12);
+        assert!(s.robot().within_limits(s.q(), 1e-12));
+    }
+    // Past the end of the stretch the arm stops at the wall, inside the limits.
+    let got = s.set_self_motion(0, iv[1] + 1.0).unwrap();
+    if iv[1] < PI {
+        assert!((got - iv[1]).abs() < 1e-12, "{got} vs {}", iv[1]);
+    }
+    assert!(s.robot().within_limits(s.q(), 1e-12));
+    // The path is the elbow circle: every traced point at one distance from the S-W axis.
+    let v = s.self_motion(0).unwrap();
+    let sh = arm.shoulder();
+    let wc = arm.wrist_of(&held);
+    let u = (wc - sh).normalize();
+    let radius = |p: &Vector3<f64>| ((p - sh) - u * u.dot(&(p - sh))).norm();
+    let pts: Vec<Vector3<f64>> = v.path.iter().filter_map(|(p, _)| *p).collect();
+    assert!(pts.len() > 100);
+    let r0 = radius(&pts[0]);
+    assert!(
+        pts.iter().all(|p| (radius(p) - r0).abs() < 1e-9),
+        "not a circle"
+    );
+    // The other branches are ghosts at the same arm angle.
+    let ghosts = s.self_motion_ghosts(0);
+    assert!(!ghosts.is_empty() && ghosts.len() < 8);
+}
+
+#[test]
+fn a_moved_target_or_a_new_model_leaves_no_stale_value() {
+    let mut s = state("dlr");
+    let before = s.self_motion(0).unwrap();
+    let t = s.targets()[0].world_from_tool;
+    let moved = Pose::from_parts(
+        Translation3::from(t.translation.vector + Vector3::new(0.05, -0.04, 0.03)),
+        Rotation3::from_euler_angles(0.2, -0.1, 0.3) * t.rotation,
+    );
+    assert!(matches!(s.set_target(0, moved).unwrap(), Reach::Reached));
+    let after = s.self_motion(0).unwrap();
+    let arm = SrsArm::detect(s.robot()).unwrap();
+    assert!((after.value - arm.arm_angle(s.q()).unwrap()).abs() < 1e-9);
+    assert_ne!(before.feasible, after.feasible);
+    let (dp, _) = gap(&fk(&s, 0), &moved);
+    assert!(dp < 1e-8);
+    // A new model: the Panda's parameter is q7, read from q.
+    s.load_model("panda").unwrap();
+    let v = s.self_motion(0).unwrap();
+    assert_eq!(v.parameter, "q7");
+    assert!((v.value - s.q()[6]).abs() < 1e-12);
+    let held = fk(&s, 0);
+    let got = s.set_self_motion(0, v.value - 0.2).unwrap();
+    assert!((s.q()[6] - got).abs() < 1e-12);
+    let (dp, dr) = gap(&fk(&s, 0), &held);
+    assert!(dp < 1e-12 && dr < 1e-12);
+    // A DH edit (a new generation) rebuilds the self-motion too.
+    s.load_model("planar3").unwrap();
+    assert!(s.self_motion(0).is_err());
+}
+
+#[test]
+fn the_humanoid_arm_with_its_torso_walks_without_drift() {
+    let mut s = state("humanoid");
+    let held = fk(&s, 0);
+    let v = s.self_motion(0).unwrap();
+    assert!(!v.exact && v.parameter == "arc length");
+    let mut reached = 0.0;
+    for k in 0..300 {
+        let want = if (k / 50) % 2 == 0 {
+            reached + 0.02
+        } else {
+            reached - 0.02
+        };
+        reached = s.set_self_motion(0, want).unwrap();
+        let (dp, dr) = gap(&fk(&s, 0), &held);
+        assert!(dp < 1e-12 && dr < 1e-12, "step {k}: {dp} m, {dr}");
+    }
+    let v = s.self_motion(0).unwrap();
+    assert!((v.value - reached).abs() < 1e-12);
+    assert!(v.position_error < 1e-12);
+    assert!(!v.path.is_empty());
+}
+
+#[test]
+fn the_gizmo_obeys_the_task() {
+    // Position and approach axis on the Puma: a target turned about its own z is met with the
+    // rotation about the tool axis left free.
+    let mut s = state("puma560");
+    s.set_q(&[0.3, -0.5, 0.4, 0.6, -0.7, 0.2]).unwrap();
+    s.set_task(Task::PositionAxis).unwrap();
+    let t = fk(&s, 0);
+    let turned = Pose::from_parts(
+        Translation3::from(t.translation.vector + Vector3::new(0.02, 0.01, -0.02)),
+        t.rotation * Rotation3::from_axis_angle(&Vector3::z_axis(), 1.0),
+    );
+    let reach = s.set_target(0, turned).unwrap().clone();
+    assert!(matches!(reach, Reach::Reached), "{reach:?}");
+    let now = fk(&s, 0);
+    assert!((now.translation.vector - turned.translation.vector).norm() < 1e-8);
+    let z = |p: &Pose| p.rotation * Vector3::z();
+    assert!((z(&now) - z(&turned)).norm() < 1e-8);
+    // Not the whole rotation: the arm took the short way, not the full turn about z.
+    let x = |p: &Pose| p.rotation * Vector3::x();
+    assert!((x(&now) - x(&turned)).norm() > 0.1);
+    // Position only on the three-link arm: a target turned in the plane keeps the arm's phi.
+    let mut s = state("planar3");
+    s.set_task(Task::Planar).unwrap();
+    let t = fk(&s, 0);
+    let moved = Pose::from_parts(
+        Translation3::from(t.translation.vector + Vector3::new(-0.03, 0.02, 0.0)),
+        Rotation3::from_axis_angle(&Vector3::z_axis(), 0.7) * t.rotation,
+    );
+    assert!(matches!(s.set_target(0, moved).unwrap(), Reach::Reached));
+    let now = fk(&s, 0);
+    assert!((now.translation.vector - moved.translation.vector).norm() < 1e-8);
+    assert!((x(&now) - x(&moved)).norm() > 0.1);
+}
