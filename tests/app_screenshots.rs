@@ -128,3 +128,29 @@ fn screenshot_button_renders_the_current_view() {
     assert_eq!(a.dimensions(), (960, 600));
     assert!(a != b, "the camera of the live view is used");
 }
+
+/// The DLR arm holding its hand: the Redundancy panel (n, m, r, the arm-angle slider with its
+/// feasible stretches), the elbow circle traced in the 3D view and the other branches as ghosts.
+#[test]
+fn dlr_self_motion_in_the_3d_view() {
+    let mut state = AppState::from_spec("dlr").unwrap();
+    let v = state.self_motion(0).unwrap().value;
+    state.set_self_motion(0, v + 0.6).unwrap();
+    let app = armlab::app::ui::AppUi::new(state);
+    let img =
+        armlab::app::screenshot::screenshot_with(&app, [1280, 800], &ScreenshotOptions::default())
+            .unwrap_or_else(|e| panic!("{e}"));
+    assert_golden("app_dlr_self_motion", &img);
+}
+
+/// The Self-motion tab of the Panda: every joint against q7, every branch, limit bands, cursor.
+#[test]
+fn panda_self_motion_tab() {
+    let state = AppState::from_spec("panda").unwrap();
+    let mut app = armlab::app::ui::AppUi::new(state);
+    app.tab = armlab::app::ui::Tab::SelfMotion;
+    let img =
+        armlab::app::screenshot::screenshot_with(&app, [1280, 800], &ScreenshotOptions::default())
+            .unwrap_or_else(|e| panic!("{e}"));
+    assert_golden("app_panda_self_motion_tab", &img);
+}

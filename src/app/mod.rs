@@ -9,6 +9,7 @@ pub mod gizmo;
 pub mod inner;
 pub mod panels;
 pub mod probe;
+pub mod redundancy_panel;
 pub mod screenshot;
 pub mod singularity;
 pub mod state;

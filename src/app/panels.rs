@@ -318,6 +318,8 @@ pub fn right(app: &mut AppUi, ui: &mut egui::Ui) {
                 }
             }
         }
+        ui.separator();
+        super::redundancy_panel::panel(app, ui, ee);
     });
 }
 

@@ -37,7 +37,7 @@ mod types;
 mod units;
 
 pub use dh::{DH_FIELDS, DhCell, DhField, DhRowCells};
-pub use self_motion::{SELF_MOTION_SAMPLES, SelfMotionView, full_task, tasks_for};
+pub use self_motion::{SELF_MOTION_SAMPLES, SelfMotionView, TracedPath, full_task, tasks_for};
 pub use track::{
     BRANCH_SWITCH_MARGIN, BRANCH_SWITCH_MEASURE, is_degenerate_label, tracking_options,
 };

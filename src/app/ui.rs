@@ -17,6 +17,8 @@ pub enum Tab {
     Workspace,
     /// The calibration sandbox (Sect. 2.11).
     Calibration,
+    /// Every joint against the self-motion parameter (Sect. 2.10.2).
+    SelfMotion,
 }
 
 /// The app: its state (no GUI types) plus what only the UI needs.
@@ -149,6 +151,16 @@ impl AppUi {
             && r.model.nominal_robot().dof() == self.state.robot().dof()
         {
             super::viewport::add_measured_poses(&mut scene, self.state.robot(), &r.poses);
+        }
+        let ee = self.ee.min(self.state.targets().len().saturating_sub(1));
+        if let Ok(view) = self.state.self_motion(ee) {
+            let ghosts = if self.state.display.ghosts {
+                self.state.self_motion_ghosts(ee)
+            } else {
+                Vec::new()
+            };
+            let path = self.state.display.self_motion_path;
+            super::viewport::add_self_motion(&mut scene, self.state.robot(), &view, &ghosts, path);
         }
         let rendered = vp.render(registry, &scene, &self.camera, self.viewport_px, dark);
         self.scene_labels = std::mem::take(&mut scene.labels);
@@ -337,6 +349,7 @@ impl AppUi {
                 self.state.q(),
                 ui,
             ),
+            Tab::SelfMotion => super::redundancy_panel::tab(&mut self.state, ui, self.ee),
         });
         if self.show_help {
             egui::Window::new("Keyboard shortcuts")
@@ -357,6 +370,7 @@ impl AppUi {
             ui.selectable_value(&mut self.tab, Tab::View3d, "3D view");
             ui.selectable_value(&mut self.tab, Tab::Workspace, "Workspace (2D)");
             ui.selectable_value(&mut self.tab, Tab::Calibration, "Calibration");
+            ui.selectable_value(&mut self.tab, Tab::SelfMotion, "Self-motion");
             ui.separator();
             for (label, p) in [
                 ("Top", Preset::Top),

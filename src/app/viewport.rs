@@ -2,10 +2,10 @@
 //! trail, workspace points) rendered by [`crate::render`] into a texture that egui shows, and
 //! camera navigation. The same code draws live (eframe's device) and headlessly (screenshots).
 
-use super::state::AppState;
+use super::state::{AppState, Ghost};
 use crate::camera::Camera;
 use crate::render::{Gpu, RenderError, RenderSettings, RenderTarget, Renderer, ViewUniforms};
-use crate::scene::{ArmStyle, Dot, Label, Line, Scene, arm_scene, robot_scale};
+use crate::scene::{ArmStyle, Dot, Label, Line, Scene, arm_scene, point32, robot_scale};
 use egui::TextureId;
 
 /// Multisampling of the viewport: 4x gives smooth edges on a projector. On a software
@@ -293,57 +293,8 @@ pub fn build_scene(state: &AppState, workspace: Option<&[Dot]>, projector: bool)
     for (ee, target) in state.targets().iter().enumerate() {
         if d.ghosts {
             for g in state.ghosts(ee) {
-                if g.selected {
-                    continue;
-                }
-                let mut ghost = ArmStyle {
-                    frames: false,
-                    frame_labels: false,
-                    grid: false,
-                    alpha: 0.28,
-                    ..ArmStyle::default()
-                };
-                if !g.within_limits {
-                    let grey = [0.55, 0.55, 0.57, 1.0];
-                    ghost = ArmStyle {
-                        link: grey,
-                        revolute: grey,
-                        prismatic: grey,
-                        tool: grey,
-                        alpha: 0.18,
-                        ..ghost
-                    };
-                }
-                if let Ok(s) = arm_scene(robot, &g.q, &ghost) {
-                    // Bodies a ghost shares with the arm or with an earlier ghost (the base,
-                    // and every link before the joints where the postures part) are drawn
-                    // once: stacked translucent copies would darken them and cost fill.
-                    let tol = scale * 1e-5;
-                    for m in s.meshes {
-                        if !scene.meshes.iter().any(|o| same_body(o, &m, tol)) {
-                            scene.meshes.push(m);
-                        }
-                    }
-                    // Label at the elbow (the middle joint frame), where the postures differ.
-                    let frames = robot.fk_frames(&g.q).unwrap_or_default();
-                    let chain = robot.chain_to(robot.end_effectors()[ee].parent);
-                    if let Some(f) = chain
-                        .get(chain.len().saturating_sub(1) / 2)
-                        .and_then(|&j| frames.get(j))
-                    {
-                        let p = f.translation.vector;
-                        let text = if g.within_limits {
-                            g.posture.clone()
-                        } else {
-                            format!("{} (outside limits)", g.posture)
-                        };
-                        scene.labels.push(Label {
-                            p: [p.x as f32, p.y as f32, p.z as f32 + scale * 0.06],
-                            text,
-                            color: [0.25, 0.25, 0.3, 1.0],
-                            movable: true,
-                        });
-                    }
+                if !g.selected {
+                    add_ghost(&mut scene, robot, &g, ee, true);
                 }
             }
         }
@@ -398,6 +349,112 @@ pub fn build_scene(state: &AppState, workspace: Option<&[Dot]>, projector: bool)
         scene.dots.extend_from_slice(dots);
     }
     scene
+}
+
+/// A translucent ghost arm at `g.q` (grey when outside the limits) labelled with its posture at
+/// the elbow (with `label`); bodies it shares with what is drawn already are skipped.
+fn add_ghost(
+    scene: &mut Scene,
+    robot: &crate::kinematics::Robot,
+    g: &Ghost,
+    ee: usize,
+    label: bool,
+) {
+    let scale = robot_scale(robot) as f32;
+    let mut ghost = ArmStyle {
+        frames: false,
+        frame_labels: false,
+        grid: false,
+        alpha: 0.28,
+        ..ArmStyle::default()
+    };
+    if !g.within_limits {
+        let grey = [0.55, 0.55, 0.57, 1.0];
+        ghost = ArmStyle {
+            link: grey,
+            revolute: grey,
+            prismatic: grey,
+            tool: grey,
+            alpha: 0.18,
+            ..ghost
+        };
+    }
+    let Ok(s) = arm_scene(robot, &g.q, &ghost) else {
+        return;
+    };
+    // Bodies a ghost shares with the arm or with an earlier ghost (the base, and every link
+    // before the joints where the postures part) are drawn once: stacked translucent copies
+    // would darken them and cost fill.
+    let tol = scale * 1e-5;
+    for m in s.meshes {
+        if !scene.meshes.iter().any(|o| same_body(o, &m, tol)) {
+            scene.meshes.push(m);
+        }
+    }
+    if !label {
+        return;
+    }
+    // Label at the elbow (the middle joint frame), where the postures differ.
+    let frames = robot.fk_frames(&g.q).unwrap_or_default();
+    let chain = robot.chain_to(robot.end_effectors()[ee].parent);
+    if let Some(f) = chain
+        .get(chain.len().saturating_sub(1) / 2)
+        .and_then(|&j| frames.get(j))
+    {
+        let p = f.translation.vector;
+        let text = if g.within_limits {
+            g.posture.clone()
+        } else {
+            format!("{} (outside limits)", g.posture)
+        };
+        scene.labels.push(Label {
+            p: [p.x as f32, p.y as f32, p.z as f32 + scale * 0.06],
+            text,
+            color: [0.25, 0.25, 0.3, 1.0],
+            movable: true,
+        });
+    }
+}
+
+/// The self-motion in the 3D view: the other branches at the current parameter as ghosts, and
+/// (with `path`) the traced point over the parameter's range, green where the branch is inside
+/// the limits, grey elsewhere (for an SRS arm, the elbow circle about the shoulder-wrist axis).
+pub fn add_self_motion(
+    scene: &mut Scene,
+    robot: &crate::kinematics::Robot,
+    view: &crate::app::state::SelfMotionView,
+    ghosts: &[Ghost],
+    path: bool,
+) {
+    // Only the branches inside the limits are labelled: the others (grey) would pile their
+    // names up at the elbow.
+    for g in ghosts {
+        add_ghost(scene, robot, g, 0, g.within_limits);
+    }
+    if !path {
+        return;
+    }
+    let n = view.path.len();
+    let closed = view.exact && n > 2;
+    let pairs = (0..n.saturating_sub(1))
+        .map(|i| (i, i + 1))
+        .chain(closed.then_some((n - 1, 0)));
+    for (i, j) in pairs {
+        let ((Some(a), fa), (Some(b), fb)) = (view.path[i], view.path[j]) else {
+            continue;
+        };
+        let color = if fa && fb {
+            [0.16, 0.59, 0.31, 1.0]
+        } else {
+            [0.6, 0.6, 0.63, 1.0]
+        };
+        scene.lines.push(Line {
+            a: point32(&a).into(),
+            b: point32(&b).into(),
+            color,
+            width_px: 2.5,
+        });
+    }
 }
 
 /// Whether two mesh instances are the same body: same shape and `world_from_unit` equal

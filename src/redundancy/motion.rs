@@ -48,7 +48,8 @@ impl ExactSelfMotion {
                 let (m, s) = (arm.manifolds(target), arm.singular(target));
                 (Solver::Srs(arm), SrsArm::branch_names().to_vec(), f, m, s)
             } else if let Some(arm) = OffsetElbowArm::detect(robot) {
-                let f = arm.feasible_intervals(target).to_vec();
+                let (f, m) = arm.feasible_and_manifolds(target);
+                let f = f.to_vec();
                 let reach = (0..64).any(|k| {
                     let t = -PI + TAU * k as f64 / 64.0;
                     arm.solve_raw(target, t, &mut [[0.0; 7]; 8]) & 0xff != 0
@@ -58,7 +59,6 @@ impl ExactSelfMotion {
                         "the pose is out of reach for every q7".into(),
                     ));
                 }
-                let m = arm.manifolds(target);
                 let names = OffsetElbowArm::branch_names().to_vec();
                 (Solver::OffsetElbow(arm), names, f, m, false)
             } else if robot.dof() == 4 {

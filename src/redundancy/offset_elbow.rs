@@ -340,7 +340,11 @@ impl OffsetElbowArm {
     /// [`Self::breakpoints`] no joint crosses a limit, so one test at each interval's midpoint
     /// decides it. Pieces of [-pi, pi] (one across +-pi given as two), in branch order.
     pub fn feasible_intervals(&self, target: &Pose) -> [Vec<[f64; 2]>; 8] {
-        let cuts = self.breakpoints(target);
+        self.intervals_from(target, self.breakpoints(target))
+    }
+
+    /// [`Self::feasible_intervals`] from breakpoints already found.
+    fn intervals_from(&self, target: &Pose, cuts: Vec<f64>) -> [Vec<[f64; 2]>; 8] {
         let mut raw = [[0.0; 7]; 8];
         super::srs::midpoint_intervals(cuts, |t, ok: &mut [bool; 8]| {
             let mask = self.solve_raw(target, t, &mut raw);
@@ -354,17 +358,24 @@ impl OffsetElbowArm {
     /// The number of disjoint self-motion manifolds inside the limits: the feasible intervals
     /// of the 8 branches, joined where two branches' solutions coincide.
     pub fn manifolds(&self, target: &Pose) -> usize {
-        let pieces = self.feasible_intervals(target);
-        let points: Vec<f64> = self
-            .breakpoints(target)
-            .into_iter()
-            .map(|p| if p > PI { p - TAU } else { p })
+        self.feasible_and_manifolds(target).1
+    }
+
+    /// [`Self::feasible_intervals`] and [`Self::manifolds`] together, the breakpoints found
+    /// once.
+    pub fn feasible_and_manifolds(&self, target: &Pose) -> ([Vec<[f64; 2]>; 8], usize) {
+        let cuts = self.breakpoints(target);
+        let points: Vec<f64> = cuts
+            .iter()
+            .map(|&p| if p > PI { p - TAU } else { p })
             .collect();
+        let pieces = self.intervals_from(target, cuts);
         let same = |a: usize, b: usize, t: f64| {
             let mut raw = [[0.0; 7]; 8];
             let mask = self.solve_raw(target, t, &mut raw);
             mask >> a & 1 == 1 && mask >> b & 1 == 1 && super::same_angles(&raw[a], &raw[b])
         };
-        super::count_manifolds(&pieces, &points, &same)
+        let count = super::count_manifolds(&pieces, &points, &same);
+        (pieces, count)
     }
 }

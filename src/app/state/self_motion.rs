@@ -46,7 +46,13 @@ pub(super) struct SelfMotionCache {
     samples: Vec<(f64, Vec<BranchSolution>)>,
     /// Points visited by the numerical self-motion (world, m).
     visited: Vec<Vector3<f64>>,
+    /// The traced path of each branch, computed when first shown.
+    paths: Vec<Option<TracedPath>>,
 }
+
+/// A traced path: per sample, the point (none where the branch is missing) and whether the
+/// branch is inside the limits there.
+pub type TracedPath = Vec<(Option<Vector3<f64>>, bool)>;
 
 /// What the slider, the readouts and the Self-motion tab show.
 #[derive(Debug, Clone)]
@@ -81,7 +87,7 @@ pub struct SelfMotionView {
     /// The traced point over the range for the current branch (world, m; `None` where the
     /// branch does not exist), with whether each sample is within the limits; for the
     /// numerical case the points visited.
-    pub path: Vec<(Option<Vector3<f64>>, bool)>,
+    pub path: TracedPath,
 }
 
 /// The tasks that make sense for a robot: planar tasks for a planar arm, spatial ones otherwise.
@@ -170,6 +176,7 @@ impl AppState {
                 kind,
                 samples,
                 visited: Vec::new(),
+                paths: Vec::new(),
             });
         }
         self.self_motion.as_mut()
@@ -179,7 +186,10 @@ impl AppState {
     fn self_motion_kind(&self, ee: usize, pose: &Pose) -> Kind {
         let red = self.redundancy();
         if red.degree() <= 0 {
-            return Kind::None(format!("{red}: no self-motion for this task"));
+            return Kind::None(format!(
+                "no self-motion for this task (degree n - r = {})",
+                red.degree()
+            ));
         }
         let wants_exact = match ExactSelfMotion::new(&self.robot, pose) {
             Ok(m) => {
@@ -226,21 +236,31 @@ impl AppState {
             .self_motion_cache(ee)
             .ok_or_else(|| "no end-effector pose".to_string())?;
         let (pe, oe) = errors(&robot, ee, &q, &cache.pose);
+        if let Kind::Exact(m) = &cache.kind
+            && let Some((branch, _)) = m.locate(&robot, &q)
+        {
+            cache.paths.resize(m.names().len(), None);
+            if cache.paths[branch].is_none() {
+                let name = &m.names()[branch];
+                cache.paths[branch] = Some(
+                    cache
+                        .samples
+                        .iter()
+                        .map(|(_, s)| match s.iter().find(|b| &b.name == name) {
+                            Some(b) => (m.traced_point(&robot, &b.q), b.within_limits),
+                            None => (None, false),
+                        })
+                        .collect(),
+                );
+            }
+        }
         match &cache.kind {
             Kind::None(why) => Err(why.clone()),
             Kind::Exact(m) => {
                 let (branch, value) = m
                     .locate(&robot, &q)
                     .ok_or_else(|| "the arm is not on its self-motion (moved?)".to_string())?;
-                let name = &m.names()[branch];
-                let path = cache
-                    .samples
-                    .iter()
-                    .map(|(_, s)| match s.iter().find(|b| &b.name == name) {
-                        Some(b) => (m.traced_point(&robot, &b.q), b.within_limits),
-                        None => (None, false),
-                    })
-                    .collect();
+                let path = cache.paths[branch].clone().unwrap_or_default();
                 Ok(SelfMotionView {
                     parameter: m.parameter(),
                     meaning: m.parameter_meaning().into(),
@@ -375,6 +395,40 @@ impl AppState {
         }
         self.apply_q(q, Some(ee));
         Ok(s)
+    }
+
+    /// Moves the arm to branch `k` of the exact self-motion at the current parameter (the hand
+    /// held); refused, q unchanged, when that branch does not exist there or is outside the
+    /// limits.
+    pub fn select_self_motion_branch(&mut self, ee: usize, k: usize) -> Result<(), StateError> {
+        let view = self.self_motion(ee).map_err(StateError::Task)?;
+        let Some(Kind::Exact(m)) = self.self_motion.as_ref().map(|c| c.kind.clone()) else {
+            return Err(StateError::Task(
+                "the numerical self-motion has one branch".into(),
+            ));
+        };
+        let name = view.names.get(k).ok_or(StateError::NoSuchSolution {
+            index: k,
+            count: view.names.len(),
+        })?;
+        let sols = m.solutions(&self.robot, view.value);
+        let Some(sol) = sols.iter().find(|s| &s.name == name) else {
+            return Err(StateError::Task(format!(
+                "no branch \"{name}\" at {} = {:.2} deg",
+                view.parameter,
+                view.value.to_degrees()
+            )));
+        };
+        if !sol.within_limits {
+            return Err(StateError::SolutionOutsideLimits {
+                index: k,
+                posture: name.clone(),
+            });
+        }
+        let mut q = sol.q.clone();
+        self.shift_towards_q(&mut q);
+        self.apply_q(q, Some(ee));
+        Ok(())
     }
 
     /// The other branches at the current parameter, as ghosts (exact self-motion only).

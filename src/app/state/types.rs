@@ -46,6 +46,8 @@ pub struct DisplayToggles {
     pub ghosts: bool,
     /// Workspace overlay.
     pub workspace: bool,
+    /// The self-motion's traced path (the elbow circle of an SRS arm).
+    pub self_motion_path: bool,
 }
 
 impl Default for DisplayToggles {
@@ -57,6 +59,7 @@ impl Default for DisplayToggles {
             trail: true,
             ghosts: true,
             workspace: false,
+            self_motion_path: true,
         }
     }
 }
