@@ -21,15 +21,56 @@ fn srs(c: &mut Criterion) {
     g.bench_function("dlr feasible arm angles of all branches", |b| {
         b.iter(|| arm.feasible_intervals(black_box(&target)))
     });
-    g.bench_function("dlr 360-sample manifold, all branches", |b| {
-        b.iter(|| {
-            let mut n = 0u32;
-            for k in 0..360 {
-                let psi = -std::f64::consts::PI + k as f64 * std::f64::consts::TAU / 360.0;
-                n += arm.solve_raw(&target, psi, &mut out).count_ones();
-            }
-            n
-        })
+    g.bench_function(
+        "dlr 360-sample manifold, all branches (solve_raw each)",
+        |b| {
+            b.iter(|| {
+                let mut n = 0u32;
+                for k in 0..360 {
+                    let psi = -std::f64::consts::PI + k as f64 * std::f64::consts::TAU / 360.0;
+                    n += arm.solve_raw(&target, psi, &mut out).count_ones();
+                }
+                n
+            })
+        },
+    );
+    g.bench_function(
+        "dlr 360-sample manifold, all branches (prepared once)",
+        |b| {
+            b.iter(|| {
+                let p = arm.prepare(black_box(&target));
+                let mut n = 0u32;
+                for k in 0..360 {
+                    let psi = -std::f64::consts::PI + k as f64 * std::f64::consts::TAU / 360.0;
+                    n += arm.solve_prepared(&p, psi, &mut out).count_ones();
+                }
+                n
+            })
+        },
+    );
+    let p = arm.prepare(&target);
+    g.bench_function(
+        "dlr all 8 branches at one psi, target prepared (solve_prepared)",
+        |b| b.iter(|| arm.solve_prepared(black_box(&p), black_box(0.4), &mut out)),
+    );
+    g.finish();
+}
+
+/// The Panda by q7: all 8 branches at one q7, and the feasible q7 intervals with the manifold
+/// count (the limit crossings of joints 1-3, 5, 6 bracketed on 2048 steps).
+fn panda(c: &mut Criterion) {
+    use armlab::redundancy::offset_elbow::OffsetElbowArm;
+    let robot = built_in("panda").unwrap();
+    let arm = OffsetElbowArm::detect(&robot).unwrap();
+    let target = robot.fk(&[0.4, 0.3, -0.5, -1.6, 0.8, 1.2, -0.3]).unwrap();
+    let mut out = [[0.0; 7]; 8];
+    let mut g = c.benchmark_group("redundancy/panda");
+    g.bench_function("all 8 branches at one q7 (solve_raw)", |b| {
+        b.iter(|| arm.solve_raw(black_box(&target), black_box(0.4), &mut out))
+    });
+    g.sample_size(20);
+    g.bench_function("feasible q7 intervals and manifold count", |b| {
+        b.iter(|| arm.feasible_and_manifolds(black_box(&target)))
     });
     g.finish();
 }
@@ -59,5 +100,5 @@ fn numerical(c: &mut Criterion) {
     });
 }
 
-criterion_group!(benches, srs, planar, numerical);
+criterion_group!(benches, srs, panda, planar, numerical);
 criterion_main!(benches);

@@ -877,3 +877,57 @@ fn numerical_self_motion_of_the_humanoid_arm() {
         }
     }
 }
+
+#[test]
+fn self_motion_of_the_panda_by_q7_and_of_the_four_link_arm_by_phi3() {
+    // The pose as 16 numbers separated by spaces (the "16 numbers").
+    let pose = ready_pose("panda").join(" ");
+    let v = json(&armlab(&[
+        "self-motion",
+        "panda",
+        "--pose",
+        &pose,
+        "--samples",
+        "36",
+        "--format",
+        "json",
+    ]));
+    assert_eq!(v["parameter"], "q7");
+    assert_eq!(v["feasible"].as_object().unwrap().len(), 8);
+    let samples = v["samples"].as_array().unwrap();
+    for s in samples {
+        let q7 = s["value"].as_f64().unwrap();
+        for b in s["branches"].as_array().unwrap() {
+            assert!(b["position_error"].as_f64().unwrap() < 1e-12, "{b}");
+            assert!(b["orientation_error"].as_f64().unwrap() < 1e-12, "{b}");
+            assert!((b["q"][6].as_f64().unwrap() - q7).abs() < 1e-15);
+        }
+    }
+    // The ready configuration's q7 = pi/4 is inside a feasible interval of some branch.
+    let q7 = std::f64::consts::FRAC_PI_4;
+    assert!(v["feasible"].as_object().unwrap().values().any(|ivs| {
+        ivs.as_array()
+            .unwrap()
+            .iter()
+            .any(|iv| iv[0].as_f64().unwrap() <= q7 && q7 <= iv[1].as_f64().unwrap())
+    }));
+    let pose = ready_pose("planar4");
+    let v = json(&armlab(&[
+        "self-motion",
+        "planar4",
+        "--pose",
+        &pose.join(","),
+        "--samples",
+        "12",
+        "--format",
+        "json",
+    ]));
+    assert_eq!(v["parameter"], "phi");
+    assert_eq!(v["feasible"].as_object().unwrap().len(), 2);
+    for s in v["samples"].as_array().unwrap() {
+        for b in s["branches"].as_array().unwrap() {
+            assert_eq!(b["q"].as_array().unwrap().len(), 4);
+            assert!(b["position_error"].as_f64().unwrap() < 1e-12, "{b}");
+        }
+    }
+}

@@ -214,7 +214,8 @@ fn line_numbers(path: &std::path::Path) -> Result<Vec<usize>, CliError> {
         .collect())
 }
 
-fn end_effector(robot: &Robot, spec: Option<&str>) -> Result<usize, CliError> {
+/// The index of end-effector `spec` (a name or an index; the first without one).
+pub(super) fn end_effector(robot: &Robot, spec: Option<&str>) -> Result<usize, CliError> {
     let Some(s) = spec else { return Ok(0) };
     let names = || {
         robot

@@ -72,6 +72,7 @@ fn exact(robot: &Robot, m: &ExactSelfMotion, n: usize) -> Motion {
 /// zero), then the drift-free numerical self-motion, sampled by arc length in joint space.
 fn numerical(
     robot: &Robot,
+    ee: usize,
     target: &Pose,
     n: usize,
     bad: &dyn Fn(String) -> CliError,
@@ -93,7 +94,7 @@ fn numerical(
         .map_or_else(|| vec![0.0; robot.dof()], <[f64]>::to_vec);
     let rep = solve(
         robot,
-        0,
+        ee,
         &crate::kinematics::ik::Target::Pose(*target),
         &seed,
         &NumericalOptions::default(),
@@ -105,7 +106,7 @@ fn numerical(
             rep.position_error, rep.orientation_error
         )));
     }
-    let start = NullSpaceMotion::new(robot, 0, &rep.q, None).map_err(|e| bad(e.to_string()))?;
+    let start = NullSpaceMotion::new(robot, ee, &rep.q, None).map_err(|e| bad(e.to_string()))?;
     let name = "self-motion".to_string();
     let h = std::f64::consts::TAU / n as f64;
     let sol = |m: &NullSpaceMotion| -> Result<BranchSolution, CliError> {
@@ -191,22 +192,13 @@ fn walk(
 fn exact_shape(robot: &Robot) -> bool {
     crate::redundancy::srs::SrsArm::detect(robot).is_some()
         || crate::redundancy::offset_elbow::OffsetElbowArm::detect(robot).is_some()
-        || (crate::workspace::planar_frame(robot, 0).is_some() && matches!(robot.dof(), 3 | 4))
+        || (crate::workspace::planar_frame(robot, 0).is_some() && matches!(robot.dof(), 2..=4))
 }
 
 /// Runs `self-motion`.
 pub(super) fn run(args: &SelfMotionArgs, out: &mut dyn std::io::Write) -> Result<(), CliError> {
     let robot = crate::model_file::load_model(&args.model)?;
-    if args
-        .ee
-        .as_deref()
-        .is_some_and(|e| e != "0" && robot.end_effectors().len() < 2)
-    {
-        return Err(CliError::UnknownEndEffector {
-            name: args.ee.clone().unwrap_or_default(),
-            available: "0".into(),
-        });
-    }
+    let ee = super::ik::end_effector(&robot, args.ee.as_deref())?;
     if args.samples == 0 || args.samples > 1_000_000 {
         return Err(CliError::Usage("--samples must be between 1 and 1000000"));
     }
@@ -222,9 +214,10 @@ pub(super) fn run(args: &SelfMotionArgs, out: &mut dyn std::io::Write) -> Result
         reason,
     };
     let mut motion = match ExactSelfMotion::new(&robot, &pose) {
+        _ if ee != 0 => numerical(&robot, ee, &pose, args.samples, &bad)?,
         Ok(m) => exact(&robot, &m, args.samples),
         Err(RedundancyError::NotSupported(why)) if exact_shape(&robot) => return Err(bad(why)),
-        Err(RedundancyError::NotSupported(_)) => numerical(&robot, &pose, args.samples, &bad)?,
+        Err(RedundancyError::NotSupported(_)) => numerical(&robot, 0, &pose, args.samples, &bad)?,
         Err(e) => return Err(bad(e.to_string())),
     };
     if let Some(b) = &args.branch {

@@ -12,8 +12,40 @@ pub(crate) fn rot(w: &Vector3<f64>, t: f64) -> Rotation3<f64> {
 /// `Rot(w, t) v` by Rodrigues' formula (no matrix).
 #[inline]
 pub(crate) fn rotv(w: &Vector3<f64>, t: f64, v: &Vector3<f64>) -> Vector3<f64> {
-    let (st, ct) = t.sin_cos();
+    let (st, ct) = crate::kinematics::trig::sin_cos(t);
     v * ct + w.cross(v) * st + w * (w.dot(v) * (1.0 - ct))
+}
+
+/// `Rot(w, t) v` from the sine and cosine of t (no trigonometric call).
+#[inline]
+pub(crate) fn rotv_sc(w: &Vector3<f64>, st: f64, ct: f64, v: &Vector3<f64>) -> Vector3<f64> {
+    v * ct + w.cross(v) * st + w * (w.dot(v) * (1.0 - ct))
+}
+
+/// An angle with its sine and cosine.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Angle {
+    /// The angle (rad).
+    pub t: f64,
+    /// sin t.
+    pub s: f64,
+    /// cos t.
+    pub c: f64,
+}
+
+/// [`sub1`] with the sine and cosine of the angle, read off the atan2 arguments.
+#[inline]
+pub(crate) fn sub1_sc(w: &Vector3<f64>, p: &Vector3<f64>, q: &Vector3<f64>) -> Angle {
+    let pp = p - w * w.dot(p);
+    let qq = q - w * w.dot(q);
+    let (y, x) = (w.dot(&pp.cross(&qq)), pp.dot(&qq));
+    let r = x.hypot(y);
+    let (s, c) = if r > 0.0 { (y / r, x / r) } else { (0.0, 1.0) };
+    Angle {
+        t: y.atan2(x),
+        s,
+        c,
+    }
 }
 
 /// Subproblem 1: the angle t with Rot(w, t) p = q (p, q of equal components along w).
@@ -47,6 +79,31 @@ pub(crate) fn sub2(
     }
     let c = w1 * alpha + w2 * beta + x * (sign * g2.max(0.0).sqrt());
     Some((sub1(w1, &c, q), sub1(w2, p, &c)))
+}
+
+/// [`sub2`] with the sines and cosines of both angles.
+pub(crate) fn sub2_sc(
+    w1: &Vector3<f64>,
+    w2: &Vector3<f64>,
+    p: &Vector3<f64>,
+    q: &Vector3<f64>,
+    sign: f64,
+) -> Option<(Angle, Angle)> {
+    let c12 = w1.dot(w2);
+    let den = c12 * c12 - 1.0;
+    if den.abs() < 1e-12 {
+        return None;
+    }
+    let alpha = (c12 * w2.dot(p) - w1.dot(q)) / den;
+    let beta = (c12 * w1.dot(q) - w2.dot(p)) / den;
+    let x = w1.cross(w2);
+    let g2 = (p.norm_squared() - alpha * alpha - beta * beta - 2.0 * alpha * beta * c12)
+        / x.norm_squared();
+    if g2 < -1e-10 * p.norm_squared().max(1e-30) {
+        return None;
+    }
+    let c = w1 * alpha + w2 * beta + x * (sign * g2.max(0.0).sqrt());
+    Some((sub1_sc(w1, &c, q), sub1_sc(w2, p, &c)))
 }
 
 /// Closest point of line (a, u) to line (b, v) (points, unit directions), and the gap between

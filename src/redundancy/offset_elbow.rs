@@ -18,7 +18,7 @@
 //!
 //! Eight branches in all, labelled by the three signs like the SRS arm's.
 
-use super::geometry::{meet, rot, rotv, sub1, sub2, trig_roots, wrap_into};
+use super::geometry::{meet, rot, rotv, rotv_sc, sub1, sub2_sc, trig_roots, wrap_into};
 use crate::kinematics::{JointKind, Pose, Robot};
 use nalgebra::{Matrix3, Point3, Rotation3, Vector3};
 use std::f64::consts::{PI, TAU};
@@ -201,10 +201,10 @@ impl OffsetElbowArm {
     /// The shoulder's three angles with `R_1 R_2 R_3 = r`, branch `sign` of subproblem 2.
     fn shoulder_angles(&self, r: &Matrix3<f64>, sign: f64) -> Option<[f64; 3]> {
         let (w1, w2, w3) = (&self.w[0], &self.w[1], &self.w[2]);
-        let (t1, t2) = sub2(w1, w2, w3, &(r * w3), sign)?;
+        let (a1, a2) = sub2_sc(w1, w2, w3, &(r * w3), sign)?;
         let x = self.probe[2];
-        let v = rotv(w2, -t2, &rotv(w1, -t1, &(r * x)));
-        Some([t1, t2, sub1(w3, &x, &v)])
+        let v = rotv_sc(w2, -a2.s, a2.c, &rotv_sc(w1, -a1.s, a1.c, &(r * x)));
+        Some([a1.t, a2.t, sub1(w3, &x, &v)])
     }
 
     /// Every branch (up to 8) at `q7`, named, wrapped into the limits where they fit and

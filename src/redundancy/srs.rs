@@ -19,7 +19,9 @@
 //!
 //! Eight branches in all, labelled by the three signs.
 
-use super::geometry::{meet, rot, rotv, sub1, sub2, triad, trig_roots, within, wrap_into};
+use super::geometry::{
+    meet, rot, rotv, rotv_sc, sub1, sub2, sub2_sc, triad, trig_roots, within, wrap_into,
+};
 use crate::kinematics::{JointKind, Pose, Robot};
 use nalgebra::{Matrix3, Point3, Rotation3, Vector3};
 use std::f64::consts::{PI, TAU};
@@ -33,6 +35,25 @@ pub struct SrsSolution {
     pub q: [f64; 7],
     /// Every joint within its limits.
     pub within_limits: bool,
+}
+
+/// A target as [`SrsArm::prepare`] leaves it: what does not depend on psi.
+#[derive(Debug, Clone, Copy)]
+pub struct SrsPose {
+    sw: Vector3<f64>,
+    u: Vector3<f64>,
+    m: Matrix3<f64>,
+    elbows: [Option<ElbowPart>; 2],
+}
+
+/// One elbow branch of a prepared target.
+#[derive(Debug, Clone, Copy)]
+struct ElbowPart {
+    q4: f64,
+    reference: Vector3<f64>,
+    r4: Matrix3<f64>,
+    /// `triad(E_0 - S, W_4 - S)^T`: the shoulder's rotation at psi = 0 is `triad(E°, SW)` times it.
+    zero: Matrix3<f64>,
 }
 
 /// An SRS arm read from its axes (see the module documentation).
@@ -179,26 +200,48 @@ impl SrsArm {
     /// set (angles not wrapped into the limits). Mask 0 when the wrist centre is out of reach or
     /// at the algorithmic singularity.
     pub fn solve_raw(&self, target: &Pose, psi: f64, out: &mut [[f64; 7]; 8]) -> u8 {
+        self.solve_prepared(&self.prepare(target), psi, out)
+    }
+
+    /// What a target fixes before psi is chosen (the wrist centre, both elbow angles, their
+    /// reference elbows): [`Self::solve_prepared`] then costs only the psi-dependent part, for
+    /// a slider or a sampled manifold of one pose.
+    pub fn prepare(&self, target: &Pose) -> SrsPose {
         let wc = self.wrist_of(target);
         let sw = wc - self.s;
-        let u = sw.normalize();
-        let rot_psi = rot(&u, psi);
         let m = target.rotation.into_inner() * self.r0.inverse().into_inner();
-        let mut mask = 0u8;
-        for (ie, se) in [1.0, -1.0].into_iter().enumerate() {
-            let Some(q4) = self.elbow(sw.norm(), se) else {
-                continue;
-            };
-            let Some(reference) = self.reference(&wc, q4) else {
-                continue;
-            };
-            let e = rot_psi * reference;
-            let r4 = rot(&self.w[3], q4);
+        let elbows = [1.0, -1.0].map(|se| {
+            let q4 = self.elbow(sw.norm(), se)?;
+            let reference = self.reference(&wc, q4)?;
+            let r4 = rot(&self.w[3], q4).into_inner();
             let w4 = self.e0 - self.s + r4 * (self.w0 - self.e0);
-            let r_sh = triad(&e, &sw) * triad(&(self.e0 - self.s), &w4).transpose();
+            Some(ElbowPart {
+                q4,
+                reference,
+                r4,
+                zero: triad(&(self.e0 - self.s), &w4).transpose(),
+            })
+        });
+        SrsPose {
+            sw,
+            u: sw.normalize(),
+            m,
+            elbows,
+        }
+    }
+
+    /// [`Self::solve_raw`] for a prepared target.
+    pub fn solve_prepared(&self, p: &SrsPose, psi: f64, out: &mut [[f64; 7]; 8]) -> u8 {
+        let mut mask = 0u8;
+        for (ie, part) in p.elbows.iter().enumerate() {
+            let Some(part) = part else {
+                continue;
+            };
+            let e = rotv(&p.u, psi, &part.reference);
+            let r_sh = triad(&e, &p.sw) * part.zero;
             // R_1 R_2 R_3 = R_sh whichever the shoulder branch, so the wrist sees the same
             // rotation from both: R_5 R_6 R_7 = (R_sh R_4)^T R_e R(0)^T.
-            let r_w = (r_sh * r4.into_inner()).transpose() * m;
+            let r_w = (r_sh * part.r4).transpose() * p.m;
             let wrists = [1.0, -1.0].map(|sign| self.triple(4, &r_w, sign));
             for (is, ss) in [1.0, -1.0].into_iter().enumerate() {
                 let Some([q1, q2, q3]) = self.triple(0, &r_sh, ss) else {
@@ -207,7 +250,7 @@ impl SrsArm {
                 for (iw, w) in wrists.iter().enumerate() {
                     if let Some([q5, q6, q7]) = *w {
                         let k = is << 2 | ie << 1 | iw;
-                        out[k] = [q1, q2, q3, q4, q5, q6, q7];
+                        out[k] = [q1, q2, q3, part.q4, q5, q6, q7];
                         mask |= 1 << k;
                     }
                 }
@@ -221,11 +264,12 @@ impl SrsArm {
     #[inline]
     fn triple(&self, i: usize, r: &Matrix3<f64>, sign: f64) -> Option<[f64; 3]> {
         let (w1, w2, w3) = (&self.w[i], &self.w[i + 1], &self.w[i + 2]);
-        let (t1, t2) = sub2(w1, w2, w3, &(r * w3), sign)?;
+        let (a1, a2) = sub2_sc(w1, w2, w3, &(r * w3), sign)?;
         let x = self.probe[i + 2];
-        // R_2^T R_1^T (r x), rotating the vector only.
-        let v = rotv(w2, -t2, &rotv(w1, -t1, &(r * x)));
-        Some([t1, t2, sub1(w3, &x, &v)])
+        // R_2^T R_1^T (r x), rotating the vector only, with the sines and cosines subproblem 2
+        // already has.
+        let v = rotv_sc(w2, -a2.s, a2.c, &rotv_sc(w1, -a1.s, a1.c, &(r * x)));
+        Some([a1.t, a2.t, sub1(w3, &x, &v)])
     }
 
     /// Every branch (up to 8) reaching `target` with arm angle `psi` (rad), named, wrapped into
@@ -379,8 +423,9 @@ impl SrsArm {
     pub fn feasible_intervals(&self, target: &Pose) -> [Vec<[f64; 2]>; 8] {
         let cuts = self.breakpoints(target);
         let mut raw = [[0.0; 7]; 8];
+        let prepared = self.prepare(target);
         midpoint_intervals(cuts, |psi, ok: &mut [bool; 8]| {
-            let mask = self.solve_raw(target, psi, &mut raw);
+            let mask = self.solve_prepared(&prepared, psi, &mut raw);
             for (k, v) in ok.iter_mut().enumerate() {
                 *v = mask >> k & 1 == 1 && within(&self.wrapped(raw[k]), &self.limits);
             }
