@@ -5,7 +5,7 @@
 use armlab::app::state::AppState;
 use armlab::app::ui::AppUi;
 use egui_kittest::Harness;
-use egui_kittest::kittest::Queryable;
+use egui_kittest::kittest::{NodeT, Queryable};
 
 fn harness(app: AppUi) -> Harness<'static, AppUi> {
     let mut h = Harness::builder()
@@ -256,4 +256,50 @@ fn the_arm_is_framed_for_the_viewport_it_is_shown_in() {
     app.viewport_px = [w + 100, hp];
     app.frame_if_needed();
     assert_eq!(app.camera, moved);
+}
+
+/// The status bar and the IK panel say the same thing about an unreachable target, however far
+/// it is dragged (they once showed "387.3 mm outside" and "10.4 mm outside" at the same time: the
+/// status kept the first message of the drag).
+#[test]
+fn the_status_bar_and_the_ik_panel_never_disagree() {
+    let mut state = AppState::from_spec("anthropomorphic_spherical_wrist").unwrap();
+    let mut t = state.robot().fk(state.q()).unwrap();
+    let reach = state.robot().characteristic_length();
+    let mut h = harness(AppUi::new(state));
+    for step in [1.02, 1.1, 1.3, 1.6] {
+        t.translation.vector = nalgebra::Vector3::new(reach * step, 0.0, 0.4);
+        let _ = h.state_mut().state.set_target(0, t);
+        h.run();
+        let app = h.state();
+        let panel = app.state.targets()[0].reach.message().expect("unreachable");
+        assert!(panel.contains("mm outside"), "{panel}");
+        let status = app.state.status_line(0).unwrap().text;
+        assert!(
+            status.contains(&panel),
+            "status {status:?} vs panel {panel:?}"
+        );
+        // On screen: every text that names a distance names the same one.
+        let mm: Vec<String> = h
+            .root()
+            .children_recursive()
+            .flat_map(|n| {
+                let a = n.accesskit_node();
+                [a.label(), a.value()]
+            })
+            .flatten()
+            .filter(|t| t.contains("mm outside"))
+            .collect();
+        assert!(mm.len() >= 2, "{mm:?}");
+        let number = |s: &str| {
+            s.split(" mm outside")
+                .next()
+                .unwrap()
+                .rsplit(' ')
+                .next()
+                .unwrap()
+                .to_string()
+        };
+        assert!(mm.iter().all(|s| number(s) == number(&panel)), "{mm:?}");
+    }
 }

@@ -243,6 +243,23 @@ impl AppState {
         self.messages.back()
     }
 
+    /// The status bar's line: while a target is not reached, the same sentence the IK panel
+    /// shows for it (one source, so the two can never disagree, e.g. on how far out a dragged
+    /// target is), preferring end-effector `ee`; otherwise the newest message.
+    pub fn status_line(&self, ee: usize) -> Option<StatusMessage> {
+        let unreached = |t: &EeTarget| {
+            t.reach.message().map(|m| StatusMessage {
+                level: Level::Warning,
+                text: format!("{}: {m}", t.name),
+            })
+        };
+        self.targets
+            .get(ee)
+            .and_then(unreached)
+            .or_else(|| self.targets.iter().find_map(unreached))
+            .or_else(|| self.last_message().cloned())
+    }
+
     /// Adds a status message (an identical newest message is not repeated).
     pub fn push_message(&mut self, level: Level, text: impl Into<String>) {
         let m = StatusMessage {

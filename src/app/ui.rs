@@ -423,7 +423,8 @@ impl AppUi {
             {
                 ui.add(egui::ProgressBar::new(f).desired_width(160.0).text("workspace"));
             }
-            match self.state.last_message() {
+            let ee = self.ee.min(self.state.targets().len().saturating_sub(1));
+            match self.state.status_line(ee) {
                 Some(m) => {
                     let color = match m.level {
                         Level::Info => ui.visuals().text_color(),
