@@ -931,3 +931,22 @@ fn self_motion_of_the_panda_by_q7_and_of_the_four_link_arm_by_phi3() {
         }
     }
 }
+
+#[test]
+fn the_figure_command_lists_and_refuses() {
+    let list = armlab(&["figure", "--list"]);
+    assert!(list.status.success());
+    let text = String::from_utf8_lossy(&list.stdout);
+    for name in ["2.29", "2.30", "2.31", "2.32", "2.33", "problem-2.17"] {
+        assert!(
+            text.lines().any(|l| l.starts_with(name)),
+            "{name} missing: {text}"
+        );
+    }
+    bad(
+        &armlab(&["figure", "2.99", "--out", "/tmp/x.png"]),
+        "no figure \"2.99\"",
+    );
+    bad(&armlab(&["figure", "2.31"]), "--out");
+    bad(&armlab(&["figure"]), "--list");
+}

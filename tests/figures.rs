@@ -29,6 +29,7 @@ fn arm_snapshot_with_dh_frames() {
         scene: &scene,
         camera,
         legend: vec![],
+        caption: String::new(),
     };
     let mut f = figures();
     let img = f.scene([800, 600], Theme::Light, &fig).unwrap();
@@ -69,6 +70,7 @@ fn end_effector_lands_at_the_projected_pixel() {
         scene: &scene,
         camera,
         legend: vec![],
+        caption: String::new(),
     };
     let img = figures().scene([640, 640], Theme::Light, &fig).unwrap();
     let p = camera
@@ -110,6 +112,7 @@ fn empty_scene_and_bad_size() {
         scene: &scene,
         camera: Camera::default(),
         legend: vec![],
+        caption: String::new(),
     };
     assert!(f.scene([0, 100], Theme::Dark, &fig).is_err());
     let img = f.scene([320, 200], Theme::Dark, &fig).unwrap();
@@ -118,4 +121,18 @@ fn empty_scene_and_bad_size() {
         px[0] < 60 && px[1] < 60 && px[2] < 60,
         "dark background {px:?}"
     );
+}
+
+/// Every figure of `armlab figure` as a golden image (looked at before committing), at 1000x750.
+#[test]
+fn the_excerpts_figures() {
+    use armlab::figure::textbook::{FIGURES, textbook_figure};
+    let mut f = figures();
+    for (name, _) in FIGURES {
+        let img = textbook_figure(&mut f, name, [1000, 750], Theme::Light)
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert_eq!(img.dimensions(), (1000, 750));
+        assert_golden(&format!("textbook_fig_{}", name.replace('.', "_")), &img);
+    }
+    assert!(textbook_figure(&mut f, "2.99", [400, 300], Theme::Light).is_err());
 }

@@ -40,6 +40,7 @@ fn sized(
         theme: Theme::Light,
         end_effector: 0,
         point: TrackedPoint::WristCentre,
+        caption: String::new(),
     };
     workspace_figure(&mut f, robot, &robot.name.to_lowercase(), &opts, &|_| {}).unwrap()
 }
@@ -205,6 +206,7 @@ fn dexterous_workspace_is_shown() {
         theme: Theme::Light,
         end_effector: 0,
         point: TrackedPoint::Flange,
+        caption: String::new(),
     };
     let fig = workspace_figure(&mut f, &robot, "arm", &opts, &|_| {}).unwrap();
     let yellow = fig

@@ -130,6 +130,7 @@ fn compute(robot: &Robot, title: &str, progress: &AtomicU32) -> Result<Workspace
             theme: Theme::Light,
             end_effector: 0,
             point: Default::default(),
+            caption: String::new(),
         };
         workspace_figure(&mut f, robot, &title.replace('_', " "), &o, &|x| {
             progress.store(500 + (x * 500.0) as u32, Ordering::Relaxed)

@@ -164,6 +164,7 @@ pub(super) fn render(args: &RenderArgs, out: &mut dyn std::io::Write) -> Result<
         scene: &scene,
         camera,
         legend: Vec::new(),
+        caption: String::new(),
     };
     let mut figures = Figures::new()?;
     let img = figures.scene(args.size.0, args.theme.into(), &fig)?;
@@ -289,6 +290,7 @@ pub(super) fn workspace(
             PointArg::WristCentre => crate::workspace::TrackedPoint::WristCentre,
             PointArg::Flange => crate::workspace::TrackedPoint::Flange,
         },
+        caption: String::new(),
     };
     let bar = crate::headless::Progress::new(1000, "workspace");
     let mut figures = Figures::new()?;
@@ -359,4 +361,59 @@ fn stats_json(
         }
     }
     v
+}
+
+/// Arguments of `armlab figure`.
+#[derive(Debug, clap::Args)]
+pub struct FigureArgs {
+    /// The figure: 2.29, 2.30, 2.31, 2.32, 2.33 or problem-2.17 (`--list` shows them).
+    pub name: Option<String>,
+    /// List the figures and what each shows.
+    #[arg(long)]
+    pub list: bool,
+    /// Output PNG file.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Image size in pixels, WIDTHxHEIGHT.
+    #[arg(long, default_value = "1200x900")]
+    pub size: Size,
+    /// Colours.
+    #[arg(long, value_enum, default_value_t)]
+    pub theme: ThemeArg,
+}
+
+/// Runs `figure`.
+pub(super) fn figure(args: &FigureArgs, out: &mut dyn std::io::Write) -> Result<(), CliError> {
+    use crate::figure::textbook::{FIGURES, textbook_figure};
+    if args.list {
+        for (name, what) in FIGURES {
+            writeln!(out, "{name:<13} {what}")?;
+        }
+        return Ok(());
+    }
+    let Some(name) = args.name.as_deref() else {
+        return Err(CliError::Usage(
+            "name a figure (2.29, 2.30, 2.31, 2.32, 2.33, problem-2.17) or pass --list",
+        ));
+    };
+    if !FIGURES.iter().any(|f| f.0 == name) {
+        return Err(CliError::UnknownFigure {
+            name: name.into(),
+            available: FIGURES.map(|f| f.0).join(", "),
+        });
+    }
+    let Some(path) = &args.out else {
+        return Err(CliError::Usage("--out FILE.png is required"));
+    };
+    let mut figures = Figures::new()?;
+    let img = textbook_figure(&mut figures, name, args.size.0, args.theme.into())?;
+    write_png(&img, path)?;
+    writeln!(
+        out,
+        "wrote {} ({}x{}): Fig. {name}",
+        path.display(),
+        img.width(),
+        img.height()
+    )?;
+    Ok(())
 }

@@ -119,6 +119,9 @@ pub enum Command {
     Render(figures::RenderArgs),
     /// Compute the workspace (Sect. 2.10.1) and draw it to PNG, headlessly.
     Workspace(figures::WorkspaceArgs),
+    /// One of the excerpt's figures (Figs 2.29-2.33, Problem 2.17) to PNG, headlessly, with the
+    /// textbook's labels.
+    Figure(figures::FigureArgs),
     /// Which postures reach each point of a file, and its distance to the workspace boundary
     /// (positive inside, negative outside).
     Reach(reach::ReachArgs),
@@ -172,6 +175,14 @@ pub enum CliError {
         /// The solver's error.
         source: crate::kinematics::ik::IkError,
     },
+    /// A figure `armlab figure` does not know.
+    #[error("no figure {name:?} (the figures are: {available})")]
+    UnknownFigure {
+        /// Name asked.
+        name: String,
+        /// The figures.
+        available: String,
+    },
     /// An end-effector the robot does not have.
     #[error("no end-effector {name:?} (the robot has: {available})")]
     UnknownEndEffector {
@@ -214,6 +225,7 @@ pub fn run(cli: Cli, out: &mut dyn std::io::Write) -> Result<(), CliError> {
         }) => fk::run(&model, &joints, frames, euler.map(Into::into), format, out),
         Some(Command::Workspace(args)) => figures::workspace(&args, out),
         Some(Command::Render(args)) => figures::render(&args, out),
+        Some(Command::Figure(args)) => figures::figure(&args, out),
         Some(Command::Ik(args)) => ik::run(&args, out),
         Some(Command::Calibrate(args)) => calibrate::run(&args, out),
         Some(Command::Reach(args)) => reach::run(&args, out),

@@ -24,6 +24,8 @@ pub struct Scene3d<'a> {
     pub title: String,
     /// One line under the title.
     pub subtitle: String,
+    /// A small caption at the bottom naming the figure's source; empty for none.
+    pub caption: String,
     /// What to draw.
     pub scene: &'a Scene,
     /// From where.
@@ -176,6 +178,15 @@ impl Figures {
                         &fig.subtitle,
                         egui::FontId::proportional(12.0),
                         text,
+                    );
+                }
+                if !fig.caption.is_empty() {
+                    painter.text(
+                        rect.right_bottom() - egui::vec2(10.0, 8.0),
+                        egui::Align2::RIGHT_BOTTOM,
+                        &fig.caption,
+                        egui::FontId::proportional(11.0),
+                        ui.visuals().weak_text_color(),
                     );
                 }
                 let mut y = rect.top() + 60.0;

@@ -10,6 +10,7 @@ mod palette;
 pub mod plot2d;
 pub mod raster;
 pub mod self_motion;
+pub mod textbook;
 pub mod ui_painter;
 pub mod workspace;
 

@@ -37,6 +37,9 @@ pub struct Plot2d {
     pub title: String,
     /// One line under the title (data source, resolution, statistics).
     pub subtitle: String,
+    /// A small caption under the subtitle naming the figure's source (e.g. "after Fig. 2.31 of
+    /// Siciliano et al."); empty for none.
+    pub caption: String,
     /// x axis label with unit, e.g. `x [m]`.
     pub x_label: String,
     /// y axis label with unit.
@@ -158,6 +161,9 @@ pub fn show_at(
         ui.heading(&plot.title);
         if !plot.subtitle.is_empty() {
             ui.label(egui::RichText::new(&plot.subtitle).small());
+        }
+        if !plot.caption.is_empty() {
+            ui.label(egui::RichText::new(&plot.caption).small().italics().weak());
         }
     });
     if let Some(bar) = &plot.colorbar {

@@ -67,6 +67,8 @@ pub struct WsFigureOptions {
     pub end_effector: usize,
     /// Tracked point of the side and top views (wrist centre or flange).
     pub point: TrackedPoint,
+    /// A small caption naming the figure's source (empty for none).
+    pub caption: String,
 }
 
 /// A figure and the statistics it was drawn from.
@@ -208,6 +210,7 @@ fn three_d(
             scene: &scene,
             camera,
             legend,
+            caption: opts.caption.clone(),
         },
     )
 }
@@ -266,6 +269,7 @@ fn joint_space(
         subtitle: "admissible configurations within the joint limits; posture bands separated by q2 singular lines".into(),
         x_label: "q1 [deg]".into(),
         y_label: "q2 [deg]".into(),
+        caption: opts.caption.clone(),
         ..Plot2d::default()
     };
     let (m1, m2) = (
@@ -359,6 +363,7 @@ fn map_figure(
         bounds: workspace::map::padded(&extent, 0.06),
         equal_aspect: true,
         colorbar: (values != MapValues::Classes).then(ColorBar::default),
+        caption: opts.caption.clone(),
         ..Plot2d::default()
     };
     let text = text_color(opts.theme);

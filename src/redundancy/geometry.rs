@@ -106,27 +106,7 @@ pub(crate) fn sub2_sc(
     Some((sub1_sc(w1, &c, q), sub1_sc(w2, p, &c)))
 }
 
-/// Closest point of line (a, u) to line (b, v) (points, unit directions), and the gap between
-/// the lines (m).
-pub(crate) fn meet(
-    a: &Vector3<f64>,
-    u: &Vector3<f64>,
-    b: &Vector3<f64>,
-    v: &Vector3<f64>,
-) -> (Vector3<f64>, f64) {
-    let w0 = a - b;
-    let (uu, uv, vv) = (u.dot(u), u.dot(v), v.dot(v));
-    let (du, dv) = (u.dot(&w0), v.dot(&w0));
-    let den = uu * vv - uv * uv;
-    if den.abs() < 1e-12 {
-        return (*a, f64::INFINITY);
-    }
-    let s = (uv * dv - vv * du) / den;
-    let t = (uu * dv - uv * du) / den;
-    let pa = a + u * s;
-    let pb = b + v * t;
-    (0.5 * (pa + pb), (pa - pb).norm())
-}
+pub(crate) use crate::kinematics::construction::meet;
 
 /// The orthonormal frame of `a` and the part of `b` perpendicular to it, as columns.
 pub(crate) fn triad(a: &Vector3<f64>, b: &Vector3<f64>) -> Matrix3<f64> {

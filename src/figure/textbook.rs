@@ -1,0 +1,428 @@
+//! The excerpt's figures from one call (`armlab figure NAME`): Figs 2.29-2.33 and Problem 2.17,
+//! drawn with the textbook's labels by the same renderer and plot code as every other figure.
+//! The numbers come from the compute layers ([`crate::kinematics::construction`], the closed
+//! form, the exact workspace); this module only paints them.
+
+use super::figures::{Figures, Scene3d};
+use super::palette::{CLASS_COLORS, c32};
+
+use super::plot2d::{Curve, Plot2d};
+use super::workspace::{ColorBy, WsFigureOptions, WsView, workspace_figure};
+use super::{FigureError, Theme};
+use crate::camera::Preset;
+use crate::kinematics::Robot;
+use crate::kinematics::construction::{TwoLinkConstruction, WristPoint};
+use crate::kinematics::ik::closed_form::{ClosedForm, RawSolutions};
+use crate::scene::{ArmStyle, Dot, Label, Line, arm_scene, point32};
+use egui::Color32;
+use nalgebra::Vector3;
+
+/// Every figure: name and what it shows.
+pub const FIGURES: [(&str, &str); 6] = [
+    (
+        "2.29",
+        "joint-space rectangle of the two-link arm with limits, segments ab, bc, cd, da, ae, ef, fd",
+    ),
+    (
+        "2.30",
+        "workspace of the two-link arm with points A-H, its arcs and the elbow-up / elbow-down / both regions",
+    ),
+    (
+        "2.31",
+        "the two admissible postures of the two-link arm for one point, with alpha, beta and theta2",
+    ),
+    (
+        "2.32",
+        "a manipulator with spherical wrist: p_e, a_e, d6 and p_W = p_e - d6 a_e (2.93)",
+    ),
+    (
+        "2.33",
+        "the four configurations of the anthropomorphic arm compatible with one wrist position",
+    ),
+    (
+        "problem-2.17",
+        "workspace of the three-link arm with the problem's data",
+    ),
+];
+
+/// The two-link arm of Example 2.6 with its limits (the model of Figs 2.29-2.30), embedded.
+fn limited_two_link() -> Result<Robot, FigureError> {
+    crate::model_file::parse_model(
+        include_str!("../../assets/robots/planar2_limited.toml"),
+        std::path::Path::new("planar2_limited.toml"),
+    )
+    .map_err(|e| FigureError::Layout(e.to_string()))
+}
+
+/// An isometric camera framing `points`, the picture a little below the title.
+fn framing(points: &[nalgebra::Point3<f32>], size: [u32; 2]) -> crate::camera::Camera {
+    let mut camera = crate::camera::Camera::default();
+    camera.set_preset(Preset::Iso);
+    camera.fit_points(points, size[0], size[1], 0.75);
+    camera.pan(0.0, 0.04);
+    camera
+}
+
+/// The caption naming a figure's source.
+fn after(fig: &str) -> String {
+    format!("after {fig} of Siciliano et al., Robotics: Modelling, Planning and Control")
+}
+
+/// Draws figure `name` (see [`FIGURES`]) at `size` pixels.
+pub fn textbook_figure(
+    figs: &mut Figures,
+    name: &str,
+    size: [u32; 2],
+    theme: Theme,
+) -> Result<image::RgbaImage, FigureError> {
+    let ws = |figs: &mut Figures, robot: &Robot, title: &str, view, caption: String| {
+        let opts = WsFigureOptions {
+            view,
+            color_by: ColorBy::Posture,
+            samples: 100_000,
+            seed: 1,
+            size,
+            theme,
+            end_effector: 0,
+            point: crate::workspace::TrackedPoint::WristCentre,
+            caption,
+        };
+        workspace_figure(figs, robot, title, &opts, &|_| {}).map(|f| f.image)
+    };
+    match name {
+        "2.29" => ws(
+            figs,
+            &limited_two_link()?,
+            "two-link arm",
+            WsView::JointSpace,
+            after("Fig. 2.29"),
+        ),
+        "2.30" => ws(
+            figs,
+            &limited_two_link()?,
+            "two-link arm",
+            WsView::Plane,
+            after("Fig. 2.30"),
+        ),
+        "problem-2.17" => ws(
+            figs,
+            &crate::kinematics::models::planar3(),
+            "three-link arm of Problem 2.17",
+            WsView::Plane,
+            after("Problem 2.17"),
+        ),
+        "2.31" => two_link_postures(figs, size, theme),
+        "2.32" => spherical_wrist(figs, size, theme),
+        "2.33" => anthropomorphic_configurations(figs, size, theme),
+        other => Err(FigureError::Layout(format!(
+            "no figure {other:?} (the figures are: {})",
+            FIGURES.map(|f| f.0).join(", ")
+        ))),
+    }
+}
+
+/// Points of an arc of radius `r` about `c` from angle `a0` to `a1` (rad).
+fn arc(c: [f64; 2], r: f64, a0: f64, a1: f64) -> Vec<[f64; 2]> {
+    let n = 48;
+    (0..=n)
+        .map(|k| {
+            let a = a0 + (a1 - a0) * k as f64 / n as f64;
+            [c[0] + r * a.cos(), c[1] + r * a.sin()]
+        })
+        .collect()
+}
+
+/// Fig. 2.31: both postures of the two-link arm (a1 = a2 = 1 m) for one point, with the angles
+/// of the cosine-theorem construction.
+fn two_link_postures(
+    figs: &mut Figures,
+    size: [u32; 2],
+    theme: Theme,
+) -> Result<image::RgbaImage, FigureError> {
+    let p = [1.2, 0.8];
+    let k =
+        TwoLinkConstruction::new(1.0, 1.0, p).map_err(|e| FigureError::Layout(e.to_string()))?;
+    let ink = if theme == Theme::Dark {
+        Color32::from_gray(220)
+    } else {
+        Color32::from_gray(30)
+    };
+    let line = |name: Option<String>, points: Vec<[f64; 2]>, color, width, dashed| Curve {
+        name,
+        points,
+        color,
+        width,
+        dashed,
+    };
+    let mut plot = Plot2d {
+        title: "Admissible postures of a two-link planar arm (Fig. 2.31)".into(),
+        subtitle: format!(
+            "p_W = ({:.2}, {:.2}) m, a1 = a2 = 1 m: c2 = {:.4}, theta2 = +-{:.2} deg; alpha = \
+             Atan2(p_Wy, p_Wx) = {:.2} deg, beta = {:.2} deg; theta1 = alpha + beta (elbow up), \
+             alpha - beta (elbow down)",
+            p[0],
+            p[1],
+            k.c2,
+            k.postures[1].theta2.to_degrees(),
+            k.alpha.to_degrees(),
+            k.beta.to_degrees()
+        ),
+        caption: after("Fig. 2.31"),
+        x_label: "x [m]".into(),
+        y_label: "y [m]".into(),
+        bounds: [-0.4, 2.0, -0.5, 1.6],
+        equal_aspect: true,
+        ..Plot2d::default()
+    };
+    plot.curves
+        .push(line(None, vec![[0.0, 0.0], p], ink, 1.0, true));
+    plot.curves.push(line(
+        None,
+        arc([0.0, 0.0], 0.35, 0.0, k.alpha),
+        ink,
+        1.5,
+        false,
+    ));
+    plot.labels.push((
+        "α".into(),
+        [0.42 * (k.alpha / 2.0).cos(), 0.42 * (k.alpha / 2.0).sin()],
+    ));
+    for (i, pos) in k.postures.iter().enumerate() {
+        let color = c32(CLASS_COLORS[i]);
+        plot.curves.push(line(
+            Some(pos.name.to_string()),
+            vec![[0.0, 0.0], pos.elbow, p],
+            color,
+            4.0,
+            false,
+        ));
+        // beta between the line O-W and link 1; theta2 between link 1's extension and link 2.
+        let r = 0.55 + 0.12 * i as f64;
+        plot.curves.push(line(
+            None,
+            arc([0.0, 0.0], r, k.alpha, pos.theta1),
+            color,
+            1.5,
+            false,
+        ));
+        let mid = 0.5 * (k.alpha + pos.theta1);
+        plot.labels
+            .push(("β".into(), [(r + 0.08) * mid.cos(), (r + 0.08) * mid.sin()]));
+        let ext = [pos.elbow[0] * 1.35, pos.elbow[1] * 1.35];
+        plot.curves
+            .push(line(None, vec![pos.elbow, ext], color, 1.0, true));
+        let a_end = pos.theta1 + pos.theta2;
+        plot.curves.push(line(
+            None,
+            arc(pos.elbow, 0.25, pos.theta1, a_end),
+            color,
+            1.5,
+            false,
+        ));
+        let m2 = pos.theta1 + 0.5 * pos.theta2;
+        plot.labels.push((
+            format!("θ2 = {:.1}°", pos.theta2.to_degrees()),
+            [
+                pos.elbow[0] + 0.38 * m2.cos(),
+                pos.elbow[1] + 0.38 * m2.sin(),
+            ],
+        ));
+        let out = if pos.theta2 < 0.0 {
+            [-0.3, 0.08]
+        } else {
+            [0.05, -0.12]
+        };
+        plot.labels.push((
+            pos.name.to_string(),
+            [pos.elbow[0] + out[0], pos.elbow[1] + out[1]],
+        ));
+    }
+    plot.labels.push(("W".into(), [p[0] + 0.06, p[1] + 0.06]));
+    plot.labels.push(("O".into(), [-0.08, -0.08]));
+    figs.plot(size, theme, &plot, None)
+}
+
+/// Fig. 2.32: the anthropomorphic arm with spherical wrist, with p_e, a_e, d6 and p_W.
+fn spherical_wrist(
+    figs: &mut Figures,
+    size: [u32; 2],
+    theme: Theme,
+) -> Result<image::RgbaImage, FigureError> {
+    let robot = crate::kinematics::models::anthropomorphic_spherical_wrist();
+    let q = [0.3, 0.5, 0.6, 0.4, 0.9, 0.2];
+    let w = WristPoint::of(&robot, &q).map_err(|e| FigureError::Layout(e.to_string()))?;
+    // Translucent bodies, no frames: the vectors at the wrist stay visible.
+    let style = ArmStyle {
+        frames: false,
+        frame_labels: false,
+        alpha: 0.45,
+        ..ArmStyle::default()
+    };
+    let mut scene = arm_scene(&robot, &q, &style)?;
+    let (pe, pw) = (point32(&w.p_e), point32(&w.p_w));
+    let tip = point32(&(w.p_e + w.a_e * (1.5 * w.d6)));
+    let red = [0.85, 0.15, 0.1, 1.0];
+    let blue = [0.1, 0.3, 0.85, 1.0];
+    scene.lines.push(Line {
+        a: pe.into(),
+        b: pw.into(),
+        color: red,
+        width_px: 4.0,
+    });
+    scene.lines.push(Line {
+        a: pe.into(),
+        b: tip.into(),
+        color: blue,
+        width_px: 3.0,
+    });
+    for (p, c) in [(pe, blue), (pw, red)] {
+        scene.dots.push(Dot {
+            p: p.into(),
+            color: c,
+            size_px: 12.0,
+        });
+    }
+    let label = |p: Vector3<f64>, text: String, color| Label {
+        p: point32(&p).into(),
+        text,
+        color,
+        movable: true,
+    };
+    let mid = 0.5 * (w.p_e + w.p_w);
+    scene.labels.extend([
+        label(w.p_e, "p_e".into(), blue),
+        label(w.p_w, "p_W (wrist point)".into(), red),
+        label(w.p_e + w.a_e * (1.5 * w.d6), "a_e".into(), blue),
+        label(mid, format!("-d6 a_e, d6 = {:.3} m", w.d6), red),
+    ]);
+    // Top: the whole arm; bottom: the wrist close up, the same scene.
+    let panel = [size[0], size[1] / 2];
+    let whole = framing(&crate::scene::arm_points(&robot, &q)?, panel);
+    let r = 0.8 * w.d6;
+    let near: Vec<nalgebra::Point3<f32>> = [-1.0, 1.0]
+        .iter()
+        .flat_map(|sx| [-1.0, 1.0].map(|sy| (sx, sy)))
+        .flat_map(|(sx, sy)| {
+            [-1.0, 1.0].map(|sz| point32(&(w.p_w + Vector3::new(sx * r, sy * r, sz * r))))
+        })
+        .collect();
+    let close = framing(&near, panel);
+    let subtitle = format!(
+        "p_W = p_e - d6 a_e (2.93) = ({:.3}, {:.3}, {:.3}) m: it depends on q1-q3 only",
+        w.p_w.x, w.p_w.y, w.p_w.z
+    );
+    let mut out = image::RgbaImage::new(size[0], size[1]);
+    for (k, (title, camera)) in [
+        ("Manipulator with spherical wrist (Fig. 2.32)", whole),
+        ("the wrist close up", close),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let img = figs.scene(
+            panel,
+            theme,
+            &Scene3d {
+                title: title.into(),
+                subtitle: if k == 0 {
+                    subtitle.clone()
+                } else {
+                    String::new()
+                },
+                scene: &scene,
+                camera,
+                legend: Vec::new(),
+                caption: if k == 1 {
+                    after("Fig. 2.32")
+                } else {
+                    String::new()
+                },
+            },
+        )?;
+        image::imageops::overlay(&mut out, &img, 0, i64::from(k as u32 * panel[1]));
+    }
+    Ok(out)
+}
+
+/// Fig. 2.33: the four solutions of the anthropomorphic arm for one wrist position, in a 2 x 2
+/// grid of panels seen by one camera, each in its posture colour with its frames (the
+/// shoulder-left links lie on the shoulder-right ones; only the frames turn).
+fn anthropomorphic_configurations(
+    figs: &mut Figures,
+    size: [u32; 2],
+    theme: Theme,
+) -> Result<image::RgbaImage, FigureError> {
+    let robot = crate::kinematics::models::anthropomorphic3r();
+    let cf = ClosedForm::detect(&robot).map_err(|e| FigureError::Layout(e.to_string()))?;
+    let p = robot.fk(&[0.5, 0.8, -1.0])?.translation.vector;
+    let mut raw = RawSolutions::default();
+    let n = cf
+        .solve_position_raw(&p, &mut raw)
+        .map_err(|e| FigureError::Layout(e.to_string()))?;
+    let panel = [size[0] / 2, size[1] / 2];
+    let mut points = Vec::new();
+    for k in 0..n {
+        points.extend(crate::scene::arm_points(&robot, &raw.q[k][..3])?);
+    }
+    let camera = framing(&points, panel);
+    // The excerpt's order: shoulder-right/elbow-up, shoulder-left/elbow-up, shoulder-right/
+    // elbow-down, shoulder-left/elbow-down.
+    let order = [
+        "right, elbow up",
+        "left, elbow up",
+        "right, elbow down",
+        "left, elbow down",
+    ];
+    let mut ks: Vec<usize> = (0..n.min(4)).collect();
+    ks.sort_by_key(|&k| {
+        let label = raw.postures[k].label();
+        order.iter().position(|o| label.ends_with(o)).unwrap_or(4)
+    });
+    let mut out = image::RgbaImage::new(size[0], size[1]);
+    for (slot, &k) in ks.iter().enumerate() {
+        let q = &raw.q[k][..3];
+        let c8 = CLASS_COLORS[k % CLASS_COLORS.len()];
+        let c = [c8[0], c8[1], c8[2]].map(|v| f32::from(v) / 255.0);
+        let style = ArmStyle {
+            link: [c[0], c[1], c[2], 1.0],
+            frames: true,
+            frame_labels: true,
+            ..ArmStyle::default()
+        };
+        let mut scene = arm_scene(&robot, q, &style)?;
+        scene.dots.push(Dot {
+            p: point32(&p).into(),
+            color: [0.1, 0.1, 0.12, 1.0],
+            size_px: 10.0,
+        });
+        let deg = q
+            .iter()
+            .map(|v| format!("{:.1}", v.to_degrees()))
+            .collect::<Vec<_>>();
+        let img = figs.scene(
+            panel,
+            theme,
+            &Scene3d {
+                title: format!("Fig. 2.33: {}", raw.postures[k].label()),
+                subtitle: format!(
+                    "theta = ({}) deg; p_W = ({:.3}, {:.3}, {:.3}) m",
+                    deg.join(", "),
+                    p.x,
+                    p.y,
+                    p.z
+                ),
+                scene: &scene,
+                camera,
+                legend: Vec::new(),
+                caption: if slot + 1 == ks.len() {
+                    after("Fig. 2.33")
+                } else {
+                    String::new()
+                },
+            },
+        )?;
+        let (x, y) = ((slot as u32 % 2) * panel[0], (slot as u32 / 2) * panel[1]);
+        image::imageops::overlay(&mut out, &img, i64::from(x), i64::from(y));
+    }
+    Ok(out)
+}

@@ -1,0 +1,92 @@
+//! The constructions behind the closed forms (Sect. 2.12): every quantity a figure or overlay
+//! labels equals the quantity it names, computed independently here (forward kinematics, angles
+//! between vectors, the DH table's own numbers).
+
+use armlab::kinematics::construction::{ConstructionError, TwoLinkConstruction, WristPoint};
+use armlab::kinematics::models::anthropomorphic_spherical_wrist;
+use std::f64::consts::PI;
+
+fn lcg(s: &mut u64) -> f64 {
+    *s = s
+        .wrapping_mul(6364136223846793005)
+        .wrapping_add(1442695040888963407);
+    (*s >> 11) as f64 / (1u64 << 53) as f64
+}
+
+/// The signed angle from `u` to `v` (rad), by atan2 of cross and dot.
+fn signed(u: [f64; 2], v: [f64; 2]) -> f64 {
+    (u[0] * v[1] - u[1] * v[0]).atan2(u[0] * v[0] + u[1] * v[1])
+}
+
+#[test]
+fn the_two_link_triangle_labels_what_it_names() {
+    let mut s = 7u64;
+    let mut checked = 0;
+    while checked < 5000 {
+        let (a1, a2) = (0.3 + lcg(&mut s), 0.3 + lcg(&mut s));
+        let r = (a1 - a2).abs() + (2.0 * a1.min(a2)) * (0.02 + 0.96 * lcg(&mut s));
+        let t = -PI + 2.0 * PI * lcg(&mut s);
+        let p = [r * t.cos(), r * t.sin()];
+        let k = TwoLinkConstruction::new(a1, a2, p).unwrap();
+        assert!((k.distance - r).abs() < 1e-12);
+        assert!((k.alpha - p[1].atan2(p[0])).abs() < 1e-12);
+        for pos in &k.postures {
+            // Forward kinematics of the two-link arm (2.63 with two links).
+            let x = a1 * pos.theta1.cos() + a2 * (pos.theta1 + pos.theta2).cos();
+            let y = a1 * pos.theta1.sin() + a2 * (pos.theta1 + pos.theta2).sin();
+            assert!((x - p[0]).hypot(y - p[1]) < 1e-12, "{pos:?}");
+            // beta is the angle at O between O->W and link 1.
+            let beta = signed(p, pos.elbow).abs();
+            assert!((beta - k.beta).abs() < 1e-9, "{beta} vs {}", k.beta);
+            // theta2 is the angle from link 1 to link 2 at the elbow.
+            let link2 = [p[0] - pos.elbow[0], p[1] - pos.elbow[1]];
+            assert!((signed(pos.elbow, link2) - pos.theta2).abs() < 1e-9);
+            // Elbow up is theta2 in (-pi, 0), theta1 = alpha + beta.
+            let up = pos.name == "elbow up";
+            assert_eq!(up, pos.theta2 < 0.0);
+            let t1 = if up {
+                k.alpha + k.beta
+            } else {
+                k.alpha - k.beta
+            };
+            assert!((pos.theta1 - t1).abs() < 1e-12);
+            assert!((k.c2 - pos.theta2.cos()).abs() < 1e-12);
+        }
+        checked += 1;
+    }
+    assert!(matches!(
+        TwoLinkConstruction::new(1.0, 1.0, [2.5, 0.0]),
+        Err(ConstructionError::OutOfReach { .. })
+    ));
+    assert!(TwoLinkConstruction::new(1.0, 0.5, [0.2, 0.0]).is_err());
+}
+
+/// (2.93) on the anthropomorphic arm with spherical wrist (d6 = 0.1 m in its DH table): the
+/// wrist point is the origin of frame 4 (d4 along z3 from frame 3, on axes 4-6), d6 the table's.
+#[test]
+fn the_wrist_point_is_where_the_wrist_axes_meet() {
+    let robot = anthropomorphic_spherical_wrist();
+    let d6 = robot.dh_table().unwrap().1[5].1.d;
+    assert!((d6 - 0.1).abs() < 1e-15);
+    let mut s = 3u64;
+    for _ in 0..1000 {
+        let q: Vec<f64> = (0..6).map(|_| -PI + 2.0 * PI * lcg(&mut s)).collect();
+        let w = WristPoint::of(&robot, &q).unwrap();
+        let frames = robot.fk_frames(&q).unwrap();
+        let o4 = frames[3].translation.vector;
+        assert!((w.p_w - o4).norm() < 1e-12, "{q:?}");
+        assert!((w.d6 - d6).abs() < 1e-12);
+        let t = robot.fk(&q).unwrap();
+        assert!((w.p_e - t.translation.vector).norm() < 1e-15);
+        assert!((w.a_e - t.rotation * nalgebra::Vector3::z()).norm() < 1e-15);
+    }
+    // The Puma's wrist point exists too; a planar arm has none.
+    assert!(
+        WristPoint::of(
+            &armlab::kinematics::models::puma560(),
+            &[0.1, -0.4, 0.3, 0.5, -0.6, 0.2]
+        )
+        .is_ok()
+    );
+    assert!(WristPoint::of(&armlab::kinematics::models::planar3(), &[0.1, 0.2, 0.3]).is_err());
+}
