@@ -263,7 +263,7 @@ fn the_arm_is_framed_for_the_viewport_it_is_shown_in() {
 /// status kept the first message of the drag).
 #[test]
 fn the_status_bar_and_the_ik_panel_never_disagree() {
-    let mut state = AppState::from_spec("anthropomorphic_spherical_wrist").unwrap();
+    let state = AppState::from_spec("anthropomorphic_spherical_wrist").unwrap();
     let mut t = state.robot().fk(state.q()).unwrap();
     let reach = state.robot().characteristic_length();
     let mut h = harness(AppUi::new(state));
