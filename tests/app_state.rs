@@ -515,3 +515,46 @@ fn readouts_trail_and_toggles() {
     s.display.ghosts = false;
     assert!(!s.display.ghosts && s.display.grid && !s.display.workspace);
 }
+
+/// Ghosts carry the posture class the workspace figures colour them by: the class of the label
+/// is the class the classifier gives the ghost's own configuration, and short labels spell the
+/// label's parts ("R U N").
+#[test]
+fn ghosts_are_coloured_by_the_workspace_posture_classes() {
+    use armlab::kinematics::ik::closed_form::short_label;
+    use armlab::workspace::PostureClassifier;
+    let mut s = state("puma560");
+    s.set_q(&[0.3, 0.5, -1.2, 0.4, 0.8, -0.6]).unwrap();
+    let t = fk(&s, 0);
+    s.set_target(0, t).unwrap();
+    let classifier = PostureClassifier::new(s.robot());
+    let ghosts = s.ghosts(0);
+    assert_eq!(ghosts.len(), 8);
+    for g in &ghosts {
+        let class = g.class.expect("a class");
+        let by_q = classifier.classify(&g.q, &t);
+        assert_eq!(class, by_q, "{}", g.posture);
+        let name = &classifier.class_names()[class as usize];
+        assert!(
+            g.posture.starts_with(name.as_str()),
+            "{} vs {name}",
+            g.posture
+        );
+    }
+    assert_eq!(
+        short_label("shoulder right, elbow up, wrist no flip"),
+        "R U N"
+    );
+    assert_eq!(
+        short_label("shoulder left, elbow down, wrist flip"),
+        "L D F"
+    );
+    assert_eq!(short_label("elbow stretched, wrist singular"), "S !");
+    // A planar arm: elbow up and down.
+    let mut s = state("planar2");
+    let t = fk(&s, 0);
+    s.set_target(0, t).unwrap();
+    let classes: Vec<Option<u8>> = s.ghosts(0).iter().map(|g| g.class).collect();
+    assert_eq!(classes.len(), 2);
+    assert!(classes.iter().all(Option::is_some) && classes[0] != classes[1]);
+}

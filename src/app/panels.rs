@@ -296,11 +296,29 @@ pub fn right(app: &mut AppUi, ui: &mut egui::Ui) {
             ui.label(format!("{} solution(s):", result.solutions.len()));
             for (i, s) in result.solutions.iter().enumerate() {
                 let selected = target.selected == Some(i);
-                let mut text = RichText::new(format!("{}. {}", i + 1, s.posture));
+                let short = crate::kinematics::ik::closed_form::short_label(&s.posture);
+                let mut text = RichText::new(format!("{}. {} ({short})", i + 1, s.posture));
                 if !s.within_limits {
                     text = text.color(Color32::GRAY).italics();
                 }
-                let r = ui.selectable_label(selected, text).on_hover_text(format!(
+                // The posture's colour, as on its ghost and in the workspace figures.
+                let swatch = match app.state.posture_class(&s.posture) {
+                    Some(c) if s.within_limits => {
+                        let [r, g, b, _] =
+                            super::viewport::posture_rgba(c).map(|v| (v * 255.0) as u8);
+                        Color32::from_rgb(r, g, b)
+                    }
+                    _ => Color32::GRAY,
+                };
+                let r = ui
+                    .horizontal(|ui| {
+                        let (rect, _) =
+                            ui.allocate_exact_size(egui::vec2(12.0, 12.0), egui::Sense::hover());
+                        ui.painter().rect_filled(rect, 2.0, swatch);
+                        ui.selectable_label(selected, text)
+                    })
+                    .inner;
+                let r = r.on_hover_text(format!(
                     "q = {:?} ({})",
                     s.q.iter()
                         .map(|v| (v.to_degrees() * 10.0).round() / 10.0)
@@ -316,6 +334,18 @@ pub fn right(app: &mut AppUi, ui: &mut egui::Ui) {
                 {
                     app.state.push_message(Level::Warning, e.to_string());
                 }
+            }
+            if !result.solutions.is_empty()
+                && app
+                    .state
+                    .posture_class(&result.solutions[0].posture)
+                    .is_some()
+            {
+                ui.label(
+                    RichText::new(crate::kinematics::ik::closed_form::SHORT_LEGEND)
+                        .small()
+                        .weak(),
+                );
             }
         }
         ui.separator();

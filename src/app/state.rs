@@ -80,6 +80,8 @@ pub struct AppState {
     trails: Vec<VecDeque<Vector3<f64>>>,
     messages: VecDeque<StatusMessage>,
     analyzer: SingularityAnalyzer,
+    /// Posture classes of the robot (the workspace figures' colours).
+    classifier: crate::workspace::PostureClassifier,
     /// The task the gizmo's IK obeys.
     task: crate::kinematics::redundancy::Task,
     /// Counts model changes (loads, DH edits), so caches know when they are stale.
@@ -106,6 +108,7 @@ impl AppState {
             trails: Vec::new(),
             messages: VecDeque::new(),
             analyzer,
+            classifier: crate::workspace::PostureClassifier::new(&robot),
             task: full_task(&robot),
             generation: 0,
             self_motion: None,
@@ -133,6 +136,7 @@ impl AppState {
             Ok(robot) => {
                 self.spec = spec.to_string();
                 self.analyzer = SingularityAnalyzer::new(&robot);
+                self.classifier = crate::workspace::PostureClassifier::new(&robot);
                 self.dh = dh::build_cells(&robot, self.angle_unit);
                 self.task = full_task(&robot);
                 self.robot = robot;
@@ -202,6 +206,12 @@ impl AppState {
     /// The singularity classifier of the current robot.
     pub fn analyzer(&self) -> &SingularityAnalyzer {
         &self.analyzer
+    }
+
+    /// The posture class of a closed-form label, as the workspace figures colour it (`None`:
+    /// no class, e.g. a degenerate posture or an arm without posture classes).
+    pub fn posture_class(&self, label: &str) -> Option<u8> {
+        self.classifier.class_of_label(label)
     }
 
     /// Every target, one per end-effector.
@@ -488,6 +498,7 @@ impl AppState {
     /// targets synced.
     fn after_model_edit(&mut self) {
         self.analyzer = SingularityAnalyzer::new(&self.robot);
+        self.classifier = crate::workspace::PostureClassifier::new(&self.robot);
         self.generation += 1;
         let mut q = self.q.clone();
         clamp_into(&mut q, &self.robot.limits());

@@ -368,6 +368,10 @@ fn add_ghost(
         alpha: 0.28,
         ..ArmStyle::default()
     };
+    if let Some(c) = g.class {
+        // The posture's colour, as in the workspace figures and the solution list.
+        ghost.link = posture_rgba(c);
+    }
     if !g.within_limits {
         let grey = [0.55, 0.55, 0.57, 1.0];
         ghost = ArmStyle {
@@ -402,10 +406,13 @@ fn add_ghost(
         .and_then(|&j| frames.get(j))
     {
         let p = f.translation.vector;
+        // Short ("R U N"): the list and the legend spell them out, and full labels would pile
+        // up where the postures share an elbow.
+        let short = crate::kinematics::ik::closed_form::short_label(&g.posture);
         let text = if g.within_limits {
-            g.posture.clone()
+            short
         } else {
-            format!("{} (outside limits)", g.posture)
+            format!("{short} (out)")
         };
         scene.labels.push(Label {
             p: [p.x as f32, p.y as f32, p.z as f32 + scale * 0.06],
@@ -414,6 +421,14 @@ fn add_ghost(
             movable: true,
         });
     }
+}
+
+/// The colour of posture class `c` (the workspace figures' palette), opaque.
+pub fn posture_rgba(c: u8) -> [f32; 4] {
+    let [r, g, b] = crate::figure::palette::CLASS_COLORS
+        [c as usize % crate::figure::palette::CLASS_COLORS.len()]
+    .map(|v| f32::from(v) / 255.0);
+    [r, g, b, 1.0]
 }
 
 /// The self-motion in the 3D view: the other branches at the current parameter as ghosts, and

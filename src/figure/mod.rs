@@ -6,7 +6,7 @@ pub mod accuracy;
 pub mod figures;
 pub mod labels;
 pub mod offscreen;
-mod palette;
+pub(crate) mod palette;
 pub mod plot2d;
 pub mod raster;
 pub mod self_motion;

@@ -175,6 +175,20 @@ impl PostureClassifier {
         }
     }
 
+    /// Index of the class a closed-form posture label belongs to: the class whose every part
+    /// ("shoulder right", "elbow up") the label has ("shoulder right, elbow up, wrist flip" is in
+    /// "shoulder right, elbow up"). `None` for a label of no class (degenerate postures).
+    pub fn class_of_label(&self, label: &str) -> Option<u8> {
+        if !self.has_postures() {
+            return None;
+        }
+        let parts: Vec<&str> = label.split(", ").collect();
+        self.names
+            .iter()
+            .position(|n| n.split(", ").all(|p| parts.contains(&p)))
+            .map(|i| i as u8)
+    }
+
     /// Index of the class called `name`.
     pub fn class_index(&self, name: &str) -> Option<u8> {
         self.names.iter().position(|n| n == name).map(|i| i as u8)

@@ -86,6 +86,7 @@ impl AppState {
                 posture: s.posture.clone(),
                 within_limits: s.within_limits,
                 selected: t.selected == Some(i),
+                class: self.posture_class(&s.posture),
             })
             .collect()
     }

@@ -447,6 +447,7 @@ impl AppState {
                 posture: s.name,
                 within_limits: s.within_limits,
                 selected: false,
+                class: None,
             })
             .collect()
     }

@@ -158,6 +158,8 @@ pub struct Ghost {
     pub within_limits: bool,
     /// The arm is at this solution.
     pub selected: bool,
+    /// Its posture class (the workspace figures' colour index), if it has one.
+    pub class: Option<u8>,
 }
 
 /// The numbers shown next to the 3D view for one end-effector.

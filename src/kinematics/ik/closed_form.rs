@@ -39,7 +39,9 @@ mod why;
 mod wrist;
 
 pub use family::{ArmKind, Family};
-pub use posture::{Elbow, Extension, FreeReason, Posture, Shoulder, WristFlip};
+pub use posture::{
+    Elbow, Extension, FreeReason, Posture, SHORT_LEGEND, Shoulder, WristFlip, short_label,
+};
 pub use solutions::{Solution, SolutionErrors, Solutions, Verify};
 pub use why::NoClosedForm;
 

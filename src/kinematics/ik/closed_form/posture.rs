@@ -189,3 +189,41 @@ impl std::fmt::Display for Posture {
         Ok(())
     }
 }
+
+/// Abbreviations of the posture words, for labels that must stay short (ghost arms): "shoulder
+/// right, elbow up, wrist no flip" is "R U N". [`SHORT_LEGEND`] spells them out.
+const SHORT: [(&str, &str); 13] = [
+    ("shoulder right", "R"),
+    ("shoulder left", "L"),
+    ("shoulder on axis", "A"),
+    ("shoulder boundary", "B"),
+    ("elbow up", "U"),
+    ("elbow down", "D"),
+    ("elbow stretched", "S"),
+    ("elbow folded", "Fo"),
+    ("extension forward", "+"),
+    ("extension reversed", "-"),
+    ("extension zero", "0"),
+    ("wrist no flip", "N"),
+    ("wrist flip", "F"),
+];
+
+/// What the short labels mean.
+pub const SHORT_LEGEND: &str = "R/L shoulder right/left, U/D elbow up/down, N/F wrist no flip/flip \
+(A shoulder on axis, S/Fo elbow stretched/folded, +/- extension, ! wrist singular)";
+
+/// The short form of a posture label ("shoulder right, elbow up, wrist no flip" -> "R U N");
+/// a part without an abbreviation ("wrist singular") becomes "!", other text is kept.
+pub fn short_label(label: &str) -> String {
+    label
+        .split(", ")
+        .map(|part| {
+            SHORT
+                .iter()
+                .find(|(long, _)| *long == part)
+                .map(|(_, s)| *s)
+                .unwrap_or(if part == "wrist singular" { "!" } else { part })
+        })
+        .collect::<Vec<_>>()
+        .join(" ")
+}
