@@ -154,3 +154,36 @@ fn panda_self_motion_tab() {
             .unwrap_or_else(|e| panic!("{e}"));
     assert_golden("app_panda_self_motion_tab", &img);
 }
+
+/// "Show the construction" on the default robot (anthropomorphic arm with spherical wrist) at its
+/// last step (every mark drawn, the wrist's in red) and on the two-link arm (the triangle).
+#[test]
+fn construction_overlay() {
+    for (model, step, name) in [
+        (
+            "anthropomorphic_spherical_wrist",
+            9,
+            "app_construction_default_robot",
+        ),
+        ("planar2", 1, "app_construction_planar2"),
+    ] {
+        let mut state = AppState::from_spec(model).unwrap();
+        // The construction alone: no frames, no ghosts.
+        state.display.frames = false;
+        state.display.labels = false;
+        state.display.ghosts = false;
+        let mut app = armlab::app::ui::AppUi::new(state);
+        app.construction = true;
+        app.construction_step = step;
+        // Framed for the window's 3D view, as the live app frames it on its first layout.
+        app.viewport_px = [530, 720];
+        app.fit();
+        let img = armlab::app::screenshot::screenshot_with(
+            &app,
+            [1280, 800],
+            &ScreenshotOptions::default(),
+        )
+        .unwrap_or_else(|e| panic!("{e}"));
+        assert_golden(name, &img);
+    }
+}

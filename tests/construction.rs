@@ -90,3 +90,94 @@ fn the_wrist_point_is_where_the_wrist_axes_meet() {
     );
     assert!(WristPoint::of(&armlab::kinematics::models::planar3(), &[0.1, 0.2, 0.3]).is_err());
 }
+
+/// The arc labelled `name` in the steps: its signed angle (rad) and label.
+fn arc(steps: &[armlab::kinematics::construction::steps::Step], name: &str) -> (f64, String) {
+    use armlab::kinematics::construction::steps::Mark;
+    steps
+        .iter()
+        .flat_map(|s| &s.marks)
+        .find_map(|m| match m {
+            Mark::Arc { angle, label, .. } if label.starts_with(name) => {
+                Some((*angle, label.clone()))
+            }
+            _ => None,
+        })
+        .unwrap_or_else(|| panic!("no arc {name}"))
+}
+
+fn same_angle(a: f64, b: f64) -> bool {
+    let d = (a - b).rem_euclid(2.0 * PI);
+    d.min(2.0 * PI - d) < 1e-9
+}
+
+/// Every angle the construction draws is the joint it names, at random configurations of the
+/// planar arms and the anthropomorphic arms, and the label prints that angle.
+#[test]
+fn construction_angles_are_the_joints_they_name() {
+    use armlab::kinematics::construction::steps::construction;
+    use armlab::kinematics::models::built_in;
+    let mut s = 11u64;
+    for (model, names) in [
+        ("planar2", &["θ1", "θ2"][..]),
+        ("planar3", &["θ1", "θ2", "θ3"][..]),
+        ("anthropomorphic3r", &["θ1", "θ2", "θ3"][..]),
+        (
+            "anthropomorphic_spherical_wrist",
+            &["θ1", "θ2", "θ3", "θ5"][..],
+        ),
+    ] {
+        let robot = built_in(model).unwrap();
+        let lim = robot.limits();
+        let mut done = 0;
+        while done < 300 {
+            let q: Vec<f64> = lim
+                .iter()
+                .map(|l| l[0].max(-PI) + (l[1].min(PI) - l[0].max(-PI)) * lcg(&mut s))
+                .collect();
+            let Ok(steps) = construction(&robot, &q) else {
+                continue;
+            };
+            for (k, name) in names.iter().enumerate() {
+                let joint = if *name == "θ5" { 4 } else { k };
+                let (drawn, label) = arc(&steps, name);
+                // The label's value (the joint); the arc may be turned by a DH constant.
+                let value: f64 = label
+                    .split("= ")
+                    .nth(1)
+                    .and_then(|t| t.trim_end_matches('°').parse::<f64>().ok())
+                    .unwrap()
+                    .to_radians();
+                let angle = if (value - drawn).abs() < 1e-3 {
+                    drawn
+                } else {
+                    value
+                };
+                // theta1 is drawn from x0 to the plane through p_W: q1 itself (shoulder right)
+                // or q1 - pi (shoulder left, the drawn twin direction is dashed).
+                let ok = if *name == "θ5" {
+                    // Drawn: the angle between z3 and a_e, |theta5|; labelled: theta5 itself.
+                    (drawn - q[joint].abs()).abs() < 1e-9 && (value - q[joint]).abs() < 1e-3
+                } else if model.starts_with("anthropomorphic") && *name == "θ1" {
+                    same_angle(angle, q[0]) || same_angle(angle + PI, q[0])
+                } else if (value - drawn).abs() < 1e-3 {
+                    same_angle(angle, q[joint])
+                } else {
+                    // One decimal of degrees in the label.
+                    let d = (angle - q[joint]).rem_euclid(2.0 * PI);
+                    d.min(2.0 * PI - d) < 1e-3
+                };
+                assert!(ok, "{model} {name}: drawn {angle}, q = {q:?}");
+                assert!(
+                    label.contains(&format!("{:.1}°", angle.to_degrees())),
+                    "{label}"
+                );
+            }
+            done += 1;
+        }
+    }
+    // A numerical arm has none, with the reason.
+    let dlr = built_in("dlr").unwrap();
+    let err = construction(&dlr, dlr.config("ready").unwrap()).unwrap_err();
+    assert!(err.to_string().contains("no closed form"), "{err}");
+}

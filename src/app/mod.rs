@@ -5,6 +5,7 @@
 
 pub mod calibration_lab;
 pub mod calibration_panel;
+pub mod construction_panel;
 pub mod gizmo;
 pub mod inner;
 pub mod panels;

@@ -349,6 +349,8 @@ pub fn right(app: &mut AppUi, ui: &mut egui::Ui) {
             }
         }
         ui.separator();
+        super::construction_panel::panel(app, ui);
+        ui.separator();
         super::redundancy_panel::panel(app, ui, ee);
     });
 }

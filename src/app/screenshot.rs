@@ -33,6 +33,8 @@ pub fn screenshot_with(
     app.tab = live.tab;
     app.calibration = live.calibration.clone();
     app.ee = live.ee;
+    app.construction = live.construction;
+    app.construction_step = live.construction_step;
     render_window(app, size, Some(live.camera))
 }
 

@@ -59,6 +59,10 @@ pub struct AppUi {
     pub screenshot_requested: bool,
     /// Window size in points, from the last layout (the screenshot button renders at it).
     pub window_points: [f32; 2],
+    /// Draw the construction behind the closed-form solution (Sect. 2.12).
+    pub construction: bool,
+    /// The construction step shown (0-based; the steps before it stay drawn).
+    pub construction_step: usize,
 }
 
 impl AppUi {
@@ -84,6 +88,8 @@ impl AppUi {
             framed: None,
             screenshot_requested: false,
             window_points: [1280.0, 800.0],
+            construction: false,
+            construction_step: 0,
         }
     }
 
@@ -151,6 +157,15 @@ impl AppUi {
             && r.model.nominal_robot().dof() == self.state.robot().dof()
         {
             super::viewport::add_measured_poses(&mut scene, self.state.robot(), &r.poses);
+        }
+        if self.construction
+            && let Ok(steps) = crate::kinematics::construction::steps::construction(
+                self.state.robot(),
+                self.state.q(),
+            )
+        {
+            let current = self.construction_step.min(steps.len().saturating_sub(1));
+            super::construction_panel::add_to_scene(&mut scene, &steps, current);
         }
         let ee = self.ee.min(self.state.targets().len().saturating_sub(1));
         if let Ok(view) = self.state.self_motion(ee) {
@@ -256,6 +271,15 @@ impl AppUi {
         }
         if pressed(Key::H) || pressed(Key::F1) {
             self.show_help ^= true;
+        }
+        if pressed(Key::C) {
+            self.construction = !self.construction;
+        }
+        if pressed(Key::N) {
+            self.construction_step += 1;
+        }
+        if pressed(Key::B) {
+            self.construction_step = self.construction_step.saturating_sub(1);
         }
         if pressed(Key::L) {
             let l = self.state.lock();
@@ -610,6 +634,8 @@ fn help(ui: &mut egui::Ui) {
             ),
             ("Space", "next IK solution (posture)"),
             ("L", "lock the posture while dragging"),
+            ("C", "show the construction behind the solution"),
+            ("N / B", "next / previous construction step"),
             ("R", "reset to the ready configuration"),
             ("D / G / T", "DH frames / grid / trail"),
             ("W", "workspace overlay"),

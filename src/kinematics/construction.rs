@@ -3,6 +3,8 @@
 //! Fig. 2.31 (Sect. 2.12.1), and the wrist point of a manipulator with spherical wrist,
 //! `p_W = p_e - d6 a_e` (2.93, Fig. 2.32). Pure f64, no graphics.
 
+pub mod steps;
+
 use super::{JointKind, KinematicsError, Robot};
 use nalgebra::Vector3;
 use thiserror::Error;
@@ -27,6 +29,9 @@ pub enum ConstructionError {
     /// The robot has no spherical wrist (its last three axes do not meet in a point).
     #[error("{0}")]
     NoSphericalWrist(String),
+    /// The robot has no construction to show (no closed form, or a family not drawn), and why.
+    #[error("{0}")]
+    NoConstruction(String),
     /// Bad robot input.
     #[error(transparent)]
     Kinematics(#[from] KinematicsError),
