@@ -209,54 +209,7 @@ pub fn right(app: &mut AppUi, ui: &mut egui::Ui) {
             });
         }
         let ee = app.ee.min(n_ee.saturating_sub(1));
-        ui.heading("Pose");
-        if let Ok(r) = app.state.readouts(ee) {
-            ui.label("T (world from tool):");
-            matrix_grid(ui, "T", &r.t);
-            let mm = |v: f64| without_negative_zero(v * 1e3, 1);
-            ui.monospace(format!(
-                "p = [{:.1}, {:.1}, {:.1}] mm",
-                mm(r.p.x),
-                mm(r.p.y),
-                mm(r.p.z)
-            ));
-            let kind = r.phi_kind.as_str().to_uppercase();
-            let sing = if r.phi_singular {
-                "  (representation singular)"
-            } else {
-                ""
-            };
-            let deg = |v: f64| without_negative_zero(v.to_degrees(), 2);
-            ui.monospace(format!(
-                "phi {kind} = [{:.2}, {:.2}, {:.2}] deg{sing}",
-                deg(r.phi.x),
-                deg(r.phi.y),
-                deg(r.phi.z)
-            ));
-            ui.horizontal(|ui| {
-                ui.radio_value(
-                    &mut app.state.orientation,
-                    crate::kinematics::EulerKind::Zyz,
-                    "ZYZ",
-                );
-                ui.radio_value(
-                    &mut app.state.orientation,
-                    crate::kinematics::EulerKind::Rpy,
-                    "RPY",
-                );
-            });
-            ui.separator();
-            ui.heading("Jacobian");
-            ui.monospace(format!("rank {} of {}", r.rank, r.task_rank));
-            ui.monospace(format!("manipulability {:.5}", r.manipulability));
-            ui.monospace(format!("smallest singular value {:.2e}", r.min_sv));
-            if let Some(s) = &r.singularity {
-                ui.colored_label(
-                    Color32::from_rgb(200, 60, 0),
-                    RichText::new(format!("(!) {}", s.message())).strong(),
-                );
-            }
-        }
+        pose_readouts(app, ui, ee);
         ui.separator();
         ui.heading("Inverse kinematics");
         let analyzer = app.state.analyzer();
@@ -293,60 +246,7 @@ pub fn right(app: &mut AppUi, ui: &mut egui::Ui) {
             ui.colored_label(Color32::from_rgb(200, 0, 0), msg);
         }
         if let Some(result) = &target.result {
-            ui.label(format!("{} solution(s):", result.solutions.len()));
-            for (i, s) in result.solutions.iter().enumerate() {
-                let selected = target.selected == Some(i);
-                let short = crate::kinematics::ik::closed_form::short_label(&s.posture);
-                let mut text = RichText::new(format!("{}. {} ({short})", i + 1, s.posture));
-                if !s.within_limits {
-                    text = text.color(Color32::GRAY).italics();
-                }
-                // The posture's colour, as on its ghost and in the workspace figures.
-                let swatch = match app.state.posture_class(&s.posture) {
-                    Some(c) if s.within_limits => {
-                        let [r, g, b, _] =
-                            super::viewport::posture_rgba(c).map(|v| (v * 255.0) as u8);
-                        Color32::from_rgb(r, g, b)
-                    }
-                    _ => Color32::GRAY,
-                };
-                let r = ui
-                    .horizontal(|ui| {
-                        let (rect, _) =
-                            ui.allocate_exact_size(egui::vec2(12.0, 12.0), egui::Sense::hover());
-                        ui.painter().rect_filled(rect, 2.0, swatch);
-                        ui.selectable_label(selected, text)
-                    })
-                    .inner;
-                let r = r.on_hover_text(format!(
-                    "q = {:?} ({})",
-                    s.q.iter()
-                        .map(|v| (v.to_degrees() * 10.0).round() / 10.0)
-                        .collect::<Vec<_>>(),
-                    if s.within_limits {
-                        "within limits"
-                    } else {
-                        "outside the joint limits"
-                    }
-                ));
-                if r.clicked()
-                    && let Err(e) = app.state.select_solution(ee, i)
-                {
-                    app.state.push_message(Level::Warning, e.to_string());
-                }
-            }
-            if !result.solutions.is_empty()
-                && app
-                    .state
-                    .posture_class(&result.solutions[0].posture)
-                    .is_some()
-            {
-                ui.label(
-                    RichText::new(crate::kinematics::ik::closed_form::SHORT_LEGEND)
-                        .small()
-                        .weak(),
-                );
-            }
+            solution_list(app, ui, ee, &target, result);
         }
         ui.separator();
         super::construction_panel::panel(app, ui);
@@ -405,4 +305,119 @@ fn named(r: &egui::Response, name: String, value: f64) -> &egui::Response {
         info
     });
     r
+}
+
+/// The pose readouts (T, p, phi) and the Jacobian's rank, manipulability and singularity.
+fn pose_readouts(app: &mut AppUi, ui: &mut egui::Ui, ee: usize) {
+    ui.heading("Pose");
+    if let Ok(r) = app.state.readouts(ee) {
+        ui.label("T (world from tool):");
+        matrix_grid(ui, "T", &r.t);
+        let mm = |v: f64| without_negative_zero(v * 1e3, 1);
+        ui.monospace(format!(
+            "p = [{:.1}, {:.1}, {:.1}] mm",
+            mm(r.p.x),
+            mm(r.p.y),
+            mm(r.p.z)
+        ));
+        let kind = r.phi_kind.as_str().to_uppercase();
+        let sing = if r.phi_singular {
+            "  (representation singular)"
+        } else {
+            ""
+        };
+        let deg = |v: f64| without_negative_zero(v.to_degrees(), 2);
+        ui.monospace(format!(
+            "phi {kind} = [{:.2}, {:.2}, {:.2}] deg{sing}",
+            deg(r.phi.x),
+            deg(r.phi.y),
+            deg(r.phi.z)
+        ));
+        ui.horizontal(|ui| {
+            ui.radio_value(
+                &mut app.state.orientation,
+                crate::kinematics::EulerKind::Zyz,
+                "ZYZ",
+            );
+            ui.radio_value(
+                &mut app.state.orientation,
+                crate::kinematics::EulerKind::Rpy,
+                "RPY",
+            );
+        });
+        ui.separator();
+        ui.heading("Jacobian");
+        ui.monospace(format!("rank {} of {}", r.rank, r.task_rank));
+        ui.monospace(format!("manipulability {:.5}", r.manipulability));
+        ui.monospace(format!("smallest singular value {:.2e}", r.min_sv));
+        if let Some(s) = &r.singularity {
+            ui.colored_label(
+                Color32::from_rgb(200, 60, 0),
+                RichText::new(format!("(!) {}", s.message())).strong(),
+            );
+        }
+    }
+}
+
+/// The closed-form solutions, each with its posture colour and short label, and the legend.
+fn solution_list(
+    app: &mut AppUi,
+    ui: &mut egui::Ui,
+    ee: usize,
+    target: &super::state::EeTarget,
+    result: &crate::kinematics::ik::IkResult,
+) {
+    ui.label(format!("{} solution(s):", result.solutions.len()));
+    for (i, s) in result.solutions.iter().enumerate() {
+        let selected = target.selected == Some(i);
+        let short = crate::kinematics::ik::closed_form::short_label(&s.posture);
+        let mut text = RichText::new(format!("{}. {} ({short})", i + 1, s.posture));
+        if !s.within_limits {
+            text = text.color(Color32::GRAY).italics();
+        }
+        // The posture's colour, as on its ghost and in the workspace figures.
+        let swatch = match app.state.posture_class(&s.posture) {
+            Some(c) if s.within_limits => {
+                let [r, g, b, _] = super::viewport::posture_rgba(c).map(|v| (v * 255.0) as u8);
+                Color32::from_rgb(r, g, b)
+            }
+            _ => Color32::GRAY,
+        };
+        let r = ui
+            .horizontal(|ui| {
+                let (rect, _) =
+                    ui.allocate_exact_size(egui::vec2(12.0, 12.0), egui::Sense::hover());
+                ui.painter().rect_filled(rect, 2.0, swatch);
+                ui.selectable_label(selected, text)
+            })
+            .inner;
+        let r = r.on_hover_text(format!(
+            "q = {:?} ({})",
+            s.q.iter()
+                .map(|v| (v.to_degrees() * 10.0).round() / 10.0)
+                .collect::<Vec<_>>(),
+            if s.within_limits {
+                "within limits"
+            } else {
+                "outside the joint limits"
+            }
+        ));
+        if r.clicked()
+            && let Err(e) = app.state.select_solution(ee, i)
+        {
+            app.state.push_message(Level::Warning, e.to_string());
+        }
+    }
+    if !result.solutions.is_empty()
+        && app
+            .state
+            .posture_class(&result.solutions[0].posture)
+            .is_some()
+    {
+        ui.label(
+            RichText::new(crate::kinematics::ik::closed_form::SHORT_LEGEND)
+                .small()
+                .weak(),
+        );
+    }
 }

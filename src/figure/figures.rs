@@ -180,33 +180,42 @@ impl Figures {
                         text,
                     );
                 }
-                if !fig.caption.is_empty() {
-                    painter.text(
-                        rect.right_bottom() - egui::vec2(10.0, 8.0),
-                        egui::Align2::RIGHT_BOTTOM,
-                        &fig.caption,
-                        egui::FontId::proportional(11.0),
-                        ui.visuals().weak_text_color(),
-                    );
-                }
-                let mut y = rect.top() + 60.0;
-                for (name, color) in &fig.legend {
-                    let swatch = egui::Rect::from_min_size(
-                        egui::pos2(rect.right() - 190.0, y),
-                        egui::vec2(14.0, 14.0),
-                    );
-                    painter.rect_filled(swatch, 2.0, *color);
-                    painter.text(
-                        swatch.right_center() + egui::vec2(6.0, 0.0),
-                        egui::Align2::LEFT_CENTER,
-                        name,
-                        egui::FontId::proportional(13.0),
-                        text,
-                    );
-                    y += 20.0;
-                }
+                paint_caption_and_legend(painter, rect, fig, text, ui.visuals().weak_text_color());
             });
         self.offscreen.free_texture(id);
         result
+    }
+}
+
+/// The caption (bottom right) and the legend swatches (top right) of a 3D figure.
+fn paint_caption_and_legend(
+    painter: &egui::Painter,
+    rect: egui::Rect,
+    fig: &Scene3d<'_>,
+    text: Color32,
+    weak: Color32,
+) {
+    if !fig.caption.is_empty() {
+        painter.text(
+            rect.right_bottom() - egui::vec2(10.0, 8.0),
+            egui::Align2::RIGHT_BOTTOM,
+            &fig.caption,
+            egui::FontId::proportional(11.0),
+            weak,
+        );
+    }
+    let mut y = rect.top() + 60.0;
+    for (name, color) in &fig.legend {
+        let swatch =
+            egui::Rect::from_min_size(egui::pos2(rect.right() - 190.0, y), egui::vec2(14.0, 14.0));
+        painter.rect_filled(swatch, 2.0, *color);
+        painter.text(
+            swatch.right_center() + egui::vec2(6.0, 0.0),
+            egui::Align2::LEFT_CENTER,
+            name,
+            egui::FontId::proportional(13.0),
+            text,
+        );
+        y += 20.0;
     }
 }

@@ -188,58 +188,76 @@ fn two_link_postures(
         [0.42 * (k.alpha / 2.0).cos(), 0.42 * (k.alpha / 2.0).sin()],
     ));
     for (i, pos) in k.postures.iter().enumerate() {
-        let color = c32(CLASS_COLORS[i]);
-        plot.curves.push(line(
-            Some(pos.name.to_string()),
-            vec![[0.0, 0.0], pos.elbow, p],
-            color,
-            4.0,
-            false,
-        ));
-        // beta between the line O-W and link 1; theta2 between link 1's extension and link 2.
-        let r = 0.55 + 0.12 * i as f64;
-        plot.curves.push(line(
-            None,
-            arc([0.0, 0.0], r, k.alpha, pos.theta1),
-            color,
-            1.5,
-            false,
-        ));
-        let mid = 0.5 * (k.alpha + pos.theta1);
-        plot.labels
-            .push(("β".into(), [(r + 0.08) * mid.cos(), (r + 0.08) * mid.sin()]));
-        let ext = [pos.elbow[0] * 1.35, pos.elbow[1] * 1.35];
-        plot.curves
-            .push(line(None, vec![pos.elbow, ext], color, 1.0, true));
-        let a_end = pos.theta1 + pos.theta2;
-        plot.curves.push(line(
-            None,
-            arc(pos.elbow, 0.25, pos.theta1, a_end),
-            color,
-            1.5,
-            false,
-        ));
-        let m2 = pos.theta1 + 0.5 * pos.theta2;
-        plot.labels.push((
-            format!("θ2 = {:.1}°", pos.theta2.to_degrees()),
-            [
-                pos.elbow[0] + 0.38 * m2.cos(),
-                pos.elbow[1] + 0.38 * m2.sin(),
-            ],
-        ));
-        let out = if pos.theta2 < 0.0 {
-            [-0.3, 0.08]
-        } else {
-            [0.05, -0.12]
-        };
-        plot.labels.push((
-            pos.name.to_string(),
-            [pos.elbow[0] + out[0], pos.elbow[1] + out[1]],
-        ));
+        add_posture(&mut plot, &k, i, pos);
     }
     plot.labels.push(("W".into(), [p[0] + 0.06, p[1] + 0.06]));
     plot.labels.push(("O".into(), [-0.08, -0.08]));
     figs.plot(size, theme, &plot, None)
+}
+
+/// One posture of Fig. 2.31: its links in its colour, beta at O, theta2 at the elbow, its name.
+fn add_posture(
+    plot: &mut Plot2d,
+    k: &TwoLinkConstruction,
+    i: usize,
+    pos: &crate::kinematics::construction::TwoLinkPosture,
+) {
+    let p = k.p;
+    let line = |name: Option<String>, points: Vec<[f64; 2]>, color, width, dashed| Curve {
+        name,
+        points,
+        color,
+        width,
+        dashed,
+    };
+    let color = c32(CLASS_COLORS[i]);
+    plot.curves.push(line(
+        Some(pos.name.to_string()),
+        vec![[0.0, 0.0], pos.elbow, p],
+        color,
+        4.0,
+        false,
+    ));
+    // beta between the line O-W and link 1; theta2 between link 1's extension and link 2.
+    let r = 0.55 + 0.12 * i as f64;
+    plot.curves.push(line(
+        None,
+        arc([0.0, 0.0], r, k.alpha, pos.theta1),
+        color,
+        1.5,
+        false,
+    ));
+    let mid = 0.5 * (k.alpha + pos.theta1);
+    plot.labels
+        .push(("β".into(), [(r + 0.08) * mid.cos(), (r + 0.08) * mid.sin()]));
+    let ext = [pos.elbow[0] * 1.35, pos.elbow[1] * 1.35];
+    plot.curves
+        .push(line(None, vec![pos.elbow, ext], color, 1.0, true));
+    let a_end = pos.theta1 + pos.theta2;
+    plot.curves.push(line(
+        None,
+        arc(pos.elbow, 0.25, pos.theta1, a_end),
+        color,
+        1.5,
+        false,
+    ));
+    let m2 = pos.theta1 + 0.5 * pos.theta2;
+    plot.labels.push((
+        format!("θ2 = {:.1}°", pos.theta2.to_degrees()),
+        [
+            pos.elbow[0] + 0.38 * m2.cos(),
+            pos.elbow[1] + 0.38 * m2.sin(),
+        ],
+    ));
+    let out = if pos.theta2 < 0.0 {
+        [-0.3, 0.08]
+    } else {
+        [0.05, -0.12]
+    };
+    plot.labels.push((
+        pos.name.to_string(),
+        [pos.elbow[0] + out[0], pos.elbow[1] + out[1]],
+    ));
 }
 
 /// Fig. 2.32: the anthropomorphic arm with spherical wrist, with p_e, a_e, d6 and p_W.
@@ -259,42 +277,7 @@ fn spherical_wrist(
         ..ArmStyle::default()
     };
     let mut scene = arm_scene(&robot, &q, &style)?;
-    let (pe, pw) = (point32(&w.p_e), point32(&w.p_w));
-    let tip = point32(&(w.p_e + w.a_e * (1.5 * w.d6)));
-    let red = [0.85, 0.15, 0.1, 1.0];
-    let blue = [0.1, 0.3, 0.85, 1.0];
-    scene.lines.push(Line {
-        a: pe.into(),
-        b: pw.into(),
-        color: red,
-        width_px: 4.0,
-    });
-    scene.lines.push(Line {
-        a: pe.into(),
-        b: tip.into(),
-        color: blue,
-        width_px: 3.0,
-    });
-    for (p, c) in [(pe, blue), (pw, red)] {
-        scene.dots.push(Dot {
-            p: p.into(),
-            color: c,
-            size_px: 12.0,
-        });
-    }
-    let label = |p: Vector3<f64>, text: String, color| Label {
-        p: point32(&p).into(),
-        text,
-        color,
-        movable: true,
-    };
-    let mid = 0.5 * (w.p_e + w.p_w);
-    scene.labels.extend([
-        label(w.p_e, "p_e".into(), blue),
-        label(w.p_w, "p_W (wrist point)".into(), red),
-        label(w.p_e + w.a_e * (1.5 * w.d6), "a_e".into(), blue),
-        label(mid, format!("-d6 a_e, d6 = {:.3} m", w.d6), red),
-    ]);
+    add_wrist_marks(&mut scene, &w);
     // Top: the whole arm; bottom: the wrist close up, the same scene.
     let panel = [size[0], size[1] / 2];
     let whole = framing(&crate::scene::arm_points(&robot, &q)?, panel);
@@ -342,6 +325,46 @@ fn spherical_wrist(
         image::imageops::overlay(&mut out, &img, 0, i64::from(k as u32 * panel[1]));
     }
     Ok(out)
+}
+
+/// The vectors of Fig. 2.32: -d6 a_e from p_e to p_W (red), a_e (blue), the points, labels.
+fn add_wrist_marks(scene: &mut crate::scene::Scene, w: &WristPoint) {
+    let (pe, pw) = (point32(&w.p_e), point32(&w.p_w));
+    let tip = point32(&(w.p_e + w.a_e * (1.5 * w.d6)));
+    let red = [0.85, 0.15, 0.1, 1.0];
+    let blue = [0.1, 0.3, 0.85, 1.0];
+    scene.lines.push(Line {
+        a: pe.into(),
+        b: pw.into(),
+        color: red,
+        width_px: 4.0,
+    });
+    scene.lines.push(Line {
+        a: pe.into(),
+        b: tip.into(),
+        color: blue,
+        width_px: 3.0,
+    });
+    for (p, c) in [(pe, blue), (pw, red)] {
+        scene.dots.push(Dot {
+            p: p.into(),
+            color: c,
+            size_px: 12.0,
+        });
+    }
+    let label = |p: Vector3<f64>, text: String, color| Label {
+        p: point32(&p).into(),
+        text,
+        color,
+        movable: true,
+    };
+    let mid = 0.5 * (w.p_e + w.p_w);
+    scene.labels.extend([
+        label(w.p_e, "p_e".into(), blue),
+        label(w.p_w, "p_W (wrist point)".into(), red),
+        label(w.p_e + w.a_e * (1.5 * w.d6), "a_e".into(), blue),
+        label(mid, format!("-d6 a_e, d6 = {:.3} m", w.d6), red),
+    ]);
 }
 
 /// Fig. 2.33: the four solutions of the anthropomorphic arm for one wrist position, in a 2 x 2

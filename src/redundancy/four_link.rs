@@ -53,39 +53,7 @@ impl FourLinkSelfMotion {
         let c4 = jac.column(3);
         let w4 = Vector3::new(c4[3], c4[4], c4[5]);
         let o4 = t0.translation.vector + w4.cross(&Vector3::new(c4[0], c4[1], c4[2]));
-        let joints: Vec<DhJoint> = rows[..3]
-            .iter()
-            .zip(robot.joints())
-            .map(|((kind, row, offset), j)| DhJoint {
-                kind: *kind,
-                row: *row,
-                offset: *offset,
-                limits: j.limits,
-                name: Some(j.name.clone()),
-            })
-            .collect();
-        let bare = Robot::from_dh(
-            "first three links",
-            convention,
-            &joints,
-            robot.base,
-            Pose::identity(),
-        )
-        .map_err(|e| not(&e.to_string()))?;
-        let tip = bare
-            .fk(&[0.0; 3])?
-            .inverse_transform_point(&Point3::from(o4));
-        let arm = Robot::from_dh(
-            format!("{} (links 1-3)", robot.name),
-            convention,
-            &joints,
-            robot.base,
-            Pose::from_parts(
-                Translation3::from(tip.coords),
-                nalgebra::Rotation3::identity(),
-            ),
-        )
-        .map_err(|e| not(&e.to_string()))?;
+        let arm = first_three(robot, convention, &rows, &o4).map_err(|e| not(&e))?;
         let plane = |p: &Vector3<f64>| frame.to_plane([p.x, p.y, p.z]);
         let angle = |t: &Pose| {
             let x = frame.world_from_base.rotation.inverse() * t.rotation * Vector3::x();
@@ -194,4 +162,48 @@ fn intersect(a: &[[f64; 2]], b: &[[f64; 2]]) -> Vec<[f64; 2]> {
         .collect();
     out.sort_by(|p, q| p[0].total_cmp(&q[0]));
     out
+}
+
+/// The first three links of a four-link DH arm as a robot whose tool is at joint 4's axis `o4`
+/// (world, m).
+fn first_three(
+    robot: &Robot,
+    convention: crate::kinematics::Convention,
+    rows: &[(JointKind, crate::kinematics::DhRow, f64)],
+    o4: &Vector3<f64>,
+) -> Result<Robot, String> {
+    let joints: Vec<DhJoint> = rows[..3]
+        .iter()
+        .zip(robot.joints())
+        .map(|((kind, row, offset), j)| DhJoint {
+            kind: *kind,
+            row: *row,
+            offset: *offset,
+            limits: j.limits,
+            name: Some(j.name.clone()),
+        })
+        .collect();
+    let bare = Robot::from_dh(
+        "first three links",
+        convention,
+        &joints,
+        robot.base,
+        Pose::identity(),
+    )
+    .map_err(|e| e.to_string())?;
+    let tip = bare
+        .fk(&[0.0; 3])
+        .map_err(|e| e.to_string())?
+        .inverse_transform_point(&Point3::from(*o4));
+    Robot::from_dh(
+        format!("{} (links 1-3)", robot.name),
+        convention,
+        &joints,
+        robot.base,
+        Pose::from_parts(
+            Translation3::from(tip.coords),
+            nalgebra::Rotation3::identity(),
+        ),
+    )
+    .map_err(|e| e.to_string())
 }

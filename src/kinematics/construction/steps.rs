@@ -110,121 +110,184 @@ pub fn construction(robot: &Robot, q: &[f64]) -> Result<Vec<Step>, ConstructionE
     }
 }
 
+/// The plane geometry of a planar arm at q (world, m).
+struct Plane {
+    /// Shoulder (axis 1), elbow (axis 2), wrist point W (axis 3, or the tip of a two-link arm).
+    o: Vector3<f64>,
+    w: Vector3<f64>,
+    /// The base frame's x, y and the plane normal z.
+    xh: Vector3<f64>,
+    yh: Vector3<f64>,
+    n: Vector3<f64>,
+    k: TwoLinkConstruction,
+    /// The posture the arm is in (index into `k.postures`).
+    shown: usize,
+}
+
+impl Plane {
+    fn from2(&self, p: [f64; 2]) -> Vector3<f64> {
+        self.o + self.xh * p[0] + self.yh * p[1]
+    }
+
+    /// The end-effector's orientation phi in the plane (rad).
+    fn phi(&self, t: &crate::kinematics::Pose) -> f64 {
+        let x = t.rotation * Vector3::x();
+        x.dot(&self.yh).atan2(x.dot(&self.xh))
+    }
+}
+
 /// Sect. 2.12.1: the wrist point of the three-link arm (2.91)-(2.92), the triangle, theta2,
 /// theta1 = alpha +- beta, theta3 (2.90).
 fn planar(robot: &Robot, q: &[f64], three: bool) -> Result<Vec<Step>, ConstructionError> {
     let ax = axes(robot, q)?;
     let t = robot.fk(q)?;
-    let (xh, yh, n) = (
-        robot.base.rotation * Vector3::x(),
-        robot.base.rotation * Vector3::y(),
-        robot.base.rotation * Vector3::z(),
-    );
-    let o = ax[0].0;
-    let e = ax[1].0;
+    let r = robot.base.rotation;
+    let (o, e) = (ax[0].0, ax[1].0);
     let w = if three { ax[2].0 } else { t.translation.vector };
+    let (xh, yh) = (r * Vector3::x(), r * Vector3::y());
     let to2 = |v: Vector3<f64>| [(v - o).dot(&xh), (v - o).dot(&yh)];
-    let from2 = |p: [f64; 2]| o + xh * p[0] + yh * p[1];
-    let (a1, a2) = ((e - o).norm(), (w - e).norm());
-    let k = TwoLinkConstruction::new(a1, a2, to2(w))?;
+    let k = TwoLinkConstruction::new((e - o).norm(), (w - e).norm(), to2(w))?;
     let e2 = to2(e);
-    let shown = (0..2)
-        .min_by(|&i, &j| {
-            let dist = |p: [f64; 2]| (p[0] - e2[0]).hypot(p[1] - e2[1]);
-            dist(k.postures[i].elbow).total_cmp(&dist(k.postures[j].elbow))
-        })
-        .unwrap_or(0);
+    let dist = |p: [f64; 2]| (p[0] - e2[0]).hypot(p[1] - e2[1]);
+    let shown = usize::from(dist(k.postures[1].elbow) < dist(k.postures[0].elbow));
+    let g = Plane {
+        o,
+        w,
+        xh,
+        yh,
+        n: r * Vector3::z(),
+        k,
+        shown,
+    };
     let mut steps = Vec::new();
     if three {
-        let p = t.translation.vector;
-        let x = t.rotation * Vector3::x();
-        let phi = x.dot(&yh).atan2(x.dot(&xh));
-        let a3 = (p - w).norm();
-        steps.push(Step {
-            title: "Wrist point W, the origin of frame 2".into(),
-            equation: "(2.91), (2.92)".into(),
-            formula: format!(
-                "p_W = p - a3 (c_phi, s_phi) = ({:.3}, {:.3}) - {a3:.3} ({:.3}, {:.3}) = ({:.3}, \
-                 {:.3}) m, phi = {}",
-                to2(p)[0],
-                to2(p)[1],
-                phi.cos(),
-                phi.sin(),
-                k.p[0],
-                k.p[1],
-                deg(phi)
-            ),
-            marks: vec![
-                Mark::Point {
-                    p,
-                    label: "p".into(),
-                },
-                Mark::Segment {
-                    a: p,
-                    b: w,
-                    label: format!("a3 = {a3:.3} m"),
-                    dashed: false,
-                },
-                Mark::Point {
-                    p: w,
-                    label: "W".into(),
-                },
-            ],
-        });
+        steps.push(planar_wrist(&g, &t));
     }
-    let mut triangle = vec![Mark::Segment {
-        a: o,
-        b: w,
+    steps.push(planar_triangle(&g));
+    steps.push(planar_theta2(&g));
+    steps.push(planar_theta1(&g));
+    if three {
+        steps.push(planar_theta3(&g, &t));
+    }
+    Ok(steps)
+}
+
+/// (2.91)-(2.92): W = p - a3 (c_phi, s_phi).
+fn planar_wrist(g: &Plane, t: &crate::kinematics::Pose) -> Step {
+    let p = t.translation.vector;
+    let phi = g.phi(t);
+    let a3 = (p - g.w).norm();
+    let p2 = [(p - g.o).dot(&g.xh), (p - g.o).dot(&g.yh)];
+    Step {
+        title: "Wrist point W, the origin of frame 2".into(),
+        equation: "(2.91), (2.92)".into(),
+        formula: format!(
+            "p_W = p - a3 (c_phi, s_phi) = ({:.3}, {:.3}) - {a3:.3} ({:.3}, {:.3}) = ({:.3}, \
+             {:.3}) m, phi = {}",
+            p2[0],
+            p2[1],
+            phi.cos(),
+            phi.sin(),
+            g.k.p[0],
+            g.k.p[1],
+            deg(phi)
+        ),
+        marks: vec![
+            Mark::Point {
+                p,
+                label: "p".into(),
+            },
+            Mark::Segment {
+                a: p,
+                b: g.w,
+                label: format!("a3 = {a3:.3} m"),
+                dashed: false,
+            },
+            Mark::Point {
+                p: g.w,
+                label: "W".into(),
+            },
+        ],
+    }
+}
+
+/// The triangle of a1, a2 and |p_W| by the cosine theorem, both postures.
+fn planar_triangle(g: &Plane) -> Step {
+    let k = &g.k;
+    let mut marks = vec![Mark::Segment {
+        a: g.o,
+        b: g.w,
         label: format!("|p_W| = {:.3} m", k.distance),
         dashed: true,
     }];
     for (i, pos) in k.postures.iter().enumerate() {
-        let el = from2(pos.elbow);
-        triangle.push(Mark::Segment {
-            a: o,
+        let el = g.from2(pos.elbow);
+        marks.push(Mark::Segment {
+            a: g.o,
             b: el,
             label: format!("a1 ({})", pos.name),
-            dashed: i != shown,
+            dashed: i != g.shown,
         });
-        triangle.push(Mark::Segment {
+        marks.push(Mark::Segment {
             a: el,
-            b: w,
+            b: g.w,
             label: "a2".into(),
-            dashed: i != shown,
+            dashed: i != g.shown,
         });
     }
-    steps.push(Step {
+    Step {
         title: "The triangle of links a1, a2 and |p_W|: cosine theorem".into(),
         equation: "Sect. 2.12.1, Fig. 2.31".into(),
         formula: format!(
-            "c2 = (|p_W|^2 - a1^2 - a2^2) / (2 a1 a2) = ({:.3}^2 - {a1:.3}^2 - {a2:.3}^2) / (2 \
-             {a1:.3} {a2:.3}) = {:.4}; two triangles: elbow up and elbow down",
-            k.distance, k.c2
+            "c2 = (|p_W|^2 - a1^2 - a2^2) / (2 a1 a2) = ({:.3}^2 - {:.3}^2 - {:.3}^2) / (2 {:.3} \
+             {:.3}) = {:.4}; two triangles: elbow up and elbow down",
+            k.distance,
+            k.a1,
+            k.a2,
+            k.a1,
+            k.a2,
+            k.c2 + 0.0
         ),
-        marks: triangle,
-    });
-    let pos = k.postures[shown];
-    let el = from2(pos.elbow);
-    steps.push(Step {
+        marks,
+    }
+}
+
+/// theta2 = +-acos(c2) of the posture shown.
+fn planar_theta2(g: &Plane) -> Step {
+    let pos = g.k.postures[g.shown];
+    let el = g.from2(pos.elbow);
+    Step {
         title: format!("theta2 of the {} posture", pos.name),
         equation: "Sect. 2.12.1".into(),
         formula: format!(
             "theta2 = {}acos({:.4}) = {} (elbow up: theta2 in (-pi, 0); elbow down: (0, pi))",
             if pos.theta2 < 0.0 { "-" } else { "+" },
-            k.c2,
+            g.k.c2,
             deg(pos.theta2)
         ),
         marks: vec![Mark::Arc {
             center: el,
-            from: (el - o).normalize(),
-            normal: n,
+            from: (el - g.o).normalize(),
+            normal: g.n,
             angle: pos.theta2,
-            radius: 0.3 * a2,
+            radius: 0.3 * g.k.a2,
             label: format!("θ2 = {}", deg(pos.theta2)),
         }],
-    });
-    let w_dir = (w - o).normalize();
-    steps.push(Step {
+    }
+}
+
+/// theta1 = alpha +- beta (Fig. 2.31).
+fn planar_theta1(g: &Plane) -> Step {
+    let (k, pos) = (&g.k, g.k.postures[g.shown]);
+    let arc = |from, angle, radius, label| Mark::Arc {
+        center: g.o,
+        from,
+        normal: g.n,
+        angle,
+        radius,
+        label,
+    };
+    Step {
         title: "theta1 = alpha +- beta".into(),
         equation: "Sect. 2.12.1, Fig. 2.31".into(),
         formula: format!(
@@ -238,57 +301,67 @@ fn planar(robot: &Robot, q: &[f64], three: bool) -> Result<Vec<Step>, Constructi
             deg(pos.theta1)
         ),
         marks: vec![
-            Mark::Arc {
-                center: o,
-                from: xh,
-                normal: n,
-                angle: k.alpha,
-                radius: 0.25 * a1,
-                label: format!("α = {}", deg(k.alpha)),
-            },
-            Mark::Arc {
-                center: o,
-                from: w_dir,
-                normal: n,
-                angle: pos.theta1 - k.alpha,
-                radius: 0.4 * a1,
-                label: format!("β = {}", deg(k.beta)),
-            },
-            Mark::Arc {
-                center: o,
-                from: xh,
-                normal: n,
-                angle: pos.theta1,
-                radius: 0.55 * a1,
-                label: format!("θ1 = {}", deg(pos.theta1)),
-            },
-        ],
-    });
-    if three {
-        let x = t.rotation * Vector3::x();
-        let phi = x.dot(&yh).atan2(x.dot(&xh));
-        let t3 = crate::kinematics::orientation::wrap_angle(phi - pos.theta1 - pos.theta2);
-        steps.push(Step {
-            title: "theta3 from the orientation".into(),
-            equation: "(2.90)".into(),
-            formula: format!(
-                "theta3 = phi - theta1 - theta2 = {} - {} - {} = {}",
-                deg(phi),
-                deg(pos.theta1),
-                deg(pos.theta2),
-                deg(t3)
+            arc(g.xh, k.alpha, 0.25 * k.a1, format!("α = {}", deg(k.alpha))),
+            arc(
+                (g.w - g.o).normalize(),
+                pos.theta1 - k.alpha,
+                0.4 * k.a1,
+                format!("β = {}", deg(k.beta)),
             ),
-            marks: vec![Mark::Arc {
-                center: w,
-                from: (w - el).normalize(),
-                normal: n,
-                angle: t3,
-                radius: 0.3 * a2,
-                label: format!("θ3 = {}", deg(t3)),
-            }],
-        });
+            arc(
+                g.xh,
+                pos.theta1,
+                0.55 * k.a1,
+                format!("θ1 = {}", deg(pos.theta1)),
+            ),
+        ],
     }
-    Ok(steps)
+}
+
+/// theta3 = phi - theta1 - theta2 (2.90).
+fn planar_theta3(g: &Plane, t: &crate::kinematics::Pose) -> Step {
+    let pos = g.k.postures[g.shown];
+    let el = g.from2(pos.elbow);
+    let phi = g.phi(t);
+    let t3 = crate::kinematics::orientation::wrap_angle(phi - pos.theta1 - pos.theta2);
+    Step {
+        title: "theta3 from the orientation".into(),
+        equation: "(2.90)".into(),
+        formula: format!(
+            "theta3 = phi - theta1 - theta2 = {} - {} - {} = {}",
+            deg(phi),
+            deg(pos.theta1),
+            deg(pos.theta2),
+            deg(t3)
+        ),
+        marks: vec![Mark::Arc {
+            center: g.w,
+            from: (g.w - el).normalize(),
+            normal: g.n,
+            angle: t3,
+            radius: 0.3 * g.k.a2,
+            label: format!("θ3 = {}", deg(t3)),
+        }],
+    }
+}
+
+/// The arm geometry of an anthropomorphic arm at q (world, m).
+struct ArmGeometry {
+    /// Shoulder S (axes 1 and 2 meet), elbow E (axis 3 in the arm plane), wrist point p_W.
+    s: Vector3<f64>,
+    e: Vector3<f64>,
+    p_w: Vector3<f64>,
+    /// Axes 1, 2, 3 (unit).
+    z0: Vector3<f64>,
+    w2: Vector3<f64>,
+    w3: Vector3<f64>,
+    /// The point of axis 1 level with p_W, and p_W's horizontal offset from it.
+    foot: Vector3<f64>,
+    horizontal: Vector3<f64>,
+    /// The constants between the drawn theta2, theta3 and the joint values.
+    off: (f64, f64),
+    /// p_W's horizontal components in the base frame.
+    pw_xy: (f64, f64),
 }
 
 /// Sects. 2.12.2, 2.12.4, 2.12.5: the wrist point (2.93), theta1 (2.109)-(2.110), the arm plane's
@@ -302,49 +375,78 @@ fn anthropomorphic(
     let ax = axes(robot, q)?;
     let t = robot.fk(q)?;
     let p_w = wrist.map_or(t.translation.vector, |w| w.p_w);
-    let z0 = ax[0].1;
     let (s, _) = super::meet(&ax[0].0, &ax[0].1, &ax[1].0, &ax[1].1);
     let (o3, w3) = ax[2];
-    let e = o3 + w3 * w3.dot(&(s - o3));
+    let z0 = ax[0].1;
+    let foot = s + z0 * z0.dot(&(p_w - s));
+    let g = ArmGeometry {
+        s,
+        e: o3 + w3 * w3.dot(&(s - o3)),
+        p_w,
+        z0,
+        w2: ax[1].1,
+        w3,
+        foot,
+        horizontal: p_w - foot,
+        off: geometric_offsets(robot, wrist.is_some())?,
+        pw_xy: {
+            let b = robot.base.rotation;
+            (
+                (p_w - foot).dot(&(b * Vector3::x())),
+                (p_w - foot).dot(&(b * Vector3::y())),
+            )
+        },
+    };
+    let scale = robot.characteristic_length();
     let mut steps = Vec::new();
     if let Some(w) = wrist {
-        steps.push(Step {
-            title: "Wrist point: the kinematic decoupling".into(),
-            equation: "(2.93)".into(),
-            formula: format!(
-                "p_W = p_e - d6 a_e = ({:.3}, {:.3}, {:.3}) - {:.3} ({:.3}, {:.3}, {:.3}) = \
-                 ({:.3}, {:.3}, {:.3}) m",
-                w.p_e.x, w.p_e.y, w.p_e.z, w.d6, w.a_e.x, w.a_e.y, w.a_e.z, p_w.x, p_w.y, p_w.z
-            ),
-            marks: vec![
-                Mark::Point {
-                    p: w.p_e,
-                    label: "p_e".into(),
-                },
-                Mark::Segment {
-                    a: w.p_e,
-                    b: p_w,
-                    label: format!("-d6 a_e (d6 = {:.3} m)", w.d6),
-                    dashed: false,
-                },
-                Mark::Point {
-                    p: p_w,
-                    label: "p_W".into(),
-                },
-            ],
-        });
+        steps.push(wrist_point_step(&w));
     }
-    // theta1: the horizontal direction of p_W in the base frame.
-    let base = robot.base.rotation;
-    let (x0, y0) = (base * Vector3::x(), base * Vector3::y());
-    let foot = s + z0 * z0.dot(&(p_w - s));
-    let horizontal = p_w - foot;
-    let r = horizontal.norm();
-    let (pwx, pwy) = (horizontal.dot(&x0), horizontal.dot(&y0));
+    steps.push(arm_theta1(&g, robot.base.rotation * Vector3::x(), scale));
+    steps.push(arm_triangle(&g));
+    steps.push(arm_theta2(&g, q[0]));
+    if wrist.is_some() {
+        steps.push(wrist_step(robot, q, &t.rotation.into_inner(), p_w, scale)?);
+    }
+    Ok(steps)
+}
+
+/// (2.93): p_W = p_e - d6 a_e.
+fn wrist_point_step(w: &WristPoint) -> Step {
+    let p_w = w.p_w;
+    Step {
+        title: "Wrist point: the kinematic decoupling".into(),
+        equation: "(2.93)".into(),
+        formula: format!(
+            "p_W = p_e - d6 a_e = ({:.3}, {:.3}, {:.3}) - {:.3} ({:.3}, {:.3}, {:.3}) = ({:.3}, \
+             {:.3}, {:.3}) m",
+            w.p_e.x, w.p_e.y, w.p_e.z, w.d6, w.a_e.x, w.a_e.y, w.a_e.z, p_w.x, p_w.y, p_w.z
+        ),
+        marks: vec![
+            Mark::Point {
+                p: w.p_e,
+                label: "p_e".into(),
+            },
+            Mark::Segment {
+                a: w.p_e,
+                b: p_w,
+                label: format!("-d6 a_e (d6 = {:.3} m)", w.d6),
+                dashed: false,
+            },
+            Mark::Point {
+                p: p_w,
+                label: "p_W".into(),
+            },
+        ],
+    }
+}
+
+/// theta1 (2.109) and its twin (2.110): the vertical plane through p_W.
+fn arm_theta1(g: &ArmGeometry, x0: Vector3<f64>, scale: f64) -> Step {
+    let (pwx, pwy) = g.pw_xy;
     let theta1 = pwy.atan2(pwx);
     let twin = (-pwy).atan2(-pwx);
-    let scale = robot.characteristic_length();
-    steps.push(Step {
+    Step {
         title: "theta1: the vertical plane through p_W (shoulder right), or the opposite one \
                 (shoulder left)"
             .into(),
@@ -357,38 +459,46 @@ fn anthropomorphic(
         ),
         marks: vec![
             Mark::Segment {
-                a: foot,
-                b: p_w,
-                label: format!("horizontal distance {r:.3} m"),
+                a: g.foot,
+                b: g.p_w,
+                label: format!("horizontal distance {:.3} m", g.horizontal.norm()),
                 dashed: true,
             },
             Mark::Segment {
-                a: foot,
-                b: foot - horizontal,
+                a: g.foot,
+                b: g.foot - g.horizontal,
                 label: "shoulder left: theta1 + pi".into(),
                 dashed: true,
             },
             Mark::Arc {
-                center: foot,
+                center: g.foot,
                 from: x0,
-                normal: z0,
+                normal: g.z0,
                 angle: theta1,
                 radius: 0.2 * scale,
                 label: format!("θ1 = {}", deg(theta1)),
             },
         ],
-    });
+    }
+}
+
+/// The triangle S, E, p_W in the arm plane: c3 (2.99), theta3 (2.100)-(2.101), the other elbow.
+fn arm_triangle(g: &ArmGeometry) -> Step {
+    let (s, e, p_w) = (g.s, g.e, g.p_w);
     let (a2, a3, d) = ((e - s).norm(), (p_w - e).norm(), (p_w - s).norm());
     let c3 = (d * d - a2 * a2 - a3 * a3) / (2.0 * a2 * a3);
     // The other elbow: E reflected across the line S-W in the arm plane.
     let u = (p_w - s) / d;
-    let e_rel = e - s;
-    let e_other = s + u * (2.0 * u.dot(&e_rel)) - e_rel;
-    let theta3 = signed(&(e - s), &(p_w - e), &w3);
-    // The drawn angles are geometric; the joint values differ from them by the constant the
-    // DH table puts between them (the forearm along z3 in Table 2.7 turns theta3 by pi/2).
-    let (off2, off3) = geometric_offsets(robot, wrist.is_some())?;
-    steps.push(Step {
+    let e_other = s + u * (2.0 * u.dot(&(e - s))) - (e - s);
+    let theta3 = signed(&(e - s), &(p_w - e), &g.w3);
+    let off3 = g.off.1;
+    let seg = |a, b, label: String, dashed| Mark::Segment {
+        a,
+        b,
+        label,
+        dashed,
+    };
+    Step {
         title: "The triangle in the arm plane: c3, and the two elbows".into(),
         equation: "(2.99)-(2.101)".into(),
         formula: format!(
@@ -404,74 +514,51 @@ fn anthropomorphic(
             }
         ),
         marks: vec![
-            Mark::Segment {
-                a: s,
-                b: e,
-                label: format!("a2 = {a2:.3} m"),
-                dashed: false,
-            },
-            Mark::Segment {
-                a: e,
-                b: p_w,
-                label: format!("a3 = {a3:.3} m"),
-                dashed: false,
-            },
-            Mark::Segment {
-                a: s,
-                b: p_w,
-                label: format!("{d:.3} m"),
-                dashed: true,
-            },
-            Mark::Segment {
-                a: s,
-                b: e_other,
-                label: "the other elbow".into(),
-                dashed: true,
-            },
-            Mark::Segment {
-                a: e_other,
-                b: p_w,
-                label: String::new(),
-                dashed: true,
-            },
+            seg(s, e, format!("a2 = {a2:.3} m"), false),
+            seg(e, p_w, format!("a3 = {a3:.3} m"), false),
+            seg(s, p_w, format!("{d:.3} m"), true),
+            seg(s, e_other, "the other elbow".into(), true),
+            seg(e_other, p_w, String::new(), true),
             Mark::Arc {
                 center: e,
                 from: (e - s).normalize(),
-                normal: w3,
+                normal: g.w3,
                 angle: theta3,
                 radius: 0.25 * a3,
                 label: format!("θ3 = {}", deg(theta3 - off3)),
             },
         ],
-    });
-    let w2 = ax[1].1;
-    let level = (horizontal / r.max(1e-12))
-        * if theta1_is_twin(q[0], theta1) {
+    }
+}
+
+/// theta2 (2.105)-(2.108): link 2 from the horizontal of the arm plane.
+fn arm_theta2(g: &ArmGeometry, q1: f64) -> Step {
+    let out = g.horizontal / g.horizontal.norm().max(1e-12);
+    let theta1 = g.pw_xy.1.atan2(g.pw_xy.0);
+    let level = out
+        * if theta1_is_twin(q1, theta1) {
             -1.0
         } else {
             1.0
         };
-    let theta2 = signed(&level, &(e - s), &w2);
-    steps.push(Step {
+    let theta2 = signed(&level, &(g.e - g.s), &g.w2);
+    let a2 = (g.e - g.s).norm();
+    Step {
         title: "theta2 from the triangle".into(),
         equation: "(2.105)-(2.108)".into(),
         formula: format!(
             "theta2 = Atan2((a2 + a3 c3) p_Wz -+ a3 s3 sqrt(p_Wx^2 + p_Wy^2), ...) = {}",
-            deg(theta2 - off2)
+            deg(theta2 - g.off.0)
         ),
         marks: vec![Mark::Arc {
-            center: s,
+            center: g.s,
             from: level,
-            normal: w2,
+            normal: g.w2,
             angle: theta2,
             radius: 0.3 * a2,
-            label: format!("θ2 = {}", deg(theta2 - off2)),
+            label: format!("θ2 = {}", deg(theta2 - g.off.0)),
         }],
-    });
-    if wrist.is_some() {
-        steps.push(wrist_step(robot, q, &t.rotation.into_inner(), p_w, scale)?);
     }
-    Ok(steps)
 }
 
 /// The geometric angles of link 2 (from the horizontal) and between links 2 and 3 at q = 0:
@@ -504,6 +591,41 @@ fn theta1_is_twin(q1: f64, theta1: f64) -> bool {
     crate::kinematics::orientation::wrap_angle(q1 - theta1).abs() > std::f64::consts::FRAC_PI_2
 }
 
+/// The wrist step's formula: the ZYZ angles with the numbers, or what is free at theta5 = 0.
+fn wrist_formula(
+    a: &Vector3<f64>,
+    nx: f64,
+    sx: f64,
+    (t4, t5, t6): (f64, f64, f64),
+    flip: bool,
+    singular: bool,
+) -> String {
+    if singular {
+        return format!(
+            "theta5 = 0: axes 4 and 6 are aligned, so only theta4 + theta6 = {} is determined; \
+             theta4 is kept where it was and theta6 follows",
+            deg(sx.atan2(nx))
+        );
+    }
+    let m = if flip { "-" } else { "" };
+    format!(
+        "a^3 = ({:.3}, {:.3}, {:.3}); theta4 = Atan2({m}a_y, {m}a_x) = {}, theta5 = \
+         Atan2({m}sqrt(a_x^2 + a_y^2), a_z) = {}, theta6 = Atan2({m}s_z, {}n_z) = {} ({})",
+        a.x,
+        a.y,
+        a.z,
+        deg(t4),
+        deg(t5),
+        if flip { "" } else { "-" },
+        deg(t6),
+        if flip {
+            "wrist flip, theta5 in (-pi, 0): (2.112)"
+        } else {
+            "wrist no flip, theta5 in (0, pi): (2.111)"
+        }
+    )
+}
+
 /// Sect. 2.12.5: R_6^3 = (R_3^0)^T R_e and its ZYZ angles (2.111) or (2.112).
 fn wrist_step(
     robot: &Robot,
@@ -522,35 +644,7 @@ fn wrist_step(
     let t4 = (sg * a.y).atan2(sg * a.x);
     let t5 = (sg * sin5).atan2(a.z);
     let t6 = (sg * s.z).atan2(-sg * n.z);
-    let singular = sin5 < 1e-9;
-    let formula = if singular {
-        format!(
-            "theta5 = 0: axes 4 and 6 are aligned, so only theta4 + theta6 = {} is determined; \
-             theta4 is kept where it was and theta6 follows",
-            deg(s.x.atan2(n.x))
-        )
-    } else {
-        format!(
-            "a^3 = ({:.3}, {:.3}, {:.3}); theta4 = Atan2({}a_y, {}a_x) = {}, theta5 = \
-             Atan2({}sqrt(a_x^2 + a_y^2), a_z) = {}, theta6 = Atan2({}s_z, {}n_z) = {} ({})",
-            a.x,
-            a.y,
-            a.z,
-            if flip { "-" } else { "" },
-            if flip { "-" } else { "" },
-            deg(t4),
-            if flip { "-" } else { "" },
-            deg(t5),
-            if flip { "-" } else { "" },
-            if flip { "" } else { "-" },
-            deg(t6),
-            if flip {
-                "wrist flip, theta5 in (-pi, 0): (2.112)"
-            } else {
-                "wrist no flip, theta5 in (0, pi): (2.111)"
-            }
-        )
-    };
+    let formula = wrist_formula(&a.into_owned(), n.x, s.x, (t4, t5, t6), flip, sin5 < 1e-9);
     let z3 = r3 * Vector3::z();
     let a_e = r_e * Vector3::z();
     let len = 0.25 * scale;
