@@ -550,6 +550,10 @@ fn ghosts_are_coloured_by_the_workspace_posture_classes() {
         "L D F"
     );
     assert_eq!(short_label("elbow stretched, wrist singular"), "S !");
+    assert_eq!(
+        short_label("shoulder +, elbow -, wrist +"),
+        "shoulder +, elbow -, wrist +"
+    );
     // A planar arm: elbow up and down.
     let mut s = state("planar2");
     let t = fk(&s, 0);

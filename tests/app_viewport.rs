@@ -165,6 +165,7 @@ fn the_ui_painter_paints_the_window_as_egui_wgpu_does() {
     offscreen.set_background(Some(app.background()));
     let mut painter = UiPainter::new(&gpu.device, FIGURE_FORMAT);
     let mut vp = Viewport3d::new(gpu.clone()).unwrap();
+    let ctx = egui::Context::default();
     for with_view in [false, true] {
         let (theirs, ours) = if with_view {
             // The same texture registered with each painter.
@@ -182,8 +183,8 @@ fn the_ui_painter_paints_the_window_as_egui_wgpu_does() {
                 app.show(ui, theirs.clone())
             })
             .unwrap();
-        // The same two layout passes in a fresh context, painted by our painter.
-        let ctx = egui::Context::default();
+        // The same layout passes in a context of our own (kept across the two rounds, as the
+        // offscreen one is: panel sizes settle over frames), painted by our painter.
         let input = egui::RawInput {
             screen_rect: Some(egui::Rect::from_min_size(
                 egui::Pos2::ZERO,
@@ -220,9 +221,19 @@ fn the_ui_painter_paints_the_window_as_egui_wgpu_does() {
             .filter(|(p, q)| p.0.iter().zip(q.0).any(|(x, y)| x.abs_diff(y) > 24))
             .count();
         let fraction = differing as f64 / (size[0] * size[1]) as f64;
+        // Where they differ, to say which widget.
+        let (mut lo, mut hi) = ([u32::MAX; 2], [0u32; 2]);
+        for (x, y, p) in ours.enumerate_pixels() {
+            let q = reference.get_pixel(x, y);
+            if p.0.iter().zip(q.0).any(|(a, b)| a.abs_diff(b) > 24) {
+                lo = [lo[0].min(x), lo[1].min(y)];
+                hi = [hi[0].max(x), hi[1].max(y)];
+            }
+        }
         assert!(
             fraction < 0.001,
-            "with the 3D view: {with_view}; {differing} pixels ({:.3} %) differ",
+            "with the 3D view: {with_view}; {differing} pixels ({:.3} %) differ, within \
+             {lo:?}-{hi:?}",
             fraction * 100.0
         );
         // Not trivially equal: the window has text and widgets on its background.

@@ -215,6 +215,11 @@ pub const SHORT_LEGEND: &str = "R/L shoulder right/left, U/D elbow up/down, N/F 
 /// The short form of a posture label ("shoulder right, elbow up, wrist no flip" -> "R U N");
 /// a part without an abbreviation ("wrist singular") becomes "!", other text is kept.
 pub fn short_label(label: &str) -> String {
+    let known = |part: &str| part == "wrist singular" || SHORT.iter().any(|(l, _)| *l == part);
+    if !label.split(", ").any(known) {
+        // Not a closed-form posture (a self-motion branch name): as it is.
+        return label.to_string();
+    }
     label
         .split(", ")
         .map(|part| {
