@@ -381,56 +381,148 @@ impl SrsArm {
     /// rotation is `Rot(u, psi) R_sh(0)` and the wrist's `R_4^T R_sh^T R_e R(0)^T`, both of the
     /// form `C + sin(psi) A + cos(psi) B`.
     pub fn breakpoints(&self, target: &Pose) -> Vec<f64> {
-        let wc = self.wrist_of(target);
-        let sw = wc - self.s;
-        let u = sw.normalize();
-        let k = u.cross_matrix();
-        let k2 = k * k;
-        let m = (target.rotation * self.r0.inverse()).into_inner();
-        let mut out = Vec::new();
-        for se in [1.0, -1.0] {
-            let (Some(q4), true) = (self.elbow(sw.norm(), se), !self.singular(target)) else {
-                continue;
-            };
-            let Some(reference) = self.reference(&wc, q4) else {
-                continue;
-            };
-            let r0 = triad(&reference, &sw) * triad(&(self.e0 - self.s), &self.w4(q4)).transpose();
-            let sh = TrigRotation {
-                c: (Matrix3::identity() + k2) * r0,
-                a: k * r0,
-                b: -k2 * r0,
-            };
-            self.triple_roots(0, &sh, &mut out);
-            let r4t = rot(&self.w[3], -q4).into_inner();
-            let wr = TrigRotation {
-                c: r4t * sh.c.transpose() * m,
-                a: r4t * sh.a.transpose() * m,
-                b: r4t * sh.b.transpose() * m,
-            };
-            self.triple_roots(4, &wr, &mut out);
-        }
-        let mut out: Vec<f64> = out.into_iter().map(|p| p.rem_euclid(TAU)).collect();
+        let mut out: Vec<f64> = self
+            .breakpoint_parts(&self.prepare(target))
+            .into_iter()
+            .flatten()
+            .flatten()
+            .collect();
         out.sort_by(f64::total_cmp);
         out.dedup_by(|a, b| (*a - *b).abs() < 1e-13);
         out
     }
 
-    /// The feasible arm angles of every branch inside the joint limits, exactly: between
-    /// consecutive [`Self::breakpoints`] no joint crosses a limit, so one test at each
-    /// interval's midpoint decides it. Intervals are pieces of [-pi, pi] (one across +-pi given
-    /// as two), in branch order ([`Self::branch_names`]).
-    pub fn feasible_intervals(&self, target: &Pose) -> [Vec<[f64; 2]>; 8] {
-        let cuts = self.breakpoints(target);
-        let mut raw = [[0.0; 7]; 8];
-        let prepared = self.prepare(target);
-        midpoint_intervals(cuts, |psi, ok: &mut [bool; 8]| {
-            let mask = self.solve_prepared(&prepared, psi, &mut raw);
-            for (k, v) in ok.iter_mut().enumerate() {
-                *v = mask >> k & 1 == 1 && within(&self.wrapped(raw[k]), &self.limits);
+    /// [`Self::breakpoints`] apart: for each elbow branch, those of the shoulder triple and
+    /// those of the wrist triple (each in [0, 2 pi), sorted), empty for an elbow that does not
+    /// reach.
+    fn breakpoint_parts(&self, p: &SrsPose) -> [[Vec<f64>; 2]; 2] {
+        let k = p.u.cross_matrix();
+        let k2 = k * k;
+        let mut parts: [[Vec<f64>; 2]; 2] = Default::default();
+        for (ie, part) in p.elbows.iter().enumerate() {
+            // No elbow: out of reach, or the algorithmic singularity (no reference plane).
+            let Some(part) = part else {
+                continue;
+            };
+            let r0 = triad(&part.reference, &p.sw) * part.zero;
+            let sh = TrigRotation {
+                c: (Matrix3::identity() + k2) * r0,
+                a: k * r0,
+                b: -k2 * r0,
+            };
+            let [shoulder, wrist] = &mut parts[ie];
+            self.triple_roots(0, &sh, shoulder);
+            let r4t = part.r4.transpose();
+            let wr = TrigRotation {
+                c: r4t * sh.c.transpose() * p.m,
+                a: r4t * sh.a.transpose() * p.m,
+                b: r4t * sh.b.transpose() * p.m,
+            };
+            self.triple_roots(4, &wr, wrist);
+            for list in [shoulder, wrist] {
+                for p in list.iter_mut() {
+                    *p = p.rem_euclid(TAU);
+                }
+                list.sort_by(f64::total_cmp);
+                list.dedup_by(|a, b| (*a - *b).abs() < 1e-13);
             }
-        })
+        }
+        parts
     }
+
+    /// The feasible arm angles of every branch inside the joint limits, exactly. A branch is
+    /// feasible where its elbow angle q4 (constant in psi) is within its limits, its shoulder
+    /// triple is and its wrist triple is; the shoulder's feasibility changes only at the
+    /// shoulder's breakpoints and the wrist's only at the wrist's, so each is decided by one
+    /// test of that triple alone at the midpoint between consecutive breakpoints of its own, and
+    /// a branch's intervals are the intersection. Pieces of [-pi, pi] (one across +-pi given as
+    /// two), in branch order ([`Self::branch_names`]).
+    pub fn feasible_intervals(&self, target: &Pose) -> [Vec<[f64; 2]>; 8] {
+        let p = self.prepare(target);
+        let parts = self.breakpoint_parts(&p);
+        let mut out: [Vec<[f64; 2]>; 8] = Default::default();
+        for (ie, part) in p.elbows.iter().enumerate() {
+            let Some(part) = part else {
+                continue;
+            };
+            let [lo4, hi4] = self.limits[3];
+            let q4 = wrap_into([part.q4], &self.limits[3..4])[0];
+            if q4 < lo4 - 1e-12 || q4 > hi4 + 1e-12 {
+                continue;
+            }
+            // R_sh and R_w at psi (the wrist's depends on the shoulder's rotation only).
+            let rotations = |psi: f64| {
+                let e = rotv(&p.u, psi, &part.reference);
+                let r_sh = triad(&e, &p.sw) * part.zero;
+                let r_w = (r_sh * part.r4).transpose() * p.m;
+                (r_sh, r_w)
+            };
+            let shoulder = side_intervals(&parts[ie][0], |psi, ok| {
+                let (r_sh, _) = rotations(psi);
+                for (is, ss) in [1.0, -1.0].into_iter().enumerate() {
+                    ok[is] = self.triple(0, &r_sh, ss).is_some_and(|t| {
+                        within(&wrap_into(t, &self.limits[0..3]), &self.limits[0..3])
+                    });
+                }
+            });
+            let wrist = side_intervals(&parts[ie][1], |psi, ok| {
+                let (_, r_w) = rotations(psi);
+                for (iw, sw) in [1.0, -1.0].into_iter().enumerate() {
+                    ok[iw] = self.triple(4, &r_w, sw).is_some_and(|t| {
+                        within(&wrap_into(t, &self.limits[4..7]), &self.limits[4..7])
+                    });
+                }
+            });
+            for (is, sh) in shoulder.iter().enumerate() {
+                for (iw, wr) in wrist.iter().enumerate() {
+                    out[is << 2 | ie << 1 | iw] = to_signed(&intersect(sh, wr));
+                }
+            }
+        }
+        out
+    }
+}
+
+/// The feasible intervals in [0, 2 pi] of the two branches of one triple from its own `cuts`:
+/// `test(t, ok)` decides both at each interval's midpoint t.
+fn side_intervals(cuts: &[f64], mut test: impl FnMut(f64, &mut [bool; 2])) -> [Vec<[f64; 2]>; 2] {
+    let mut bounds = Vec::with_capacity(cuts.len() + 2);
+    bounds.push(0.0);
+    bounds.extend(cuts.iter().copied().filter(|c| *c > 0.0 && *c < TAU));
+    bounds.push(TAU);
+    let mut out: [Vec<[f64; 2]>; 2] = Default::default();
+    let mut ok = [false; 2];
+    for w in bounds.windows(2) {
+        let (lo, hi) = (w[0], w[1]);
+        if hi <= lo {
+            continue;
+        }
+        test(0.5 * (lo + hi), &mut ok);
+        for (list, _) in out.iter_mut().zip(ok).filter(|(_, v)| *v) {
+            match list.last_mut() {
+                Some(l) if l[1] == lo => l[1] = hi,
+                _ => list.push([lo, hi]),
+            }
+        }
+    }
+    out
+}
+
+/// The intersection of two sorted lists of disjoint intervals.
+fn intersect(a: &[[f64; 2]], b: &[[f64; 2]]) -> Vec<[f64; 2]> {
+    let (mut i, mut j, mut out) = (0, 0, Vec::new());
+    while i < a.len() && j < b.len() {
+        let (lo, hi) = (a[i][0].max(b[j][0]), a[i][1].min(b[j][1]));
+        if hi > lo {
+            out.push([lo, hi]);
+        }
+        if a[i][1] < b[j][1] {
+            i += 1;
+        } else {
+            j += 1;
+        }
+    }
+    out
 }
 
 /// The feasible intervals of 8 branches from the `cuts` (in [0, 2 pi)) between which no branch's
