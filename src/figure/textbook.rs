@@ -121,6 +121,23 @@ pub fn textbook_figure(
     }
 }
 
+/// A curve of Fig. 2.31.
+fn line(
+    name: Option<String>,
+    points: Vec<[f64; 2]>,
+    color: Color32,
+    width: f32,
+    dashed: bool,
+) -> Curve {
+    Curve {
+        name,
+        points,
+        color,
+        width,
+        dashed,
+    }
+}
+
 /// Points of an arc of radius `r` about `c` from angle `a0` to `a1` (rad).
 fn arc(c: [f64; 2], r: f64, a0: f64, a1: f64) -> Vec<[f64; 2]> {
     let n = 48;
@@ -146,13 +163,6 @@ fn two_link_postures(
         Color32::from_gray(220)
     } else {
         Color32::from_gray(30)
-    };
-    let line = |name: Option<String>, points: Vec<[f64; 2]>, color, width, dashed| Curve {
-        name,
-        points,
-        color,
-        width,
-        dashed,
     };
     let mut plot = Plot2d {
         title: "Admissible postures of a two-link planar arm (Fig. 2.31)".into(),
@@ -203,13 +213,6 @@ fn add_posture(
     pos: &crate::kinematics::construction::TwoLinkPosture,
 ) {
     let p = k.p;
-    let line = |name: Option<String>, points: Vec<[f64; 2]>, color, width, dashed| Curve {
-        name,
-        points,
-        color,
-        width,
-        dashed,
-    };
     let color = c32(CLASS_COLORS[i]);
     plot.curves.push(line(
         Some(pos.name.to_string()),

@@ -64,21 +64,7 @@ pub(crate) fn sub2(
     q: &Vector3<f64>,
     sign: f64,
 ) -> Option<(f64, f64)> {
-    let c12 = w1.dot(w2);
-    let den = c12 * c12 - 1.0;
-    if den.abs() < 1e-12 {
-        return None;
-    }
-    let alpha = (c12 * w2.dot(p) - w1.dot(q)) / den;
-    let beta = (c12 * w1.dot(q) - w2.dot(p)) / den;
-    let x = w1.cross(w2);
-    let g2 = (p.norm_squared() - alpha * alpha - beta * beta - 2.0 * alpha * beta * c12)
-        / x.norm_squared();
-    if g2 < -1e-10 * p.norm_squared().max(1e-30) {
-        return None;
-    }
-    let c = w1 * alpha + w2 * beta + x * (sign * g2.max(0.0).sqrt());
-    Some((sub1(w1, &c, q), sub1(w2, p, &c)))
+    sub2_sc(w1, w2, p, q, sign).map(|(a, b)| (a.t, b.t))
 }
 
 /// [`sub2`] with the sines and cosines of both angles.
@@ -145,4 +131,47 @@ pub(crate) fn within(q: &[f64], limits: &[[f64; 2]]) -> bool {
     q.iter()
         .zip(limits)
         .all(|(v, l)| *v >= l[0] - 1e-12 && *v <= l[1] + 1e-12)
+}
+
+/// Directions and points of the 7 axes (world), and the tool pose, at q = 0.
+pub(crate) type Axes7 = (
+    [Vector3<f64>; 7],
+    [Vector3<f64>; 7],
+    crate::kinematics::Pose,
+);
+
+/// The joint axes of a 7R robot with one end-effector at q = 0 (unit directions, a point on
+/// each, world) and its tool pose there; `None` for any other robot.
+pub(crate) fn axes_7r(robot: &crate::kinematics::Robot) -> Option<Axes7> {
+    use crate::kinematics::JointKind;
+    if robot.dof() != 7
+        || robot.end_effectors().len() != 1
+        || (0..7).any(|k| robot.dof_joint(k).kind != JointKind::Revolute)
+    {
+        return None;
+    }
+    let q0 = [0.0; 7];
+    let jac = robot.jacobian(&q0, 0).ok()?;
+    let t0 = robot.fk(&q0).ok()?;
+    let pe = t0.translation.vector;
+    let mut w = [Vector3::zeros(); 7];
+    let mut o = [Vector3::zeros(); 7];
+    for k in 0..7 {
+        let c = jac.column(k);
+        w[k] = Vector3::new(c[3], c[4], c[5]).normalize();
+        o[k] = pe + w[k].cross(&Vector3::new(c[0], c[1], c[2]));
+    }
+    Some((w, o, t0))
+}
+
+/// A unit vector perpendicular to each axis (for subproblem 1 about it).
+pub(crate) fn probes(w: &[Vector3<f64>; 7]) -> [Vector3<f64>; 7] {
+    w.map(|a| {
+        let h = if a.x.abs() < 0.9 {
+            Vector3::x()
+        } else {
+            Vector3::y()
+        };
+        (h - a * a.dot(&h)).normalize()
+    })
 }

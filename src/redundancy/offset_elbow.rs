@@ -19,7 +19,7 @@
 //! Eight branches in all, labelled by the three signs like the SRS arm's.
 
 use super::geometry::{meet, rot, rotv, rotv_sc, sub1, sub2_sc, trig_roots, wrap_into};
-use crate::kinematics::{JointKind, Pose, Robot};
+use crate::kinematics::{Pose, Robot};
 use nalgebra::{Matrix3, Point3, Rotation3, Vector3};
 use std::f64::consts::{PI, TAU};
 
@@ -47,23 +47,7 @@ pub struct OffsetElbowArm {
 impl OffsetElbowArm {
     /// The offset-elbow structure of a 7R robot (one end-effector), or `None` without it.
     pub fn detect(robot: &Robot) -> Option<Self> {
-        if robot.dof() != 7
-            || robot.end_effectors().len() != 1
-            || (0..7).any(|k| robot.dof_joint(k).kind != JointKind::Revolute)
-        {
-            return None;
-        }
-        let q0 = [0.0; 7];
-        let jac = robot.jacobian(&q0, 0).ok()?;
-        let t0 = robot.fk(&q0).ok()?;
-        let pe = t0.translation.vector;
-        let mut w = [Vector3::zeros(); 7];
-        let mut o = [Vector3::zeros(); 7];
-        for k in 0..7 {
-            let c = jac.column(k);
-            w[k] = Vector3::new(c[3], c[4], c[5]).normalize();
-            o[k] = pe + w[k].cross(&Vector3::new(c[0], c[1], c[2]));
-        }
+        let (w, o, t0) = super::geometry::axes_7r(robot)?;
         let tol = 1e-9 * robot.characteristic_length();
         let (s, g01) = meet(&o[0], &w[0], &o[1], &w[1]);
         let (s2, g12) = meet(&o[1], &w[1], &o[2], &w[2]);
@@ -80,14 +64,7 @@ impl OffsetElbowArm {
         if !ok {
             return None;
         }
-        let probe = w.map(|a| {
-            let h = if a.x.abs() < 0.9 {
-                Vector3::x()
-            } else {
-                Vector3::y()
-            };
-            (h - a * a.dot(&h)).normalize()
-        });
+        let probe = super::geometry::probes(&w);
         Some(Self {
             w,
             o,

@@ -22,7 +22,7 @@
 use super::geometry::{
     meet, rot, rotv, rotv_sc, sub1, sub2, sub2_sc, triad, trig_roots, within, wrap_into,
 };
-use crate::kinematics::{JointKind, Pose, Robot};
+use crate::kinematics::{Pose, Robot};
 use nalgebra::{Matrix3, Point3, Rotation3, Vector3};
 use std::f64::consts::{PI, TAU};
 
@@ -83,24 +83,7 @@ impl SrsArm {
     /// The SRS structure of a 7R robot (one end-effector), or `None` with no such structure
     /// (axes 1-3 or 5-7 not meeting in a point, axes 3-5 not meeting at an elbow point) .
     pub fn detect(robot: &Robot) -> Option<Self> {
-        if robot.dof() != 7
-            || robot.end_effectors().len() != 1
-            || (0..7).any(|k| robot.dof_joint(k).kind != JointKind::Revolute)
-        {
-            return None;
-        }
-        let q0 = [0.0; 7];
-        let jac = robot.jacobian(&q0, 0).ok()?;
-        let t0 = robot.fk(&q0).ok()?;
-        let pe = t0.translation.vector;
-        let mut w = [Vector3::zeros(); 7];
-        let mut o = [Vector3::zeros(); 7];
-        for k in 0..7 {
-            let c = jac.column(k);
-            w[k] = Vector3::new(c[3], c[4], c[5]).normalize();
-            let v = Vector3::new(c[0], c[1], c[2]);
-            o[k] = pe + w[k].cross(&v);
-        }
+        let (w, o, t0) = super::geometry::axes_7r(robot)?;
         let tol = 1e-9 * robot.characteristic_length();
         let point3 = |i: usize, j: usize, k: usize| -> Option<Vector3<f64>> {
             let (p, g) = meet(&o[i], &w[i], &o[j], &w[j]);
@@ -114,14 +97,7 @@ impl SrsArm {
             return None;
         }
         let w_tool = t0.inverse_transform_point(&Point3::from(w0)).coords;
-        let probe = w.map(|a| {
-            let h = if a.x.abs() < 0.9 {
-                Vector3::x()
-            } else {
-                Vector3::y()
-            };
-            (h - a * a.dot(&h)).normalize()
-        });
+        let probe = super::geometry::probes(&w);
         Some(Self {
             probe,
             w,
