@@ -175,3 +175,24 @@ pub(crate) fn probes(w: &[Vector3<f64>; 7]) -> [Vector3<f64>; 7] {
         (h - a * a.dot(&h)).normalize()
     })
 }
+
+/// The angle q4 (rad) about the unit axis `w4` with `|a + Rot(w4, q4) b| = l` (m), branch `sign`
+/// (+1 or -1) of the law of cosines; `None` out of reach.
+pub(crate) fn elbow_angle(
+    a: &Vector3<f64>,
+    b: &Vector3<f64>,
+    w4: &Vector3<f64>,
+    l: f64,
+    sign: f64,
+) -> Option<f64> {
+    // |a + R4 b|^2 = |a|^2 + |b|^2 + 2 (a.b_par + cos q4 a.b_perp + sin q4 a.(w4 x b))
+    let b_par = w4 * w4.dot(b);
+    let b_perp = b - b_par;
+    let k = 0.5 * (l * l - a.norm_squared() - b.norm_squared()) - a.dot(&b_par);
+    let (c, s) = (a.dot(&b_perp), a.dot(&w4.cross(b)));
+    let r = c.hypot(s);
+    if r < 1e-15 || k.abs() > r * (1.0 + 1e-12) {
+        return None;
+    }
+    Some(s.atan2(c) + sign * (k / r).clamp(-1.0, 1.0).acos())
+}

@@ -100,18 +100,13 @@ impl OffsetElbowArm {
 
     /// The elbow angle q4 (rad, branch `sign`) putting W at distance `l` (m) from S.
     fn elbow(&self, l: f64, sign: f64) -> Option<f64> {
-        let a = self.o[3] - self.s;
-        let b = self.w0 - self.o[3];
-        let w4 = self.w[3];
-        let b_par = w4 * w4.dot(&b);
-        let b_perp = b - b_par;
-        let k = 0.5 * (l * l - a.norm_squared() - b.norm_squared()) - a.dot(&b_par);
-        let (c, s) = (a.dot(&b_perp), a.dot(&w4.cross(&b)));
-        let r = c.hypot(s);
-        if r < 1e-15 || k.abs() > r * (1.0 + 1e-12) {
-            return None;
-        }
-        Some(s.atan2(c) + sign * (k / r).clamp(-1.0, 1.0).acos())
+        super::geometry::elbow_angle(
+            &(self.o[3] - self.s),
+            &(self.w0 - self.o[3]),
+            &self.w[3],
+            l,
+            sign,
+        )
     }
 
     /// The shoulder-wrist vector after joint 4 alone (world, m).

@@ -131,20 +131,13 @@ impl SrsArm {
     /// The two elbow angles q4 (rad) putting the wrist at distance `l` (m) from the shoulder;
     /// `None` out of reach.
     fn elbow(&self, l: f64, sign: f64) -> Option<f64> {
-        let a = self.e0 - self.s;
-        let b = self.w0 - self.e0;
-        let w4 = self.w[3];
-        // |a + R4 b|^2 = |a|^2 + |b|^2 + 2 (a.b_par + cos q4 a.b_perp + sin q4 a.(w4 x b))
-        let b_par = w4 * w4.dot(&b);
-        let b_perp = b - b_par;
-        let k = 0.5 * (l * l - a.norm_squared() - b.norm_squared()) - a.dot(&b_par);
-        let (c, s) = (a.dot(&b_perp), a.dot(&w4.cross(&b)));
-        let r = c.hypot(s);
-        if r < 1e-15 || k.abs() > r * (1.0 + 1e-12) {
-            return None;
-        }
-        let phase = s.atan2(c);
-        Some(phase + sign * (k / r).clamp(-1.0, 1.0).acos())
+        super::geometry::elbow_angle(
+            &(self.e0 - self.s),
+            &(self.w0 - self.e0),
+            &self.w[3],
+            l,
+            sign,
+        )
     }
 
     /// The wrist centre relative to the shoulder after joint 4 alone (world, m).
@@ -433,7 +426,7 @@ impl SrsArm {
                 let r_w = (r_sh * part.r4).transpose() * p.m;
                 (r_sh, r_w)
             };
-            let shoulder = side_intervals(&parts[ie][0], |psi, ok| {
+            let shoulder = side_intervals(&parts[ie][0], |psi, ok: &mut [bool; 2]| {
                 let (r_sh, _) = rotations(psi);
                 for (is, ss) in [1.0, -1.0].into_iter().enumerate() {
                     ok[is] = self.triple(0, &r_sh, ss).is_some_and(|t| {
@@ -441,7 +434,7 @@ impl SrsArm {
                     });
                 }
             });
-            let wrist = side_intervals(&parts[ie][1], |psi, ok| {
+            let wrist = side_intervals(&parts[ie][1], |psi, ok: &mut [bool; 2]| {
                 let (_, r_w) = rotations(psi);
                 for (iw, sw) in [1.0, -1.0].into_iter().enumerate() {
                     ok[iw] = self.triple(4, &r_w, sw).is_some_and(|t| {
@@ -459,15 +452,20 @@ impl SrsArm {
     }
 }
 
-/// The feasible intervals in [0, 2 pi] of the two branches of one triple from its own `cuts`:
-/// `test(t, ok)` decides both at each interval's midpoint t.
-fn side_intervals(cuts: &[f64], mut test: impl FnMut(f64, &mut [bool; 2])) -> [Vec<[f64; 2]>; 2] {
+/// The feasible intervals in [0, 2 pi] of N branches from the `cuts` (in [0, 2 pi)) between
+/// which no branch's feasibility changes: `test(t, ok)` decides every branch at one interval's
+/// midpoint t.
+fn side_intervals<const N: usize>(
+    cuts: &[f64],
+    mut test: impl FnMut(f64, &mut [bool; N]),
+) -> [Vec<[f64; 2]>; N] {
     let mut bounds = Vec::with_capacity(cuts.len() + 2);
     bounds.push(0.0);
     bounds.extend(cuts.iter().copied().filter(|c| *c > 0.0 && *c < TAU));
     bounds.push(TAU);
-    let mut out: [Vec<[f64; 2]>; 2] = Default::default();
-    let mut ok = [false; 2];
+    bounds.dedup_by(|a, b| (*a - *b).abs() < 1e-13);
+    let mut out: [Vec<[f64; 2]>; N] = std::array::from_fn(|_| Vec::new());
+    let mut ok = [false; N];
     for w in bounds.windows(2) {
         let (lo, hi) = (w[0], w[1]);
         if hi <= lo {
@@ -506,27 +504,10 @@ fn intersect(a: &[[f64; 2]], b: &[[f64; 2]]) -> Vec<[f64; 2]> {
 /// of [-pi, pi] in branch order.
 pub(super) fn midpoint_intervals(
     mut cuts: Vec<f64>,
-    mut test: impl FnMut(f64, &mut [bool; 8]),
+    test: impl FnMut(f64, &mut [bool; 8]),
 ) -> [Vec<[f64; 2]>; 8] {
-    cuts.push(0.0);
     cuts.sort_by(f64::total_cmp);
-    cuts.dedup_by(|a, b| (*a - *b).abs() < 1e-13);
-    let mut out: [Vec<[f64; 2]>; 8] = Default::default();
-    let mut ok = [false; 8];
-    for i in 0..cuts.len() {
-        let (lo, hi) = (cuts[i], if i + 1 < cuts.len() { cuts[i + 1] } else { TAU });
-        if hi <= lo {
-            continue;
-        }
-        test(0.5 * (lo + hi), &mut ok);
-        for (list, _) in out.iter_mut().zip(ok).filter(|(_, v)| *v) {
-            match list.last_mut() {
-                Some(l) if l[1] == lo => l[1] = hi,
-                _ => list.push([lo, hi]),
-            }
-        }
-    }
-    out.map(|list| to_signed(&list))
+    side_intervals(&cuts, test).map(|list| to_signed(&list))
 }
 
 /// Intervals of [0, 2 pi] as pieces of [-pi, pi]: an interval across pi is split in two, and
