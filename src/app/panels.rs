@@ -11,66 +11,11 @@ const ERROR_BG: Color32 = Color32::from_rgb(255, 215, 215);
 /// Left panel: model, joint sliders, configurations, the DH table.
 pub fn left(app: &mut AppUi, ui: &mut egui::Ui) {
     egui::ScrollArea::vertical().show(ui, |ui| {
-        let heading = ui.heading("Model");
-        let current = app.state.spec().to_string();
-        let combo = egui::ComboBox::from_id_salt("model")
-            .selected_text(current.clone())
-            .width(ui.available_width() - 8.0)
-            .show_ui(ui, |ui| {
-                for b in BUILT_INS {
-                    if ui
-                        .selectable_label(current == b.name, b.name)
-                        .on_hover_text(b.summary)
-                        .clicked()
-                    {
-                        app.load(b.name);
-                    }
-                }
-            });
-        combo.response.labelled_by(heading.id);
-        ui.horizontal(|ui| {
-            ui.add(
-                egui::TextEdit::singleline(&mut app.load_path)
-                    .hint_text("path/to/robot.toml or .urdf")
-                    .desired_width(ui.available_width() - 60.0),
-            );
-            if ui
-                .button("Open")
-                .on_hover_text("Load a .toml or .urdf model file (or drop one on the window)")
-                .clicked()
-            {
-                let p = app.load_path.clone();
-                app.load(&p);
-            }
-        });
+        model_picker(app, ui);
         ui.label(RichText::new(&app.state.robot().description).small());
         ui.separator();
         ui.heading("Joints");
-        let unit = app.state.angle_unit();
-        // Long sliders for fine control (a fixed length: one that followed the panel's width
-        // would widen the panel it fills, frame after frame).
-        ui.spacing_mut().slider_width = if app.projector { 260.0 } else { 200.0 };
-        for k in 0..app.state.robot().dof() {
-            let name = app.state.robot().dof_joint(k).name.clone();
-            let (Ok(v), Ok([lo, hi]), Ok(quantity)) = (
-                app.state.joint_display(k),
-                app.state.joint_display_limits(k),
-                app.state.joint_quantity(k),
-            ) else {
-                continue;
-            };
-            let mut value = v;
-            let slider = egui::Slider::new(&mut value, lo..=hi)
-                .text(format!("{name} [{}]", quantity.symbol(unit)))
-                .max_decimals(2)
-                .custom_formatter(|v, _| format_number(v, 2));
-            if ui.add(slider).changed() {
-                let si = quantity.from_display(value, unit);
-                if let Err(e) = app.state.set_joint(k, si) {
-                    app.state.push_message(Level::Warning, e.to_string());
-                }
-            }
-        }
+        joint_sliders(app, ui);
         ui.horizontal_wrapped(|ui| {
             ui.label("Configuration:");
             let names: Vec<String> = app
@@ -134,43 +79,7 @@ fn dh_table(state: &mut AppState, ui: &mut egui::Ui) {
             for j in 0..rows {
                 ui.label(state.robot().joints()[j].name.clone());
                 for (f, width) in DhField::ALL.into_iter().zip(widths) {
-                    let Some(cell) = state.dh_cell(j, f).cloned() else {
-                        continue;
-                    };
-                    if !cell.editable {
-                        ui.label(RichText::new(cell.text).small().weak());
-                        continue;
-                    }
-                    let mut text = cell.text.clone();
-                    let mut edit = egui::TextEdit::singleline(&mut text)
-                        .desired_width(width)
-                        .min_size(egui::vec2(width, 0.0));
-                    if cell.error.is_some() {
-                        edit = edit
-                            .background_color(ERROR_BG)
-                            .text_color(Color32::from_rgb(150, 0, 0));
-                    }
-                    let r = ui.add(edit);
-                    // Named for screen readers (and UI tests): "q2 alpha".
-                    let name = format!("{} {}", state.robot().joints()[j].name, f.name());
-                    r.widget_info(|| {
-                        let mut info = egui::WidgetInfo::labeled(
-                            egui::Role::TextInput,
-                            ui.is_enabled(),
-                            &name,
-                        );
-                        info.current_text_value = Some(text.clone());
-                        info
-                    });
-                    let r = match &cell.error {
-                        Some(e) => r.on_hover_text(format!(
-                            "not applied: {e}; the arm keeps its last valid shape"
-                        )),
-                        None => r,
-                    };
-                    if r.changed() {
-                        let _ = state.edit_dh(j, f, &text);
-                    }
+                    dh_cell(state, ui, j, f, width);
                 }
                 ui.end_row();
             }
@@ -180,6 +89,108 @@ fn dh_table(state: &mut AppState, ui: &mut egui::Ui) {
             Color32::from_rgb(170, 0, 0),
             "Red cells are not applied (hover for the reason).",
         );
+    }
+}
+
+/// The model chooser (built-ins) and the path entry.
+fn model_picker(app: &mut AppUi, ui: &mut egui::Ui) {
+    let heading = ui.heading("Model");
+    let current = app.state.spec().to_string();
+    let combo = egui::ComboBox::from_id_salt("model")
+        .selected_text(current.clone())
+        .width(ui.available_width() - 8.0)
+        .show_ui(ui, |ui| {
+            for b in BUILT_INS {
+                if ui
+                    .selectable_label(current == b.name, b.name)
+                    .on_hover_text(b.summary)
+                    .clicked()
+                {
+                    app.load(b.name);
+                }
+            }
+        });
+    combo.response.labelled_by(heading.id);
+    ui.horizontal(|ui| {
+        ui.add(
+            egui::TextEdit::singleline(&mut app.load_path)
+                .hint_text("path/to/robot.toml or .urdf")
+                .desired_width(ui.available_width() - 60.0),
+        );
+        if ui
+            .button("Open")
+            .on_hover_text("Load a .toml or .urdf model file (or drop one on the window)")
+            .clicked()
+        {
+            let p = app.load_path.clone();
+            app.load(&p);
+        }
+    });
+}
+
+/// One slider per joint, in the display unit.
+fn joint_sliders(app: &mut AppUi, ui: &mut egui::Ui) {
+    let unit = app.state.angle_unit();
+    // Long sliders for fine control (a fixed length: one that followed the panel's width
+    // would widen the panel it fills, frame after frame).
+    ui.spacing_mut().slider_width = if app.projector { 260.0 } else { 200.0 };
+    for k in 0..app.state.robot().dof() {
+        let name = app.state.robot().dof_joint(k).name.clone();
+        let (Ok(v), Ok([lo, hi]), Ok(quantity)) = (
+            app.state.joint_display(k),
+            app.state.joint_display_limits(k),
+            app.state.joint_quantity(k),
+        ) else {
+            continue;
+        };
+        let mut value = v;
+        let slider = egui::Slider::new(&mut value, lo..=hi)
+            .text(format!("{name} [{}]", quantity.symbol(unit)))
+            .max_decimals(2)
+            .custom_formatter(|v, _| format_number(v, 2));
+        if ui.add(slider).changed() {
+            let si = quantity.from_display(value, unit);
+            if let Err(e) = app.state.set_joint(k, si) {
+                app.state.push_message(Level::Warning, e.to_string());
+            }
+        }
+    }
+}
+
+/// One editable cell of the DH table: red with the reason on hover when not applied.
+fn dh_cell(state: &mut AppState, ui: &mut egui::Ui, j: usize, f: DhField, width: f32) {
+    let Some(cell) = state.dh_cell(j, f).cloned() else {
+        return;
+    };
+    if !cell.editable {
+        ui.label(RichText::new(cell.text).small().weak());
+        return;
+    }
+    let mut text = cell.text.clone();
+    let mut edit = egui::TextEdit::singleline(&mut text)
+        .desired_width(width)
+        .min_size(egui::vec2(width, 0.0));
+    if cell.error.is_some() {
+        edit = edit
+            .background_color(ERROR_BG)
+            .text_color(Color32::from_rgb(150, 0, 0));
+    }
+    let r = ui.add(edit);
+    // Named for screen readers (and UI tests): "q2 alpha".
+    let name = format!("{} {}", state.robot().joints()[j].name, f.name());
+    r.widget_info(|| {
+        let mut info = egui::WidgetInfo::labeled(egui::Role::TextInput, ui.is_enabled(), &name);
+        info.current_text_value = Some(text.clone());
+        info
+    });
+    let r = match &cell.error {
+        Some(e) => r.on_hover_text(format!(
+            "not applied: {e}; the arm keeps its last valid shape"
+        )),
+        None => r,
+    };
+    if r.changed() {
+        let _ = state.edit_dh(j, f, &text);
     }
 }
 
