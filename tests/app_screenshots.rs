@@ -166,6 +166,8 @@ fn construction_overlay() {
             "app_construction_default_robot",
         ),
         ("planar2", 1, "app_construction_planar2"),
+        ("stanford", 9, "app_construction_stanford"),
+        ("scara", 9, "app_construction_scara"),
     ] {
         let mut state = AppState::from_spec(model).unwrap();
         // The construction alone: no frames, no ghosts.

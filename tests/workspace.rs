@@ -620,3 +620,33 @@ fn full_range_two_link_arm_reaches_the_disk_with_both_postures() {
     assert_eq!(one, run(2));
     assert!(one.reachable_measure() > 0.9 * disk);
 }
+
+/// Point H of Fig. 2.30: with the figure's limits (|q1| <= pi/2, -3pi/4 <= q2 <= pi/2) arc FD
+/// (q1 = pi/2, q2 from -3pi/4 to 0) crosses arc BC (q2 = pi/2) where the two postures
+/// (q1, q2) = (pi/2, -pi/2) and (0, pi/2) reach the same point, (1, 1) m by the two-link forward
+/// kinematics written out here; with symmetric limits the arcs meet only at F (no H).
+#[test]
+fn point_h_is_where_arc_fd_crosses_arc_bc() {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("assets/robots/example_2_6.toml");
+    let r = load_model_file(&path).unwrap();
+    let b = planar_boundary(&r, &Default::default()).unwrap();
+    let fk = |q1: f64, q2: f64| [q1.cos() + (q1 + q2).cos(), q1.sin() + (q1 + q2).sin()];
+    let (h1, h2) = (fk(FRAC_PI_2, -FRAC_PI_2), fk(0.0, FRAC_PI_2));
+    assert!((h1[0] - h2[0]).abs() < 1e-15 && (h1[1] - h2[1]).abs() < 1e-15);
+    let h = b.crossing("FD", "BC").expect("H");
+    assert!((h[0] - h1[0]).hypot(h[1] - h1[1]) < 1e-9, "{h:?} vs {h1:?}");
+    assert_eq!(
+        b.crossing("BC", "FD").map(|p| p.map(|v| (v * 1e6).round())),
+        Some([1e6, 1e6])
+    );
+    // H is reached with both postures and lies on the boundary of the reachable set.
+    assert_eq!(b.class_contains(0, h, 1e-6), Some(true));
+    assert_eq!(b.class_contains(1, h, 1e-6), Some(true));
+    assert!(b.crossing("AB", "EF").is_none());
+    assert!(limited_boundary_has_no_h());
+}
+
+fn limited_boundary_has_no_h() -> bool {
+    let b = planar_boundary(&limited(), &Default::default()).unwrap();
+    b.crossing("FD", "BC").is_none()
+}

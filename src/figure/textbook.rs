@@ -48,8 +48,8 @@ pub const FIGURES: [(&str, &str); 6] = [
 /// The two-link arm of Example 2.6 with its limits (the model of Figs 2.29-2.30), embedded.
 fn limited_two_link() -> Result<Robot, FigureError> {
     crate::model_file::parse_model(
-        include_str!("../../assets/robots/planar2_limited.toml"),
-        std::path::Path::new("planar2_limited.toml"),
+        include_str!("../../assets/robots/example_2_6.toml"),
+        std::path::Path::new("example_2_6.toml"),
     )
     .map_err(|e| FigureError::Layout(e.to_string()))
 }

@@ -489,6 +489,9 @@ fn fig_2_30_labels(plot: &mut Plot2d, robot: &Robot) {
     }
     plot.labels.sort_by(|a, b| a.0.cmp(&b.0));
     plot.labels.dedup_by(|a, b| a.0 == b.0);
+    if let Some(h) = e.crossing("FD", "BC") {
+        plot.labels.push(("H".into(), h));
+    }
 }
 
 /// The colour of a class mask.

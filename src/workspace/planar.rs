@@ -140,6 +140,35 @@ impl PlanarBoundary {
         )
     }
 
+    /// Where the arcs labelled `a` and `b` cross away from their ends (plane coordinates, m):
+    /// point H of Fig. 2.30, where arc FD (joint 1 at its upper limit) cuts arc BC (joint 2 at
+    /// its upper limit) when the limits of joint 2 are not symmetric; `None` when they do not
+    /// cross or meet only at an end (with symmetric limits H falls on F). Each arc lies on a
+    /// circle about the joint that moves along it; the circles are intersected in closed form
+    /// and a point is kept when it lies on both polylines to within their chord error.
+    pub fn crossing(&self, a: &str, b: &str) -> Option<[f64; 2]> {
+        let arc = |name: &str| self.curves.iter().find(|c| c.label == name);
+        let (ca, cb) = (arc(a)?, arc(b)?);
+        let (ka, kb) = (circle_through(&ca.points)?, circle_through(&cb.points)?);
+        let scale = ka.1.max(kb.1);
+        let ends = [
+            ca.points[0],
+            *ca.points.last()?,
+            cb.points[0],
+            *cb.points.last()?,
+        ];
+        circle_intersections(ka, kb)
+            .into_iter()
+            .flatten()
+            .find(|&p| {
+                let on = |c: &BoundaryCurve| polyline_distance(p, &c.points, false) <= 1e-5 * scale;
+                let away = ends
+                    .iter()
+                    .all(|e| (e[0] - p[0]).hypot(e[1] - p[1]) > 1e-7 * scale);
+                on(ca) && on(cb) && away
+            })
+    }
+
     /// Whether a point is reachable with posture `class`: inside one of its loops or within
     /// `tol` of one. `None` for three-link arms.
     pub fn class_contains(&self, class: u8, p: [f64; 2], tol: f64) -> Option<bool> {
@@ -198,6 +227,42 @@ fn shoelace(poly: &[[f64; 2]]) -> f64 {
 }
 
 /// Distance from `p` to a polyline (closed if `closed`).
+/// The circle through the first, middle and last points of an arc's polyline: centre and radius
+/// (m); `None` for fewer than three points or collinear ones.
+fn circle_through(pts: &[[f64; 2]]) -> Option<([f64; 2], f64)> {
+    let (a, b, c) = (pts.first()?, pts.get(pts.len() / 2)?, pts.last()?);
+    let d = 2.0 * (a[0] * (b[1] - c[1]) + b[0] * (c[1] - a[1]) + c[0] * (a[1] - b[1]));
+    let n = |p: &[f64; 2]| p[0] * p[0] + p[1] * p[1];
+    let scale = (b[0] - a[0])
+        .hypot(b[1] - a[1])
+        .max((c[0] - b[0]).hypot(c[1] - b[1]));
+    if pts.len() < 3 || d.abs() <= 1e-12 * scale * scale {
+        return None;
+    }
+    let x = (n(a) * (b[1] - c[1]) + n(b) * (c[1] - a[1]) + n(c) * (a[1] - b[1])) / d;
+    let y = (n(a) * (c[0] - b[0]) + n(b) * (a[0] - c[0]) + n(c) * (b[0] - a[0])) / d;
+    Some(([x, y], (a[0] - x).hypot(a[1] - y)))
+}
+
+/// The (up to two) intersections of two circles (centre, radius; m).
+fn circle_intersections(
+    (c0, r0): ([f64; 2], f64),
+    (c1, r1): ([f64; 2], f64),
+) -> [Option<[f64; 2]>; 2] {
+    let (dx, dy) = (c1[0] - c0[0], c1[1] - c0[1]);
+    let d = dx.hypot(dy);
+    if d == 0.0 || d > r0 + r1 || d < (r0 - r1).abs() {
+        return [None, None];
+    }
+    let a = (r0 * r0 - r1 * r1 + d * d) / (2.0 * d);
+    let h = (r0 * r0 - a * a).max(0.0).sqrt();
+    let (mx, my) = (c0[0] + a * dx / d, c0[1] + a * dy / d);
+    [
+        Some([mx + h * dy / d, my - h * dx / d]),
+        Some([mx - h * dy / d, my + h * dx / d]),
+    ]
+}
+
 fn polyline_distance(p: [f64; 2], pts: &[[f64; 2]], closed: bool) -> f64 {
     let n = pts.len();
     let seg = |a: [f64; 2], b: [f64; 2]| {

@@ -4,6 +4,8 @@
 //! configuration q from the joint axes (the Jacobian), so the numbers shown are those of the arm
 //! on screen; the steps follow Sects. 2.12.1, 2.12.2, 2.12.4 and 2.12.5.
 
+mod arms;
+
 use super::{ConstructionError, TwoLinkConstruction, WristPoint};
 use crate::kinematics::Robot;
 use crate::kinematics::ik::closed_form::{ArmKind, ClosedForm, Family};
@@ -102,11 +104,16 @@ pub fn construction(robot: &Robot, q: &[f64]) -> Result<Vec<Step>, ConstructionE
             let w = WristPoint::of(robot, q)?;
             anthropomorphic(robot, q, Some(w))
         }
-        other => Err(ConstructionError::NoConstruction(format!(
-            "the construction of the {} is not drawn yet (the two- and three-link planar arms \
-             and the anthropomorphic arm, with or without spherical wrist, are)",
-            other.name()
-        ))),
+        Family::SphericalArm => arms::spherical(robot, q, None),
+        Family::Decoupled6 {
+            arm: ArmKind::Spherical,
+        } => arms::spherical(robot, q, Some(WristPoint::of(robot, q)?)),
+        Family::Cylindrical => arms::cylindrical(robot, q, None),
+        Family::Decoupled6 {
+            arm: ArmKind::Cylindrical,
+        } => arms::cylindrical(robot, q, Some(WristPoint::of(robot, q)?)),
+        Family::Scara => arms::scara(robot, q),
+        Family::SphericalWrist => arms::wrist_alone(robot, q),
     }
 }
 
@@ -347,21 +354,76 @@ fn planar_theta3(g: &Plane, t: &crate::kinematics::Pose) -> Step {
 
 /// The arm geometry of an anthropomorphic arm at q (world, m).
 struct ArmGeometry {
-    /// Shoulder S (axes 1 and 2 meet), elbow E (axis 3 in the arm plane), wrist point p_W.
+    /// Shoulder S and elbow E in the plane of links 2 and 3 (axes 1 and 2 meet at S; a lateral
+    /// shoulder offset such as the Puma's moves both along axis 2 into that plane), wrist point.
     s: Vector3<f64>,
     e: Vector3<f64>,
     p_w: Vector3<f64>,
-    /// Axes 1, 2, 3 (unit).
+    /// Axes 1, 2, 3 (unit) and frame 1's x axis (horizontal).
     z0: Vector3<f64>,
     w2: Vector3<f64>,
     w3: Vector3<f64>,
+    x1: Vector3<f64>,
     /// The point of axis 1 level with p_W, and p_W's horizontal offset from it.
     foot: Vector3<f64>,
     horizontal: Vector3<f64>,
-    /// The constants between the drawn theta2, theta3 and the joint values.
-    off: (f64, f64),
+    /// The lateral offset of p_W from the plane through S normal to axis 2 (m; 0 for the
+    /// textbook's arms, the Puma's d3).
+    h: f64,
+    /// The drawn theta1, theta2, theta3 at q = 0: the constants between them and the joints.
+    off: [f64; 3],
     /// p_W's horizontal components in the base frame.
     pw_xy: (f64, f64),
+}
+
+impl ArmGeometry {
+    /// The geometry at q; `off` is zero when `at_zero`, else the drawn angles at q = 0.
+    fn at(robot: &Robot, q: &[f64], wrist: bool, at_zero: bool) -> Result<Self, ConstructionError> {
+        let ax = axes(robot, q)?;
+        let p_w = if wrist {
+            WristPoint::of(robot, q)?.p_w
+        } else {
+            robot.fk(q)?.translation.vector
+        };
+        let (s, _) = super::meet(&ax[0].0, &ax[0].1, &ax[1].0, &ax[1].1);
+        let (o3, w3) = ax[2];
+        let (z0, w2) = (ax[0].1, ax[1].1);
+        let h = w2.dot(&(p_w - s));
+        let foot = s + z0 * z0.dot(&(p_w - s));
+        let b = robot.base.rotation;
+        let mut g = ArmGeometry {
+            s: s + w2 * h,
+            e: o3 + w3 * w3.dot(&(s - o3)) + w2 * h,
+            p_w,
+            z0,
+            w2,
+            w3,
+            x1: robot.fk_frames(q)?[0].rotation * Vector3::x(),
+            foot,
+            horizontal: p_w - foot,
+            h,
+            off: [0.0; 3],
+            pw_xy: (
+                (p_w - foot).dot(&(b * Vector3::x())),
+                (p_w - foot).dot(&(b * Vector3::y())),
+            ),
+        };
+        if !at_zero {
+            let zero = Self::at(robot, &vec![0.0; robot.dof()], wrist, true)?;
+            g.off = zero.drawn(robot.base.rotation * Vector3::x());
+        }
+        Ok(g)
+    }
+
+    /// The drawn theta1 (x0 to x1 about axis 1), theta2 (x1 to link 2 about axis 2) and theta3
+    /// (link 2 to link 3 about axis 3) (rad).
+    fn drawn(&self, x0: Vector3<f64>) -> [f64; 3] {
+        [
+            signed(&x0, &self.x1, &self.z0),
+            signed(&self.x1, &(self.e - self.s), &self.w2),
+            signed(&(self.e - self.s), &(self.p_w - self.e), &self.w3),
+        ]
+    }
 }
 
 /// Sects. 2.12.2, 2.12.4, 2.12.5: the wrist point (2.93), theta1 (2.109)-(2.110), the arm plane's
@@ -372,31 +434,7 @@ fn anthropomorphic(
     q: &[f64],
     wrist: Option<WristPoint>,
 ) -> Result<Vec<Step>, ConstructionError> {
-    let ax = axes(robot, q)?;
-    let t = robot.fk(q)?;
-    let p_w = wrist.map_or(t.translation.vector, |w| w.p_w);
-    let (s, _) = super::meet(&ax[0].0, &ax[0].1, &ax[1].0, &ax[1].1);
-    let (o3, w3) = ax[2];
-    let z0 = ax[0].1;
-    let foot = s + z0 * z0.dot(&(p_w - s));
-    let g = ArmGeometry {
-        s,
-        e: o3 + w3 * w3.dot(&(s - o3)),
-        p_w,
-        z0,
-        w2: ax[1].1,
-        w3,
-        foot,
-        horizontal: p_w - foot,
-        off: geometric_offsets(robot, wrist.is_some())?,
-        pw_xy: {
-            let b = robot.base.rotation;
-            (
-                (p_w - foot).dot(&(b * Vector3::x())),
-                (p_w - foot).dot(&(b * Vector3::y())),
-            )
-        },
-    };
+    let g = ArmGeometry::at(robot, q, wrist.is_some(), false)?;
     let scale = robot.characteristic_length();
     let mut steps = Vec::new();
     if let Some(w) = wrist {
@@ -404,9 +442,15 @@ fn anthropomorphic(
     }
     steps.push(arm_theta1(&g, robot.base.rotation * Vector3::x(), scale));
     steps.push(arm_triangle(&g));
-    steps.push(arm_theta2(&g, q[0]));
-    if wrist.is_some() {
-        steps.push(wrist_step(robot, q, &t.rotation.into_inner(), p_w, scale)?);
+    steps.push(arm_theta2(&g));
+    if let Some(w) = wrist {
+        let frames = robot.fk_frames(q)?;
+        let (r3, r4) = (
+            frames[2].rotation.into_inner(),
+            frames[3].rotation.into_inner(),
+        );
+        let r_e = robot.fk(q)?.rotation.into_inner();
+        steps.push(wrist_step(&r3, &r4, &r_e, w.p_w, q[4], scale));
     }
     Ok(steps)
 }
@@ -441,9 +485,59 @@ fn wrist_point_step(w: &WristPoint) -> Step {
     }
 }
 
-/// theta1 (2.109) and its twin (2.110): the vertical plane through p_W.
+/// theta1 (2.109) and its twin (2.110): the vertical plane through p_W; with a lateral shoulder
+/// offset h, the plane of the links passes h beside axis 1 and theta1 turns by Atan2(h, R).
 fn arm_theta1(g: &ArmGeometry, x0: Vector3<f64>, scale: f64) -> Step {
     let (pwx, pwy) = g.pw_xy;
+    let drawn = signed(&x0, &g.x1, &g.z0);
+    let label = format!("θ1 = {}", deg(drawn - g.off[0]));
+    let arc = Mark::Arc {
+        center: g.foot,
+        from: x0,
+        normal: g.z0,
+        angle: drawn,
+        radius: 0.2 * scale,
+        label,
+    };
+    if g.h.abs() > 1e-9 * scale {
+        // p_W - foot = r x1 + h' (z0 x x1): the right triangle in the horizontal plane.
+        let r = g.x1.dot(&g.horizontal);
+        let side = g.z0.cross(&g.x1);
+        let h = side.dot(&g.horizontal);
+        let corner = g.foot + g.x1 * r;
+        return Step {
+            title: "theta1: the plane of the links passes the shoulder offset beside axis 1                     (shoulder right or left)"
+                .into(),
+            equation: "(2.109), (2.110) with a shoulder offset".into(),
+            formula: format!(
+                "R = +-sqrt(p_Wx^2 + p_Wy^2 - h^2) = {r:.3} m (h = {h:.3} m); theta1 =                  Atan2(p_Wy, p_Wx) - Atan2(h, R) = {} - {} = {}",
+                deg(pwy.atan2(pwx)),
+                deg(h.atan2(r)),
+                deg(drawn - g.off[0])
+            ),
+            marks: vec![
+                Mark::Segment {
+                    a: g.foot,
+                    b: g.p_w,
+                    label: format!("horizontal distance {:.3} m", g.horizontal.norm()),
+                    dashed: true,
+                },
+                Mark::Segment {
+                    a: g.foot,
+                    b: corner,
+                    label: format!("R = {r:.3} m"),
+                    dashed: false,
+                },
+                Mark::Segment {
+                    a: corner,
+                    b: g.p_w,
+                    label: format!("h = {h:.3} m"),
+                    dashed: false,
+                },
+                arc,
+            ],
+        };
+    }
     let theta1 = pwy.atan2(pwx);
     let twin = (-pwy).atan2(-pwx);
     Step {
@@ -470,14 +564,7 @@ fn arm_theta1(g: &ArmGeometry, x0: Vector3<f64>, scale: f64) -> Step {
                 label: "shoulder left: theta1 + pi".into(),
                 dashed: true,
             },
-            Mark::Arc {
-                center: g.foot,
-                from: x0,
-                normal: g.z0,
-                angle: theta1,
-                radius: 0.2 * scale,
-                label: format!("θ1 = {}", deg(theta1)),
-            },
+            arc,
         ],
     }
 }
@@ -491,7 +578,7 @@ fn arm_triangle(g: &ArmGeometry) -> Step {
     let u = (p_w - s) / d;
     let e_other = s + u * (2.0 * u.dot(&(e - s))) - (e - s);
     let theta3 = signed(&(e - s), &(p_w - e), &g.w3);
-    let off3 = g.off.1;
+    let off3 = g.off[2];
     let seg = |a, b, label: String, dashed| Mark::Segment {
         a,
         b,
@@ -531,64 +618,26 @@ fn arm_triangle(g: &ArmGeometry) -> Step {
     }
 }
 
-/// theta2 (2.105)-(2.108): link 2 from the horizontal of the arm plane.
-fn arm_theta2(g: &ArmGeometry, q1: f64) -> Step {
-    let out = g.horizontal / g.horizontal.norm().max(1e-12);
-    let theta1 = g.pw_xy.1.atan2(g.pw_xy.0);
-    let level = out
-        * if theta1_is_twin(q1, theta1) {
-            -1.0
-        } else {
-            1.0
-        };
-    let theta2 = signed(&level, &(g.e - g.s), &g.w2);
+/// theta2 (2.105)-(2.108): link 2 from the horizontal of the arm plane (frame 1's x axis).
+fn arm_theta2(g: &ArmGeometry) -> Step {
+    let theta2 = signed(&g.x1, &(g.e - g.s), &g.w2);
     let a2 = (g.e - g.s).norm();
     Step {
         title: "theta2 from the triangle".into(),
         equation: "(2.105)-(2.108)".into(),
         formula: format!(
             "theta2 = Atan2((a2 + a3 c3) p_Wz -+ a3 s3 sqrt(p_Wx^2 + p_Wy^2), ...) = {}",
-            deg(theta2 - g.off.0)
+            deg(theta2 - g.off[1])
         ),
         marks: vec![Mark::Arc {
             center: g.s,
-            from: level,
+            from: g.x1,
             normal: g.w2,
             angle: theta2,
             radius: 0.3 * a2,
-            label: format!("θ2 = {}", deg(theta2 - g.off.0)),
+            label: format!("θ2 = {}", deg(theta2 - g.off[1])),
         }],
     }
-}
-
-/// The geometric angles of link 2 (from the horizontal) and between links 2 and 3 at q = 0:
-/// the constants between the drawn angles and the joint values.
-fn geometric_offsets(robot: &Robot, wrist: bool) -> Result<(f64, f64), ConstructionError> {
-    let q0 = vec![0.0; robot.dof()];
-    let ax = axes(robot, &q0)?;
-    let p_w = if wrist {
-        WristPoint::of(robot, &q0)?.p_w
-    } else {
-        robot.fk(&q0)?.translation.vector
-    };
-    let (s, _) = super::meet(&ax[0].0, &ax[0].1, &ax[1].0, &ax[1].1);
-    let (o3, w3) = ax[2];
-    let e = o3 + w3 * w3.dot(&(s - o3));
-    let z0 = ax[0].1;
-    let h = {
-        let v = (e - s) - z0 * z0.dot(&(e - s));
-        let x = robot.base.rotation * Vector3::x();
-        if v.norm() > 1e-9 { v.normalize() } else { x }
-    };
-    Ok((
-        signed(&h, &(e - s), &ax[1].1),
-        signed(&(e - s), &(p_w - e), &w3),
-    ))
-}
-
-/// Whether the arm's theta1 (`q1`) is the pi-shifted twin of `theta1` (shoulder left).
-fn theta1_is_twin(q1: f64, theta1: f64) -> bool {
-    crate::kinematics::orientation::wrap_angle(q1 - theta1).abs() > std::f64::consts::FRAC_PI_2
 }
 
 /// The wrist step's formula: the ZYZ angles with the numbers, or what is free at theta5 = 0.
@@ -626,29 +675,49 @@ fn wrist_formula(
     )
 }
 
-/// Sect. 2.12.5: R_6^3 = (R_3^0)^T R_e and its ZYZ angles (2.111) or (2.112).
+/// Sect. 2.12.5: R_6^3 = (R_3^0)^T R_e and its ZYZ angles (2.111) or (2.112); `r3` and `r4`
+/// are the rotations of frames 3 and 4 (world), `theta5` the wrist's middle joint value (rad).
+/// The wrist of Table 2.5 (alpha4 = -pi/2, alpha5 = pi/2) turns by Ry(theta5) between its
+/// z rotations; one with the twists reversed (the Puma 560's) by Ry(-theta5), read from the
+/// frames as sigma = -sin(alpha4), so theta5 = sigma times the Euler angle.
 fn wrist_step(
-    robot: &Robot,
-    q: &[f64],
+    r3: &Matrix3<f64>,
+    r4: &Matrix3<f64>,
     r_e: &Matrix3<f64>,
     p_w: Vector3<f64>,
+    theta5: f64,
     scale: f64,
-) -> Result<Step, ConstructionError> {
-    let frames = robot.fk_frames(q)?;
-    let r3 = frames[2].rotation.into_inner();
+) -> Step {
     let r63 = r3.transpose() * r_e;
     let (n, s, a) = (r63.column(0), r63.column(1), r63.column(2));
+    let sin_alpha4 = (r3 * Vector3::z())
+        .cross(&(r4 * Vector3::z()))
+        .dot(&(r4 * Vector3::x()));
+    let sigma = if sin_alpha4 > 0.0 { -1.0 } else { 1.0 };
     let sin5 = a.x.hypot(a.y);
-    let flip = q[4].sin() < 0.0;
+    let flip = sigma * theta5.sin() < 0.0;
     let sg = if flip { -1.0 } else { 1.0 };
     let t4 = (sg * a.y).atan2(sg * a.x);
-    let t5 = (sg * sin5).atan2(a.z);
+    let t5 = sigma * (sg * sin5).atan2(a.z);
     let t6 = (sg * s.z).atan2(-sg * n.z);
-    let formula = wrist_formula(&a.into_owned(), n.x, s.x, (t4, t5, t6), flip, sin5 < 1e-9);
+    let mut formula = wrist_formula(
+        &a.into_owned(),
+        n.x,
+        s.x,
+        (t4, sigma * t5, t6),
+        flip,
+        sin5 < 1e-9,
+    );
+    if sigma < 0.0 {
+        formula.push_str(
+            "; this wrist's twists are Table 2.5's reversed, R_6^3 = Rz(theta4) Ry(-theta5) \
+             Rz(theta6), so theta5 is minus that Euler angle",
+        );
+    }
     let z3 = r3 * Vector3::z();
     let a_e = r_e * Vector3::z();
     let len = 0.25 * scale;
-    Ok(Step {
+    let mut step = Step {
         title: "The spherical wrist: R_6^3 = (R_3^0)^T R_e as ZYZ Euler angles".into(),
         equation: if flip { "(2.112)" } else { "(2.111)" }.into(),
         formula,
@@ -681,5 +750,26 @@ fn wrist_step(
                 label: format!("θ5 = {}", deg(t5)),
             },
         ],
-    })
+    };
+    if sin5 >= 1e-9 {
+        // theta4 about z3 from x3 (2.111)/(2.112), theta6 about a_e ending at n_e.
+        let from6 = r_e * Vector3::new(t6.cos(), -t6.sin(), 0.0);
+        step.marks.push(Mark::Arc {
+            center: p_w,
+            from: r3 * Vector3::x(),
+            normal: z3,
+            angle: t4,
+            radius: 0.4 * len,
+            label: format!("θ4 = {}", deg(t4)),
+        });
+        step.marks.push(Mark::Arc {
+            center: p_w + a_e * len,
+            from: from6,
+            normal: a_e,
+            angle: t6,
+            radius: 0.3 * len,
+            label: format!("θ6 = {}", deg(t6)),
+        });
+    }
+    step
 }
