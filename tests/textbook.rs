@@ -107,6 +107,63 @@ fn parallelogram_closes() {
     }
 }
 
+/// Problem 2.11 (the geometry chosen in `models::slider_chain`): at random crank and arm angles
+/// the loop closes in the frames (the slider P on link 2' beyond A, link 3' orthogonal to link
+/// 2', the arm's end C on link 3' at c = 0.25 m from P), and the end-effector is where the
+/// direct kinematics written out here puts it, with link 2's direction found independently as
+/// the tangent from A to the circle of radius c about C: phi = Atan2(v) - asin(c / |v|).
+#[test]
+fn problem_2_11_closed_chain_closes_and_its_fk_is_the_derivation() {
+    let r = built_in("slider_chain").unwrap();
+    let (a1p, a1pp, c, a4) = (0.2, 0.6, 0.25, 0.35);
+    let mut rng = ChaCha8Rng::seed_from_u64(11);
+    for _ in 0..2000 {
+        let q = random_q(&r, &mut rng);
+        let f = r.fk_frames(&q).unwrap();
+        let t = r.fk(&q).unwrap();
+        let (a, cc, p) = (
+            f[0].translation.vector,
+            f[1].translation.vector,
+            f[3].translation.vector,
+        );
+        let u = f[2].rotation * nalgebra::Vector3::z();
+        let x_e = t.rotation * nalgebra::Vector3::x();
+        assert!((p - a).cross(&u).norm() < 1e-12 && (p - a).dot(&u) > 0.0);
+        assert!(x_e.dot(&u).abs() < 1e-12);
+        assert!((p + x_e * c - cc).norm() < 1e-12, "{q:?}");
+        // The derivation: v = C - A, phi = Atan2(v) - asin(c/|v|), p_e = C + a4 n(phi).
+        let (q1, q2) = (q[0], q[1]);
+        let v = [
+            a1pp * q2.cos() - a1p * q1.cos(),
+            a1pp * q2.sin() - a1p * q1.sin(),
+        ];
+        let phi = v[1].atan2(v[0]) - (c / v[0].hypot(v[1])).asin();
+        let n = [-phi.sin(), phi.cos()];
+        let want = [a1pp * q2.cos() + a4 * n[0], a1pp * q2.sin() + a4 * n[1]];
+        let got = t.translation.vector;
+        assert!((got.x - want[0]).abs() < 1e-12 && (got.y - want[1]).abs() < 1e-12);
+        assert!(got.z.abs() < 1e-15 && (x_e.x - n[0]).abs() < 1e-12);
+        // The prismatic joint's value is the slide |P - A| = sqrt(|v|^2 - c^2).
+        let d = r.joint_variable(3, &q);
+        assert!((d - (p - a).norm()).abs() < 1e-12);
+        assert!((d - (v[0] * v[0] + v[1] * v[1] - c * c).sqrt()).abs() < 1e-12);
+    }
+    // A crank whose DH row disagrees with the loop's length, or a loop that cannot close for
+    // every angle, is refused with the reason (never a silently wrong chain).
+    let mut joints = r.joints().to_vec();
+    if let armlab::kinematics::JointGeometry::Dh { row, .. } = &mut joints[0].geometry {
+        row.a = 0.3;
+    }
+    let err = Robot::new("x", r.base, joints, r.end_effectors().to_vec()).unwrap_err();
+    assert!(err.to_string().contains("loop's link"), "{err}");
+    let mut joints = r.joints().to_vec();
+    if let armlab::kinematics::Drive::Closure(cl) = &mut joints[3].drive {
+        cl.mechanism.offset = 0.5;
+    }
+    let err = Robot::new("x", r.base, joints, r.end_effectors().to_vec()).unwrap_err();
+    assert!(err.to_string().contains("does not close"), "{err}");
+}
+
 /// Standard <-> modified DH conversions are exact: same end-effector pose.
 #[test]
 fn dh_conversions_preserve_fk() {

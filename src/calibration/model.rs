@@ -169,7 +169,7 @@ impl ParameterModel {
         if robot
             .joints()
             .iter()
-            .any(|j| matches!(j.drive, Drive::Coupled(_)))
+            .any(|j| matches!(j.drive, Drive::Coupled(_) | Drive::Closure(_)))
         {
             return Err(CalibrationError::NotSerialDh(
                 "a joint is coupled to others",

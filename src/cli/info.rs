@@ -188,6 +188,11 @@ fn write_table(robot: &Robot, out: &mut dyn Write) -> std::io::Result<()> {
                 .map(|(s, c)| format!("{c:+} * {}", robot.joints()[*s].name))
                 .collect::<Vec<_>>()
                 .join(" "),
+            crate::kinematics::Drive::Closure(c) => format!(
+                "closure of {} and {}",
+                robot.joints()[c.mechanism.crank].name,
+                robot.joints()[c.mechanism.arm].name
+            ),
             crate::kinematics::Drive::None => "fixed".into(),
         };
         let _ = conv;

@@ -39,7 +39,8 @@ impl Robot {
     }
 
     /// The variable of joint `j` (before its offset) for the joint vector `q`: `q[k]` for an
-    /// actuated joint, the linear combination for a coupled one, 0 for a fixed one.
+    /// actuated joint, the linear combination for a coupled one, the loop's closed-form value
+    /// for a closure-driven one, 0 for a fixed one.
     /// `q` must already be checked.
     #[inline]
     pub fn joint_variable(&self, j: usize, q: &[f64]) -> f64 {
@@ -52,7 +53,22 @@ impl Robot {
                     _ => 0.0,
                 })
                 .sum(),
+            Drive::Closure(c) => {
+                let m = &c.mechanism;
+                c.value(self.joint_angle(m.crank, q), self.joint_angle(m.arm, q))
+                    .0
+            }
             Drive::None => 0.0,
+        }
+    }
+
+    /// The angle of the actuated revolute joint `j` (variable plus offset, rad).
+    #[inline]
+    pub(crate) fn joint_angle(&self, j: usize, q: &[f64]) -> f64 {
+        let joint = &self.joints()[j];
+        match joint.drive {
+            Drive::Actuated(k) => q[k] + joint.offset,
+            _ => joint.offset,
         }
     }
 

@@ -111,6 +111,18 @@ impl Robot {
                         }
                     }
                 }
+                Drive::Closure(cl) => {
+                    // Chain rule through the loop: d(value)/d(crank, arm) in closed form.
+                    let m = &cl.mechanism;
+                    let (tc, ta) = (self.joint_angle(m.crank, q), self.joint_angle(m.arm, q));
+                    let (_, grad) = cl.value(tc, ta);
+                    for (src, g) in [(m.crank, grad[0]), (m.arm, grad[1])] {
+                        if let Drive::Actuated(k) = self.joints()[src].drive {
+                            let mut c = jac.column_mut(k);
+                            c += col * g;
+                        }
+                    }
+                }
                 Drive::None => {}
             }
         }

@@ -4,6 +4,7 @@
 //! (standard or modified) or URDF-style origins, the world frame is the base's reference, and
 //! poses are named `world_from_x`. Units: metres and radians.
 
+pub mod closure;
 pub mod construction;
 pub mod dh;
 pub mod error;

@@ -46,6 +46,11 @@ pub const BUILT_INS: &[BuiltIn] = &[
         build: parallelogram,
     },
     BuiltIn {
+        name: "slider_chain",
+        summary: "four-link closed-chain planar arm with a prismatic joint, links 2' and 3' orthogonal (Problem 2.11, Fig. 2.34)",
+        build: slider_chain,
+    },
+    BuiltIn {
         name: "spherical_arm",
         summary: "spherical arm R-R-P, d2 = 0.5 m (Sect. 2.9.3, Fig. 2.22)",
         build: spherical_arm,
@@ -261,6 +266,112 @@ pub fn parallelogram() -> Robot {
     )
     .with_config("ready", vec![PI, FRAC_PI_4])
     .with_config("figure", vec![5.0 * FRAC_PI_6, FRAC_PI_3])
+}
+
+/// Problem 2.11 (Fig. 2.34): the four-link closed-chain planar arm with a prismatic joint whose
+/// two links are orthogonal, opened at the joint between link 3' and the arm (as the
+/// parallelogram is opened at joint 4); the passive joints follow the loop in closed form
+/// ([`crate::kinematics::closure`]).
+///
+/// The excerpt has the problem's sentence but not its figure, so the geometry is ours, the
+/// parallelogram of Fig. 2.21 with one revolute joint made prismatic: the crank 1' (a1' = 0.2 m)
+/// and the arm 1'' (a1'' = 0.6 m) turn about the base axis (the independent joints, motors at the
+/// base as in Sect. 2.9.2); link 2' is pinned at the crank's end A; link 3' slides along link
+/// 2' (the prismatic joint d2') standing orthogonal to it, and is pinned to the arm's end C at
+/// c = 0.25 m from the slider; the end-effector is on link 3', a4 = 0.35 m beyond C. The direct
+/// kinematics (Problem 2.11's answer): with v = a1'' u(q1'') - a1' u(q1'),
+/// d2' = sqrt(|v|^2 - c^2), phi = Atan2(v_y, v_x) - Atan2(c, d2'), the end-effector is at
+/// `a1'' u(q1'') + a4 n(phi)` with its x axis along n(phi) = u(phi + pi/2), where u(t) =
+/// (cos t, sin t). The loop closes for every q since a1'' - a1' = 0.4 m > c.
+pub fn slider_chain() -> Robot {
+    use super::closure::{Closure, LoopOutput, SliderLoop};
+    let (a1p, a1pp, c, a4) = (0.2, 0.6, 0.25, 0.35);
+    let dh = |a: f64, alpha: f64, theta: f64| JointGeometry::Dh {
+        row: DhRow {
+            a,
+            alpha,
+            d: 0.0,
+            theta,
+        },
+        convention: Convention::Standard,
+    };
+    let mechanism = SliderLoop {
+        crank: 0,
+        a_crank: a1p,
+        arm: 1,
+        a_arm: a1pp,
+        offset: c,
+    };
+    let closure = |output| Drive::Closure(Closure { mechanism, output });
+    let joint = |name: &str, kind, parent, geometry, drive, offset, limits| Joint {
+        name: name.into(),
+        kind,
+        parent,
+        pre: Pose::identity(),
+        geometry,
+        offset,
+        drive,
+        limits,
+    };
+    // DH frames: frame 2' has z along link 2' (theta = q2' - pi/2, alpha = -pi/2), so the
+    // prismatic joint slides along it; frame 3 (theta = pi, alpha = -pi/2) has x along link 3',
+    // orthogonal to link 2', and z normal to the plane again.
+    let joints = vec![
+        joint(
+            "q1'",
+            R,
+            None,
+            dh(a1p, 0.0, 0.0),
+            Drive::Actuated(0),
+            0.0,
+            FULL,
+        ),
+        joint(
+            "q1''",
+            R,
+            None,
+            dh(a1pp, 0.0, 0.0),
+            Drive::Actuated(1),
+            0.0,
+            [FRAC_PI_6, 5.0 * FRAC_PI_6],
+        ),
+        joint(
+            "q2'",
+            R,
+            Some(0),
+            dh(0.0, -FRAC_PI_2, 0.0),
+            closure(LoopOutput::Angle),
+            -FRAC_PI_2,
+            FULL,
+        ),
+        joint(
+            "d2'",
+            P,
+            Some(2),
+            dh(0.0, -FRAC_PI_2, PI),
+            closure(LoopOutput::Slide),
+            0.0,
+            [0.0, 1.0],
+        ),
+    ];
+    // Link 3': orthogonal to link 2' at the slider, through C to the end-effector.
+    let ee = EndEffector {
+        name: "tool".into(),
+        parent: 3,
+        tool: trans_x(c + a4),
+    };
+    let r = Robot::new("Slider closed chain", Pose::identity(), joints, vec![ee])
+        .unwrap_or_else(|e| unreachable!("slider_chain: {e}"));
+    r.with_description(
+        "Four-link closed-chain planar arm with a prismatic joint (Problem 2.11, Fig. 2.34), opened at \
+         the joint between link 3' and the arm 1''. The excerpt has no figure, so the geometry is \
+         chosen: crank a1' = 0.2 m and arm a1'' = 0.6 m about the base axis (independent joints), \
+         link 2' pinned at the crank's end, link 3' sliding along it (d2') and orthogonal to it, \
+         pinned to the arm's end at c = 0.25 m from the slider, end-effector a4 = 0.35 m beyond. \
+         q2' and d2' follow the loop: d2' = sqrt(|v|^2 - c^2), v = a1'' u(q1'') - a1' u(q1').",
+    )
+    .with_config("ready", vec![0.0, FRAC_PI_2])
+    .with_config("figure", vec![FRAC_PI_3, 2.0 * FRAC_PI_3])
 }
 
 /// Spherical arm R-R-P (Table 2.3, Fig. 2.22), d2 = 0.5 m, 0.25 <= d3 <= 1 m.

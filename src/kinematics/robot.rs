@@ -64,6 +64,9 @@ pub enum Drive {
     /// term names an actuated joint (e.g. theta4 = -theta2 - theta3 of the humanoid torso, Sect.
     /// 2.9, or a URDF mimic joint).
     Coupled(Vec<(JointId, f64)>),
+    /// A passive joint of a closed chain: its value follows from actuated joints through the
+    /// loop-closure equation of its mechanism, in closed form (Problem 2.11).
+    Closure(crate::kinematics::closure::Closure),
     /// A fixed joint (no variable).
     None,
 }
@@ -676,11 +679,14 @@ fn validate_joint(i: usize, j: &Joint, all: &[Joint]) -> Result<(), ModelError> 
                 "a revolute or prismatic joint needs a drive",
             ));
         }
-        Drive::Actuated(_) | Drive::Coupled(_) if j.kind == JointKind::Fixed => {
+        Drive::Actuated(_) | Drive::Coupled(_) | Drive::Closure(_)
+            if j.kind == JointKind::Fixed =>
+        {
             return Err(ModelError::Structure(
                 "a fixed joint cannot be actuated or coupled",
             ));
         }
+        Drive::Closure(c) => check_closure(i, c, all)?,
         Drive::Coupled(terms) => {
             if terms.is_empty() {
                 return Err(ModelError::Structure(
@@ -707,6 +713,50 @@ fn validate_joint(i: usize, j: &Joint, all: &[Joint]) -> Result<(), ModelError> 
             }
         }
         _ => {}
+    }
+    Ok(())
+}
+
+/// A closure-driven joint reads two earlier actuated revolute joints at the base, and its loop
+/// closes for every value of theirs.
+fn check_closure(
+    i: usize,
+    c: &crate::kinematics::closure::Closure,
+    all: &[Joint],
+) -> Result<(), ModelError> {
+    let m = &c.mechanism;
+    for (src, length) in [(m.crank, m.a_crank), (m.arm, m.a_arm)] {
+        let planar_row = |j: &Joint| match j.geometry {
+            JointGeometry::Dh {
+                row,
+                convention: Convention::Standard,
+            } => row.a == length && row.alpha == 0.0 && row.d == 0.0 && j.pre == Pose::identity(),
+            _ => false,
+        };
+        let reason = if src >= i {
+            Some("it must name an earlier joint")
+        } else if !planar_row(&all[src]) {
+            Some(
+                "its DH row must be the loop's link: standard, a equal to the loop's length, \
+                 alpha = d = 0",
+            )
+        } else if !matches!(all[src].drive, Drive::Actuated(_))
+            || all[src].kind != JointKind::Revolute
+            || all[src].parent.is_some()
+        {
+            Some("it must name an actuated revolute joint at the base")
+        } else if !m.always_closes() {
+            Some("the loop does not close for every crank angle (|a_arm - a_crank| <= |offset|)")
+        } else {
+            None
+        };
+        if let Some(reason) = reason {
+            return Err(ModelError::BadCoupling {
+                joint: i,
+                source_joint: src,
+                reason,
+            });
+        }
     }
     Ok(())
 }

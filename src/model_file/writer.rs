@@ -21,7 +21,7 @@ pub fn to_toml(robot: &Robot) -> Option<String> {
     if robot
         .joints()
         .iter()
-        .any(|j| matches!(j.drive, Drive::Coupled(_)))
+        .any(|j| matches!(j.drive, Drive::Coupled(_) | Drive::Closure(_)))
     {
         return None;
     }

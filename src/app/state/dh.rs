@@ -73,6 +73,9 @@ impl DhField {
     /// Why this column cannot be edited for `joint`, or `None` if it can.
     pub fn not_editable(self, joint: &Joint) -> Option<&'static str> {
         let dh = matches!(joint.geometry, JointGeometry::Dh { .. });
+        if matches!(joint.drive, Drive::Closure(_)) {
+            return Some("this joint follows its closed chain's loop: its row is the mechanism's");
+        }
         match self {
             DhField::A | DhField::Alpha | DhField::D | DhField::Theta if !dh => {
                 Some("this joint is not described by a DH row (URDF origin)")

@@ -438,10 +438,17 @@ pub(super) fn reduced_robot(robot: &Robot, q: &[f64], ee: usize) -> Option<(Robo
         if i != ee {
             for &j in robot.chain_to(e.parent) {
                 held_joint[j] = true;
-                if let Drive::Coupled(terms) = &joints[j].drive {
-                    for &(src, _) in terms {
-                        held_joint[src] = true;
+                match &joints[j].drive {
+                    Drive::Coupled(terms) => {
+                        for &(src, _) in terms {
+                            held_joint[src] = true;
+                        }
                     }
+                    Drive::Closure(c) => {
+                        held_joint[c.mechanism.crank] = true;
+                        held_joint[c.mechanism.arm] = true;
+                    }
+                    _ => {}
                 }
             }
         }
@@ -468,7 +475,7 @@ pub(super) fn held_robot(robot: &Robot, q: &[f64], held: &[bool]) -> Option<(Rob
     };
     let mut free = Vec::new();
     let mut out = Vec::with_capacity(joints.len());
-    for j in joints {
+    for (ji, j) in joints.iter().enumerate() {
         let mut nj = j.clone();
         match &j.drive {
             Drive::Actuated(k) if held[*k] => hold(&mut nj, q[*k]),
@@ -490,6 +497,17 @@ pub(super) fn held_robot(robot: &Robot, q: &[f64], held: &[bool]) -> Option<(Rob
                 } else {
                     nj.drive = Drive::Coupled(live);
                     nj.offset += constant;
+                }
+            }
+            Drive::Closure(c) => {
+                let held_src = [c.mechanism.crank, c.mechanism.arm]
+                    .map(|s| dof_of(s).is_some_and(|k| held[k]));
+                if held_src.iter().any(|&h| h) {
+                    // A loop read from a held and a free joint has no closed form here.
+                    if !held_src.iter().all(|&h| h) {
+                        return None;
+                    }
+                    hold(&mut nj, robot.joint_variable(ji, q));
                 }
             }
             Drive::None => {}
