@@ -21,6 +21,10 @@
 //! components in that order. Every leaf link (a link that is no joint's parent) gets an
 //! end-effector named after the link, with an identity tool.
 
+mod write;
+
+pub use write::{UrdfExportError, to_urdf};
+
 use crate::kinematics::pose::{Pose, rot_x, rot_y, rot_z};
 use crate::kinematics::{Drive, EndEffector, Joint, JointGeometry, JointKind, ModelError, Robot};
 use nalgebra::{Unit, Vector3};

@@ -950,3 +950,103 @@ fn the_figure_command_lists_and_refuses() {
     bad(&armlab(&["figure", "2.31"]), "--out");
     bad(&armlab(&["figure"]), "--list");
 }
+
+/// `armlab export`: a URDF Puma written and read back gets its DH table derived from the axes
+/// in `info` (no NaN anywhere) and its closed form in `ik` (8 solutions); a model URDF cannot
+/// hold is refused with one line and writes nothing.
+#[test]
+fn export_urdf_and_use_it() {
+    let dir = std::env::temp_dir().join(format!("armlab-export-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let urdf = dir.join("puma.urdf");
+    let toml = dir.join("puma.toml");
+    let o = armlab(&[
+        "export",
+        "puma560",
+        "--urdf",
+        urdf.to_str().unwrap(),
+        "--toml",
+        toml.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("wrote"));
+    let o = armlab(&["info", urdf.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = String::from_utf8(o.stdout).unwrap();
+    assert!(!text.contains("NaN"), "{text}");
+    assert!(
+        text.contains("DH table derived from the joint axes"),
+        "{text}"
+    );
+    assert!(
+        text.contains("inverse kinematics: closed form (anthropomorphic arm with spherical wrist"),
+        "{text}"
+    );
+    let pose = puma_pose_arg("0.3,0.5,-1.2,0.4,0.8,-0.6");
+    let v = json(&armlab(&[
+        "ik",
+        urdf.to_str().unwrap(),
+        "--pose",
+        &pose,
+        "--format",
+        "json",
+    ]));
+    assert_eq!(v[0]["solution_count"], 8, "{v}");
+    assert!(
+        v[0]["solver"].as_str().unwrap().starts_with("closed form"),
+        "{v}"
+    );
+    let o = armlab(&["info", toml.to_str().unwrap()]);
+    assert!(o.status.success());
+    let bad_path = dir.join("humanoid.urdf");
+    bad(
+        &armlab(&["export", "humanoid", "--urdf", bad_path.to_str().unwrap()]),
+        "URDF's <mimic> follows exactly one joint",
+    );
+    assert!(!bad_path.exists());
+    bad(&armlab(&["export", "puma560"]), "--urdf");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `armlab info` never prints NaN, for every built-in, every shipped model file, and every
+/// built-in written as URDF (whose DH table is derived or whose absence is explained).
+#[test]
+fn info_has_no_nan_for_any_shipped_model() {
+    let dir = std::env::temp_dir().join(format!("armlab-info-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let listed = json(&armlab(&["robots", "--format", "json"]));
+    let mut models: Vec<String> = listed
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|m| m["name"].as_str().unwrap().to_string())
+        .collect();
+    for e in std::fs::read_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/assets/robots")).unwrap() {
+        models.push(e.unwrap().path().to_str().unwrap().to_string());
+    }
+    for name in models.clone() {
+        if !name.contains('/') {
+            let path = dir.join(format!("{name}.urdf"));
+            let o = armlab(&["export", &name, "--urdf", path.to_str().unwrap()]);
+            if o.status.success() {
+                models.push(path.to_str().unwrap().to_string());
+            }
+        }
+    }
+    assert!(models.len() > 40, "{}", models.len());
+    for m in &models {
+        let o = armlab(&["info", m]);
+        let text = String::from_utf8_lossy(&o.stdout);
+        assert!(
+            o.status.success(),
+            "{m}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        let words = text.split(|c: char| !c.is_ascii_alphanumeric());
+        assert!(
+            !words.map(str::to_lowercase).any(|w| w == "nan"),
+            "{m}:\n{text}"
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

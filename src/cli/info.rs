@@ -2,10 +2,11 @@
 
 use super::fk::{fmt_vec, write_pose};
 use super::{CliError, Format, JointInput, joint_vectors};
+use crate::kinematics::dh_derive::derive_dh;
 use crate::kinematics::ik::ClosedForm;
 use crate::kinematics::models::{BUILT_INS, DEFAULT_MODEL};
 use crate::kinematics::pose::pose_to_rows;
-use crate::kinematics::{EulerKind, JointGeometry, JointKind, Robot};
+use crate::kinematics::{Convention, EulerKind, JointGeometry, JointKind, Robot};
 use serde_json::json;
 use std::io::Write;
 
@@ -152,62 +153,134 @@ pub(super) fn run(
     Ok(())
 }
 
+/// The joint table: DH rows as given, or, for a chain given by URDF origins and axes, the
+/// origins and the DH table derived from the axes (or why there is none); never NaN.
 fn write_table(robot: &Robot, out: &mut dyn Write) -> std::io::Result<()> {
+    let dh = robot
+        .joints()
+        .iter()
+        .all(|j| matches!(j.geometry, JointGeometry::Dh { .. }));
+    if dh {
+        return write_dh_rows(robot, out);
+    }
+    writeln!(
+        out,
+        "{:<3} {:<14} {:<9} {:<28} {:<28} {:<22} {:<22} drive",
+        "#", "name", "type", "origin xyz [m]", "origin rpy [deg]", "axis", "limits"
+    )?;
+    for (i, j) in robot.joints().iter().enumerate() {
+        let (xyz, rpy, axis) = match &j.geometry {
+            JointGeometry::Origin {
+                parent_from_joint,
+                axis,
+            } => {
+                let (r, p, y) = parent_from_joint.rotation.euler_angles();
+                (
+                    fmt_vec(parent_from_joint.translation.vector.as_slice()),
+                    fmt_deg(&[r, p, y]),
+                    fmt_vec(axis.as_slice()),
+                )
+            }
+            JointGeometry::Dh { row, convention } => (
+                format!("DH ({}) a {:.4} d {:.4}", convention.as_str(), row.a, row.d),
+                fmt_deg(&[row.alpha, row.theta]),
+                "z".into(),
+            ),
+        };
+        writeln!(
+            out,
+            "{:<3} {:<14} {:<9} {xyz:<28} {rpy:<28} {axis:<22} {:<22} {}",
+            i + 1,
+            j.name,
+            j.kind.as_str(),
+            limits_text(j),
+            drive_text(robot, j)
+        )?;
+    }
+    writeln!(out)?;
+    match derive_dh(robot, 0, Convention::Standard).map(|d| (d.robot(&robot.name), d)) {
+        Ok((Ok(table), d)) => {
+            writeln!(
+                out,
+                "DH table derived from the joint axes (standard convention, forward kinematics \
+                 equal to the chain's; theta of a revolute joint and d of a prismatic one are \
+                 q plus the offset):"
+            )?;
+            write_dh_rows(&table, out)?;
+            writeln!(out, "base (world from frame 0) =")?;
+            write_pose(out, &d.world_from_base)?;
+            writeln!(out, "tool (frame {} to the tool) =", d.joints.len())?;
+            write_pose(out, &d.flange_from_tool)?;
+        }
+        Ok((Err(e), _)) => writeln!(out, "DH table: none ({e})")?,
+        Err(e) => writeln!(out, "DH table: {e}")?,
+    }
+    Ok(())
+}
+
+/// Angles in degrees, as `fmt_vec` writes numbers.
+fn fmt_deg(v: &[f64]) -> String {
+    fmt_vec(&v.iter().map(|a| a.to_degrees()).collect::<Vec<_>>())
+}
+
+/// A joint's limits in words.
+fn limits_text(j: &crate::kinematics::Joint) -> String {
+    match j.kind {
+        _ if j.limits.iter().all(|v| v.is_infinite()) && j.kind != JointKind::Fixed => {
+            "none".into()
+        }
+        JointKind::Revolute => format!(
+            "[{:.1}, {:.1}] deg",
+            j.limits[0].to_degrees(),
+            j.limits[1].to_degrees()
+        ),
+        JointKind::Prismatic => format!("[{:.3}, {:.3}] m", j.limits[0], j.limits[1]),
+        JointKind::Fixed => "-".into(),
+    }
+}
+
+/// What drives a joint, in words.
+fn drive_text(robot: &Robot, j: &crate::kinematics::Joint) -> String {
+    match &j.drive {
+        crate::kinematics::Drive::Actuated(k) => format!("q{}", k + 1),
+        crate::kinematics::Drive::Coupled(t) => t
+            .iter()
+            .map(|(s, c)| format!("{c:+} * {}", robot.joints()[*s].name))
+            .collect::<Vec<_>>()
+            .join(" "),
+        crate::kinematics::Drive::Closure(c) => format!(
+            "closure of {} and {}",
+            robot.joints()[c.mechanism.crank].name,
+            robot.joints()[c.mechanism.arm].name
+        ),
+        crate::kinematics::Drive::None => "fixed".into(),
+    }
+}
+
+/// The DH rows of a robot all of whose joints are DH rows.
+fn write_dh_rows(robot: &Robot, out: &mut dyn Write) -> std::io::Result<()> {
     writeln!(
         out,
         "{:<3} {:<8} {:<9} {:>9} {:>10} {:>9} {:>10} {:>9}  {:<22} drive",
         "#", "name", "type", "a [m]", "alpha[deg]", "d [m]", "theta[deg]", "offset", "limits"
     )?;
     for (i, j) in robot.joints().iter().enumerate() {
-        let (a, al, d, th, conv) = match &j.geometry {
-            JointGeometry::Dh { row, convention } => (
-                row.a,
-                row.alpha.to_degrees(),
-                row.d,
-                row.theta.to_degrees(),
-                convention.as_str(),
-            ),
-            JointGeometry::Origin { .. } => (f64::NAN, f64::NAN, f64::NAN, f64::NAN, "urdf"),
+        let JointGeometry::Dh { row, .. } = &j.geometry else {
+            continue;
         };
-        let lim = match j.kind {
-            _ if j.limits.iter().all(|v| v.is_infinite()) && j.kind != JointKind::Fixed => {
-                "none".into()
-            }
-            JointKind::Revolute => format!(
-                "[{:.1}, {:.1}] deg",
-                j.limits[0].to_degrees(),
-                j.limits[1].to_degrees()
-            ),
-            JointKind::Prismatic => format!("[{:.3}, {:.3}] m", j.limits[0], j.limits[1]),
-            JointKind::Fixed => "-".into(),
-        };
-        let drive = match &j.drive {
-            crate::kinematics::Drive::Actuated(k) => format!("q{}", k + 1),
-            crate::kinematics::Drive::Coupled(t) => t
-                .iter()
-                .map(|(s, c)| format!("{c:+} * {}", robot.joints()[*s].name))
-                .collect::<Vec<_>>()
-                .join(" "),
-            crate::kinematics::Drive::Closure(c) => format!(
-                "closure of {} and {}",
-                robot.joints()[c.mechanism.crank].name,
-                robot.joints()[c.mechanism.arm].name
-            ),
-            crate::kinematics::Drive::None => "fixed".into(),
-        };
-        let _ = conv;
         writeln!(
             out,
-            "{:<3} {:<8} {:<9} {:>9.4} {:>10.1} {:>9.4} {:>10.1} {:>9.4}  {:<22} {drive}",
+            "{:<3} {:<8} {:<9} {:>9.4} {:>10.1} {:>9.4} {:>10.1} {:>9.4}  {:<22} {}",
             i + 1,
             j.name,
             j.kind.as_str(),
-            a,
-            al,
-            d,
-            th,
+            row.a,
+            row.alpha.to_degrees(),
+            row.d,
+            row.theta.to_degrees(),
             j.offset,
-            lim
+            limits_text(j),
+            drive_text(robot, j)
         )?;
     }
     Ok(())

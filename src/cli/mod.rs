@@ -2,6 +2,7 @@
 //! parses and reports errors; everything here returns typed errors.
 
 mod calibrate;
+mod export;
 mod figures;
 mod fk;
 mod ik;
@@ -132,6 +133,9 @@ pub enum Command {
     /// Kinematic calibration (Sect. 2.11): estimate the DH parameters from measured poses (or a
     /// simulated robot), with what can and cannot be identified.
     Calibrate(Box<calibrate::CalibrateArgs>),
+    /// Write a model as URDF (same forward kinematics, limits, simple visuals) or as a TOML
+    /// model file.
+    Export(export::ExportArgs),
 }
 
 /// Everything a subcommand can report (all are bad input: the binary exits with code 2).
@@ -200,6 +204,9 @@ pub enum CliError {
     /// Writing a PNG failed.
     #[error(transparent)]
     Headless(#[from] crate::headless::HeadlessError),
+    /// A model the asked format cannot hold, or a file that cannot be written.
+    #[error("{0}")]
+    Export(String),
     /// Writing the output failed.
     #[error("cannot write output: {0}")]
     Output(#[from] std::io::Error),
@@ -230,6 +237,7 @@ pub fn run(cli: Cli, out: &mut dyn std::io::Write) -> Result<(), CliError> {
         Some(Command::Calibrate(args)) => calibrate::run(&args, out),
         Some(Command::Reach(args)) => reach::run(&args, out),
         Some(Command::SelfMotion(args)) => self_motion::run(&args, out),
+        Some(Command::Export(args)) => export::run(&args, out),
     }
 }
 

@@ -7,6 +7,7 @@
 pub mod closure;
 pub mod construction;
 pub mod dh;
+pub mod dh_derive;
 pub mod error;
 pub mod fk;
 mod frame;

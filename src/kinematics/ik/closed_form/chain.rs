@@ -175,9 +175,24 @@ fn check_serial(robot: &Robot) -> Result<(), NoClosedForm> {
     Ok(())
 }
 
-/// [`normalize`], saying why a robot has no normal form.
+/// [`normalize`], saying why a robot has no normal form. A chain given by URDF origins and axes
+/// or with `pre` transforms is first turned into the DH table derived from its axes
+/// ([`crate::kinematics::dh_derive`]), whose joint values are the same q.
 pub(super) fn normalize_checked(robot: &Robot) -> Result<Chain, NoClosedForm> {
     let joints = robot.joints();
+    let not_plain_dh = joints
+        .iter()
+        .any(|j| !matches!(j.geometry, JointGeometry::Dh { .. }) || j.pre != Pose::identity());
+    let one_variable_each = joints
+        .iter()
+        .all(|j| matches!(j.drive, Drive::Actuated(_) | Drive::None));
+    if not_plain_dh && one_variable_each {
+        let no = |e: String| NoClosedForm::NoDhTable(e);
+        let derived = crate::kinematics::dh_derive::derive_dh(robot, 0, Convention::Standard)
+            .map_err(|e| no(e.to_string()))?;
+        let dh = derived.robot(&robot.name).map_err(|e| no(e.to_string()))?;
+        return normalize_checked(&dh);
+    }
     check_serial(robot)?;
     let (conv, table) = robot.dh_table().ok_or(NoClosedForm::NotSerialDh(
         "its DH rows mix the standard and modified conventions",

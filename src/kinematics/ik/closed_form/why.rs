@@ -23,6 +23,10 @@ pub enum NoClosedForm {
          one variable per joint"
     )]
     Coupled(String),
+    /// The chain is given by origins and axes (a URDF) and no DH table could be derived from
+    /// them (a tree, for instance), and why.
+    #[error("{0}")]
+    NoDhTable(String),
     /// The number of joint variables has no family.
     #[error("{count} joints: {why}")]
     JointCount {
