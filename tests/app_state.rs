@@ -562,3 +562,40 @@ fn ghosts_are_coloured_by_the_workspace_posture_classes() {
     assert_eq!(classes.len(), 2);
     assert!(classes.iter().all(Option::is_some) && classes[0] != classes[1]);
 }
+
+/// "Save": the edited DH table written as URDF and as TOML loads back with the same forward
+/// kinematics; a URDF robot loaded in the app has its closed form (from the derived DH table)
+/// and refuses to be saved as TOML in words, keeping its state.
+#[test]
+fn save_as_urdf_or_toml_and_load_back() {
+    let dir = std::env::temp_dir().join(format!("armlab-app-save-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut s = state("puma560");
+    s.edit_dh(1, DhField::A, "450").expect("a2 = 450 mm");
+    let q = vec![0.3, -0.4, 0.5, 0.2, 0.7, -0.1];
+    for (k, v) in q.iter().enumerate() {
+        s.set_joint(k, *v).unwrap();
+    }
+    let want = s.robot().fk(&q).unwrap();
+    let urdf = dir.join("edited.urdf");
+    let toml = dir.join("edited.toml");
+    let msg = s.save_model(urdf.to_str().unwrap()).unwrap();
+    assert!(msg.contains("saved"), "{msg}");
+    s.save_model(toml.to_str().unwrap()).unwrap();
+    for path in [&urdf, &toml] {
+        let back = AppState::from_spec(path.to_str().unwrap()).unwrap();
+        let got = back.robot().fk(&q).unwrap();
+        assert!((got.translation.vector - want.translation.vector).norm() < 1e-12);
+        assert!((got.rotation.matrix() - want.rotation.matrix()).amax() < 1e-12);
+    }
+    let mut u = AppState::from_spec(urdf.to_str().unwrap()).unwrap();
+    assert!(armlab::kinematics::ik::ClosedForm::detect(u.robot()).is_ok());
+    let before = u.q().to_vec();
+    let err = u
+        .save_model(dir.join("x.toml").to_str().unwrap())
+        .unwrap_err();
+    assert!(err.contains("save this model as .urdf"), "{err}");
+    assert_eq!(u.q(), before.as_slice());
+    assert!(u.save_model("  ").is_err());
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -34,10 +34,106 @@ pub fn left(app: &mut AppUi, ui: &mut egui::Ui) {
             }
         });
         ui.separator();
-        egui::CollapsingHeader::new("DH table (editable)")
-            .default_open(!app.projector)
-            .show(ui, |ui| dh_table(&mut app.state, ui));
+        let plain_dh = app
+            .state
+            .robot()
+            .joints()
+            .iter()
+            .all(|j| matches!(j.geometry, crate::kinematics::JointGeometry::Dh { .. }));
+        if plain_dh {
+            egui::CollapsingHeader::new("DH table (editable)")
+                .default_open(!app.projector)
+                .show(ui, |ui| dh_table(&mut app.state, ui));
+        } else {
+            egui::CollapsingHeader::new("DH table (derived from the URDF's axes)")
+                .default_open(!app.projector)
+                .show(ui, |ui| derived_dh_table(app.state.robot(), ui));
+        }
+        save_row(app, ui);
     });
+}
+
+/// "Save as": the current robot (with its edited DH table) as URDF or as a TOML model file.
+fn save_row(app: &mut AppUi, ui: &mut egui::Ui) {
+    ui.horizontal(|ui| {
+        ui.add(
+            egui::TextEdit::singleline(&mut app.save_path)
+                .hint_text("save as robot.urdf or robot.toml")
+                .desired_width(ui.available_width() - 60.0),
+        );
+        if ui
+            .button("Save")
+            .on_hover_text(
+                "Write the model as URDF (a name ending in .urdf) or as a TOML model file; the \
+                 edited DH table is what is written",
+            )
+            .clicked()
+        {
+            let path = app.save_path.clone();
+            match app.state.save_model(&path) {
+                Ok(m) => app.state.push_message(Level::Info, m),
+                Err(e) => app.state.push_message(Level::Error, e),
+            }
+        }
+    });
+}
+
+/// The DH table derived from a URDF chain's joint axes (read-only; millimetres and the angle
+/// unit), its base and tool, or why there is none.
+fn derived_dh_table(robot: &crate::kinematics::Robot, ui: &mut egui::Ui) {
+    use crate::kinematics::Convention;
+    use crate::kinematics::dh_derive::derive_dh;
+    let d = match derive_dh(robot, 0, Convention::Standard) {
+        Ok(d) => d,
+        Err(e) => {
+            ui.label(RichText::new(format!("{e}.")).small());
+            return;
+        }
+    };
+    egui::Grid::new("derived_dh")
+        .striped(true)
+        .spacing([8.0, 2.0])
+        .show(ui, |ui| {
+            for h in ["", "a [mm]", "alpha [°]", "d [mm]", "theta [°]", "offset"] {
+                ui.label(RichText::new(h).small());
+            }
+            ui.end_row();
+            for j in &d.joints {
+                ui.label(j.name.clone().unwrap_or_default());
+                ui.label(format!("{:.1}", 1e3 * j.row.a));
+                ui.label(format!("{:.1}", j.row.alpha.to_degrees()));
+                ui.label(format!("{:.1}", 1e3 * j.row.d));
+                ui.label(format!("{:.1}", j.row.theta.to_degrees()));
+                ui.label(match j.kind {
+                    crate::kinematics::JointKind::Prismatic => {
+                        format!("{:.1} mm", 1e3 * j.offset)
+                    }
+                    _ => format!("{:.1}°", j.offset.to_degrees()),
+                });
+                ui.end_row();
+            }
+        });
+    let t = d.world_from_base.translation.vector;
+    let tool = d.flange_from_tool.translation.vector;
+    ui.label(
+        RichText::new(format!(
+            "Standard convention, forward kinematics equal to the URDF's; theta (revolute) or d \
+             (prismatic) is q plus the offset. Base origin ({:.1}, {:.1}, {:.1}) mm, tool ({:.1}, \
+             {:.1}, {:.1}) mm from frame {} ({}).",
+            1e3 * t.x,
+            1e3 * t.y,
+            1e3 * t.z,
+            1e3 * tool.x,
+            1e3 * tool.y,
+            1e3 * tool.z,
+            d.joints.len(),
+            match crate::kinematics::ik::ClosedForm::detect(robot) {
+                Ok(cf) => format!("closed form: {}", cf.name()),
+                Err(_) => "no closed form".into(),
+            }
+        ))
+        .small(),
+    );
 }
 
 fn dh_table(state: &mut AppState, ui: &mut egui::Ui) {

@@ -270,6 +270,27 @@ impl AppState {
             .or_else(|| self.last_message().cloned())
     }
 
+    /// Writes the current robot, with its edited DH table, to `path`: URDF when the name ends
+    /// in `.urdf`, else a TOML model file. The message says what was written, or why not; the
+    /// robot is left as it is either way.
+    pub fn save_model(&mut self, path: &str) -> Result<String, String> {
+        let path = path.trim();
+        if path.is_empty() {
+            return Err("type a file name ending in .urdf or .toml".into());
+        }
+        let text = if path.to_ascii_lowercase().ends_with(".urdf") {
+            crate::urdf::to_urdf(&self.robot).map_err(|e| e.to_string())?
+        } else {
+            crate::model_file::to_toml(&self.robot).ok_or_else(|| {
+                "a TOML model file holds one serial DH table with one variable per joint; save \
+                 this model as .urdf"
+                    .to_string()
+            })?
+        };
+        std::fs::write(path, text).map_err(|e| format!("cannot write {path}: {e}"))?;
+        Ok(format!("saved {path}"))
+    }
+
     /// Adds a status message (an identical newest message is not repeated).
     pub fn push_message(&mut self, level: Level, text: impl Into<String>) {
         let m = StatusMessage {

@@ -37,6 +37,8 @@ pub struct AppUi {
     pub ee: usize,
     /// Model path typed in the left panel.
     pub load_path: String,
+    /// File name typed in the left panel's "Save" row (.urdf or .toml).
+    pub save_path: String,
     /// Viewport size in pixels, from the last layout (the 3D render uses it).
     pub viewport_px: [u32; 2],
     /// Where the viewport was laid out last (points, window coordinates).
@@ -76,6 +78,7 @@ impl AppUi {
             tab: Tab::View3d,
             ee: 0,
             load_path: String::new(),
+            save_path: String::new(),
             viewport_px: [800, 600],
             viewport_rect: egui::Rect::NOTHING,
             gizmo: super::gizmo::Gizmo::default(),

@@ -199,17 +199,21 @@ fn next_frame(prev: &Frame, next: &Axis, tol: f64) -> Frame {
     }
 }
 
-/// The standard DH rows between consecutive frames, with each joint's kind, name and limits.
+/// The standard DH rows between consecutive frames, with each joint's kind, name and limits;
+/// rounding residues (below 1e-14 of the arm's size, or 1e-14 rad) are written as zero.
 fn rows_between(robot: &Robot, chain: &[usize], frames: &[Frame]) -> Vec<DhJoint> {
+    let scale = robot.characteristic_length();
+    let length = |v: f64| if v.abs() <= 1e-14 * scale { 0.0 } else { v };
+    let angle = |v: f64| if v.abs() <= 1e-14 { 0.0 } else { v };
     chain
         .iter()
         .enumerate()
         .map(|(i, &j)| {
             let (f0, f1) = (frames[i], frames[i + 1]);
             let delta = f1.o - f0.o;
-            let (d, a) = (delta.dot(&f0.z), delta.dot(&f1.x));
-            let theta = signed(&f0.x, &f1.x, &f0.z);
-            let alpha = signed(&f0.z, &f1.z, &f1.x);
+            let (d, a) = (length(delta.dot(&f0.z)), length(delta.dot(&f1.x)));
+            let theta = angle(signed(&f0.x, &f1.x, &f0.z));
+            let alpha = angle(signed(&f0.z, &f1.z, &f1.x));
             let joint = &robot.joints()[j];
             let (row, offset) = match joint.kind {
                 // (2.52): theta is the variable of a revolute joint, d of a prismatic one.
