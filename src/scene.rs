@@ -5,8 +5,10 @@
 //! triads with labels, the ground grid and the end-effector.
 
 use crate::kinematics::pose::{Pose, rot_x, trans_x};
+use crate::kinematics::visual::{TriMesh, VisualGeometry};
 use crate::kinematics::{Convention, JointGeometry, JointKind, KinematicsError, Robot};
 use nalgebra::{Matrix4, Point3, Rotation3, Unit, Vector3};
+use std::sync::Arc;
 
 /// RGBA colour, each channel in [0, 1] (linear).
 pub type Rgba = [f32; 4];
@@ -73,11 +75,24 @@ pub struct Label {
     pub movable: bool,
 }
 
+/// A triangle mesh placed in the world (a URDF link's mesh file), drawn lit like the shapes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CustomMesh {
+    /// The mesh (its frame's coordinates, m); instances of one mesh share its GPU copy.
+    pub mesh: Arc<TriMesh>,
+    /// `world_from_mesh`, column-major.
+    pub world_from_mesh: [[f32; 4]; 4],
+    /// Colour; alpha < 1 is drawn translucent after the opaque meshes.
+    pub color: Rgba,
+}
+
 /// Everything to draw in one view.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Scene {
     /// Lit meshes.
     pub meshes: Vec<MeshInstance>,
+    /// Lit triangle meshes of their own (URDF mesh files).
+    pub custom_meshes: Vec<CustomMesh>,
     /// Thick lines (unlit).
     pub lines: Vec<Line>,
     /// Dots (unlit).
@@ -90,6 +105,7 @@ impl Scene {
     /// Appends another scene.
     pub fn extend(&mut self, other: Scene) {
         self.meshes.extend(other.meshes);
+        self.custom_meshes.extend(other.custom_meshes);
         self.lines.extend(other.lines);
         self.dots.extend(other.dots);
         self.labels.extend(other.labels);
@@ -103,6 +119,13 @@ impl Scene {
                 m.world_from_unit[3][0],
                 m.world_from_unit[3][1],
                 m.world_from_unit[3][2],
+            )
+        }));
+        pts.extend(self.custom_meshes.iter().map(|m| {
+            Point3::new(
+                m.world_from_mesh[3][0],
+                m.world_from_mesh[3][1],
+                m.world_from_mesh[3][2],
             )
         }));
         pts.extend(
@@ -265,18 +288,25 @@ pub fn arm_scene(robot: &Robot, q: &[f64], style: &ArmStyle) -> Result<Scene, Ki
                 });
             }
         };
+    // The links' own visuals (a URDF's), where it has them.
+    let drawn = add_visuals(&mut s, robot, &frames, style);
     // Base pedestal.
     let base_o = robot.base.translation.vector;
     let base_z = robot.base.rotation * Vector3::z();
-    cylinder(
-        &mut s,
-        &(base_o - base_z * r_link * 2.0),
-        &base_o,
-        r_link * 3.5,
-        style.tool,
-        Shape::Cylinder,
-    );
+    if !drawn[0] {
+        cylinder(
+            &mut s,
+            &(base_o - base_z * r_link * 2.0),
+            &base_o,
+            r_link * 3.5,
+            style.tool,
+            Shape::Cylinder,
+        );
+    }
     for (j, joint) in robot.joints().iter().enumerate() {
+        if drawn[j + 1] {
+            continue;
+        }
         let parent_o = joint
             .parent
             .map_or(base_o, |p| frames[p].translation.vector);
@@ -405,6 +435,44 @@ pub fn arm_scene(robot: &Robot, q: &[f64], style: &ArmStyle) -> Result<Scene, Ki
         s.lines.extend(ground_grid(scale as f32));
     }
     Ok(s)
+}
+
+/// Adds the robot's visuals at the frames of their links (faded like the rest of the arm);
+/// returns, for the base (index 0) and each joint's child link (j + 1), whether it has any, so
+/// that the generic link and body are left out there.
+fn add_visuals(s: &mut Scene, robot: &Robot, frames: &[Pose], style: &ArmStyle) -> Vec<bool> {
+    let mut drawn = vec![false; robot.joints().len() + 1];
+    for v in &robot.visuals {
+        let frame = v.joint.map_or(robot.base, |j| frames[j]) * v.origin;
+        let c = v.color.unwrap_or(style.link);
+        let color = [c[0], c[1], c[2], c[3] * style.alpha];
+        let m = frame.to_homogeneous();
+        let unit = |scale: Vector3<f64>| col_major(&(m * Matrix4::new_nonuniform_scaling(&scale)));
+        match &v.geometry {
+            VisualGeometry::Box(size) => s.meshes.push(MeshInstance {
+                shape: Shape::Cube,
+                world_from_unit: unit(Vector3::from(*size)),
+                color,
+            }),
+            VisualGeometry::Cylinder { radius, length } => s.meshes.push(MeshInstance {
+                shape: Shape::Cylinder,
+                world_from_unit: unit(Vector3::new(*radius, *radius, *length)),
+                color,
+            }),
+            VisualGeometry::Sphere(r) => s.meshes.push(MeshInstance {
+                shape: Shape::Sphere,
+                world_from_unit: unit(Vector3::new(*r, *r, *r)),
+                color,
+            }),
+            VisualGeometry::Mesh(mesh) => s.custom_meshes.push(CustomMesh {
+                mesh: mesh.clone(),
+                world_from_mesh: col_major(&m),
+                color,
+            }),
+        }
+        drawn[v.joint.map_or(0, |j| j + 1)] = true;
+    }
+    drawn
 }
 
 /// Grid lines in the plane z = 0 around the origin, spaced 0.1 m (or 0.5 m for big robots).

@@ -21,8 +21,10 @@
 //! components in that order. Every leaf link (a link that is no joint's parent) gets an
 //! end-effector named after the link, with an identity tool.
 
+mod visuals;
 mod write;
 
+pub use visuals::{MAX_TRIANGLES, set_package_paths};
 pub use write::{UrdfExportError, to_urdf};
 
 use crate::kinematics::pose::{Pose, rot_x, rot_y, rot_z};
@@ -297,8 +299,12 @@ pub fn parse_urdf(text: &str, path: &Path) -> Result<Robot, UrdfError> {
         urdf.name.clone()
     };
     let count = joints.len();
-    let robot = Robot::new(name, Pose::identity(), joints, ees)
+    let mut robot = Robot::new(name, Pose::identity(), joints, ees)
         .map_err(|source| UrdfError::Model { path: p(), source })?;
+    let (visuals, warnings) =
+        visuals::read(&urdf, path, |link| child_of.get(link).map(|&s| new_id[s]));
+    robot.visuals = visuals;
+    robot.load_warnings = warnings;
     let description = format!(
         "Read from the URDF file {}: {count} joints, {} degrees of freedom; joint frames are the \
          URDF child-link frames.",

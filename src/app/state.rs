@@ -115,6 +115,9 @@ impl AppState {
             robot,
         };
         me.install_q();
+        for w in me.robot.load_warnings.clone() {
+            me.push_message(Level::Warning, w);
+        }
         me
     }
 
@@ -145,6 +148,9 @@ impl AppState {
                 self.install_q();
                 let msg = format!("loaded {} ({} DOF)", self.robot.name, self.robot.dof());
                 self.push_message(Level::Info, msg);
+                for w in self.robot.load_warnings.clone() {
+                    self.push_message(Level::Warning, w);
+                }
                 Ok(())
             }
             Err(source) => {

@@ -192,7 +192,7 @@ fn data(
 
 /// `armlab calibrate`.
 pub(super) fn run(args: &CalibrateArgs, out: &mut dyn Write) -> Result<(), CliError> {
-    let robot = crate::model_file::load_model(&args.model)?;
+    let robot = super::load_model(&args.model)?;
     let mut model = ParameterModel::new(&robot).map_err(calibration_error)?;
     if args.with_base {
         model = model.with_base();

@@ -26,7 +26,7 @@ pub(super) fn run(args: &ExportArgs, out: &mut dyn Write) -> Result<(), CliError
             "say what to write: --urdf OUT.urdf and/or --toml OUT.toml",
         ));
     }
-    let robot = crate::model_file::load_model(&args.model)?;
+    let robot = super::load_model(&args.model)?;
     // Every text first, so that a model one format cannot say writes nothing.
     let urdf = match &args.urdf {
         Some(path) => Some((

@@ -135,7 +135,7 @@ pub(crate) fn framing_camera(
 
 /// Runs `render`.
 pub(super) fn render(args: &RenderArgs, out: &mut dyn std::io::Write) -> Result<(), CliError> {
-    let robot = crate::model_file::load_model(&args.model)?;
+    let robot = super::load_model(&args.model)?;
     let fallback = if robot.config("ready").is_some() {
         "ready"
     } else {
@@ -261,7 +261,7 @@ pub(super) fn workspace(
     out: &mut dyn std::io::Write,
 ) -> Result<(), CliError> {
     use crate::figure::workspace::{ColorBy, WsFigureOptions, WsView, workspace_figure};
-    let robot = crate::model_file::load_model(&args.model)?;
+    let robot = super::load_model(&args.model)?;
     if args.samples == 0 || args.samples > 100_000_000 {
         return Err(CliError::Usage("--samples must be between 1 and 100000000"));
     }

@@ -15,7 +15,7 @@ pub(super) fn run(
     format: Format,
     out: &mut dyn Write,
 ) -> Result<(), CliError> {
-    let robot = crate::model_file::load_model(model)?;
+    let robot = super::load_model(model)?;
     let rows = joint_vectors(&robot, model, joints, None)?;
     let mut results = Vec::with_capacity(rows.len());
     for q in &rows {

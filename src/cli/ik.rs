@@ -273,7 +273,7 @@ fn solver_setup(args: &IkArgs) -> Result<(SolverChoice, NumericalOptions), CliEr
 }
 
 pub(super) fn run(args: &IkArgs, out: &mut dyn Write) -> Result<(), CliError> {
-    let robot = crate::model_file::load_model(&args.model)?;
+    let robot = super::load_model(&args.model)?;
     let targets = targets(args)?;
     let ee = end_effector(&robot, args.ee.as_deref())?;
     let seed = match &args.seed_q {

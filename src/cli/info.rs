@@ -54,7 +54,7 @@ pub(super) fn run(
     out: &mut dyn Write,
 ) -> Result<(), CliError> {
     let spec = model.unwrap_or(DEFAULT_MODEL);
-    let robot = crate::model_file::load_model(spec)?;
+    let robot = super::load_model(spec)?;
     let fallback = if robot.config("ready").is_some() {
         "ready"
     } else {

@@ -24,6 +24,10 @@ pub struct Cli {
     /// What to do; without one, the app on the default robot.
     #[command(subcommand)]
     pub command: Option<Command>,
+    /// Folders searched for a URDF's `package://` meshes (before ROS_PACKAGE_PATH); repeat the
+    /// flag for several.
+    #[arg(long = "package-path", global = true, value_name = "DIR")]
+    pub package_path: Vec<PathBuf>,
 }
 
 /// Output format of a subcommand.
@@ -212,8 +216,19 @@ pub enum CliError {
     Output(#[from] std::io::Error),
 }
 
+/// Loads a model for a command; what loading skipped (a mesh file that could not be read) is
+/// said on stderr as a warning, the command goes on.
+pub(crate) fn load_model(spec: &str) -> Result<Robot, CliError> {
+    let robot = crate::model_file::load_model(spec)?;
+    for w in &robot.load_warnings {
+        eprintln!("armlab: warning: {w}");
+    }
+    Ok(robot)
+}
+
 /// Runs the command line; output goes to `out`.
 pub fn run(cli: Cli, out: &mut dyn std::io::Write) -> Result<(), CliError> {
+    crate::urdf::set_package_paths(cli.package_path);
     match cli.command {
         None => view::run(&view::ViewArgs::default(), out),
         Some(Command::View(args)) => view::run(&args, out),

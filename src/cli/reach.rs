@@ -23,7 +23,7 @@ pub struct ReachArgs {
 
 /// Runs `reach`.
 pub(super) fn run(args: &ReachArgs, out: &mut dyn std::io::Write) -> Result<(), CliError> {
-    let robot = crate::model_file::load_model(&args.model)?;
+    let robot = super::load_model(&args.model)?;
     let point = match args.point {
         super::figures::PointArg::WristCentre => TrackedPoint::WristCentre,
         super::figures::PointArg::Flange => TrackedPoint::Flange,

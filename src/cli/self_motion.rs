@@ -197,7 +197,7 @@ fn exact_shape(robot: &Robot) -> bool {
 
 /// Runs `self-motion`.
 pub(super) fn run(args: &SelfMotionArgs, out: &mut dyn std::io::Write) -> Result<(), CliError> {
-    let robot = crate::model_file::load_model(&args.model)?;
+    let robot = super::load_model(&args.model)?;
     let ee = super::ik::end_effector(&robot, args.ee.as_deref())?;
     if args.samples == 0 || args.samples > 1_000_000 {
         return Err(CliError::Usage("--samples must be between 1 and 1000000"));

@@ -200,11 +200,11 @@ fn next_frame(prev: &Frame, next: &Axis, tol: f64) -> Frame {
 }
 
 /// The standard DH rows between consecutive frames, with each joint's kind, name and limits;
-/// rounding residues (below 1e-14 of the arm's size, or 1e-14 rad) are written as zero.
+/// rounding residues (below 1e-12 of the arm's size, or 1e-12 rad) are written as zero.
 fn rows_between(robot: &Robot, chain: &[usize], frames: &[Frame]) -> Vec<DhJoint> {
     let scale = robot.characteristic_length();
-    let length = |v: f64| if v.abs() <= 1e-14 * scale { 0.0 } else { v };
-    let angle = |v: f64| if v.abs() <= 1e-14 { 0.0 } else { v };
+    let length = |v: f64| if v.abs() <= 1e-12 * scale { 0.0 } else { v };
+    let angle = |v: f64| if v.abs() <= 1e-12 { 0.0 } else { v };
     chain
         .iter()
         .enumerate()

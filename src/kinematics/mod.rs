@@ -19,6 +19,7 @@ pub mod pose;
 pub mod redundancy;
 pub mod robot;
 pub mod trig;
+pub mod visual;
 
 pub use dh::{Convention, DhRow};
 pub use error::{KinematicsError, ModelError};

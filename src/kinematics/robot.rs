@@ -262,6 +262,12 @@ pub struct Robot {
     end_effectors: Vec<EndEffector>,
     /// Named configurations; every one has `dof()` entries.
     pub configurations: Vec<NamedConfig>,
+    /// What the links look like (a URDF's `<visual>` elements); empty for a DH model, which is
+    /// drawn from its joints.
+    pub visuals: Vec<super::visual::Visual>,
+    /// What loading the model skipped, in words naming the file (a mesh that could not be read
+    /// and was replaced by the joint's body); empty when nothing was.
+    pub load_warnings: Vec<String>,
     pub(crate) lowered: Vec<Lowered>,
     /// `dof_joint[k]` = joint driven by `q[k]`.
     pub(crate) dof_joint: Vec<JointId>,
@@ -338,6 +344,8 @@ impl Robot {
                 name: "zero".into(),
                 q: vec![0.0; n],
             }],
+            visuals: Vec::new(),
+            load_warnings: Vec::new(),
             lowered,
             dof_joint,
             chains,

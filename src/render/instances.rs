@@ -20,6 +20,21 @@ pub(crate) struct MeshDraw {
     pub instances: Range<u32>,
 }
 
+/// One draw of a custom mesh's instances.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct CustomDraw {
+    /// The mesh's identity (its `Arc` address; the renderer's cache key).
+    pub key: usize,
+    /// Index in the scene's `custom_meshes` of one instance (to reach the mesh itself).
+    pub scene_index: usize,
+    /// Drawn blended, in the translucent pass.
+    pub translucent: bool,
+    /// The transform mirrors.
+    pub mirrored: bool,
+    /// Range in [`DrawLists::meshes`].
+    pub instances: Range<u32>,
+}
+
 /// A frame's instances in draw order; kept between frames to reuse the allocations.
 #[derive(Debug, Default)]
 pub(crate) struct DrawLists {
@@ -31,6 +46,9 @@ pub(crate) struct DrawLists {
     pub meshes: Vec<MeshInstanceGpu>,
     /// The draws over `meshes`, in order.
     pub mesh_draws: Vec<MeshDraw>,
+    /// The draws of custom meshes (their instances follow the shapes' in `meshes`), grouped by
+    /// pass, mesh and winding.
+    pub custom_draws: Vec<CustomDraw>,
     /// Opaque lines, then translucent ones.
     pub lines: Vec<LineGpu>,
     /// Number of opaque lines.
@@ -203,10 +221,62 @@ fn partition<T, G>(
 }
 
 impl DrawLists {
+    /// Appends the custom meshes' instances to `meshes` and fills `custom_draws`.
+    fn build_custom(&mut self, scene: &Scene) {
+        self.custom_draws.clear();
+        let mut order: Vec<(bool, usize, bool, usize)> = scene
+            .custom_meshes
+            .iter()
+            .enumerate()
+            .filter(|(_, m)| m.color[3].partial_cmp(&0.0) == Some(std::cmp::Ordering::Greater))
+            .map(|(i, m)| {
+                let unit = MeshInstance {
+                    shape: Shape::Cube,
+                    world_from_unit: m.world_from_mesh,
+                    color: m.color,
+                };
+                let mirrored = mesh_instance_gpu(&unit).1;
+                (
+                    m.color[3] < 1.0,
+                    std::sync::Arc::as_ptr(&m.mesh) as usize,
+                    mirrored,
+                    i,
+                )
+            })
+            .collect();
+        order.sort_unstable();
+        for (translucent, key, mirrored, i) in order {
+            let m = &scene.custom_meshes[i];
+            let (gpu, _) = mesh_instance_gpu(&MeshInstance {
+                shape: Shape::Cube,
+                world_from_unit: m.world_from_mesh,
+                color: m.color,
+            });
+            let at = self.meshes.len() as u32;
+            self.meshes.push(gpu);
+            match self.custom_draws.last_mut() {
+                Some(last)
+                    if (last.translucent, last.key, last.mirrored)
+                        == (translucent, key, mirrored) =>
+                {
+                    last.instances.end = at + 1
+                }
+                _ => self.custom_draws.push(CustomDraw {
+                    key,
+                    scene_index: i,
+                    translucent,
+                    mirrored,
+                    instances: at..at + 1,
+                }),
+            }
+        }
+    }
+
     /// Rebuilds every list for `scene` seen from `eye`. Items with alpha <= 0 (or a
     /// non-positive width or size) are left out.
     pub(crate) fn build(&mut self, scene: &Scene, eye: [f32; 3], proj: &Projection) {
         self.build_meshes(scene, eye, proj);
+        self.build_custom(scene);
         let line_alpha = |l: &Line| if l.width_px > 0.0 { l.color[3] } else { 0.0 };
         let dot_alpha = |d: &Dot| if d.size_px > 0.0 { d.color[3] } else { 0.0 };
         (self.lines_opaque, _) = partition(&mut self.lines, &scene.lines, line_alpha, line_gpu);

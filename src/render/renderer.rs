@@ -2,13 +2,16 @@
 
 use super::buffer::GrowBuffer;
 use super::geometry::{LOD_SEGMENTS, UnitMeshes};
-use super::gpu_types::FrameUniforms;
+use super::gpu_types::{FrameUniforms, MeshVertex};
 use super::instances::{DrawLists, Projection};
 use super::pipelines::Pipelines;
 use super::settings::frame_uniforms;
 use super::{Gpu, RenderError, RenderSettings, RenderTarget, SAMPLE_COUNTS, ViewUniforms};
+use crate::kinematics::visual::TriMesh;
 use crate::scene::Scene;
+use std::collections::HashMap;
 use std::ops::Range;
+use std::sync::Arc;
 use wgpu::util::DeviceExt;
 
 /// Draws scenes: lit instanced meshes, screen-space lines and round dots.
@@ -28,6 +31,56 @@ pub struct Renderer {
     line_instances: GrowBuffer,
     dot_instances: GrowBuffer,
     lists: DrawLists,
+    /// Custom meshes uploaded so far, by the address of their `Arc` (kept alive here, so the
+    /// address is not reused while cached); dropped once nothing else holds the mesh.
+    custom: HashMap<usize, CustomGpu>,
+}
+
+/// A custom mesh on the GPU: one vertex per triangle corner with the face normal (flat
+/// shading, as CAD meshes are meant to be seen).
+#[derive(Debug)]
+struct CustomGpu {
+    mesh: Arc<TriMesh>,
+    vertices: wgpu::Buffer,
+    count: u32,
+}
+
+impl CustomGpu {
+    fn new(device: &wgpu::Device, mesh: &Arc<TriMesh>) -> Self {
+        let p = &mesh.positions;
+        let mut verts = Vec::with_capacity(mesh.triangles.len() * 3);
+        for t in &mesh.triangles {
+            let [a, b, c] = t.map(|i| p[i as usize]);
+            let (u, v) = (
+                [b[0] - a[0], b[1] - a[1], b[2] - a[2]],
+                [c[0] - a[0], c[1] - a[1], c[2] - a[2]],
+            );
+            let n = [
+                u[1] * v[2] - u[2] * v[1],
+                u[2] * v[0] - u[0] * v[2],
+                u[0] * v[1] - u[1] * v[0],
+            ];
+            let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+            let normal = if len > 0.0 {
+                n.map(|x| x / len)
+            } else {
+                [0.0, 0.0, 1.0]
+            };
+            for position in [a, b, c] {
+                verts.push(MeshVertex { position, normal });
+            }
+        }
+        let vertices = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("armlab custom mesh"),
+            contents: bytemuck::cast_slice(&verts),
+            usage: wgpu::BufferUsages::VERTEX,
+        });
+        Self {
+            mesh: mesh.clone(),
+            vertices,
+            count: verts.len() as u32,
+        }
+    }
 }
 
 impl Renderer {
@@ -93,6 +146,7 @@ impl Renderer {
                 wgpu::BufferUsages::VERTEX,
             ),
             lists: DrawLists::default(),
+            custom: HashMap::new(),
         })
     }
 
@@ -166,6 +220,13 @@ impl Renderer {
             height_px: frame.viewport[1],
         };
         self.lists.build(scene, view.eye, &proj);
+        self.custom.retain(|_, g| Arc::strong_count(&g.mesh) > 1);
+        for d in &self.lists.custom_draws {
+            let mesh = &scene.custom_meshes[d.scene_index].mesh;
+            self.custom
+                .entry(d.key)
+                .or_insert_with(|| CustomGpu::new(&gpu.device, mesh));
+        }
         self.mesh_instances.write(gpu, &self.lists.meshes)?;
         self.line_instances.write(gpu, &self.lists.lines)?;
         self.dot_instances.write(gpu, &self.lists.dots)?;
@@ -215,6 +276,20 @@ impl Renderer {
                 0,
                 d.instances.clone(),
             );
+        }
+        for d in self
+            .lists
+            .custom_draws
+            .iter()
+            .filter(|d| d.translucent == translucent)
+        {
+            let Some(g) = self.custom.get(&d.key) else {
+                continue;
+            };
+            pass.set_pipeline(&self.pipelines.mesh[translucent as usize][d.mirrored as usize]);
+            pass.set_vertex_buffer(0, g.vertices.slice(..));
+            pass.set_vertex_buffer(1, instances.slice(..));
+            pass.draw(0..g.count, d.instances.clone());
         }
     }
 

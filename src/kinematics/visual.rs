@@ -1,0 +1,123 @@
+//! What a robot looks like, as data (no I/O, no graphics): the visual geometry of its links as a
+//! URDF's `<visual>` elements give it (boxes, cylinders, spheres, triangle meshes), each in the
+//! frame of the joint whose child link carries it. The renderer's scene draws them; without
+//! visuals the arm is drawn from its joints (a stick figure along the DH geometry).
+
+use super::{JointId, Pose};
+use std::sync::Arc;
+
+/// A triangle mesh in its own frame (m, the URDF's `scale` applied), f32 as mesh files store it.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct TriMesh {
+    /// Vertex positions (m).
+    pub positions: Vec<[f32; 3]>,
+    /// Triangles as indices into `positions`, counter-clockwise seen from outside.
+    pub triangles: Vec<[u32; 3]>,
+}
+
+impl TriMesh {
+    /// The mesh reduced to at most about `max_triangles` by vertex clustering: vertices are
+    /// merged on a grid over the bounding box (the cell shrinks until the budget holds), and
+    /// triangles that collapse are dropped. The shape keeps its outline to about one cell.
+    pub fn decimated(&self, max_triangles: usize) -> TriMesh {
+        if self.triangles.len() <= max_triangles || self.positions.is_empty() {
+            return self.clone();
+        }
+        let (mut lo, mut hi) = ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]);
+        for p in &self.positions {
+            for ((l, h), v) in lo.iter_mut().zip(hi.iter_mut()).zip(p) {
+                *l = l.min(*v);
+                *h = h.max(*v);
+            }
+        }
+        let mut cells = ((max_triangles as f64 / 2.0).sqrt() as u32).max(2);
+        loop {
+            let out = self.clustered(lo, hi, cells);
+            if out.triangles.len() <= max_triangles || cells <= 2 {
+                return out;
+            }
+            cells = (cells * 3 / 4).max(2);
+        }
+    }
+
+    /// Vertex clustering on a grid of `cells` per side over the box [lo, hi].
+    fn clustered(&self, lo: [f32; 3], hi: [f32; 3], cells: u32) -> TriMesh {
+        use std::collections::HashMap;
+        let size: [f32; 3] = std::array::from_fn(|k| (hi[k] - lo[k]).max(f32::MIN_POSITIVE));
+        let cell_of = |p: &[f32; 3]| -> [u32; 3] {
+            std::array::from_fn(|k| {
+                (((p[k] - lo[k]) / size[k] * cells as f32) as u32).min(cells - 1)
+            })
+        };
+        let mut index: HashMap<[u32; 3], u32> = HashMap::new();
+        let mut sums: Vec<([f64; 3], u32)> = Vec::new();
+        let remap: Vec<u32> = self
+            .positions
+            .iter()
+            .map(|p| {
+                let k = *index.entry(cell_of(p)).or_insert_with(|| {
+                    sums.push(([0.0; 3], 0));
+                    sums.len() as u32 - 1
+                });
+                let s = &mut sums[k as usize];
+                for (sum, v) in s.0.iter_mut().zip(p) {
+                    *sum += f64::from(*v);
+                }
+                s.1 += 1;
+                k
+            })
+            .collect();
+        let positions = sums
+            .iter()
+            .map(|(s, n)| std::array::from_fn(|i| (s[i] / f64::from(*n)) as f32))
+            .collect();
+        let mut seen = std::collections::HashSet::new();
+        let triangles = self
+            .triangles
+            .iter()
+            .map(|t| t.map(|v| remap[v as usize]))
+            .filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
+            .filter(|t| {
+                let mut key = *t;
+                key.sort_unstable();
+                seen.insert(key)
+            })
+            .collect();
+        TriMesh {
+            positions,
+            triangles,
+        }
+    }
+}
+
+/// The shape of one visual, in the visual's frame (m).
+#[derive(Debug, Clone, PartialEq)]
+pub enum VisualGeometry {
+    /// A box centred on the origin with these edge lengths.
+    Box([f64; 3]),
+    /// A cylinder along z centred on the origin.
+    Cylinder {
+        /// Radius (m).
+        radius: f64,
+        /// Length (m).
+        length: f64,
+    },
+    /// A sphere about the origin.
+    Sphere(f64),
+    /// A triangle mesh (shared: links that use the same file share one copy).
+    Mesh(Arc<TriMesh>),
+}
+
+/// One visual element of a link.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Visual {
+    /// The joint whose child link carries it (its frame is that joint's frame); `None` for the
+    /// root link (the robot's base frame).
+    pub joint: Option<JointId>,
+    /// `frame_from_visual` (the URDF `<origin>` of the visual).
+    pub origin: Pose,
+    /// The shape.
+    pub geometry: VisualGeometry,
+    /// RGBA in [0, 1] from the material, if it gives one.
+    pub color: Option<[f32; 4]>,
+}

@@ -1,0 +1,212 @@
+//! A URDF's `<visual>` elements into [`Visual`]s: boxes, cylinders (capsules drawn as
+//! cylinders), spheres, and mesh files (STL, OBJ and COLLADA through the `mesh-loader` crate),
+//! with their origin, scale and material colour. Mesh paths: `package://PKG/rest` is looked up
+//! as `DIR/PKG/rest` for every DIR of the package search list (armlab's `--package-path`, then
+//! `ROS_PACKAGE_PATH`) and of the URDF's own folder and its ancestors (also as `DIR/rest` when
+//! DIR is itself named PKG); `file://` paths are absolute; other paths are relative to the
+//! URDF's folder. A file used by several links is read once and shared. A mesh that cannot be
+//! found or read is a warning naming the file, and its link is drawn with the joint's body; the
+//! robot still loads. Meshes over [`MAX_TRIANGLES`] are decimated by vertex clustering.
+
+use crate::kinematics::pose::{Pose, rot_x, rot_y, rot_z};
+use crate::kinematics::visual::{TriMesh, Visual, VisualGeometry};
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex, OnceLock};
+
+/// Triangles a mesh may keep; larger ones are decimated (the software rasterizer pays per
+/// triangle; a real arm's link meshes have a few thousand).
+pub const MAX_TRIANGLES: usize = 20_000;
+
+/// The package search list set by `--package-path` (before `ROS_PACKAGE_PATH`).
+fn package_paths() -> &'static Mutex<Vec<PathBuf>> {
+    static PATHS: OnceLock<Mutex<Vec<PathBuf>>> = OnceLock::new();
+    PATHS.get_or_init(|| Mutex::new(Vec::new()))
+}
+
+/// Sets the folders searched for `package://` meshes before `ROS_PACKAGE_PATH`.
+pub fn set_package_paths(paths: Vec<PathBuf>) {
+    if let Ok(mut p) = package_paths().lock() {
+        *p = paths;
+    }
+}
+
+/// Where a mesh file name points, or the places tried.
+fn resolve(filename: &str, urdf: &Path) -> Result<PathBuf, String> {
+    let dir = urdf.parent().unwrap_or(Path::new("."));
+    if let Some(rest) = filename.strip_prefix("file://") {
+        return Ok(PathBuf::from(rest));
+    }
+    let Some(rest) = filename.strip_prefix("package://") else {
+        return Ok(dir.join(filename));
+    };
+    let (pkg, rel) = rest.split_once('/').unwrap_or((rest, ""));
+    let mut dirs: Vec<PathBuf> = package_paths()
+        .lock()
+        .map(|p| p.clone())
+        .unwrap_or_default();
+    if let Some(ros) = std::env::var_os("ROS_PACKAGE_PATH") {
+        dirs.extend(std::env::split_paths(&ros));
+    }
+    dirs.extend(dir.ancestors().map(Path::to_path_buf));
+    let mut tried = Vec::new();
+    for d in &dirs {
+        let mut candidates = vec![d.join(pkg).join(rel)];
+        if d.file_name().is_some_and(|n| n == pkg) {
+            candidates.push(d.join(rel));
+        }
+        for c in candidates {
+            if c.is_file() {
+                return Ok(c);
+            }
+            tried.push(c.display().to_string());
+        }
+    }
+    Err(format!(
+        "package \"{pkg}\" not found (tried {}; add its parent folder with --package-path or \
+         ROS_PACKAGE_PATH)",
+        tried.first().map_or("nothing".into(), |t| format!(
+            "{t} and {} more",
+            tried.len() - 1
+        ))
+    ))
+}
+
+/// One mesh file as a single triangle mesh (every sub-mesh merged), decimated if large.
+fn read_mesh(path: &Path) -> Result<TriMesh, String> {
+    let scene = mesh_loader::Loader::default()
+        .load(path)
+        .map_err(|e| e.to_string())?;
+    let mut mesh = TriMesh::default();
+    for m in &scene.meshes {
+        let base = mesh.positions.len() as u32;
+        mesh.positions.extend(m.vertices.iter().copied());
+        mesh.triangles
+            .extend(m.faces.iter().map(|f| f.map(|v| v + base)));
+    }
+    if mesh.triangles.is_empty() {
+        return Err("no triangles in the file".into());
+    }
+    let n = mesh.positions.len() as u32;
+    if mesh.triangles.iter().flatten().any(|&v| v >= n)
+        || mesh.positions.iter().flatten().any(|v| !v.is_finite())
+    {
+        return Err("an index out of range or a non-finite vertex".into());
+    }
+    Ok(mesh.decimated(MAX_TRIANGLES))
+}
+
+/// The origin of a visual.
+fn origin(o: &urdf_rs::Pose) -> Option<Pose> {
+    let (xyz, rpy) = (o.xyz.0, o.rpy.0);
+    xyz.iter().chain(&rpy).all(|v| v.is_finite()).then(|| {
+        Pose::translation(xyz[0], xyz[1], xyz[2]) * rot_z(rpy[2]) * rot_y(rpy[1]) * rot_x(rpy[0])
+    })
+}
+
+/// The colour of a visual's material: its own `<color>`, or the named top-level material's.
+fn color(m: Option<&urdf_rs::Material>, named: &HashMap<&str, [f32; 4]>) -> Option<[f32; 4]> {
+    let m = m?;
+    let c = match &m.color {
+        Some(c) => Some(c.rgba.0.map(|v| v.clamp(0.0, 1.0) as f32)),
+        None => named.get(m.name.as_str()).copied(),
+    }?;
+    c.iter().all(|v| v.is_finite()).then_some(c)
+}
+
+/// Reads every link's visuals; `joint_of` maps a link to the joint whose child it is (`None`
+/// for the root link). Returns the visuals and the warnings.
+pub(super) fn read(
+    urdf: &urdf_rs::Robot,
+    urdf_path: &Path,
+    joint_of: impl Fn(&str) -> Option<usize>,
+) -> (Vec<Visual>, Vec<String>) {
+    let named: HashMap<&str, [f32; 4]> = urdf
+        .materials
+        .iter()
+        .filter_map(|m| Some((m.name.as_str(), m.color.as_ref()?.rgba.0.map(|v| v as f32))))
+        .collect();
+    let mut cache: HashMap<PathBuf, Result<Arc<TriMesh>, String>> = HashMap::new();
+    let (mut visuals, mut warnings) = (Vec::new(), Vec::new());
+    for link in &urdf.links {
+        let joint = joint_of(&link.name);
+        for v in &link.visual {
+            let Some(origin) = origin(&v.origin) else {
+                warnings.push(format!(
+                    "link \"{}\": a visual origin is not finite; skipped",
+                    link.name
+                ));
+                continue;
+            };
+            let geometry = match &v.geometry {
+                urdf_rs::Geometry::Box { size } => VisualGeometry::Box(size.0),
+                urdf_rs::Geometry::Cylinder { radius, length }
+                | urdf_rs::Geometry::Capsule { radius, length } => VisualGeometry::Cylinder {
+                    radius: *radius,
+                    length: *length,
+                },
+                urdf_rs::Geometry::Sphere { radius } => VisualGeometry::Sphere(*radius),
+                urdf_rs::Geometry::Mesh { filename, scale } => {
+                    let loaded = resolve(filename, urdf_path).and_then(|path| {
+                        cache
+                            .entry(path.clone())
+                            .or_insert_with(|| read_mesh(&path).map(Arc::new))
+                            .clone()
+                            .map_err(|e| format!("{}: {e}", path.display()))
+                    });
+                    match loaded {
+                        Ok(mesh) => {
+                            let s = scale.as_ref().map_or([1.0; 3], |s| s.0);
+                            VisualGeometry::Mesh(scaled(&mesh, s))
+                        }
+                        Err(e) => {
+                            warnings.push(format!(
+                                "link \"{}\": mesh \"{filename}\" not drawn ({e}); the link is drawn \
+                                 with its joint's body",
+                                link.name
+                            ));
+                            continue;
+                        }
+                    }
+                }
+            };
+            let sizes_ok = match &geometry {
+                VisualGeometry::Box(s) => s.iter().all(|v| v.is_finite() && *v >= 0.0),
+                VisualGeometry::Cylinder { radius, length } => {
+                    radius.is_finite() && length.is_finite() && *radius >= 0.0 && *length >= 0.0
+                }
+                VisualGeometry::Sphere(r) => r.is_finite() && *r >= 0.0,
+                VisualGeometry::Mesh(_) => true,
+            };
+            if !sizes_ok {
+                warnings.push(format!(
+                    "link \"{}\": a visual has a bad size; skipped",
+                    link.name
+                ));
+                continue;
+            }
+            visuals.push(Visual {
+                joint,
+                origin,
+                geometry,
+                color: color(v.material.as_ref(), &named),
+            });
+        }
+    }
+    (visuals, warnings)
+}
+
+/// The mesh with the URDF's `scale` applied (shared unchanged when the scale is 1).
+fn scaled(mesh: &Arc<TriMesh>, s: [f64; 3]) -> Arc<TriMesh> {
+    if s == [1.0; 3] || !s.iter().all(|v| v.is_finite()) {
+        return mesh.clone();
+    }
+    Arc::new(TriMesh {
+        positions: mesh
+            .positions
+            .iter()
+            .map(|p| std::array::from_fn(|k| (f64::from(p[k]) * s[k]) as f32))
+            .collect(),
+        triangles: mesh.triangles.clone(),
+    })
+}
