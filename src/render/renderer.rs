@@ -37,7 +37,9 @@ pub struct Renderer {
 }
 
 /// A custom mesh on the GPU: one vertex per triangle corner with the face normal (flat
-/// shading, as CAD meshes are meant to be seen).
+/// shading, as CAD meshes are meant to be seen), every triangle twice, once each way round, so
+/// that a mesh file with inconsistent winding still shows every face (back faces are culled,
+/// so each face is drawn once, lit from the side it is seen).
 #[derive(Debug)]
 struct CustomGpu {
     mesh: Arc<TriMesh>,
@@ -48,7 +50,7 @@ struct CustomGpu {
 impl CustomGpu {
     fn new(device: &wgpu::Device, mesh: &Arc<TriMesh>) -> Self {
         let p = &mesh.positions;
-        let mut verts = Vec::with_capacity(mesh.triangles.len() * 3);
+        let mut verts = Vec::with_capacity(mesh.triangles.len() * 6);
         for t in &mesh.triangles {
             let [a, b, c] = t.map(|i| p[i as usize]);
             let (u, v) = (
@@ -68,6 +70,13 @@ impl CustomGpu {
             };
             for position in [a, b, c] {
                 verts.push(MeshVertex { position, normal });
+            }
+            let back = normal.map(|x| -x);
+            for position in [a, c, b] {
+                verts.push(MeshVertex {
+                    position,
+                    normal: back,
+                });
             }
         }
         let vertices = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {

@@ -1,0 +1,186 @@
+//! URDF visuals: a vendored two-joint arm whose links are STL meshes (generated for the tests,
+//! `tests/data/urdf_meshes/`) loads with its meshes, and rendering it puts each link's colour
+//! where forward kinematics says the link is; a missing mesh is a warning naming the file and
+//! the link falls back to the joint's body; `package://` paths resolve through the package
+//! search list; large meshes are decimated within their budget.
+
+mod common;
+use armlab::camera::{Camera, Preset, Projection};
+use armlab::figure::Theme;
+use armlab::figure::figures::{Figures, Scene3d};
+use armlab::kinematics::visual::{TriMesh, VisualGeometry};
+use armlab::scene::{ArmStyle, arm_scene};
+use armlab::urdf::{load_urdf, set_package_paths};
+use std::path::{Path, PathBuf};
+
+fn data() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/urdf_meshes")
+}
+
+fn mesh_triangles(r: &armlab::kinematics::Robot) -> Vec<usize> {
+    r.visuals
+        .iter()
+        .filter_map(|v| match &v.geometry {
+            VisualGeometry::Mesh(m) => Some(m.triangles.len()),
+            _ => None,
+        })
+        .collect()
+}
+
+#[test]
+fn meshes_are_drawn_where_forward_kinematics_puts_the_links() {
+    let robot = load_urdf(&data().join("arm_with_meshes.urdf")).unwrap();
+    assert!(robot.load_warnings.is_empty(), "{:?}", robot.load_warnings);
+    assert_eq!(robot.visuals.len(), 3);
+    assert_eq!(mesh_triangles(&robot), vec![12, 96]);
+    let q = [0.6, 0.0];
+    let style = ArmStyle {
+        frames: false,
+        grid: false,
+        ..ArmStyle::default()
+    };
+    let scene = arm_scene(&robot, &q, &style).unwrap();
+    assert_eq!(scene.custom_meshes.len(), 2);
+    let mut camera = Camera {
+        projection: Projection::Orthographic { height: 1.6 },
+        ..Camera::default()
+    };
+    camera.set_preset(Preset::Top);
+    camera.target = nalgebra::Point3::new(0.0, 0.0, 0.4);
+    camera.distance = 3.0;
+    let fig = Scene3d {
+        title: String::new(),
+        subtitle: String::new(),
+        scene: &scene,
+        camera,
+        legend: vec![],
+        caption: String::new(),
+    };
+    let img = Figures::new()
+        .unwrap_or_else(|e| panic!("{e}"))
+        .scene([640, 640], Theme::Light, &fig)
+        .unwrap();
+    // Points in the links' frames, placed by the robot's own FK: the column's top face beside
+    // the arm, the middle of the arm's cylinder, the tool sphere's top.
+    let frames = robot.fk_frames(&q).unwrap();
+    let at = |joint: usize, local: [f64; 3]| {
+        let p = frames[joint] * nalgebra::Point3::from(local);
+        camera
+            .project(
+                &nalgebra::Point3::new(p.x as f32, p.y as f32, p.z as f32),
+                640,
+                640,
+            )
+            .unwrap()
+    };
+    for (name, p, want) in [
+        ("column", at(0, [-0.045, 0.0, 0.4]), [230, 25, 25]),
+        ("upper arm", at(1, [0.25, 0.0, 0.05]), [25, 205, 25]),
+        ("tool", at(2, [0.0, 0.0, 0.06]), [25, 25, 230]),
+    ] {
+        let px = img.get_pixel(p[0] as u32, p[1] as u32).0;
+        let dominant = (0..3).max_by_key(|&k| want[k]).unwrap();
+        assert!(
+            (0..3).all(|k| k == dominant || px[dominant] as i32 > px[k] as i32 + 60),
+            "{name} at {p:?}: {px:?}"
+        );
+    }
+    // Turning joint 1 moves the arm: the old place of the cylinder's middle is background.
+    let away = at(1, [0.25, 0.0, 0.05]);
+    let scene = arm_scene(&robot, &[-1.0, 0.0], &style).unwrap();
+    let img = Figures::new()
+        .unwrap()
+        .scene(
+            [640, 640],
+            Theme::Light,
+            &Scene3d {
+                scene: &scene,
+                ..fig
+            },
+        )
+        .unwrap();
+    let px = img.get_pixel(away[0] as u32, away[1] as u32).0;
+    assert!(px.iter().take(3).all(|&c| c > 200), "{px:?}");
+}
+
+#[test]
+fn missing_meshes_warn_and_package_paths_resolve() {
+    let dir = std::env::temp_dir().join(format!("armlab-meshes-{}", std::process::id()));
+    let pkgs = dir.join("pkgs");
+    std::fs::create_dir_all(pkgs.join("armlab_test/meshes")).unwrap();
+    for f in ["column.stl", "arm.stl"] {
+        std::fs::copy(
+            data().join("armlab_test/meshes").join(f),
+            pkgs.join("armlab_test/meshes").join(f),
+        )
+        .unwrap();
+    }
+    let text = std::fs::read_to_string(data().join("arm_with_meshes.urdf"))
+        .unwrap()
+        .replace("armlab_test/meshes/column.stl", "meshes/no_such_file.stl");
+    let urdf = dir.join("elsewhere/arm.urdf");
+    std::fs::create_dir_all(urdf.parent().unwrap()).unwrap();
+    std::fs::write(&urdf, text).unwrap();
+    // Neither mesh is found: two warnings naming the files; the robot loads anyway.
+    set_package_paths(vec![]);
+    let r = load_urdf(&urdf).unwrap();
+    assert_eq!(r.load_warnings.len(), 2, "{:?}", r.load_warnings);
+    assert!(
+        r.load_warnings[0].contains("no_such_file.stl"),
+        "{:?}",
+        r.load_warnings
+    );
+    assert!(r.load_warnings[1].contains("package \"armlab_test\" not found"));
+    assert_eq!(r.visuals.len(), 1);
+    // The links without their mesh keep the joint's body (two cylinders of the generic arm).
+    let scene = arm_scene(&r, &[0.0, 0.0], &ArmStyle::default()).unwrap();
+    assert!(scene.custom_meshes.is_empty() && scene.meshes.len() > 3);
+    // With the package folder on the search list the arm's mesh is found.
+    set_package_paths(vec![pkgs.clone()]);
+    let r = load_urdf(&urdf).unwrap();
+    set_package_paths(vec![]);
+    assert_eq!(r.load_warnings.len(), 1, "{:?}", r.load_warnings);
+    assert_eq!(mesh_triangles(&r), vec![96]);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A fine sphere (51,200 triangles) decimated to the budget: no more triangles than asked,
+/// every vertex still within a grid cell of the sphere, no degenerate triangle.
+#[test]
+fn large_meshes_are_decimated_within_the_budget() {
+    let (n, m) = (160u32, 160u32);
+    let mut mesh = TriMesh::default();
+    for i in 0..=n {
+        for j in 0..m {
+            let (t, p) = (
+                std::f32::consts::PI * i as f32 / n as f32,
+                std::f32::consts::TAU * j as f32 / m as f32,
+            );
+            mesh.positions
+                .push([t.sin() * p.cos(), t.sin() * p.sin(), t.cos()]);
+        }
+    }
+    let id = |i: u32, j: u32| i * m + j % m;
+    for i in 0..n {
+        for j in 0..m {
+            mesh.triangles
+                .push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
+            mesh.triangles
+                .push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
+        }
+    }
+    assert_eq!(mesh.triangles.len(), 51_200);
+    let small = mesh.decimated(armlab::urdf::MAX_TRIANGLES);
+    assert!(small.triangles.len() <= armlab::urdf::MAX_TRIANGLES);
+    assert!(small.triangles.len() > 1000, "{}", small.triangles.len());
+    let cell = 2.0 * 3f32.sqrt() / 20.0;
+    for p in &small.positions {
+        let r = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
+        assert!((r - 1.0).abs() < cell, "{p:?}");
+    }
+    for t in &small.triangles {
+        assert!(t[0] != t[1] && t[1] != t[2] && t[0] != t[2]);
+    }
+    // Under the budget nothing changes.
+    assert_eq!(small.decimated(armlab::urdf::MAX_TRIANGLES), small);
+}
