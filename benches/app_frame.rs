@@ -5,7 +5,9 @@
 //! UI painter into a persistent 1280x800 texture, and wait until the GPU (lavapipe) has
 //! finished. Presenting to a window is not included (`armlab view --measure-frames N` measures
 //! the real window). For comparison, the same frame painted by egui-wgpu's renderer.
-//! Run: `cargo bench --bench app_frame`.
+//! Run: `cargo bench --bench app_frame`. With `ARMLAB_BENCH_URDF=path/to/model.urdf` (a URDF
+//! with mesh files, e.g. a KUKA iiwa's) the same frame is also measured for that robot, drawn
+//! with its meshes, at its "zero" configuration turned a little.
 
 use armlab::app::state::AppState;
 use armlab::app::ui::AppUi;
@@ -36,17 +38,23 @@ struct Frame {
 
 impl Frame {
     fn new() -> Self {
+        let mut app = AppUi::new(AppState::from_spec("anthropomorphic_spherical_wrist").unwrap());
+        app.state.set_q(&Q).unwrap();
+        let f = Self::with(app);
+        assert_eq!(f.app.state.ghosts(0).len(), 8, "eight postures on screen");
+        f
+    }
+
+    /// The frame of `app` at its current q, the IK target on the tool.
+    fn with(mut app: AppUi) -> Self {
         let gpu = Gpu::new_headless()
             .expect("a graphics adapter (mesa-vulkan-drivers on machines without a GPU)");
         // As eframe's painter: default options (hardware texture filtering, dithering).
         let mut offscreen =
             Offscreen::with_options(&gpu.device, egui_wgpu::RendererOptions::default());
         let vp = Viewport3d::adaptive(gpu.clone()).expect("renderer");
-        let mut app = AppUi::new(AppState::from_spec("anthropomorphic_spherical_wrist").unwrap());
-        app.state.set_q(&Q).unwrap();
         let start = app.state.robot().fk(app.state.q()).unwrap();
         app.state.set_target(0, start).unwrap();
-        assert_eq!(app.state.ghosts(0).len(), 8, "eight postures on screen");
         offscreen.set_background(Some(app.background()));
         let texture = armlab::figure::offscreen::canvas(&gpu.device, SIZE, false);
         let view = texture.create_view(&Default::default());
@@ -139,6 +147,17 @@ impl Frame {
 }
 
 fn frame(c: &mut Criterion) {
+    if let Ok(path) = std::env::var("ARMLAB_BENCH_URDF") {
+        let mut app = AppUi::new(AppState::from_spec(&path).expect("ARMLAB_BENCH_URDF loads"));
+        let q: Vec<f64> = (0..app.state.robot().dof())
+            .map(|k| 0.3 + 0.1 * k as f64)
+            .collect();
+        app.state.set_q(&q).unwrap();
+        let mut f = Frame::with(app);
+        c.bench_function("app/frame 1280x800, the URDF of ARMLAB_BENCH_URDF", |b| {
+            b.iter(|| f.whole_frame())
+        });
+    }
     let mut f = Frame::new();
     c.bench_function(
         "app/frame 1280x800 (drag: IK all solutions + ghosts + 3D + egui)",

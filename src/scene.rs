@@ -464,8 +464,9 @@ fn add_visuals(s: &mut Scene, robot: &Robot, frames: &[Pose], style: &ArmStyle) 
                 world_from_unit: unit(Vector3::new(*r, *r, *r)),
                 color,
             }),
-            VisualGeometry::Mesh(mesh) => s.custom_meshes.push(CustomMesh {
-                mesh: mesh.clone(),
+            VisualGeometry::Mesh { mesh, coarse } => s.custom_meshes.push(CustomMesh {
+                // Ghost arms (faded) take the coarse copy.
+                mesh: if style.alpha < 1.0 { coarse } else { mesh }.clone(),
                 world_from_mesh: col_major(&m),
                 color,
             }),

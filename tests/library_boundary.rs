@@ -31,7 +31,15 @@ const FORBIDDEN: &[&str] = &[
 ];
 
 /// The crates the library may depend on directly without default features.
-const ALLOWED_DIRECT: &[&str] = &["nalgebra", "serde", "toml", "urdf-rs", "thiserror", "rayon"];
+const ALLOWED_DIRECT: &[&str] = &[
+    "nalgebra",
+    "serde",
+    "toml",
+    "urdf-rs",
+    "mesh-loader",
+    "thiserror",
+    "rayon",
+];
 
 fn cargo_tree(args: &[&str]) -> String {
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());

@@ -21,7 +21,10 @@ fn mesh_triangles(r: &armlab::kinematics::Robot) -> Vec<usize> {
     r.visuals
         .iter()
         .filter_map(|v| match &v.geometry {
-            VisualGeometry::Mesh(m) => Some(m.triangles.len()),
+            VisualGeometry::Mesh { mesh, coarse } => {
+                assert!(coarse.triangles.len() <= mesh.triangles.len());
+                Some(mesh.triangles.len())
+            }
             _ => None,
         })
         .collect()

@@ -268,6 +268,7 @@ pub fn add_measured_poses(scene: &mut Scene, robot: &crate::kinematics::Robot, p
             && let Ok(s) = arm_scene(robot, q, &ghost)
         {
             scene.meshes.extend(s.meshes);
+            scene.custom_meshes.extend(s.custom_meshes);
         }
     }
 }
@@ -393,6 +394,21 @@ fn add_ghost(
     for m in s.meshes {
         if !scene.meshes.iter().any(|o| same_body(o, &m, tol)) {
             scene.meshes.push(m);
+        }
+    }
+    // A URDF's link meshes (the ghost's coarse copies) likewise: one placed where the arm's or
+    // an earlier ghost's mesh already is is left out.
+    let tol = tol as f32;
+    for m in s.custom_meshes {
+        let same = |o: &crate::scene::CustomMesh| {
+            o.world_from_mesh
+                .iter()
+                .flatten()
+                .zip(m.world_from_mesh.iter().flatten())
+                .all(|(a, b)| (a - b).abs() <= tol)
+        };
+        if !scene.custom_meshes.iter().any(same) {
+            scene.custom_meshes.push(m);
         }
     }
     if !label {

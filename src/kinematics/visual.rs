@@ -15,7 +15,68 @@ pub struct TriMesh {
     pub triangles: Vec<[u32; 3]>,
 }
 
+/// Triangles of a mesh's coarse copy drawn in ghost arms.
+pub const GHOST_TRIANGLES: usize = 400;
+
+/// How a mesh's triangles are wound, which decides how it can be drawn with back faces culled.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Winding {
+    /// A closed surface wound counter-clockwise seen from outside (positive volume).
+    Outward,
+    /// A closed surface wound the other way (negative volume): flip every triangle.
+    Inward,
+    /// Open, or wound inconsistently (an edge used twice in one direction): draw both sides.
+    Mixed,
+}
+
 impl TriMesh {
+    /// The winding of the triangles: each edge of a closed, consistently wound surface is used
+    /// once in each direction, and the sign of the enclosed volume says which side is out.
+    /// Vertices at the same position count as one (mesh files often repeat a vertex per face to
+    /// give it that face's normal).
+    pub fn winding(&self) -> Winding {
+        use std::collections::HashMap;
+        let mut welded: HashMap<[u32; 3], u32> = HashMap::with_capacity(self.positions.len());
+        let canon: Vec<u32> = self
+            .positions
+            .iter()
+            .enumerate()
+            .map(|(i, p)| {
+                *welded
+                    .entry(p.map(|v| (v + 0.0).to_bits()))
+                    .or_insert(i as u32)
+            })
+            .collect();
+        let mut edges: HashMap<(u32, u32), u32> = HashMap::with_capacity(self.triangles.len() * 3);
+        for t in &self.triangles {
+            let t = t.map(|i| canon[i as usize]);
+            for (a, b) in [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])] {
+                let n = edges.entry((a, b)).or_insert(0);
+                *n += 1;
+                if *n > 1 {
+                    return Winding::Mixed;
+                }
+            }
+        }
+        if edges.keys().any(|&(a, b)| !edges.contains_key(&(b, a))) {
+            return Winding::Mixed;
+        }
+        let volume: f64 = self
+            .triangles
+            .iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|i| self.positions[i as usize].map(f64::from));
+                a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
+                    + a[2] * (b[0] * c[1] - b[1] * c[0])
+            })
+            .sum();
+        if volume >= 0.0 {
+            Winding::Outward
+        } else {
+            Winding::Inward
+        }
+    }
+
     /// The mesh reduced to at most about `max_triangles` by vertex clustering: vertices are
     /// merged on a grid over the bounding box (the cell shrinks until the budget holds), and
     /// triangles that collapse are dropped. The shape keeps its outline to about one cell.
@@ -105,7 +166,14 @@ pub enum VisualGeometry {
     /// A sphere about the origin.
     Sphere(f64),
     /// A triangle mesh (shared: links that use the same file share one copy).
-    Mesh(Arc<TriMesh>),
+    Mesh {
+        /// The mesh as read (decimated only past the loader's budget).
+        mesh: Arc<TriMesh>,
+        /// A coarse copy (at most [`GHOST_TRIANGLES`] triangles) for the faint ghost arms of
+        /// the other postures, which would otherwise cost the software renderer the full mesh
+        /// once per posture.
+        coarse: Arc<TriMesh>,
+    },
 }
 
 /// One visual element of a link.

@@ -7,7 +7,7 @@ use super::instances::{DrawLists, Projection};
 use super::pipelines::Pipelines;
 use super::settings::frame_uniforms;
 use super::{Gpu, RenderError, RenderSettings, RenderTarget, SAMPLE_COUNTS, ViewUniforms};
-use crate::kinematics::visual::TriMesh;
+use crate::kinematics::visual::{TriMesh, Winding};
 use crate::scene::Scene;
 use std::collections::HashMap;
 use std::ops::Range;
@@ -37,9 +37,9 @@ pub struct Renderer {
 }
 
 /// A custom mesh on the GPU: one vertex per triangle corner with the face normal (flat
-/// shading, as CAD meshes are meant to be seen), every triangle twice, once each way round, so
-/// that a mesh file with inconsistent winding still shows every face (back faces are culled,
-/// so each face is drawn once, lit from the side it is seen).
+/// shading, as CAD meshes are meant to be seen). A closed surface wound inward is flipped; an
+/// open or inconsistently wound one gets every triangle twice, once each way round, so every
+/// face shows (back faces are culled, so each is drawn once, lit from the side it is seen).
 #[derive(Debug)]
 struct CustomGpu {
     mesh: Arc<TriMesh>,
@@ -50,9 +50,15 @@ struct CustomGpu {
 impl CustomGpu {
     fn new(device: &wgpu::Device, mesh: &Arc<TriMesh>) -> Self {
         let p = &mesh.positions;
+        let winding = mesh.winding();
         let mut verts = Vec::with_capacity(mesh.triangles.len() * 6);
         for t in &mesh.triangles {
             let [a, b, c] = t.map(|i| p[i as usize]);
+            let [b, c] = if winding == Winding::Inward {
+                [c, b]
+            } else {
+                [b, c]
+            };
             let (u, v) = (
                 [b[0] - a[0], b[1] - a[1], b[2] - a[2]],
                 [c[0] - a[0], c[1] - a[1], c[2] - a[2]],
@@ -70,6 +76,9 @@ impl CustomGpu {
             };
             for position in [a, b, c] {
                 verts.push(MeshVertex { position, normal });
+            }
+            if winding != Winding::Mixed {
+                continue;
             }
             let back = normal.map(|x| -x);
             for position in [a, c, b] {

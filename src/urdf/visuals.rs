@@ -9,7 +9,7 @@
 //! robot still loads. Meshes over [`MAX_TRIANGLES`] are decimated by vertex clustering.
 
 use crate::kinematics::pose::{Pose, rot_x, rot_y, rot_z};
-use crate::kinematics::visual::{TriMesh, Visual, VisualGeometry};
+use crate::kinematics::visual::{GHOST_TRIANGLES, TriMesh, Visual, VisualGeometry};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex, OnceLock};
@@ -157,7 +157,9 @@ pub(super) fn read(
                     match loaded {
                         Ok(mesh) => {
                             let s = scale.as_ref().map_or([1.0; 3], |s| s.0);
-                            VisualGeometry::Mesh(scaled(&mesh, s))
+                            let mesh = scaled(&mesh, s);
+                            let coarse = Arc::new(mesh.decimated(GHOST_TRIANGLES));
+                            VisualGeometry::Mesh { mesh, coarse }
                         }
                         Err(e) => {
                             warnings.push(format!(
@@ -176,7 +178,7 @@ pub(super) fn read(
                     radius.is_finite() && length.is_finite() && *radius >= 0.0 && *length >= 0.0
                 }
                 VisualGeometry::Sphere(r) => r.is_finite() && *r >= 0.0,
-                VisualGeometry::Mesh(_) => true,
+                VisualGeometry::Mesh { .. } => true,
             };
             if !sizes_ok {
                 warnings.push(format!(
