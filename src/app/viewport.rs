@@ -398,7 +398,6 @@ fn add_ghost(
     }
     // A URDF's link meshes (the ghost's coarse copies) likewise: one placed where the arm's or
     // an earlier ghost's mesh already is is left out.
-    let tol = tol as f32;
     for m in s.custom_meshes {
         let same = |o: &crate::scene::CustomMesh| {
             o.world_from_mesh
