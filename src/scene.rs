@@ -80,6 +80,9 @@ pub struct Label {
 pub struct CustomMesh {
     /// The mesh (its frame's coordinates, m); instances of one mesh share its GPU copy.
     pub mesh: Arc<TriMesh>,
+    /// A coarse copy a live view may draw instead while it moves on a software rasterizer
+    /// (`None`: draw `mesh` always).
+    pub coarse: Option<Arc<TriMesh>>,
     /// `world_from_mesh`, column-major.
     pub world_from_mesh: [[f32; 4]; 4],
     /// Colour; alpha < 1 is drawn translucent after the opaque meshes.
@@ -102,6 +105,21 @@ pub struct Scene {
 }
 
 impl Scene {
+    /// The scene with every custom mesh that offers a coarse copy drawn with it (the live
+    /// view's moving frames on a software rasterizer); `None` when there is none to swap.
+    pub fn with_coarse_meshes(&self) -> Option<Scene> {
+        if self.custom_meshes.iter().all(|m| m.coarse.is_none()) {
+            return None;
+        }
+        let mut s = self.clone();
+        for m in &mut s.custom_meshes {
+            if let Some(c) = m.coarse.take() {
+                m.mesh = c;
+            }
+        }
+        Some(s)
+    }
+
     /// Appends another scene.
     pub fn extend(&mut self, other: Scene) {
         self.meshes.extend(other.meshes);
@@ -289,7 +307,13 @@ pub fn arm_scene(robot: &Robot, q: &[f64], style: &ArmStyle) -> Result<Scene, Ki
             }
         };
     // The links' own visuals (a URDF's), where it has them.
-    let drawn = add_visuals(&mut s, robot, &frames, style);
+    // Ghost arms (faded) are drawn with the joints' bodies: a URDF's meshes, translucent and
+    // overlapping once per posture, cost the software rasterizer more fill than a frame has.
+    let drawn = if style.alpha < 1.0 {
+        vec![false; robot.joints().len() + 1]
+    } else {
+        add_visuals(&mut s, robot, &frames, style)
+    };
     // Base pedestal.
     let base_o = robot.base.translation.vector;
     let base_z = robot.base.rotation * Vector3::z();
@@ -464,9 +488,10 @@ fn add_visuals(s: &mut Scene, robot: &Robot, frames: &[Pose], style: &ArmStyle) 
                 world_from_unit: unit(Vector3::new(*r, *r, *r)),
                 color,
             }),
+            // The coarse copy is offered for a live view's moving frames.
             VisualGeometry::Mesh { mesh, coarse } => s.custom_meshes.push(CustomMesh {
-                // Ghost arms (faded) take the coarse copy.
-                mesh: if style.alpha < 1.0 { coarse } else { mesh }.clone(),
+                mesh: mesh.clone(),
+                coarse: Some(coarse.clone()),
                 world_from_mesh: col_major(&m),
                 color,
             }),

@@ -243,3 +243,44 @@ fn the_ui_painter_paints_the_window_as_egui_wgpu_does() {
         assert!(ink > least, "{ink} pixels drawn");
     }
 }
+
+/// A URDF arm drawn only by its meshes: moving a joint is a new frame (the fingerprint that
+/// decides "unchanged, not redrawn" covers the meshes), the moving frame offers coarse copies,
+/// and the still frame draws the full meshes.
+#[test]
+fn mesh_only_scenes_are_redrawn_when_they_move() {
+    let gpu = gpu();
+    let mut offscreen = Offscreen::new(&gpu.device);
+    let mut vp = Viewport3d::adaptive(gpu.clone()).unwrap();
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/urdf_meshes/arm_with_meshes.urdf"
+    );
+    let robot = armlab::urdf::load_urdf(std::path::Path::new(path)).unwrap();
+    let style = ArmStyle {
+        frames: false,
+        grid: false,
+        ..ArmStyle::default()
+    };
+    let meshes_only = |q: &[f64]| {
+        let mut s = arm_scene(&robot, q, &style).unwrap();
+        s.meshes.clear();
+        s.lines.clear();
+        s.dots.clear();
+        s
+    };
+    let camera = armlab::camera::Camera::default();
+    let a = meshes_only(&[0.0, 0.0]);
+    assert_eq!(a.custom_meshes.len(), 2);
+    let coarse = a.with_coarse_meshes().expect("coarse copies offered");
+    assert!(coarse.custom_meshes.iter().all(|m| m.coarse.is_none()));
+    let mut render = |s: &armlab::scene::Scene| {
+        vp.render(offscreen.renderer_mut(), s, &camera, [320, 240], false)
+            .unwrap()
+    };
+    assert!(render(&a).refine);
+    assert!(!render(&a).refine);
+    let b = meshes_only(&[0.0, 0.7]);
+    assert!(render(&b).refine, "the moved meshes are a new frame");
+    assert_eq!(vp.draws(), 3);
+}

@@ -44,6 +44,18 @@ fn meshes_are_drawn_where_forward_kinematics_puts_the_links() {
     };
     let scene = arm_scene(&robot, &q, &style).unwrap();
     assert_eq!(scene.custom_meshes.len(), 2);
+    // The arm offers coarse copies for moving frames; a ghost (faded) is drawn with bodies.
+    assert!(scene.custom_meshes.iter().all(|m| m.coarse.is_some()));
+    let ghost = arm_scene(
+        &robot,
+        &q,
+        &ArmStyle {
+            alpha: 0.3,
+            ..style
+        },
+    )
+    .unwrap();
+    assert!(ghost.custom_meshes.is_empty() && ghost.meshes.len() >= 3);
     let mut camera = Camera {
         projection: Projection::Orthographic { height: 1.6 },
         ..Camera::default()

@@ -178,7 +178,20 @@ impl Viewport3d {
         if dark {
             settings.clear = [0.015, 0.017, 0.02, 1.0];
         }
-        let texture_view = layer.draw(&self.gpu, [w, h], scene, &view, &settings)?;
+        // Moving frames on a software rasterizer draw a URDF's meshes coarse (the still frame
+        // after them is full).
+        let coarse = if fast {
+            scene.with_coarse_meshes()
+        } else {
+            None
+        };
+        let texture_view = layer.draw(
+            &self.gpu,
+            [w, h],
+            coarse.as_ref().unwrap_or(scene),
+            &view,
+            &settings,
+        )?;
         self.draws += 1;
         let id = match self.id {
             Some(id) => {
@@ -223,6 +236,14 @@ fn fingerprint(scene: &Scene, view: &ViewUniforms, dark: bool, size: [u32; 2]) -
     for m in &scene.meshes {
         h.u32(m.shape as u32);
         m.world_from_unit.iter().for_each(|c| h.f(c));
+        h.f(&m.color);
+    }
+    h.u32(scene.custom_meshes.len() as u32);
+    for m in &scene.custom_meshes {
+        let id = std::sync::Arc::as_ptr(&m.mesh) as usize as u64;
+        h.u32(id as u32);
+        h.u32((id >> 32) as u32);
+        m.world_from_mesh.iter().for_each(|c| h.f(c));
         h.f(&m.color);
     }
     h.u32(scene.lines.len() as u32);
@@ -396,8 +417,8 @@ fn add_ghost(
             scene.meshes.push(m);
         }
     }
-    // A URDF's link meshes (the ghost's coarse copies) likewise: one placed where the arm's or
-    // an earlier ghost's mesh already is is left out.
+    // Link meshes likewise (none today: ghosts are drawn with the joints' bodies), one placed
+    // where the arm's or an earlier ghost's mesh already is left out.
     for m in s.custom_meshes {
         let same = |o: &crate::scene::CustomMesh| {
             o.world_from_mesh

@@ -15,8 +15,9 @@ pub struct TriMesh {
     pub triangles: Vec<[u32; 3]>,
 }
 
-/// Triangles of a mesh's coarse copy drawn in ghost arms.
-pub const GHOST_TRIANGLES: usize = 400;
+/// Triangles of a mesh's coarse copy, drawn in a live view's moving frames on a software
+/// rasterizer (the still frame after them draws the full mesh).
+pub const COARSE_TRIANGLES: usize = 500;
 
 /// How a mesh's triangles are wound, which decides how it can be drawn with back faces culled.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -169,9 +170,8 @@ pub enum VisualGeometry {
     Mesh {
         /// The mesh as read (decimated only past the loader's budget).
         mesh: Arc<TriMesh>,
-        /// A coarse copy (at most [`GHOST_TRIANGLES`] triangles) for the faint ghost arms of
-        /// the other postures, which would otherwise cost the software renderer the full mesh
-        /// once per posture.
+        /// A coarse copy (at most [`COARSE_TRIANGLES`] triangles) for the frames a live view
+        /// draws while it moves on a software rasterizer.
         coarse: Arc<TriMesh>,
     },
 }

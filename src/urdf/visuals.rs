@@ -9,7 +9,7 @@
 //! robot still loads. Meshes over [`MAX_TRIANGLES`] are decimated by vertex clustering.
 
 use crate::kinematics::pose::{Pose, rot_x, rot_y, rot_z};
-use crate::kinematics::visual::{GHOST_TRIANGLES, TriMesh, Visual, VisualGeometry};
+use crate::kinematics::visual::{COARSE_TRIANGLES, TriMesh, Visual, VisualGeometry};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex, OnceLock};
@@ -158,7 +158,7 @@ pub(super) fn read(
                         Ok(mesh) => {
                             let s = scale.as_ref().map_or([1.0; 3], |s| s.0);
                             let mesh = scaled(&mesh, s);
-                            let coarse = Arc::new(mesh.decimated(GHOST_TRIANGLES));
+                            let coarse = Arc::new(mesh.decimated(COARSE_TRIANGLES));
                             VisualGeometry::Mesh { mesh, coarse }
                         }
                         Err(e) => {
