@@ -199,3 +199,35 @@ fn large_meshes_are_decimated_within_the_budget() {
     // Under the budget nothing changes.
     assert_eq!(small.decimated(armlab::urdf::MAX_TRIANGLES), small);
 }
+
+/// OBJ and COLLADA files (the same hand-written tetrahedron) load with their four triangles,
+/// wound outward, scaled by the URDF's `scale`.
+#[test]
+fn obj_and_collada_meshes_load() {
+    for file in ["tetra.obj", "tetra.dae"] {
+        let text = format!(
+            r#"<robot name="t"><link name="a"/><link name="b"><visual><geometry>
+               <mesh filename="armlab_test/meshes/{file}" scale="2 2 2"/></geometry></visual></link>
+               <joint name="j" type="revolute"><parent link="a"/><child link="b"/>
+               <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+               </robot>"#
+        );
+        let r = armlab::urdf::parse_urdf(&text, &data().join("t.urdf")).unwrap();
+        assert!(r.load_warnings.is_empty(), "{file}: {:?}", r.load_warnings);
+        let VisualGeometry::Mesh { mesh, .. } = &r.visuals[0].geometry else {
+            panic!("{file}: not a mesh")
+        };
+        assert_eq!(mesh.triangles.len(), 4, "{file}");
+        let far = mesh
+            .positions
+            .iter()
+            .map(|p| p.iter().fold(0.0f32, |m, v| m.max(v.abs())))
+            .fold(0.0, f32::max);
+        assert!((far - 0.2).abs() < 1e-6, "{file}: scaled extent {far}");
+        assert_eq!(
+            mesh.winding(),
+            armlab::kinematics::visual::Winding::Outward,
+            "{file}"
+        );
+    }
+}
