@@ -214,6 +214,23 @@ impl Viewport3d {
     }
 }
 
+/// Link meshes of a ghost, each left out where the arm's or an earlier ghost's mesh already is
+/// (none today: ghosts are drawn with the joints' bodies).
+fn add_new_meshes(scene: &mut Scene, meshes: Vec<crate::scene::CustomMesh>, tol: f32) {
+    for m in meshes {
+        let same = |o: &crate::scene::CustomMesh| {
+            o.world_from_mesh
+                .iter()
+                .flatten()
+                .zip(m.world_from_mesh.iter().flatten())
+                .all(|(a, b)| (a - b).abs() <= tol)
+        };
+        if !scene.custom_meshes.iter().any(same) {
+            scene.custom_meshes.push(m);
+        }
+    }
+}
+
 /// A 64-bit fingerprint of everything a viewport frame depends on (FNV-1a over the bits).
 fn fingerprint(scene: &Scene, view: &ViewUniforms, dark: bool, size: [u32; 2]) -> u64 {
     struct Fnv(u64);
@@ -417,20 +434,7 @@ fn add_ghost(
             scene.meshes.push(m);
         }
     }
-    // Link meshes likewise (none today: ghosts are drawn with the joints' bodies), one placed
-    // where the arm's or an earlier ghost's mesh already is left out.
-    for m in s.custom_meshes {
-        let same = |o: &crate::scene::CustomMesh| {
-            o.world_from_mesh
-                .iter()
-                .flatten()
-                .zip(m.world_from_mesh.iter().flatten())
-                .all(|(a, b)| (a - b).abs() <= tol)
-        };
-        if !scene.custom_meshes.iter().any(same) {
-            scene.custom_meshes.push(m);
-        }
-    }
+    add_new_meshes(scene, s.custom_meshes, tol);
     if !label {
         return;
     }

@@ -188,7 +188,8 @@ pub fn planar4() -> Robot {
             row(R, 0.15, 0.0, 0.0, 0.0, FULL),
         ],
         Pose::identity(),
-        "Four-link planar arm (Sect. 2.10.2): intrinsically redundant for the planar task (x, y, phi),          n = 4, m = 3; a = 0.35, 0.3, 0.2, 0.15 m, joint limits [-pi, pi].",
+        "Four-link planar arm (Sect. 2.10.2): intrinsically redundant for the planar task (x, y, phi), \
+         n = 4, m = 3; a = 0.35, 0.3, 0.2, 0.15 m, joint limits [-pi, pi].",
     )
     .with_config("ready", vec![FRAC_PI_6, FRAC_PI_4, FRAC_PI_4, -FRAC_PI_6])
 }
@@ -268,24 +269,11 @@ pub fn parallelogram() -> Robot {
     .with_config("figure", vec![5.0 * FRAC_PI_6, FRAC_PI_3])
 }
 
-/// Problem 2.11 (Fig. 2.34): the four-link closed-chain planar arm with a prismatic joint whose
-/// two links are orthogonal, opened at the joint between link 3' and the arm (as the
-/// parallelogram is opened at joint 4); the passive joints follow the loop in closed form
-/// ([`crate::kinematics::closure`]).
-///
-/// The excerpt has the problem's sentence but not its figure, so the geometry is ours, the
-/// parallelogram of Fig. 2.21 with one revolute joint made prismatic: the crank 1' (a1' = 0.2 m)
-/// and the arm 1'' (a1'' = 0.6 m) turn about the base axis (the independent joints, motors at the
-/// base as in Sect. 2.9.2); link 2' is pinned at the crank's end A; link 3' slides along link
-/// 2' (the prismatic joint d2') standing orthogonal to it, and is pinned to the arm's end C at
-/// c = 0.25 m from the slider; the end-effector is on link 3', a4 = 0.35 m beyond C. The direct
-/// kinematics (Problem 2.11's answer): with v = a1'' u(q1'') - a1' u(q1'),
-/// d2' = sqrt(|v|^2 - c^2), phi = Atan2(v_y, v_x) - Atan2(c, d2'), the end-effector is at
-/// `a1'' u(q1'') + a4 n(phi)` with its x axis along n(phi) = u(phi + pi/2), where u(t) =
-/// (cos t, sin t). The loop closes for every q since a1'' - a1' = 0.4 m > c.
-pub fn slider_chain() -> Robot {
-    use super::closure::{Closure, LoopOutput, SliderLoop};
-    let (a1p, a1pp, c, a4) = (0.2, 0.6, 0.25, 0.35);
+/// The joints of [`slider_chain`]: crank and arm at the base, the revolute joint at the
+/// crank's end and the prismatic joint along link 2', the last two driven by the loop.
+fn slider_joints(mechanism: super::closure::SliderLoop) -> Vec<Joint> {
+    use super::closure::{Closure, LoopOutput};
+    let (a1p, a1pp) = (mechanism.a_crank, mechanism.a_arm);
     let dh = |a: f64, alpha: f64, theta: f64| JointGeometry::Dh {
         row: DhRow {
             a,
@@ -294,13 +282,6 @@ pub fn slider_chain() -> Robot {
             theta,
         },
         convention: Convention::Standard,
-    };
-    let mechanism = SliderLoop {
-        crank: 0,
-        a_crank: a1p,
-        arm: 1,
-        a_arm: a1pp,
-        offset: c,
     };
     let closure = |output| Drive::Closure(Closure { mechanism, output });
     let joint = |name: &str, kind, parent, geometry, drive, offset, limits| Joint {
@@ -316,7 +297,7 @@ pub fn slider_chain() -> Robot {
     // DH frames: frame 2' has z along link 2' (theta = q2' - pi/2, alpha = -pi/2), so the
     // prismatic joint slides along it; frame 3 (theta = pi, alpha = -pi/2) has x along link 3',
     // orthogonal to link 2', and z normal to the plane again.
-    let joints = vec![
+    vec![
         joint(
             "q1'",
             R,
@@ -353,7 +334,35 @@ pub fn slider_chain() -> Robot {
             0.0,
             [0.0, 1.0],
         ),
-    ];
+    ]
+}
+
+/// Problem 2.11 (Fig. 2.34): the four-link closed-chain planar arm with a prismatic joint whose
+/// two links are orthogonal, opened at the joint between link 3' and the arm (as the
+/// parallelogram is opened at joint 4); the passive joints follow the loop in closed form
+/// ([`crate::kinematics::closure`]).
+///
+/// The excerpt has the problem's sentence but not its figure, so the geometry is ours, the
+/// parallelogram of Fig. 2.21 with one revolute joint made prismatic: the crank 1' (a1' = 0.2 m)
+/// and the arm 1'' (a1'' = 0.6 m) turn about the base axis (the independent joints, motors at the
+/// base as in Sect. 2.9.2); link 2' is pinned at the crank's end A; link 3' slides along link
+/// 2' (the prismatic joint d2') standing orthogonal to it, and is pinned to the arm's end C at
+/// c = 0.25 m from the slider; the end-effector is on link 3', a4 = 0.35 m beyond C. The direct
+/// kinematics (Problem 2.11's answer): with v = a1'' u(q1'') - a1' u(q1'),
+/// d2' = sqrt(|v|^2 - c^2), phi = Atan2(v_y, v_x) - Atan2(c, d2'), the end-effector is at
+/// `a1'' u(q1'') + a4 n(phi)` with its x axis along n(phi) = u(phi + pi/2), where u(t) =
+/// (cos t, sin t). The loop closes for every q since a1'' - a1' = 0.4 m > c.
+pub fn slider_chain() -> Robot {
+    use super::closure::SliderLoop;
+    let (a1p, a1pp, c, a4) = (0.2, 0.6, 0.25, 0.35);
+    let mechanism = SliderLoop {
+        crank: 0,
+        a_crank: a1p,
+        arm: 1,
+        a_arm: a1pp,
+        offset: c,
+    };
+    let joints = slider_joints(mechanism);
     // Link 3': orthogonal to link 2' at the slider, through C to the end-effector.
     let ee = EndEffector {
         name: "tool".into(),

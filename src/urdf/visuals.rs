@@ -114,6 +114,24 @@ fn color(m: Option<&urdf_rs::Material>, named: &HashMap<&str, [f32; 4]>) -> Opti
     c.iter().all(|v| v.is_finite()).then_some(c)
 }
 
+/// A mesh visual: the file found, read (once per file) and scaled, with its coarse copy.
+fn mesh_geometry(
+    filename: &str,
+    scale: Option<&urdf_rs::Vec3>,
+    urdf_path: &Path,
+    cache: &mut HashMap<PathBuf, Result<Arc<TriMesh>, String>>,
+) -> Result<VisualGeometry, String> {
+    let path = resolve(filename, urdf_path)?;
+    let mesh = cache
+        .entry(path.clone())
+        .or_insert_with(|| read_mesh(&path).map(Arc::new))
+        .clone()
+        .map_err(|e| format!("{}: {e}", path.display()))?;
+    let mesh = scaled(&mesh, scale.map_or([1.0; 3], |s| s.0));
+    let coarse = Arc::new(mesh.decimated(COARSE_TRIANGLES));
+    Ok(VisualGeometry::Mesh { mesh, coarse })
+}
+
 /// Reads every link's visuals; `joint_of` maps a link to the joint whose child it is (`None`
 /// for the root link). Returns the visuals and the warnings.
 pub(super) fn read(
@@ -147,20 +165,8 @@ pub(super) fn read(
                 },
                 urdf_rs::Geometry::Sphere { radius } => VisualGeometry::Sphere(*radius),
                 urdf_rs::Geometry::Mesh { filename, scale } => {
-                    let loaded = resolve(filename, urdf_path).and_then(|path| {
-                        cache
-                            .entry(path.clone())
-                            .or_insert_with(|| read_mesh(&path).map(Arc::new))
-                            .clone()
-                            .map_err(|e| format!("{}: {e}", path.display()))
-                    });
-                    match loaded {
-                        Ok(mesh) => {
-                            let s = scale.as_ref().map_or([1.0; 3], |s| s.0);
-                            let mesh = scaled(&mesh, s);
-                            let coarse = Arc::new(mesh.decimated(COARSE_TRIANGLES));
-                            VisualGeometry::Mesh { mesh, coarse }
-                        }
+                    match mesh_geometry(filename, scale.as_ref(), urdf_path, &mut cache) {
+                        Ok(g) => g,
                         Err(e) => {
                             warnings.push(format!(
                                 "link \"{}\": mesh \"{filename}\" not drawn ({e}); the link is drawn \

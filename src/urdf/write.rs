@@ -116,74 +116,8 @@ pub fn to_urdf(robot: &Robot) -> Result<String, UrdfExportError> {
     write_visuals(&mut s, robot, None, scale);
     let _ = writeln!(s, "  </link>");
     fixed_joint(&mut s, "base", "world", "base_link", &robot.base);
-    for (j, joint) in joints.iter().enumerate() {
-        let l = &robot.lowered[j];
-        let parent_link = l
-            .parent
-            .map_or("base_link".to_string(), |p| link_of(robot, p));
-        let parent_post = l.parent.map_or(Pose::identity(), |p| link_post(robot, p));
-        let child = link_of(robot, j);
-        let _ = writeln!(s, "  <link name=\"{}\">", xml(&child));
-        write_visuals(&mut s, robot, Some(j), scale);
-        let _ = writeln!(s, "  </link>");
-        let Some((axis, kind)) = motion(l).filter(|_| joint.kind != JointKind::Fixed) else {
-            let o = parent_post * l.pre * l.post;
-            // A fixed joint: its whole transform is the origin; its child's frame is F_j.
-            fixed_joint(&mut s, &joint.name, &parent_link, &child, &o);
-            continue;
-        };
-        let o = parent_post * l.pre * moved(&axis, kind, joint.offset);
-        let mimic = match &joint.drive {
-            Drive::Coupled(terms) if terms.len() == 1 => Some(format!(
-                "    <mimic joint=\"{}\" multiplier=\"{}\" offset=\"0\"/>",
-                xml(&joints[terms[0].0].name),
-                terms[0].1
-            )),
-            Drive::Coupled(_) => {
-                return Err(UrdfExportError::NotExpressible {
-                    joint: joint.name.clone(),
-                    why: "follows several joints",
-                });
-            }
-            Drive::Closure(_) => {
-                return Err(UrdfExportError::NotExpressible {
-                    joint: joint.name.clone(),
-                    why: "follows a closed chain's loop",
-                });
-            }
-            _ => None,
-        };
-        let range = match &joint.drive {
-            Drive::Actuated(k) => robot.sampling_range(*k),
-            _ => [-1e3, 1e3],
-        };
-        let bounded = joint.limits.iter().all(|v| v.is_finite());
-        let urdf_kind = if kind == "revolute" && !bounded {
-            "continuous"
-        } else {
-            kind
-        };
-        let _ = writeln!(
-            s,
-            "  <joint name=\"{}\" type=\"{urdf_kind}\">\n    <parent link=\"{}\"/>\n    <child \
-             link=\"{}\"/>\n    {}\n    <axis xyz=\"{} {} {}\"/>",
-            xml(&joint.name),
-            xml(&parent_link),
-            xml(&child),
-            origin(&o),
-            axis.x + 0.0,
-            axis.y + 0.0,
-            axis.z + 0.0
-        );
-        let [lo, hi] = if bounded { joint.limits } else { range };
-        let _ = writeln!(
-            s,
-            "    <limit lower=\"{lo}\" upper=\"{hi}\" effort=\"100\" velocity=\"1\"/>"
-        );
-        if let Some(m) = mimic {
-            let _ = writeln!(s, "{m}");
-        }
-        let _ = writeln!(s, "  </joint>");
+    for j in 0..joints.len() {
+        write_joint(&mut s, robot, j, scale)?;
     }
     for e in robot.end_effectors() {
         let name = xml(&e.name);
@@ -199,6 +133,80 @@ pub fn to_urdf(robot: &Robot) -> Result<String, UrdfExportError> {
     }
     let _ = writeln!(s, "</robot>");
     Ok(s)
+}
+
+/// Joint j's child link (with its visuals) and the joint itself.
+fn write_joint(s: &mut String, robot: &Robot, j: usize, scale: f64) -> Result<(), UrdfExportError> {
+    let joints = robot.joints();
+    let joint = &joints[j];
+    let l = &robot.lowered[j];
+    let parent_link = l
+        .parent
+        .map_or("base_link".to_string(), |p| link_of(robot, p));
+    let parent_post = l.parent.map_or(Pose::identity(), |p| link_post(robot, p));
+    let child = link_of(robot, j);
+    let _ = writeln!(s, "  <link name=\"{}\">", xml(&child));
+    write_visuals(s, robot, Some(j), scale);
+    let _ = writeln!(s, "  </link>");
+    let Some((axis, kind)) = motion(l).filter(|_| joint.kind != JointKind::Fixed) else {
+        let o = parent_post * l.pre * l.post;
+        // A fixed joint: its whole transform is the origin; its child's frame is F_j.
+        fixed_joint(s, &joint.name, &parent_link, &child, &o);
+        return Ok(());
+    };
+    let o = parent_post * l.pre * moved(&axis, kind, joint.offset);
+    let mimic = match &joint.drive {
+        Drive::Coupled(terms) if terms.len() == 1 => Some(format!(
+            "    <mimic joint=\"{}\" multiplier=\"{}\" offset=\"0\"/>",
+            xml(&joints[terms[0].0].name),
+            terms[0].1
+        )),
+        Drive::Coupled(_) => {
+            return Err(UrdfExportError::NotExpressible {
+                joint: joint.name.clone(),
+                why: "follows several joints",
+            });
+        }
+        Drive::Closure(_) => {
+            return Err(UrdfExportError::NotExpressible {
+                joint: joint.name.clone(),
+                why: "follows a closed chain's loop",
+            });
+        }
+        _ => None,
+    };
+    let range = match &joint.drive {
+        Drive::Actuated(k) => robot.sampling_range(*k),
+        _ => [-1e3, 1e3],
+    };
+    let bounded = joint.limits.iter().all(|v| v.is_finite());
+    let urdf_kind = if kind == "revolute" && !bounded {
+        "continuous"
+    } else {
+        kind
+    };
+    let _ = writeln!(
+        s,
+        "  <joint name=\"{}\" type=\"{urdf_kind}\">\n    <parent link=\"{}\"/>\n    <child \
+         link=\"{}\"/>\n    {}\n    <axis xyz=\"{} {} {}\"/>",
+        xml(&joint.name),
+        xml(&parent_link),
+        xml(&child),
+        origin(&o),
+        axis.x + 0.0,
+        axis.y + 0.0,
+        axis.z + 0.0
+    );
+    let [lo, hi] = if bounded { joint.limits } else { range };
+    let _ = writeln!(
+        s,
+        "    <limit lower=\"{lo}\" upper=\"{hi}\" effort=\"100\" velocity=\"1\"/>"
+    );
+    if let Some(m) = mimic {
+        let _ = writeln!(s, "{m}");
+    }
+    let _ = writeln!(s, "  </joint>");
+    Ok(())
 }
 
 /// A fixed joint from `parent` to `child` at `o`.

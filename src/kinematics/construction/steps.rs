@@ -443,6 +443,17 @@ fn anthropomorphic(
     steps.push(arm_theta1(&g, robot.base.rotation * Vector3::x(), scale));
     steps.push(arm_triangle(&g));
     steps.push(arm_theta2(&g));
+    wrist_steps(robot, q, wrist.as_ref(), &mut steps)?;
+    Ok(steps)
+}
+
+/// The wrist step of a six-joint arm with spherical wrist (joints 4-6), if it has one.
+fn wrist_steps(
+    robot: &Robot,
+    q: &[f64],
+    wrist: Option<&WristPoint>,
+    steps: &mut Vec<Step>,
+) -> Result<(), ConstructionError> {
     if let Some(w) = wrist {
         let frames = robot.fk_frames(q)?;
         let (r3, r4) = (
@@ -450,9 +461,10 @@ fn anthropomorphic(
             frames[3].rotation.into_inner(),
         );
         let r_e = robot.fk(q)?.rotation.into_inner();
+        let scale = robot.characteristic_length();
         steps.push(wrist_step(&r3, &r4, &r_e, w.p_w, q[4], scale));
     }
-    Ok(steps)
+    Ok(())
 }
 
 /// (2.93): p_W = p_e - d6 a_e.
@@ -500,43 +512,7 @@ fn arm_theta1(g: &ArmGeometry, x0: Vector3<f64>, scale: f64) -> Step {
         label,
     };
     if g.h.abs() > 1e-9 * scale {
-        // p_W - foot = r x1 + h' (z0 x x1): the right triangle in the horizontal plane.
-        let r = g.x1.dot(&g.horizontal);
-        let side = g.z0.cross(&g.x1);
-        let h = side.dot(&g.horizontal);
-        let corner = g.foot + g.x1 * r;
-        return Step {
-            title: "theta1: the plane of the links passes the shoulder offset beside axis 1                     (shoulder right or left)"
-                .into(),
-            equation: "(2.109), (2.110) with a shoulder offset".into(),
-            formula: format!(
-                "R = +-sqrt(p_Wx^2 + p_Wy^2 - h^2) = {r:.3} m (h = {h:.3} m); theta1 =                  Atan2(p_Wy, p_Wx) - Atan2(h, R) = {} - {} = {}",
-                deg(pwy.atan2(pwx)),
-                deg(h.atan2(r)),
-                deg(drawn - g.off[0])
-            ),
-            marks: vec![
-                Mark::Segment {
-                    a: g.foot,
-                    b: g.p_w,
-                    label: format!("horizontal distance {:.3} m", g.horizontal.norm()),
-                    dashed: true,
-                },
-                Mark::Segment {
-                    a: g.foot,
-                    b: corner,
-                    label: format!("R = {r:.3} m"),
-                    dashed: false,
-                },
-                Mark::Segment {
-                    a: corner,
-                    b: g.p_w,
-                    label: format!("h = {h:.3} m"),
-                    dashed: false,
-                },
-                arc,
-            ],
-        };
+        return arm_theta1_offset(g, drawn, arc);
     }
     let theta1 = pwy.atan2(pwx);
     let twin = (-pwy).atan2(-pwx);
@@ -563,6 +539,51 @@ fn arm_theta1(g: &ArmGeometry, x0: Vector3<f64>, scale: f64) -> Step {
                 b: g.foot - g.horizontal,
                 label: "shoulder left: theta1 + pi".into(),
                 dashed: true,
+            },
+            arc,
+        ],
+    }
+}
+
+/// theta1 with a lateral shoulder offset (the Puma's d3): the right triangle of R and h in the
+/// horizontal plane.
+fn arm_theta1_offset(g: &ArmGeometry, drawn: f64, arc: Mark) -> Step {
+    let (pwx, pwy) = g.pw_xy;
+    // p_W - foot = r x1 + h' (z0 x x1): the right triangle in the horizontal plane.
+    let r = g.x1.dot(&g.horizontal);
+    let side = g.z0.cross(&g.x1);
+    let h = side.dot(&g.horizontal);
+    let corner = g.foot + g.x1 * r;
+    Step {
+        title: "theta1: the plane of the links passes the shoulder offset beside axis 1 \
+                (shoulder right or left)"
+            .into(),
+        equation: "(2.109), (2.110) with a shoulder offset".into(),
+        formula: format!(
+            "R = +-sqrt(p_Wx^2 + p_Wy^2 - h^2) = {r:.3} m (h = {h:.3} m); theta1 = \
+             Atan2(p_Wy, p_Wx) - Atan2(h, R) = {} - {} = {}",
+            deg(pwy.atan2(pwx)),
+            deg(h.atan2(r)),
+            deg(drawn - g.off[0])
+        ),
+        marks: vec![
+            Mark::Segment {
+                a: g.foot,
+                b: g.p_w,
+                label: format!("horizontal distance {:.3} m", g.horizontal.norm()),
+                dashed: true,
+            },
+            Mark::Segment {
+                a: g.foot,
+                b: corner,
+                label: format!("R = {r:.3} m"),
+                dashed: false,
+            },
+            Mark::Segment {
+                a: corner,
+                b: g.p_w,
+                label: format!("h = {h:.3} m"),
+                dashed: false,
             },
             arc,
         ],
@@ -752,24 +773,36 @@ fn wrist_step(
         ],
     };
     if sin5 >= 1e-9 {
-        // theta4 about z3 from x3 (2.111)/(2.112), theta6 about a_e ending at n_e.
-        let from6 = r_e * Vector3::new(t6.cos(), -t6.sin(), 0.0);
-        step.marks.push(Mark::Arc {
+        step.marks.extend(wrist_arcs(r3, r_e, p_w, (t4, t6), len));
+    }
+    step
+}
+
+/// theta4 about z3 from x3 (2.111)/(2.112), and theta6 about a_e ending at n_e.
+fn wrist_arcs(
+    r3: &Matrix3<f64>,
+    r_e: &Matrix3<f64>,
+    p_w: Vector3<f64>,
+    (t4, t6): (f64, f64),
+    len: f64,
+) -> [Mark; 2] {
+    let a_e = r_e * Vector3::z();
+    [
+        Mark::Arc {
             center: p_w,
             from: r3 * Vector3::x(),
-            normal: z3,
+            normal: r3 * Vector3::z(),
             angle: t4,
             radius: 0.4 * len,
             label: format!("θ4 = {}", deg(t4)),
-        });
-        step.marks.push(Mark::Arc {
+        },
+        Mark::Arc {
             center: p_w + a_e * len,
-            from: from6,
+            from: r_e * Vector3::new(t6.cos(), -t6.sin(), 0.0),
             normal: a_e,
             angle: t6,
             radius: 0.3 * len,
             label: format!("θ6 = {}", deg(t6)),
-        });
-    }
-    step
+        },
+    ]
 }

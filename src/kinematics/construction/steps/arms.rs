@@ -6,7 +6,7 @@
 
 use super::{
     Mark, Plane, Step, deg, planar_theta1, planar_theta2, planar_triangle, signed,
-    wrist_point_step, wrist_step,
+    wrist_point_step, wrist_step, wrist_steps,
 };
 use crate::kinematics::construction::{ConstructionError, TwoLinkConstruction, WristPoint};
 use crate::kinematics::orientation::wrap_angle;
@@ -93,26 +93,6 @@ fn seg(a: Vector3<f64>, b: Vector3<f64>, label: String, dashed: bool) -> Mark {
     }
 }
 
-/// The wrist step of a six-joint arm with spherical wrist (joints 4-6), if it has one.
-fn wrist_steps(
-    robot: &Robot,
-    q: &[f64],
-    wrist: Option<&WristPoint>,
-    steps: &mut Vec<Step>,
-) -> Result<(), ConstructionError> {
-    if let Some(w) = wrist {
-        let frames = robot.fk_frames(q)?;
-        let (r3, r4) = (
-            frames[2].rotation.into_inner(),
-            frames[3].rotation.into_inner(),
-        );
-        let r_e = robot.fk(q)?.rotation.into_inner();
-        let scale = robot.characteristic_length();
-        steps.push(wrist_step(&r3, &r4, &r_e, w.p_w, q[4], scale));
-    }
-    Ok(())
-}
-
 /// Spherical arm: theta1 = angle x0 -> x1 about z0, theta2 = angle z0 -> z2 about z1, d3 = the
 /// extension from frame 2's origin to p_W along z2.
 fn spherical_drawn(g: &ArmFrames) -> Drawn {
@@ -144,45 +124,8 @@ pub(super) fn spherical(
         steps.push(wrist_point_step(w));
     }
     let (t1, t2) = (label(0), label(1));
-    let root = |sign: f64| {
-        2.0 * (-p.x + sign * (p.x * p.x + p.y * p.y - d2 * d2).max(0.0).sqrt()).atan2(d2 + p.y)
-    };
-    let foot = g.base.o + g.base.z * g.base.z.dot(&(g.p_w - g.base.o));
-    let corner = foot + f1.z * d2;
     let scale = robot.characteristic_length();
-    steps.push(Step {
-        title: "theta1: the lateral offset d2 fixes the vertical plane of the arm".into(),
-        equation: "(2.94), Sect. 2.12.3".into(),
-        formula: format!(
-            "-p_Wx s1 + p_Wy c1 = d2 = {d2:.3} m; with t = tan(theta1/2): theta1 = 2 Atan2(-p_Wx \
-             +- sqrt(p_Wx^2 + p_Wy^2 - d2^2), d2 + p_Wy) = 2 Atan2({:.3} +- {:.3}, {:.3}) = {} \
-             or {}; the arm is at theta1 = {}",
-            -p.x,
-            (p.x * p.x + p.y * p.y - d2 * d2).max(0.0).sqrt(),
-            d2 + p.y,
-            deg(wrap_angle(root(1.0))),
-            deg(wrap_angle(root(-1.0))),
-            deg(t1)
-        ),
-        marks: vec![
-            seg(
-                foot,
-                g.p_w,
-                format!("sqrt(p_Wx^2 + p_Wy^2) = {:.3} m", p.x.hypot(p.y)),
-                true,
-            ),
-            seg(foot, corner, format!("d2 = {d2:.3} m"), false),
-            seg(corner, g.p_w, String::new(), true),
-            Mark::Arc {
-                center: foot,
-                from: g.base.x,
-                normal: g.base.z,
-                angle: drawn[0],
-                radius: 0.2 * scale,
-                label: format!("θ1 = {}", deg(t1)),
-            },
-        ],
-    });
+    steps.push(spherical_theta1(&g, p, d2, [drawn[0], t1], scale));
     let (a, b) = (
         p.x * t1.cos() + p.y * t1.sin(),
         (g.p_w - g.base.o).dot(&g.base.z),
@@ -226,6 +169,56 @@ pub(super) fn spherical(
     });
     wrist_steps(robot, q, wrist.as_ref(), &mut steps)?;
     Ok(steps)
+}
+
+/// theta1 of the spherical arm from the third row of (2.94), both roots; `[drawn, t1]` are the
+/// drawn angle and the joint value (rad).
+fn spherical_theta1(
+    g: &ArmFrames,
+    p: Vector3<f64>,
+    d2: f64,
+    [drawn, t1]: [f64; 2],
+    scale: f64,
+) -> Step {
+    let f1 = g.f[0];
+    let root = |sign: f64| {
+        2.0 * (-p.x + sign * (p.x * p.x + p.y * p.y - d2 * d2).max(0.0).sqrt()).atan2(d2 + p.y)
+    };
+    let foot = g.base.o + g.base.z * g.base.z.dot(&(g.p_w - g.base.o));
+    let corner = foot + f1.z * d2;
+    Step {
+        title: "theta1: the lateral offset d2 fixes the vertical plane of the arm".into(),
+        equation: "(2.94), Sect. 2.12.3".into(),
+        formula: format!(
+            "-p_Wx s1 + p_Wy c1 = d2 = {d2:.3} m; with t = tan(theta1/2): theta1 = 2 Atan2(-p_Wx \
+             +- sqrt(p_Wx^2 + p_Wy^2 - d2^2), d2 + p_Wy) = 2 Atan2({:.3} +- {:.3}, {:.3}) = {} \
+             or {}; the arm is at theta1 = {}",
+            -p.x,
+            (p.x * p.x + p.y * p.y - d2 * d2).max(0.0).sqrt(),
+            d2 + p.y,
+            deg(wrap_angle(root(1.0))),
+            deg(wrap_angle(root(-1.0))),
+            deg(t1)
+        ),
+        marks: vec![
+            seg(
+                foot,
+                g.p_w,
+                format!("sqrt(p_Wx^2 + p_Wy^2) = {:.3} m", p.x.hypot(p.y)),
+                true,
+            ),
+            seg(foot, corner, format!("d2 = {d2:.3} m"), false),
+            seg(corner, g.p_w, String::new(), true),
+            Mark::Arc {
+                center: foot,
+                from: g.base.x,
+                normal: g.base.z,
+                angle: drawn,
+                radius: 0.2 * scale,
+                label: format!("θ1 = {}", deg(t1)),
+            },
+        ],
+    }
 }
 
 /// Cylindrical arm: theta1 = angle x0 -> the horizontal arm about z0, d2 = the rise along z1
