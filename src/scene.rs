@@ -293,52 +293,94 @@ fn axis_frame(robot: &Robot, frames: &[Pose], j: usize) -> (Pose, Unit<Vector3<f
 pub fn arm_scene(robot: &Robot, q: &[f64], style: &ArmStyle) -> Result<Scene, KinematicsError> {
     let frames = robot.fk_frames(q)?;
     let scale = robot_scale(robot);
-    let r_link = scale * style.link_radius as f64;
-    let fade = |c: Rgba| [c[0], c[1], c[2], c[3] * style.alpha];
-    let mut s = Scene::default();
-    let cylinder =
-        |s: &mut Scene, a: &Vector3<f64>, b: &Vector3<f64>, r: f64, color: Rgba, shape: Shape| {
-            if let Some(m) = segment_transform(a, b, r) {
-                s.meshes.push(MeshInstance {
-                    shape,
-                    world_from_unit: col_major(&m),
-                    color: fade(color),
-                });
-            }
-        };
+    let mut p = ArmPainter {
+        s: Scene::default(),
+        style,
+        scale,
+        r_link: scale * style.link_radius as f64,
+    };
     // The links' own visuals (a URDF's), where it has them.
     // Ghost arms (faded) are drawn with the joints' bodies: a URDF's meshes, translucent and
     // overlapping once per posture, cost the software rasterizer more fill than a frame has.
     let drawn = if style.alpha < 1.0 {
         vec![false; robot.joints().len() + 1]
     } else {
-        add_visuals(&mut s, robot, &frames, style)
+        add_visuals(&mut p.s, robot, &frames, style)
     };
     // Base pedestal.
     let base_o = robot.base.translation.vector;
     let base_z = robot.base.rotation * Vector3::z();
     if !drawn[0] {
-        cylinder(
-            &mut s,
-            &(base_o - base_z * r_link * 2.0),
+        let r = p.r_link;
+        p.segment(
+            &(base_o - base_z * r * 2.0),
             &base_o,
-            r_link * 3.5,
+            r * 3.5,
             style.tool,
             Shape::Cylinder,
         );
     }
-    for (j, joint) in robot.joints().iter().enumerate() {
-        if drawn[j + 1] {
-            continue;
+    for j in 0..robot.joints().len() {
+        if !drawn[j + 1] {
+            p.joint(robot, &frames, q, j);
         }
-        let parent_o = joint
-            .parent
-            .map_or(base_o, |p| frames[p].translation.vector);
-        let (af, axis) = axis_frame(robot, &frames, j);
+    }
+    p.s.dots.retain(|d| d.size_px > 0.0);
+    for e in robot.end_effectors() {
+        p.gripper(&(frames[e.parent] * e.tool));
+    }
+    if style.frames {
+        p.triad(&robot.base, "0");
+        for (j, f) in frames.iter().enumerate() {
+            p.triad(f, &(j + 1).to_string());
+        }
+    }
+    if style.grid {
+        p.s.lines.extend(ground_grid(scale as f32));
+    }
+    Ok(p.s)
+}
+
+/// Draws the parts of one arm into a scene, with the sizes and the fade they share.
+struct ArmPainter<'a> {
+    s: Scene,
+    style: &'a ArmStyle,
+    /// The robot's size (m).
+    scale: f64,
+    /// Link radius (m).
+    r_link: f64,
+}
+
+impl ArmPainter<'_> {
+    /// A colour with the style's alpha applied.
+    fn fade(&self, c: Rgba) -> Rgba {
+        [c[0], c[1], c[2], c[3] * self.style.alpha]
+    }
+
+    /// A cylinder or box of cross-section radius `r` from `a` to `b`.
+    fn segment(&mut self, a: &Vector3<f64>, b: &Vector3<f64>, r: f64, color: Rgba, shape: Shape) {
+        if let Some(m) = segment_transform(a, b, r) {
+            let color = self.fade(color);
+            self.s.meshes.push(MeshInstance {
+                shape,
+                world_from_unit: col_major(&m),
+                color,
+            });
+        }
+    }
+
+    /// Joint j's link polyline (parent origin -> axis origin -> (standard DH: along z by d) ->
+    /// output origin) and its body at the axis origin.
+    fn joint(&mut self, robot: &Robot, frames: &[Pose], q: &[f64], j: usize) {
+        let (style, r_link) = (self.style, self.r_link);
+        let joint = &robot.joints()[j];
+        let parent_o = joint.parent.map_or(robot.base.translation.vector, |p| {
+            frames[p].translation.vector
+        });
+        let (af, axis) = axis_frame(robot, frames, j);
         let ao = af.translation.vector;
         let z = af.rotation * axis.into_inner();
         let out_o = frames[j].translation.vector;
-        // Link polyline: parent origin -> axis origin -> (standard DH: along z by d) -> output origin.
         let mut pts = vec![parent_o, ao];
         if let JointGeometry::Dh {
             row,
@@ -354,18 +396,17 @@ pub fn arm_scene(robot: &Robot, q: &[f64], style: &ArmStyle) -> Result<Scene, Ki
         }
         pts.push(out_o);
         for w in pts.windows(2) {
-            cylinder(&mut s, &w[0], &w[1], r_link, style.link, Shape::Cylinder);
+            self.segment(&w[0], &w[1], r_link, style.link, Shape::Cylinder);
         }
-        s.dots.push(Dot {
+        let color = self.fade(style.link);
+        self.s.dots.push(Dot {
             p: v32(&out_o),
-            color: fade(style.link),
+            color,
             size_px: 0.0,
         });
-        // Joint body at the axis origin.
-        let h = scale * 0.07;
+        let h = self.scale * 0.07;
         match joint.kind {
-            JointKind::Revolute => cylinder(
-                &mut s,
+            JointKind::Revolute => self.segment(
                 &(ao - z * h * 0.5),
                 &(ao + z * h * 0.5),
                 r_link * 1.9,
@@ -375,90 +416,56 @@ pub fn arm_scene(robot: &Robot, q: &[f64], style: &ArmStyle) -> Result<Scene, Ki
             JointKind::Prismatic => {
                 let d = robot.joint_variable(j, q) + joint.offset;
                 let start = ao + z * (d - h).min(0.0);
-                cylinder(
-                    &mut s,
-                    &start,
-                    &(ao + z * d.max(h * 0.5)),
-                    r_link * 1.6,
-                    style.prismatic,
-                    Shape::Cube,
-                );
+                let end = ao + z * d.max(h * 0.5);
+                self.segment(&start, &end, r_link * 1.6, style.prismatic, Shape::Cube);
             }
             JointKind::Fixed => {}
         }
     }
-    s.dots.retain(|d| d.size_px > 0.0);
-    // End-effectors: a small two-finger gripper along the tool z.
-    for e in robot.end_effectors() {
-        let t = frames[e.parent] * e.tool;
+
+    /// An end-effector: a small two-finger gripper along the tool z.
+    fn gripper(&mut self, t: &Pose) {
+        let (tool, r) = (self.style.tool, self.r_link);
         let o = t.translation.vector;
         let (x, z) = (t.rotation * Vector3::x(), t.rotation * Vector3::z());
-        let w = scale * 0.03;
-        cylinder(
-            &mut s,
-            &(o - z * w * 1.5),
-            &o,
-            r_link * 1.2,
-            style.tool,
-            Shape::Cylinder,
-        );
+        let w = self.scale * 0.03;
+        self.segment(&(o - z * w * 1.5), &o, r * 1.2, tool, Shape::Cylinder);
         for side in [-1.0, 1.0] {
             let a = o + x * (side * w);
-            cylinder(
-                &mut s,
-                &(o - z * w * 0.3),
-                &a,
-                r_link * 0.6,
-                style.tool,
-                Shape::Cylinder,
-            );
-            cylinder(
-                &mut s,
-                &a,
-                &(a + z * w * 1.2),
-                r_link * 0.6,
-                style.tool,
-                Shape::Cylinder,
-            );
+            self.segment(&(o - z * w * 0.3), &a, r * 0.6, tool, Shape::Cylinder);
+            self.segment(&a, &(a + z * w * 1.2), r * 0.6, tool, Shape::Cylinder);
         }
     }
-    if style.frames {
-        let len = (scale * 0.12) as f32;
-        let triad = |s: &mut Scene, t: &Pose, name: &str| {
-            let o = v32(&t.translation.vector);
-            for (k, color) in AXIS_COLORS.iter().enumerate() {
-                let dir = t.rotation * Vector3::ith(k, 1.0);
-                let tip = [
-                    o[0] + dir.x as f32 * len,
-                    o[1] + dir.y as f32 * len,
-                    o[2] + dir.z as f32 * len,
-                ];
-                s.lines.push(Line {
-                    a: o,
-                    b: tip,
-                    color: fade(*color),
-                    width_px: 2.5,
+
+    /// A frame's triad, x and z labelled with the frame's number.
+    fn triad(&mut self, t: &Pose, name: &str) {
+        let len = (self.scale * 0.12) as f32;
+        let o = v32(&t.translation.vector);
+        for (k, color) in AXIS_COLORS.iter().enumerate() {
+            let dir = t.rotation * Vector3::ith(k, 1.0);
+            let tip = [
+                o[0] + dir.x as f32 * len,
+                o[1] + dir.y as f32 * len,
+                o[2] + dir.z as f32 * len,
+            ];
+            let color = self.fade(*color);
+            self.s.lines.push(Line {
+                a: o,
+                b: tip,
+                color,
+                width_px: 2.5,
+            });
+            if self.style.frame_labels && k != 1 {
+                let axis = ["x", "y", "z"][k];
+                self.s.labels.push(Label {
+                    p: tip,
+                    text: format!("{axis}{name}"),
+                    color,
+                    movable: false,
                 });
-                if style.frame_labels && k != 1 {
-                    let axis = ["x", "y", "z"][k];
-                    s.labels.push(Label {
-                        p: tip,
-                        text: format!("{axis}{name}"),
-                        color: fade(*color),
-                        movable: false,
-                    });
-                }
             }
-        };
-        triad(&mut s, &robot.base, "0");
-        for (j, f) in frames.iter().enumerate() {
-            triad(&mut s, f, &(j + 1).to_string());
         }
     }
-    if style.grid {
-        s.lines.extend(ground_grid(scale as f32));
-    }
-    Ok(s)
 }
 
 /// Adds the robot's visuals at the frames of their links (faded like the rest of the arm);

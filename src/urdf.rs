@@ -292,26 +292,30 @@ pub fn parse_urdf(text: &str, path: &Path) -> Result<Robot, UrdfError> {
             });
         }
     }
-    let name = if urdf.name.is_empty() {
-        path.file_stem()
-            .map_or("URDF robot".into(), |s| s.to_string_lossy().into_owned())
-    } else {
-        urdf.name.clone()
-    };
-    let count = joints.len();
-    let mut robot = Robot::new(name, Pose::identity(), joints, ees)
+    let mut robot = Robot::new(robot_name(&urdf, path), Pose::identity(), joints, ees)
         .map_err(|source| UrdfError::Model { path: p(), source })?;
     let (visuals, warnings) =
         visuals::read(&urdf, path, |link| child_of.get(link).map(|&s| new_id[s]));
     robot.visuals = visuals;
     robot.load_warnings = warnings;
     let description = format!(
-        "Read from the URDF file {}: {count} joints, {} degrees of freedom; joint frames are the \
+        "Read from the URDF file {}: {} joints, {} degrees of freedom; joint frames are the \
          URDF child-link frames.",
         path.display(),
+        robot.joints().len(),
         robot.dof()
     );
     Ok(robot.with_description(description))
+}
+
+/// The robot's name, or the file's stem when the URDF gives none.
+fn robot_name(urdf: &urdf_rs::Robot, path: &Path) -> String {
+    if urdf.name.is_empty() {
+        path.file_stem()
+            .map_or("URDF robot".into(), |s| s.to_string_lossy().into_owned())
+    } else {
+        urdf.name.clone()
+    }
 }
 
 /// Depth-first order from `root`, children in file order, with each mimic joint moved after

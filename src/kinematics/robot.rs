@@ -695,32 +695,36 @@ fn validate_joint(i: usize, j: &Joint, all: &[Joint]) -> Result<(), ModelError> 
             ));
         }
         Drive::Closure(c) => check_closure(i, c, all)?,
-        Drive::Coupled(terms) => {
-            if terms.is_empty() {
-                return Err(ModelError::Structure(
-                    "a coupled joint needs at least one term",
-                ));
-            }
-            for &(src, coef) in terms {
-                let reason = if src >= i {
-                    Some("it must name an earlier joint")
-                } else if !matches!(all[src].drive, Drive::Actuated(_)) {
-                    Some("it must name an actuated joint")
-                } else if !coef.is_finite() {
-                    Some("the factor is not finite")
-                } else {
-                    None
-                };
-                if let Some(reason) = reason {
-                    return Err(ModelError::BadCoupling {
-                        joint: i,
-                        source_joint: src,
-                        reason,
-                    });
-                }
-            }
-        }
+        Drive::Coupled(terms) => check_coupling(i, terms, all)?,
         _ => {}
+    }
+    Ok(())
+}
+
+/// A coupled joint's terms name earlier actuated joints with finite factors.
+fn check_coupling(i: usize, terms: &[(JointId, f64)], all: &[Joint]) -> Result<(), ModelError> {
+    if terms.is_empty() {
+        return Err(ModelError::Structure(
+            "a coupled joint needs at least one term",
+        ));
+    }
+    for &(src, coef) in terms {
+        let reason = if src >= i {
+            Some("it must name an earlier joint")
+        } else if !matches!(all[src].drive, Drive::Actuated(_)) {
+            Some("it must name an actuated joint")
+        } else if !coef.is_finite() {
+            Some("the factor is not finite")
+        } else {
+            None
+        };
+        if let Some(reason) = reason {
+            return Err(ModelError::BadCoupling {
+                joint: i,
+                source_joint: src,
+                reason,
+            });
+        }
     }
     Ok(())
 }

@@ -18,11 +18,9 @@ use std::fmt::Write;
 /// last bit.
 pub fn to_toml(robot: &Robot) -> Option<String> {
     let ((convention, rows), pres) = robot.dh_table_with_pre()?;
-    if robot
-        .joints()
-        .iter()
-        .any(|j| matches!(j.drive, Drive::Coupled(_) | Drive::Closure(_)))
-    {
+    let follows =
+        |j: &crate::kinematics::Joint| matches!(j.drive, Drive::Coupled(_) | Drive::Closure(_));
+    if robot.joints().iter().any(follows) {
         return None;
     }
     let joints = robot.joints();
