@@ -1050,3 +1050,42 @@ fn info_has_no_nan_for_any_shipped_model() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A successful headless run prints nothing on stderr, even with no `XDG_RUNTIME_DIR` (Mesa's
+/// Vulkan layer made libwayland print "error: XDG_RUNTIME_DIR is invalid or not set in the
+/// environment." although nothing failed; issue 16).
+#[test]
+fn headless_commands_are_quiet_without_a_runtime_dir() {
+    let dir = std::env::temp_dir().join(format!("armlab-quiet-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = |name: &str| dir.join(name).to_string_lossy().into_owned();
+    let runs: [Vec<String>; 4] = [
+        vec!["render".into(), "puma560".into(), "--out".into(), out("r.png")],
+        vec![
+            "workspace".into(),
+            "planar2".into(),
+            "--samples".into(),
+            "2000".into(),
+            "--out".into(),
+            out("w.png"),
+        ],
+        vec!["figure".into(), "2.31".into(), "--out".into(), out("f.png")],
+        vec![
+            "view".into(),
+            "puma560".into(),
+            "--screenshot".into(),
+            out("v.png"),
+        ],
+    ];
+    for args in runs {
+        let o = Command::new(env!("CARGO_BIN_EXE_armlab"))
+            .args(&args)
+            .env_remove("XDG_RUNTIME_DIR")
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(o.status.success(), "{args:?}: {err}");
+        assert!(err.trim().is_empty(), "{args:?} wrote to stderr: {err:?}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
