@@ -89,6 +89,7 @@ pub mod cli;
 pub mod figure;
 #[cfg(feature = "app")]
 pub mod headless;
+pub mod input;
 pub mod kinematics;
 pub mod model_file;
 pub mod redundancy;

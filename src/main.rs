@@ -12,11 +12,37 @@ fn main() -> ExitCode {
     let result: anyhow::Result<()> = armlab::cli::run(cli, &mut out).map_err(anyhow::Error::from);
     match result.and_then(|()| std::io::Write::flush(&mut out).map_err(anyhow::Error::from)) {
         Ok(()) => ExitCode::SUCCESS,
+        Err(e) if is_broken_pipe(&e) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("armlab: error: {e:#}");
+            eprintln!("armlab: error: {}", one_line(&e));
             ExitCode::from(2)
         }
     }
+}
+
+/// The error and its causes on one line, each cause only where the text so far does not
+/// already say it (typed errors often print their source themselves).
+fn one_line(e: &anyhow::Error) -> String {
+    let mut line = String::new();
+    for cause in e.chain() {
+        let text = cause.to_string();
+        if line.is_empty() {
+            line = text;
+        } else if !line.contains(&text) {
+            line.push_str(": ");
+            line.push_str(&text);
+        }
+    }
+    line
+}
+
+/// Output piped into a program that stopped reading (`armlab info big.toml | head`): not an
+/// error of armlab's, so it ends quietly as other command-line tools do.
+fn is_broken_pipe(e: &anyhow::Error) -> bool {
+    e.chain().any(|c| {
+        c.downcast_ref::<std::io::Error>()
+            .is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe)
+    })
 }
 
 /// Gives the graphics stack a private runtime directory when `XDG_RUNTIME_DIR` is unset or not

@@ -64,10 +64,11 @@ pub fn parse_model(text: &str, path: &Path) -> Result<Robot, ModelFileError> {
 
 /// Reads a robot from a TOML model file (see [`parse_model`]); also reports unreadable files.
 pub fn load_model_file(path: &Path) -> Result<Robot, ModelFileError> {
-    let text = std::fs::read_to_string(path).map_err(|source| ModelFileError::Read {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let text = crate::input::read_text(path, crate::input::MAX_MODEL_BYTES, "a model file")
+        .map_err(|source| ModelFileError::Read {
+            path: path.to_path_buf(),
+            source,
+        })?;
     parse_model(&text, path)
 }
 

@@ -209,10 +209,11 @@ pub enum UrdfError {
 
 /// Reads a URDF file into a [`Robot`] (see the module documentation for the mapping).
 pub fn load_urdf(path: &Path) -> Result<Robot, UrdfError> {
-    let text = std::fs::read_to_string(path).map_err(|source| UrdfError::Read {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let text = crate::input::read_text(path, crate::input::MAX_MODEL_BYTES, "a model file")
+        .map_err(|source| UrdfError::Read {
+            path: path.to_path_buf(),
+            source,
+        })?;
     parse_urdf(&text, path)
 }
 

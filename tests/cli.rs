@@ -19,12 +19,11 @@ fn armlab_stdin(args: &[&str], input: &str) -> Output {
         .stderr(Stdio::piped())
         .spawn()
         .expect("spawn");
-    child
-        .stdin
-        .take()
-        .unwrap()
-        .write_all(input.as_bytes())
-        .unwrap();
+    // armlab may stop reading early (a refused line): a broken pipe is its answer, not ours.
+    let written = child.stdin.take().unwrap().write_all(input.as_bytes());
+    if let Err(e) = written {
+        assert_eq!(e.kind(), std::io::ErrorKind::BrokenPipe, "{e}");
+    }
     child.wait_with_output().unwrap()
 }
 
@@ -1060,7 +1059,12 @@ fn headless_commands_are_quiet_without_a_runtime_dir() {
     std::fs::create_dir_all(&dir).unwrap();
     let out = |name: &str| dir.join(name).to_string_lossy().into_owned();
     let runs: [Vec<String>; 4] = [
-        vec!["render".into(), "puma560".into(), "--out".into(), out("r.png")],
+        vec![
+            "render".into(),
+            "puma560".into(),
+            "--out".into(),
+            out("r.png"),
+        ],
         vec![
             "workspace".into(),
             "planar2".into(),
@@ -1088,4 +1092,97 @@ fn headless_commands_are_quiet_without_a_runtime_dir() {
         assert!(err.trim().is_empty(), "{args:?} wrote to stderr: {err:?}");
     }
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Valid but extreme inputs get one clear line, fast, without gigabytes (issue 16): a model
+/// with 10,000 joints, limits of 1e300, a 1 GB file and a 2 MiB line, `--samples 1e12`,
+/// `--size 100000x100000`.
+#[test]
+fn extreme_inputs_get_clear_errors() {
+    let dir = std::env::temp_dir().join(format!("armlab-extreme-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = |n: &str| dir.join(n).to_string_lossy().into_owned();
+    let joint = "[[joints]]\ntype = \"revolute\"\na = 0.1\nalpha = 0.0\nd = 0.0\n";
+    let header = "name = \"x\"\nconvention = \"standard\"\n";
+    std::fs::write(
+        path("big.toml"),
+        format!("{header}{}", joint.repeat(10_000)),
+    )
+    .unwrap();
+    bad(&armlab(&["info", &path("big.toml")]), "at most 256");
+    let huge_limits = format!("{header}{joint}limits = [-1e300, 1e300]\n");
+    std::fs::write(path("limits.toml"), huge_limits).unwrap();
+    bad(&armlab(&["info", &path("limits.toml")]), "out of range");
+    // Sparse 1 GiB files: refused from their size before a byte is read.
+    for name in ["huge.toml", "huge.txt"] {
+        let f = std::fs::File::create(path(name)).unwrap();
+        f.set_len(1 << 30).unwrap();
+    }
+    bad(
+        &armlab(&["info", &path("huge.toml")]),
+        "larger than the 16.0 MiB",
+    );
+    bad(
+        &armlab(&["fk", "planar2", "--input", &path("huge.txt")]),
+        "larger than the 256.0 MiB",
+    );
+    let long_line = "0.1,".repeat(600_000);
+    bad(
+        &armlab_stdin(&["fk", "planar2", "--input", "-"], &long_line),
+        "-:1: line longer than 1048576 bytes",
+    );
+    bad(
+        &armlab(&[
+            "workspace",
+            "planar2",
+            "--samples",
+            "1e12",
+            "--out",
+            &path("w.png"),
+        ]),
+        "--samples must be between 1 and 100000000",
+    );
+    let o = armlab(&[
+        "render",
+        "planar2",
+        "--size",
+        "100000x100000",
+        "--out",
+        &path("r.png"),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("from 16 to 8192"));
+    bad(
+        &armlab(&["calibrate", "puma560", "--simulate", "--poses", "1e9"]),
+        "--poses must be between 1 and 100000",
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Output piped into a program that stops reading (`armlab fk ... | head`) ends quietly with
+/// success, as other command-line tools do (it printed "armlab: error: ... Broken pipe").
+#[test]
+fn a_closed_output_pipe_is_not_an_error() {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_armlab"))
+        .args(["fk", "planar2", "--input", "-"])
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take()); // the reader is gone before anything is written
+    let rows = "0.1, 0.2\n".repeat(50_000); // far more output than a pipe buffers
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(rows.as_bytes())
+        .unwrap();
+    let o = child.wait_with_output().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(
+        o.stderr.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
 }

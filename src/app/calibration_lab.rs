@@ -251,8 +251,8 @@ impl CalibrationLab {
     /// Calibrates `robot` from the measurement file typed in `measurements_path`.
     pub fn run_file(&mut self, robot: &Robot) {
         let path = self.measurements_path.trim().to_string();
-        let result = std::fs::read_to_string(&path)
-            .map_err(|e| format!("cannot read {path}: {e}"))
+        let result = crate::input::read_data_text(std::path::Path::new(&path))
+            .map_err(|e| e.to_string())
             .and_then(|text| {
                 parse_measurements(&text, &path, robot.dof()).map_err(|e| e.to_string())
             })

@@ -67,7 +67,7 @@ pub struct CalibrateArgs {
     #[arg(long)]
     pub simulate: bool,
     /// Simulated poses for the fit (as many again are held out).
-    #[arg(long, default_value_t = 50)]
+    #[arg(long, default_value_t = 50, value_parser = super::count)]
     pub poses: usize,
     /// How the simulated poses are chosen.
     #[arg(long, value_enum, default_value_t)]
@@ -102,7 +102,7 @@ pub struct CalibrateArgs {
     #[arg(long, default_value = "256x256")]
     pub map_cells: super::figures::Size,
     /// Joint vectors sampled for the accuracy map.
-    #[arg(long, default_value_t = 1_000_000)]
+    #[arg(long, default_value_t = 1_000_000, value_parser = super::count)]
     pub map_samples: usize,
     /// Output format.
     #[arg(long, value_enum, default_value_t)]
@@ -110,14 +110,9 @@ pub struct CalibrateArgs {
 }
 
 fn read(path: &Path, dof: usize) -> Result<Vec<Measurement>, CliError> {
-    let text = if path == Path::new("-") {
-        std::io::read_to_string(std::io::stdin())
-    } else {
-        std::fs::read_to_string(path)
-    }
-    .map_err(|e| CliError::BadTarget {
+    let text = crate::input::read_data_text(path).map_err(|e| CliError::BadTarget {
         source_name: path.display().to_string(),
-        reason: format!("cannot read the file: {e}"),
+        reason: e.to_string(),
     })?;
     parse_measurements(&text, &path.display().to_string(), dof).map_err(|e| CliError::BadTarget {
         source_name: e.source_name.clone(),
@@ -149,6 +144,9 @@ fn data(
         let ms = read(path, dof)?;
         let val = args.validate.as_ref().map(|p| read(p, dof)).transpose()?;
         return Ok((ms, val, None));
+    }
+    if args.poses == 0 || args.poses > 100_000 {
+        return Err(CliError::Usage("--poses must be between 1 and 100000"));
     }
     let candidates = match args.select {
         Select::Random => args.poses,
@@ -304,6 +302,11 @@ fn accuracy_figures(
     }
     let mut figures = crate::figure::figures::Figures::new()?;
     for (file, a, b, title) in maps {
+        if args.map_samples == 0 || args.map_samples > 100_000_000 {
+            return Err(CliError::Usage(
+                "--map-samples must be between 1 and 100000000",
+            ));
+        }
         let map = crate::calibration::accuracy_map(model, a, b, cells, args.map_samples, args.seed)
             .map_err(calibration_error)?;
         let img = crate::figure::accuracy::accuracy_figure(

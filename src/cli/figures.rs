@@ -234,7 +234,7 @@ pub struct WorkspaceArgs {
     #[arg(long, value_enum, default_value_t)]
     pub color_by: ColorByArg,
     /// Joint-space samples.
-    #[arg(long, default_value_t = 200_000)]
+    #[arg(long, default_value_t = 200_000, value_parser = super::count)]
     pub samples: usize,
     /// Sampler seed: the same inputs give the same PNG bytes.
     #[arg(long, default_value_t = 1)]

@@ -1,7 +1,7 @@
 //! `armlab ik`: every closed-form solution with its posture, or the numerical solver.
 
 use super::fk::fmt_vec;
-use super::input::{InputError, parse_row, read_rows};
+use super::input::{parse_row, read_numbered_rows};
 use super::{CliError, Format};
 use crate::kinematics::Robot;
 use crate::kinematics::ik::numerical::{Method, NumericalOptions};
@@ -184,34 +184,13 @@ fn targets(args: &IkArgs) -> Result<Vec<(String, Target)>, CliError> {
     } else {
         "numbers"
     };
-    let rows = read_rows(path, count(kind), what)?;
-    // Row numbers for messages: re-derive the line of each data row.
-    let text_lines: Vec<usize> = line_numbers(path)?;
-    rows.iter()
-        .zip(text_lines)
-        .map(|(v, line)| {
+    read_numbered_rows(path, count(kind), what)?
+        .iter()
+        .map(|(line, v)| {
             let src = format!("{}:{line}", path.display());
             Ok((src.clone(), target_from(v, kind, &src)?))
         })
         .collect()
-}
-
-/// 1-based line numbers of the data rows of an input file (stdin cannot be re-read: rows are
-/// numbered in order there).
-fn line_numbers(path: &std::path::Path) -> Result<Vec<usize>, CliError> {
-    if path == std::path::Path::new("-") {
-        return Ok((1..).take(100_000_000).collect());
-    }
-    let text = std::fs::read_to_string(path).map_err(|source| InputError::Read {
-        path: path.to_path_buf(),
-        source,
-    })?;
-    Ok(text
-        .lines()
-        .enumerate()
-        .filter(|(_, l)| !l.split('#').next().unwrap_or("").trim().is_empty())
-        .map(|(i, _)| i + 1)
-        .collect())
 }
 
 /// The index of end-effector `spec` (a name or an index; the first without one).

@@ -7,7 +7,7 @@ mod figures;
 mod fk;
 mod ik;
 mod info;
-pub mod input;
+pub use crate::input;
 mod reach;
 mod self_motion;
 mod view;
@@ -315,4 +315,18 @@ fn q_for_display(robot: &Robot, q: &[f64]) -> Vec<f64> {
             }
         })
         .collect()
+}
+
+/// Parses a count flag: a whole number written plainly (`200000`, `200_000`) or in scientific
+/// notation (`2e5`); ranges are checked by each command with the flag's name in the message.
+pub fn count(text: &str) -> Result<usize, String> {
+    let plain = text.trim().replace('_', "");
+    if let Ok(n) = plain.parse::<usize>() {
+        return Ok(n);
+    }
+    match plain.parse::<f64>() {
+        Ok(v) if v.is_finite() && v >= 0.0 && v.fract() == 0.0 && v < 1e18 => Ok(v as usize),
+        Ok(v) if v.is_finite() && v >= 1e18 => Err(format!("{text} is far too many")),
+        _ => Err(format!("{text:?} is not a whole number")),
+    }
 }

@@ -19,7 +19,7 @@ pub struct SelfMotionArgs {
     #[arg(long)]
     pub ee: Option<String>,
     /// Samples of the parameter over [-pi, pi).
-    #[arg(long, default_value_t = 360)]
+    #[arg(long, default_value_t = 360, value_parser = super::count)]
     pub samples: usize,
     /// Only this branch (e.g. "elbow up").
     #[arg(long)]

@@ -35,7 +35,7 @@ pub struct ViewArgs {
     pub projector: bool,
     /// Open the window, drag the IK target for N frames, print the frame times and exit
     /// (vsync off; under `xvfb-run` on a machine without a display).
-    #[arg(long, value_name = "N", conflicts_with = "screenshot")]
+    #[arg(long, value_name = "N", conflicts_with = "screenshot", value_parser = super::count)]
     pub measure_frames: Option<usize>,
 }
 
@@ -49,6 +49,11 @@ pub(super) fn run(args: &ViewArgs, out: &mut dyn std::io::Write) -> Result<(), C
         Some(t) => Some(parse_row(t, "--q", dof, "joint values")?),
         None => None,
     };
+    if args.measure_frames.is_some_and(|n| n == 0 || n > 100_000) {
+        return Err(CliError::Usage(
+            "--measure-frames must be between 1 and 100000",
+        ));
+    }
     let Some(path) = &args.screenshot else {
         let opts = crate::app::RunOptions {
             measure_frames: args.measure_frames,

@@ -99,6 +99,34 @@ pub enum ModelError {
     /// A robot with no actuated joint, or an end-effector on a missing joint.
     #[error("{0}")]
     Structure(&'static str),
+    /// A finite parameter too large to be a robot's (a length over [`MAX_LENGTH`] m, an angle
+    /// over [`MAX_ANGLE`] rad): a typo or an attack, refused before it overflows a figure.
+    ///
+    /// [`MAX_LENGTH`]: crate::kinematics::robot::MAX_LENGTH
+    /// [`MAX_ANGLE`]: crate::kinematics::robot::MAX_ANGLE
+    #[error(
+        "joint {joint}: field `{field}` = {value:e} is out of range (|value| <= {max:e} {unit})"
+    )]
+    OutOfRange {
+        /// Zero-based joint index.
+        joint: usize,
+        /// Field name (`a`, `d`, `limits`, `origin`, ...).
+        field: &'static str,
+        /// The value.
+        value: f64,
+        /// The largest magnitude accepted.
+        max: f64,
+        /// "m" or "rad".
+        unit: &'static str,
+    },
+    /// More joints than armlab handles.
+    #[error("{count} joints: armlab handles at most {max}")]
+    TooManyJoints {
+        /// Joints in the model.
+        count: usize,
+        /// The limit.
+        max: usize,
+    },
     /// A joint axis of zero length.
     #[error("joint {joint}: axis has zero length")]
     ZeroAxis {

@@ -289,6 +289,12 @@ impl Robot {
         if joints.is_empty() {
             return Err(ModelError::Structure("a robot needs at least one joint"));
         }
+        if joints.len() > MAX_JOINTS {
+            return Err(ModelError::TooManyJoints {
+                count: joints.len(),
+                max: MAX_JOINTS,
+            });
+        }
         let mut dof_joint = Vec::new();
         for (i, j) in joints.iter().enumerate() {
             validate_joint(i, j, &joints)?;
@@ -305,6 +311,10 @@ impl Robot {
             return Err(ModelError::Structure(
                 "a robot needs at least one actuated joint",
             ));
+        }
+        check_placement("base", &base)?;
+        for (k, ee) in end_effectors.iter().enumerate() {
+            check_placement(&format!("tool of end-effector {k}"), &ee.tool)?;
         }
         if end_effectors.is_empty() {
             end_effectors.push(EndEffector {
@@ -619,6 +629,13 @@ impl Robot {
     }
 }
 
+/// Most joints (actuated, coupled or fixed) a robot may have.
+pub const MAX_JOINTS: usize = 256;
+/// Largest length a robot's parameter may have (m): 10 km.
+pub const MAX_LENGTH: f64 = 1e4;
+/// Largest angle a robot's parameter or finite limit may have (rad): about 159 turns.
+pub const MAX_ANGLE: f64 = 1e3;
+
 fn check_finite(joint: usize, field: &'static str, value: f64) -> Result<(), ModelError> {
     if value.is_finite() {
         Ok(())
@@ -631,16 +648,61 @@ fn check_finite(joint: usize, field: &'static str, value: f64) -> Result<(), Mod
     }
 }
 
-fn check_pose(joint: usize, what: &str, p: &Pose) -> Result<(), ModelError> {
+/// Finite and `|value| <= max`; `unit` is "m" or "rad".
+fn check_range(
+    joint: usize,
+    field: &'static str,
+    value: f64,
+    max: f64,
+    unit: &'static str,
+) -> Result<(), ModelError> {
+    check_finite(joint, field, value)?;
+    if value.abs() > max {
+        return Err(ModelError::OutOfRange {
+            joint,
+            field,
+            value,
+            max,
+            unit,
+        });
+    }
+    Ok(())
+}
+
+/// The (max, unit) of a joint variable's kind.
+fn variable_range(kind: JointKind) -> (f64, &'static str) {
+    match kind {
+        JointKind::Prismatic => (MAX_LENGTH, "m"),
+        _ => (MAX_ANGLE, "rad"),
+    }
+}
+
+/// A base or tool: finite, translation within [`MAX_LENGTH`].
+fn check_placement(what: &str, p: &Pose) -> Result<(), ModelError> {
+    let t = p.translation.vector.norm();
+    let finite = p.to_homogeneous().iter().all(|v| v.is_finite());
+    if finite && t <= MAX_LENGTH {
+        return Ok(());
+    }
+    Err(ModelError::NotRigid {
+        what: what.to_string(),
+        reason: if finite {
+            format!("translation {t:e} m is beyond {MAX_LENGTH:e} m")
+        } else {
+            "non-finite element".into()
+        },
+    })
+}
+
+fn check_pose(joint: usize, what: &'static str, p: &Pose) -> Result<(), ModelError> {
     let m = p.to_homogeneous();
-    if m.iter().all(|v| v.is_finite()) {
-        Ok(())
-    } else {
-        Err(ModelError::NotRigid {
+    if !m.iter().all(|v| v.is_finite()) {
+        return Err(ModelError::NotRigid {
             what: format!("joint {joint} {what}"),
             reason: "non-finite element".into(),
-        })
+        });
     }
+    check_range(joint, what, p.translation.vector.norm(), MAX_LENGTH, "m")
 }
 
 fn validate_joint(i: usize, j: &Joint, all: &[Joint]) -> Result<(), ModelError> {
@@ -652,14 +714,15 @@ fn validate_joint(i: usize, j: &Joint, all: &[Joint]) -> Result<(), ModelError> 
             parent: p,
         });
     }
-    check_finite(i, "offset", j.offset)?;
+    let (var_max, var_unit) = variable_range(j.kind);
+    check_range(i, "offset", j.offset, var_max, var_unit)?;
     check_pose(i, "pre", &j.pre)?;
     match &j.geometry {
         JointGeometry::Dh { row, .. } => {
-            check_finite(i, "a", row.a)?;
-            check_finite(i, "alpha", row.alpha)?;
-            check_finite(i, "d", row.d)?;
-            check_finite(i, "theta", row.theta)?;
+            check_range(i, "a", row.a, MAX_LENGTH, "m")?;
+            check_range(i, "alpha", row.alpha, MAX_ANGLE, "rad")?;
+            check_range(i, "d", row.d, MAX_LENGTH, "m")?;
+            check_range(i, "theta", row.theta, MAX_ANGLE, "rad")?;
         }
         JointGeometry::Origin {
             parent_from_joint,
@@ -679,6 +742,9 @@ fn validate_joint(i: usize, j: &Joint, all: &[Joint]) -> Result<(), ModelError> 
                 lower: lo,
                 upper: hi,
             });
+        }
+        for bound in [lo, hi].into_iter().filter(|b| b.is_finite()) {
+            check_range(i, "limits", bound, var_max, var_unit)?;
         }
     }
     match &j.drive {

@@ -446,6 +446,7 @@ fn model_error(ctx: &Ctx, e: ModelError, tables: &[Table], joints_key: Span) -> 
     let (joint, key) = match &e {
         ModelError::NonFiniteParameter { joint, field, .. } => (Some(*joint), Some(*field)),
         ModelError::BadLimits { joint, .. } => (Some(*joint), Some("limits")),
+        ModelError::OutOfRange { joint, field, .. } => (Some(*joint), Some(*field)),
         ModelError::BadParent { joint, .. } => (Some(*joint), Some("parent")),
         ModelError::BadCoupling { joint, .. } => (Some(*joint), Some("couple")),
         ModelError::ZeroAxis { joint } => (Some(*joint), None),

@@ -17,6 +17,8 @@ use std::sync::{Arc, Mutex, OnceLock};
 /// Triangles a mesh may keep; larger ones are decimated (the software rasterizer pays per
 /// triangle; a real arm's link meshes have a few thousand).
 pub const MAX_TRIANGLES: usize = 20_000;
+/// Most bytes read from one mesh file: 64 MiB (larger files are refused with a warning).
+pub const MAX_MESH_BYTES: u64 = 64 << 20;
 
 /// The package search list set by `--package-path` (before `ROS_PACKAGE_PATH`).
 fn package_paths() -> &'static Mutex<Vec<PathBuf>> {
@@ -74,6 +76,14 @@ fn resolve(filename: &str, urdf: &Path) -> Result<PathBuf, String> {
 
 /// One mesh file as a single triangle mesh (every sub-mesh merged), decimated if large.
 fn read_mesh(path: &Path) -> Result<TriMesh, String> {
+    let len = std::fs::metadata(path).map_err(|e| e.to_string())?.len();
+    if len > MAX_MESH_BYTES {
+        return Err(format!(
+            "the file is {} MiB, larger than the {} MiB armlab reads from a mesh",
+            len >> 20,
+            MAX_MESH_BYTES >> 20
+        ));
+    }
     let scene = mesh_loader::Loader::default()
         .load(path)
         .map_err(|e| e.to_string())?;
