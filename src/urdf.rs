@@ -111,6 +111,16 @@ pub enum UrdfError {
         /// The undeclared link.
         link: String,
     },
+    /// Two joints, or two links, of the same name (URDF names each once).
+    #[error("two {kind}s are named \"{name}\" (URDF names each {kind} once) ({})", path.display())]
+    DuplicateName {
+        /// The file.
+        path: PathBuf,
+        /// "joint" or "link".
+        kind: &'static str,
+        /// The repeated name.
+        name: String,
+    },
     /// A link that is the child of two joints.
     #[error(
         "link \"{link}\" is the child of both joint \"{first}\" and joint \"{second}\" ({})",
@@ -225,6 +235,23 @@ pub fn parse_urdf(text: &str, path: &Path) -> Result<Robot, UrdfError> {
     let uj = &urdf.joints;
     if uj.is_empty() {
         return Err(UrdfError::NoJoints { path: p() });
+    }
+    for (kind, names) in [
+        (
+            "link",
+            urdf.links.iter().map(|l| &l.name).collect::<Vec<_>>(),
+        ),
+        ("joint", uj.iter().map(|j| &j.name).collect()),
+    ] {
+        let mut seen = HashSet::new();
+        if let Some(name) = names.into_iter().find(|n| !seen.insert(n.as_str())) {
+            let name = name.clone();
+            return Err(UrdfError::DuplicateName {
+                path: p(),
+                kind,
+                name,
+            });
+        }
     }
     let links: HashSet<&str> = urdf.links.iter().map(|l| l.name.as_str()).collect();
     let mut child_of: HashMap<&str, usize> = HashMap::new();

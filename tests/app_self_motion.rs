@@ -196,3 +196,18 @@ fn the_gizmo_obeys_the_task() {
     assert!((now.translation.vector - moved.translation.vector).norm() < 1e-8);
     assert!((x(&now) - x(&moved)).norm() > 0.1);
 }
+
+/// A self-motion path with no points (exact case) draws nothing instead of overflowing
+/// `n - 1` (found by the soak test, tests/app_soak.rs, in the 3D view of a redundant arm).
+#[test]
+fn an_empty_traced_path_draws_nothing() {
+    let mut s = state("dlr");
+    let mut view = s.self_motion(0).unwrap();
+    assert!(view.exact);
+    for n in [0, 1, 2] {
+        view.path = vec![(Some(Vector3::zeros()), true); n];
+        let mut scene = armlab::scene::Scene::default();
+        armlab::app::viewport::add_self_motion(&mut scene, s.robot(), &view, &[], true);
+        assert_eq!(scene.lines.len(), n.saturating_sub(1));
+    }
+}

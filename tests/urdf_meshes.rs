@@ -231,3 +231,22 @@ fn obj_and_collada_meshes_load() {
         );
     }
 }
+
+/// A mesh that is not a regular file (a device read forever) is refused with a warning, at once
+/// (issue 16: found by reading the loader; /dev/zero has size 0 and never ends).
+#[test]
+fn a_mesh_that_is_a_device_is_refused() {
+    let text = std::fs::read_to_string(data().join("arm_with_meshes.urdf"))
+        .unwrap()
+        .replace("armlab_test/meshes/column.stl", "/dev/zero");
+    let start = std::time::Instant::now();
+    let r = armlab::urdf::parse_urdf(&text, &data().join("arm_with_meshes.urdf")).unwrap();
+    assert!(start.elapsed().as_secs() < 5);
+    assert!(
+        r.load_warnings
+            .iter()
+            .any(|w| w.contains("/dev/zero") && w.contains("not a regular file")),
+        "{:?}",
+        r.load_warnings
+    );
+}

@@ -2,6 +2,7 @@
 //! (iterations, identifiability in words, O1-O4, the parameter table, held-out errors).
 
 use super::calibration_lab::{CalibrationLab, LabResult, PoseChoice};
+use super::file_picker::{FileKind, FilePicker};
 use crate::calibration::Fit;
 use crate::kinematics::Robot;
 use egui::{Color32, RichText};
@@ -23,8 +24,8 @@ impl std::fmt::Debug for MapTextures {
 pub fn show(
     lab: &mut CalibrationLab,
     textures: &mut MapTextures,
-    robot: &Robot,
-    q: &[f64],
+    (robot, q): (&Robot, &[f64]),
+    picker: &mut dyn FilePicker,
     ui: &mut egui::Ui,
 ) {
     egui::ScrollArea::vertical().show(ui, |ui| {
@@ -38,6 +39,7 @@ pub fn show(
         );
         settings(lab, ui);
         actions(lab, robot, q, ui);
+        files(lab, robot, picker, ui);
         if let Some(m) = &lab.message {
             let color = if m.starts_with("saved") {
                 Color32::from_rgb(0, 110, 0)
@@ -193,6 +195,10 @@ fn actions(lab: &mut CalibrationLab, robot: &Robot, q: &[f64], ui: &mut egui::Ui
             lab.lesson_parallel(robot, q, true);
         }
     });
+}
+
+/// The measurement file (typed, or chosen in the file dialog) and where to save the result.
+fn files(lab: &mut CalibrationLab, robot: &Robot, picker: &mut dyn FilePicker, ui: &mut egui::Ui) {
     ui.horizontal(|ui| {
         let l = ui.label("measurements");
         ui.add(
@@ -202,6 +208,16 @@ fn actions(lab: &mut CalibrationLab, robot: &Robot, q: &[f64], ui: &mut egui::Ui
         )
         .labelled_by(l.id);
         if ui.button("Calibrate from file").clicked() {
+            lab.run_file(robot);
+        }
+        if ui
+            .add_enabled(picker.available(), egui::Button::new("Browse..."))
+            .on_hover_text("Choose the measurement file in a file dialog")
+            .on_disabled_hover_text("No file dialog here: type the path")
+            .clicked()
+            && let Some(p) = picker.open(FileKind::Measurements)
+        {
+            lab.measurements_path = p.to_string_lossy().into_owned();
             lab.run_file(robot);
         }
     });

@@ -6,12 +6,14 @@
 pub mod calibration_lab;
 pub mod calibration_panel;
 pub mod construction_panel;
+pub mod file_picker;
 pub mod gizmo;
 pub mod inner;
 pub mod panels;
 pub mod probe;
 pub mod redundancy_panel;
 pub mod screenshot;
+pub mod settings;
 pub mod singularity;
 pub mod state;
 pub mod ui;
@@ -31,9 +33,18 @@ pub struct ArmlabApp {
     probe: Option<probe::FrameProbe>,
     /// The widgets' own context, painted by our painter (None: eframe paints them).
     inner: Option<inner::InnerUi>,
+    /// Remember the settings across runs (not while measuring frames).
+    remember: bool,
 }
 
 impl eframe::App for ArmlabApp {
+    fn save(&mut self, storage: &mut dyn eframe::Storage) {
+        if self.remember {
+            let text = settings::Settings::capture(&self.ui).to_text();
+            storage.set_string(settings::STORAGE_KEY, text);
+        }
+    }
+
     fn clear_color(&self, _visuals: &egui::Visuals) -> [f32; 4] {
         self.ui.background().to_normalized_gamma_f32()
     }
@@ -130,7 +141,13 @@ pub struct RunOptions {
     pub measure_frames: Option<usize>,
     /// Joint vector (rad, m) to open at; the IK target is put on the tool.
     pub q: Option<Vec<f64>>,
+    /// The model was named on the command line: it wins over the one remembered from the last
+    /// run (the other remembered settings still apply).
+    pub model_given: bool,
 }
+
+/// The name eframe stores the settings under (`~/.local/share/armlab/app.ron` on Linux).
+pub const APP_ID: &str = "armlab";
 
 /// Opens the app window on the model `spec` (a built-in name or a .toml/.urdf path).
 pub fn run(spec: &str) -> Result<(), AppError> {
@@ -153,6 +170,7 @@ pub fn run_with(spec: &str, opts: &RunOptions) -> Result<Option<probe::FrameRepo
     let mut options = eframe::NativeOptions {
         renderer: eframe::Renderer::Wgpu,
         viewport: egui::ViewportBuilder::default()
+            .with_app_id(APP_ID)
             .with_inner_size([1280.0, 800.0])
             .with_title(format!("armlab: {}", state.robot().name)),
         // The window has flat colours only: nothing to dither.
@@ -161,11 +179,15 @@ pub fn run_with(spec: &str, opts: &RunOptions) -> Result<Option<probe::FrameRepo
     };
     let probe = opts.measure_frames.map(probe::FrameProbe::new);
     let report = probe.as_ref().map(|p| p.report.clone());
+    // Measured runs neither read nor write the remembered settings and window size.
+    let remember = probe.is_none();
+    options.persist_window = remember;
+    let model_given = opts.model_given || opts.q.is_some();
     if probe.is_some() {
         options.wgpu_options.surface.present_mode = wgpu::PresentMode::AutoNoVsync;
     }
     eframe::run_native(
-        "armlab",
+        APP_ID,
         options,
         Box::new(move |cc| {
             let mut probe = probe;
@@ -183,11 +205,19 @@ pub fn run_with(spec: &str, opts: &RunOptions) -> Result<Option<probe::FrameRepo
             // wgpu renderer); ARMLAB_EGUI_PAINTER=1 leaves them to egui-wgpu (for comparison).
             let inner = (viewport.is_some() && std::env::var_os("ARMLAB_EGUI_PAINTER").is_none())
                 .then(inner::InnerUi::default);
+            let mut ui = AppUi::new(state);
+            ui.file_picker = Box::new(file_picker::NativeDialogs);
+            if remember {
+                let stored = cc.storage.and_then(|s| s.get_string(settings::STORAGE_KEY));
+                let file = eframe::storage_dir(APP_ID).map(|d| d.join("app.ron"));
+                settings::restore(&mut ui, stored, file.as_deref(), model_given);
+            }
             Ok(Box::new(ArmlabApp {
-                ui: AppUi::new(state),
+                ui,
                 viewport,
                 probe,
                 inner,
+                remember,
             }))
         }),
     )

@@ -222,6 +222,32 @@ fn model_picker(app: &mut AppUi, ui: &mut egui::Ui) {
             app.load(&p);
         }
     });
+    ui.horizontal(|ui| {
+        let native = app.file_picker.available();
+        let tip = |t: &'static str| {
+            if native {
+                t
+            } else {
+                "No file dialog here: type a path"
+            }
+        };
+        if ui
+            .button("Open file...")
+            .on_hover_text(tip("Choose a .toml or .urdf model in a file dialog"))
+            .clicked()
+        {
+            app.open_with_dialog();
+        }
+        if ui
+            .button("Save model as...")
+            .on_hover_text(tip(
+                "Write the current (edited) model as a TOML model file, or URDF for a .urdf name",
+            ))
+            .clicked()
+        {
+            app.save_with_dialog();
+        }
+    });
 }
 
 /// One slider per joint, in the display unit.

@@ -61,6 +61,8 @@ pub struct AppUi {
     pub screenshot_requested: bool,
     /// Window size in points, from the last layout (the screenshot button renders at it).
     pub window_points: [f32; 2],
+    /// File dialogs: native in the window, none in tests and screenshots.
+    pub file_picker: Box<dyn super::file_picker::FilePicker>,
     /// Draw the construction behind the closed-form solution (Sect. 2.12).
     pub construction: bool,
     /// The construction step shown (0-based; the steps before it stay drawn).
@@ -91,8 +93,49 @@ impl AppUi {
             framed: None,
             screenshot_requested: false,
             window_points: [1280.0, 800.0],
+            file_picker: Box::new(super::file_picker::NoDialogs),
             construction: false,
             construction_step: 0,
+        }
+    }
+
+    /// "Open file...": a model chosen in the file dialog is loaded (its path shown in the path
+    /// field); cancelling changes nothing.
+    pub fn open_with_dialog(&mut self) {
+        use super::file_picker::FileKind;
+        if !self.file_picker.available() {
+            self.state.push_message(
+                Level::Info,
+                "no file dialog here: type the model's path and press Open",
+            );
+            return;
+        }
+        if let Some(path) = self.file_picker.open(FileKind::Model) {
+            self.load_path = path.to_string_lossy().into_owned();
+            let spec = self.load_path.clone();
+            self.load(&spec);
+        }
+    }
+
+    /// "Save model as...": the current, edited robot written where the file dialog says (TOML,
+    /// or URDF for a name ending in .urdf; no extension: .toml).
+    pub fn save_with_dialog(&mut self) {
+        use super::file_picker::{FileKind, suggested_model_name, with_model_extension};
+        if !self.file_picker.available() {
+            self.state.push_message(
+                Level::Info,
+                "no file dialog here: type a file name in the Save row and press Save",
+            );
+            return;
+        }
+        let suggested = suggested_model_name(&self.state.robot().name);
+        if let Some(path) = self.file_picker.save(FileKind::ModelToSave, &suggested) {
+            self.save_path = with_model_extension(path).to_string_lossy().into_owned();
+            let path = self.save_path.clone();
+            match self.state.save_model(&path) {
+                Ok(m) => self.state.push_message(Level::Info, m),
+                Err(e) => self.state.push_message(Level::Error, e),
+            }
         }
     }
 
@@ -372,8 +415,8 @@ impl AppUi {
             Tab::Calibration => super::calibration_panel::show(
                 &mut self.calibration,
                 &mut self.calibration_maps,
-                self.state.robot(),
-                self.state.q(),
+                (self.state.robot(), self.state.q()),
+                self.file_picker.as_mut(),
                 ui,
             ),
             Tab::SelfMotion => super::redundancy_panel::tab(&mut self.state, ui, self.ee),

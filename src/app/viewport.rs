@@ -490,10 +490,14 @@ pub fn add_self_motion(
         return;
     }
     let n = view.path.len();
-    let closed = view.exact && n > 2;
-    let pairs = (0..n.saturating_sub(1))
-        .map(|i| (i, i + 1))
-        .chain(closed.then_some((n - 1, 0)));
+    // The closing segment only for a closed path of 3 or more points (`then_some` would
+    // compute n - 1 for an empty path too, and overflow).
+    let closing = if view.exact && n > 2 {
+        Some((n - 1, 0))
+    } else {
+        None
+    };
+    let pairs = (0..n.saturating_sub(1)).map(|i| (i, i + 1)).chain(closing);
     for (i, j) in pairs {
         let ((Some(a), fa), (Some(b), fb)) = (view.path[i], view.path[j]) else {
             continue;

@@ -58,6 +58,7 @@ pub(super) fn run(args: &ViewArgs, out: &mut dyn std::io::Write) -> Result<(), C
         let opts = crate::app::RunOptions {
             measure_frames: args.measure_frames,
             q,
+            model_given: args.model.is_some(),
         };
         if let Some(report) = crate::app::run_with(spec, &opts).map_err(CliError::App)? {
             writeln!(out, "{report}")?;

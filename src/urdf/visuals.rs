@@ -76,7 +76,12 @@ fn resolve(filename: &str, urdf: &Path) -> Result<PathBuf, String> {
 
 /// One mesh file as a single triangle mesh (every sub-mesh merged), decimated if large.
 fn read_mesh(path: &Path) -> Result<TriMesh, String> {
-    let len = std::fs::metadata(path).map_err(|e| e.to_string())?.len();
+    let meta = std::fs::metadata(path).map_err(|e| e.to_string())?;
+    if !meta.is_file() {
+        // A device (/dev/zero) or a pipe would be read forever.
+        return Err("not a regular file".into());
+    }
+    let len = meta.len();
     if len > MAX_MESH_BYTES {
         return Err(format!(
             "the file is {} MiB, larger than the {} MiB armlab reads from a mesh",

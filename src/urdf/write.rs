@@ -94,9 +94,62 @@ fn link_post(robot: &Robot, j: usize) -> Pose {
     }
 }
 
-/// The link name of joint j's child.
-fn link_of(robot: &Robot, j: usize) -> String {
-    format!("link_{}", robot.joints()[j].name)
+/// The names written: URDF wants joint names unique and link names unique, and a robot's
+/// joint or end-effector may be called like a name the writer adds ("base", "world",
+/// "link_q1"), so each is made unique with a `_2`, `_3`, ... suffix where it would repeat.
+struct Names {
+    /// Per joint: its `<joint>` name.
+    joint: Vec<String>,
+    /// Per joint: its child link.
+    link: Vec<String>,
+    /// The fixed joint from `world` to `base_link`.
+    base_joint: String,
+    /// Per end-effector: its link and its fixed joint.
+    ee: Vec<(String, String)>,
+}
+
+/// `want`, or `want_2`, `want_3`, ... : the first not in `taken` (then taken).
+fn unique(taken: &mut std::collections::HashSet<String>, want: String) -> String {
+    let mut name = want.clone();
+    let mut k = 2;
+    while taken.contains(&name) {
+        name = format!("{want}_{k}");
+        k += 1;
+    }
+    taken.insert(name.clone());
+    name
+}
+
+impl Names {
+    fn of(robot: &Robot) -> Names {
+        let mut joints = std::collections::HashSet::new();
+        let mut links: std::collections::HashSet<String> =
+            ["world", "base_link"].map(String::from).into();
+        let joint: Vec<String> = robot
+            .joints()
+            .iter()
+            .map(|j| unique(&mut joints, j.name.clone()))
+            .collect();
+        let link = joint
+            .iter()
+            .map(|n| unique(&mut links, format!("link_{n}")))
+            .collect();
+        let base_joint = unique(&mut joints, "base".into());
+        let ee = robot
+            .end_effectors()
+            .iter()
+            .map(|e| {
+                let l = unique(&mut links, e.name.clone());
+                (l, unique(&mut joints, format!("{}_fixed", e.name)))
+            })
+            .collect();
+        Names {
+            joint,
+            link,
+            base_joint,
+            ee,
+        }
+    }
 }
 
 /// Writes `robot` as a URDF document, or says why it has no URDF form.
@@ -115,50 +168,48 @@ pub fn to_urdf(robot: &Robot) -> Result<String, UrdfExportError> {
     let _ = writeln!(s, "  <link name=\"base_link\">");
     write_visuals(&mut s, robot, None, scale);
     let _ = writeln!(s, "  </link>");
-    fixed_joint(&mut s, "base", "world", "base_link", &robot.base);
+    let names = Names::of(robot);
+    fixed_joint(&mut s, &names.base_joint, "world", "base_link", &robot.base);
     for j in 0..joints.len() {
-        write_joint(&mut s, robot, j, scale)?;
+        write_joint(&mut s, robot, &names, j, scale)?;
     }
-    for e in robot.end_effectors() {
-        let name = xml(&e.name);
-        let _ = writeln!(s, "  <link name=\"{name}\"/>");
+    for (e, (link, joint)) in robot.end_effectors().iter().zip(&names.ee) {
+        let _ = writeln!(s, "  <link name=\"{}\"/>", xml(link));
         let o = link_post(robot, e.parent) * e.tool;
-        fixed_joint(
-            &mut s,
-            &format!("{}_fixed", e.name),
-            &link_of(robot, e.parent),
-            &e.name,
-            &o,
-        );
+        fixed_joint(&mut s, joint, &names.link[e.parent], link, &o);
     }
     let _ = writeln!(s, "</robot>");
     Ok(s)
 }
 
 /// Joint j's child link (with its visuals) and the joint itself.
-fn write_joint(s: &mut String, robot: &Robot, j: usize, scale: f64) -> Result<(), UrdfExportError> {
+fn write_joint(
+    s: &mut String,
+    robot: &Robot,
+    names: &Names,
+    j: usize,
+    scale: f64,
+) -> Result<(), UrdfExportError> {
     let joints = robot.joints();
     let joint = &joints[j];
     let l = &robot.lowered[j];
-    let parent_link = l
-        .parent
-        .map_or("base_link".to_string(), |p| link_of(robot, p));
+    let parent_link = l.parent.map_or("base_link", |p| names.link[p].as_str());
     let parent_post = l.parent.map_or(Pose::identity(), |p| link_post(robot, p));
-    let child = link_of(robot, j);
+    let child = &names.link[j];
     let _ = writeln!(s, "  <link name=\"{}\">", xml(&child));
     write_visuals(s, robot, Some(j), scale);
     let _ = writeln!(s, "  </link>");
     let Some((axis, kind)) = motion(l).filter(|_| joint.kind != JointKind::Fixed) else {
         let o = parent_post * l.pre * l.post;
         // A fixed joint: its whole transform is the origin; its child's frame is F_j.
-        fixed_joint(s, &joint.name, &parent_link, &child, &o);
+        fixed_joint(s, &names.joint[j], parent_link, child, &o);
         return Ok(());
     };
     let o = parent_post * l.pre * moved(&axis, kind, joint.offset);
     let mimic = match &joint.drive {
         Drive::Coupled(terms) if terms.len() == 1 => Some(format!(
             "    <mimic joint=\"{}\" multiplier=\"{}\" offset=\"0\"/>",
-            xml(&joints[terms[0].0].name),
+            xml(&names.joint[terms[0].0]),
             terms[0].1
         )),
         Drive::Coupled(_) => {
@@ -189,9 +240,9 @@ fn write_joint(s: &mut String, robot: &Robot, j: usize, scale: f64) -> Result<()
         s,
         "  <joint name=\"{}\" type=\"{urdf_kind}\">\n    <parent link=\"{}\"/>\n    <child \
          link=\"{}\"/>\n    {}\n    <axis xyz=\"{} {} {}\"/>",
-        xml(&joint.name),
-        xml(&parent_link),
-        xml(&child),
+        xml(&names.joint[j]),
+        xml(parent_link),
+        xml(child),
         origin(&o),
         axis.x + 0.0,
         axis.y + 0.0,

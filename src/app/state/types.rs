@@ -32,7 +32,8 @@ pub struct StatusMessage {
 }
 
 /// What to draw.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(default)]
 pub struct DisplayToggles {
     /// DH frame triads.
     pub frames: bool,

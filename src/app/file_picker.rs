@@ -1,0 +1,113 @@
+//! File dialogs: the desktop's native one in the window (the `rfd` crate: the XDG desktop
+//! portal on Linux, the system dialogs on macOS and Windows), none in tests and screenshots.
+//! Typing a path stays possible everywhere.
+
+use std::path::PathBuf;
+
+/// What a dialog is for: it sets the title and the file-type filter.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FileKind {
+    /// A robot model to open (.toml or .urdf).
+    Model,
+    /// A model to save (.toml, or .urdf by the name's extension).
+    ModelToSave,
+    /// A measurement file (calibration).
+    Measurements,
+}
+
+impl FileKind {
+    fn title(self) -> &'static str {
+        match self {
+            FileKind::Model => "Open a robot model",
+            FileKind::ModelToSave => "Save the model as",
+            FileKind::Measurements => "Open a measurement file",
+        }
+    }
+
+    fn filters(self) -> &'static [(&'static str, &'static [&'static str])] {
+        match self {
+            FileKind::Model => &[("Robot models", &["toml", "urdf"])],
+            FileKind::ModelToSave => &[("TOML model file", &["toml"]), ("URDF", &["urdf"])],
+            FileKind::Measurements => &[("Measurements", &["csv", "txt"]), ("All files", &["*"])],
+        }
+    }
+}
+
+/// Asks the user for a file. `None`: cancelled, or no dialog on this platform.
+pub trait FilePicker {
+    /// Whether a dialog can be shown at all (the buttons say so when not).
+    fn available(&self) -> bool;
+    /// A file to open.
+    fn open(&mut self, kind: FileKind) -> Option<PathBuf>;
+    /// A file to write, `suggested` as the proposed name.
+    fn save(&mut self, kind: FileKind, suggested: &str) -> Option<PathBuf>;
+}
+
+/// No dialogs (tests, screenshots): every request answers `None`.
+#[derive(Debug, Default)]
+pub struct NoDialogs;
+
+impl FilePicker for NoDialogs {
+    fn available(&self) -> bool {
+        false
+    }
+    fn open(&mut self, _kind: FileKind) -> Option<PathBuf> {
+        None
+    }
+    fn save(&mut self, _kind: FileKind, _suggested: &str) -> Option<PathBuf> {
+        None
+    }
+}
+
+/// The desktop's native file dialog (blocking while it is open, as egui apps do).
+#[derive(Debug, Default)]
+pub struct NativeDialogs;
+
+impl NativeDialogs {
+    fn dialog(kind: FileKind) -> rfd::FileDialog {
+        let mut d = rfd::FileDialog::new().set_title(kind.title());
+        for (name, ext) in kind.filters() {
+            d = d.add_filter(*name, ext);
+        }
+        if let Ok(dir) = std::env::current_dir() {
+            d = d.set_directory(dir);
+        }
+        d
+    }
+}
+
+impl FilePicker for NativeDialogs {
+    fn available(&self) -> bool {
+        true
+    }
+    fn open(&mut self, kind: FileKind) -> Option<PathBuf> {
+        Self::dialog(kind).pick_file()
+    }
+    fn save(&mut self, kind: FileKind, suggested: &str) -> Option<PathBuf> {
+        Self::dialog(kind).set_file_name(suggested).save_file()
+    }
+}
+
+/// The file name proposed for saving a robot: its name in lower case, spaces as `_`, `.toml`.
+pub fn suggested_model_name(robot_name: &str) -> String {
+    let stem: String = robot_name
+        .chars()
+        .map(|c| {
+            if c.is_alphanumeric() {
+                c.to_ascii_lowercase()
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    format!("{}.toml", stem.trim_matches('_'))
+}
+
+/// A path from a save dialog without an extension gets `.toml`.
+pub fn with_model_extension(path: PathBuf) -> PathBuf {
+    if path.extension().is_none() {
+        path.with_extension("toml")
+    } else {
+        path
+    }
+}

@@ -1,0 +1,153 @@
+//! What the app remembers across runs (issue 16): the last model, the view toggles, projector
+//! mode and the angle unit, written and read back as eframe's storage does; an unreadable
+//! value or settings file is ignored with a message. And the file dialogs' paths (a scripted
+//! dialog stands in for the desktop's).
+
+use armlab::app::file_picker::{FileKind, FilePicker};
+use armlab::app::settings::{Settings, restore};
+use armlab::app::state::{AngleUnit, AppState, Level};
+use armlab::app::ui::AppUi;
+use std::path::PathBuf;
+
+fn app(spec: &str) -> AppUi {
+    AppUi::new(AppState::from_spec(spec).unwrap())
+}
+
+fn last_message(app: &AppUi) -> (Level, String) {
+    let m = app.state.messages().back().expect("a message");
+    (m.level, m.text.clone())
+}
+
+#[test]
+fn settings_survive_a_restart() {
+    let mut a = app("puma560");
+    a.state.display.grid = false;
+    a.state.display.workspace = true;
+    a.projector = true;
+    a.state.set_angle_unit(AngleUnit::Radians);
+    let text = Settings::capture(&a).to_text();
+    // A new run on the default model restores all of it.
+    let mut b = app("planar2");
+    restore(&mut b, Some(text.clone()), None, false);
+    assert_eq!(b.state.spec(), "puma560");
+    assert_eq!(b.state.display, a.state.display);
+    assert!(b.projector);
+    assert_eq!(b.state.angle_unit(), AngleUnit::Radians);
+    // A model named on the command line wins; the rest still applies.
+    let mut c = app("planar3");
+    restore(&mut c, Some(text), None, true);
+    assert_eq!(c.state.spec(), "planar3");
+    assert!(c.projector && !c.state.display.grid);
+}
+
+#[test]
+fn a_model_file_is_remembered_by_its_absolute_path() {
+    let dir = std::env::temp_dir().join(format!("armlab-settings-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("arm.toml");
+    std::fs::copy(
+        concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/assets/robots/example_2_6.toml"
+        ),
+        &file,
+    )
+    .unwrap();
+    let a = app(file.to_str().unwrap());
+    let s = Settings::capture(&a);
+    let remembered = PathBuf::from(s.model.clone().unwrap());
+    assert!(remembered.is_absolute(), "{remembered:?}");
+    assert_eq!(remembered, std::fs::canonicalize(&file).unwrap());
+    // The file is gone at the next start: the default model stays, and the status says why.
+    std::fs::remove_dir_all(&dir).unwrap();
+    let mut b = app("planar2");
+    restore(&mut b, Some(s.to_text()), None, false);
+    assert_eq!(b.state.spec(), "planar2");
+    let (level, text) = last_message(&b);
+    assert_eq!(level, Level::Error);
+    assert!(text.contains("arm.toml"), "{text}");
+}
+
+#[test]
+fn unreadable_settings_are_ignored_with_a_message() {
+    for bad in ["{", "[1, 2]", "{\"projector\": \"yes\"}", "\u{0}\u{1}", ""] {
+        let mut a = app("planar2");
+        let before = a.state.display;
+        restore(&mut a, Some(bad.to_string()), None, false);
+        assert_eq!(a.state.spec(), "planar2");
+        assert_eq!(a.state.display, before);
+        assert!(!a.projector);
+        let (level, text) = last_message(&a);
+        assert_eq!(level, Level::Warning);
+        assert!(text.contains("unreadable settings"), "{text}");
+    }
+    // Fields missing or unknown (an older or newer armlab) are fine.
+    let mut a = app("planar2");
+    restore(
+        &mut a,
+        Some("{\"projector\": true, \"colour\": 3}".into()),
+        None,
+        false,
+    );
+    assert!(a.projector && a.state.display.grid);
+    assert!(a.state.messages().is_empty());
+    // eframe's settings file exists but gave nothing back (it could not be parsed).
+    let dir = std::env::temp_dir().join(format!("armlab-ron-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let ron = dir.join("app.ron");
+    std::fs::write(&ron, "(((( not ron").unwrap();
+    let mut a = app("planar2");
+    restore(&mut a, None, Some(&ron), false);
+    let (level, text) = last_message(&a);
+    assert_eq!(level, Level::Warning);
+    assert!(
+        text.contains("app.ron") && text.contains("defaults"),
+        "{text}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// Answers each dialog with the next path of a list.
+struct Scripted(Vec<PathBuf>, Vec<FileKind>);
+
+impl FilePicker for Scripted {
+    fn available(&self) -> bool {
+        true
+    }
+    fn open(&mut self, kind: FileKind) -> Option<PathBuf> {
+        self.1.push(kind);
+        self.0.pop()
+    }
+    fn save(&mut self, kind: FileKind, suggested: &str) -> Option<PathBuf> {
+        assert!(suggested.ends_with(".toml"), "{suggested}");
+        self.1.push(kind);
+        self.0.pop()
+    }
+}
+
+#[test]
+fn the_file_dialogs_open_and_save_models() {
+    let dir = std::env::temp_dir().join(format!("armlab-dialogs-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut a = app("puma560");
+    // Save as "edited" (no extension: .toml), then open what was saved.
+    a.file_picker = Box::new(Scripted(vec![dir.join("edited")], vec![]));
+    a.save_with_dialog();
+    let saved = dir.join("edited.toml");
+    assert!(saved.is_file(), "{:?}", a.state.messages());
+    assert_eq!(a.save_path, saved.to_string_lossy());
+    let mut b = app("planar2");
+    b.file_picker = Box::new(Scripted(vec![saved.clone()], vec![]));
+    b.open_with_dialog();
+    assert_eq!(b.state.spec(), saved.to_string_lossy());
+    assert_eq!(b.state.robot().dof(), 6);
+    // Cancelling changes nothing.
+    b.file_picker = Box::new(Scripted(vec![], vec![]));
+    b.open_with_dialog();
+    assert_eq!(b.state.spec(), saved.to_string_lossy());
+    // Without a dialog (tests, screenshots) the status says to type a path.
+    let mut c = app("planar2");
+    c.open_with_dialog();
+    assert!(last_message(&c).1.contains("type the model's path"));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
