@@ -35,6 +35,8 @@ pub struct ArmlabApp {
     inner: Option<inner::InnerUi>,
     /// Remember the settings across runs (not while measuring frames).
     remember: bool,
+    /// The window title last set ("armlab: <robot>"), kept in step with the model.
+    title: String,
 }
 
 impl eframe::App for ArmlabApp {
@@ -85,6 +87,12 @@ impl eframe::App for ArmlabApp {
                     .add(egui_wgpu::Callback::new_paint_callback(rect, painted));
             }
             None => self.ui.show(ui, image),
+        }
+        let title = format!("armlab: {}", self.ui.state.robot().name);
+        if title != self.title {
+            ui.ctx()
+                .send_viewport_cmd(egui::ViewportCommand::Title(title.clone()));
+            self.title = title;
         }
         if std::mem::take(&mut self.ui.screenshot_requested) {
             self.save_screenshot();
@@ -218,6 +226,7 @@ pub fn run_with(spec: &str, opts: &RunOptions) -> Result<Option<probe::FrameRepo
                 probe,
                 inner,
                 remember,
+                title: String::new(),
             }))
         }),
     )

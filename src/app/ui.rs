@@ -281,6 +281,20 @@ impl AppUi {
     }
 
     fn shortcuts(&mut self, ctx: &egui::Context) {
+        // The desktop's own shortcuts first (consumed, so Ctrl+O does not also press O).
+        let command = |k: Key| {
+            let shortcut = egui::KeyboardShortcut::new(egui::Modifiers::COMMAND, k);
+            ctx.input_mut(|i| i.consume_shortcut(&shortcut))
+        };
+        if command(Key::O) {
+            self.open_with_dialog();
+        }
+        if command(Key::S) {
+            self.save_with_dialog();
+        }
+        if command(Key::Q) {
+            ctx.send_viewport_cmd(egui::ViewportCommand::Close);
+        }
         if ctx.egui_wants_keyboard_input() {
             return;
         }
@@ -687,6 +701,8 @@ fn help(ui: &mut egui::Ui) {
             ("W", "workspace overlay"),
             ("P", "projector mode (large fonts, high contrast)"),
             ("H, F1", "this help"),
+            ("Ctrl+O / Ctrl+S", "open a model / save the model as (file dialog)"),
+            ("Ctrl+Q", "quit (the settings are remembered)"),
         ] {
             ui.strong(k);
             ui.label(what);
