@@ -24,7 +24,7 @@
 mod visuals;
 mod write;
 
-pub use visuals::{MAX_TRIANGLES, set_package_paths};
+pub use visuals::{MAX_MESH_BYTES, MAX_TRIANGLES, parse_mesh, set_package_paths};
 pub use write::{UrdfExportError, to_urdf};
 
 use crate::kinematics::pose::{Pose, rot_x, rot_y, rot_z};

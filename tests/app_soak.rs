@@ -282,7 +282,7 @@ fn check_render(app: &AppUi) -> Result<(), String> {
 }
 
 fn soak(spec: &str, events: usize, seed: u64) {
-    let mut rng = ChaCha8Rng::seed_from_u64(seed ^ spec.len() as u64 * 0x9E37_79B9);
+    let mut rng = ChaCha8Rng::seed_from_u64(seed ^ (spec.len() as u64 * 0x9E37_79B9));
     let mut h = harness(spec);
     let mut last = Vec::new();
     for n in 0..events {

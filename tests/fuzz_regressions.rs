@@ -46,3 +46,8 @@ fn measurements_inputs() {
 fn angle_inputs() {
     replay("angle", checks::angle);
 }
+
+#[test]
+fn mesh_inputs() {
+    replay("mesh", checks::mesh);
+}

@@ -204,3 +204,23 @@ pub fn angle(data: &[u8]) {
         assert!(v.is_finite(), "{text:?} gave {v}");
     }
 }
+
+/// A mesh file (STL, OBJ or COLLADA: the first byte picks the extension) read as a URDF visual
+/// is: every index in range, every vertex finite, at most `MAX_TRIANGLES` triangles.
+pub fn mesh(data: &[u8]) {
+    let Some((&first, rest)) = data.split_first() else {
+        return;
+    };
+    let ext = ["stl", "obj", "dae"][usize::from(first % 3)];
+    let path = std::env::temp_dir().join(format!("armlab-fuzz-mesh.{ext}"));
+    if let Ok(mesh) = armlab::urdf::parse_mesh(rest, &path) {
+        let n = mesh.positions.len() as u32;
+        assert!(!mesh.triangles.is_empty(), "a mesh without triangles");
+        assert!(mesh.triangles.len() <= armlab::urdf::MAX_TRIANGLES);
+        assert!(
+            mesh.triangles.iter().flatten().all(|&v| v < n),
+            "index out of range"
+        );
+        assert!(mesh.positions.iter().flatten().all(|v| v.is_finite()));
+    }
+}

@@ -701,7 +701,10 @@ fn help(ui: &mut egui::Ui) {
             ("W", "workspace overlay"),
             ("P", "projector mode (large fonts, high contrast)"),
             ("H, F1", "this help"),
-            ("Ctrl+O / Ctrl+S", "open a model / save the model as (file dialog)"),
+            (
+                "Ctrl+O / Ctrl+S",
+                "open a model / save the model as (file dialog)",
+            ),
             ("Ctrl+Q", "quit (the settings are remembered)"),
         ] {
             ui.strong(k);

@@ -142,12 +142,18 @@ pub enum Command {
     Export(export::ExportArgs),
 }
 
+impl From<crate::model_file::LoadError> for CliError {
+    fn from(e: crate::model_file::LoadError) -> Self {
+        CliError::Model(Box::new(e))
+    }
+}
+
 /// Everything a subcommand can report (all are bad input: the binary exits with code 2).
 #[derive(Debug, Error)]
 pub enum CliError {
-    /// A model that cannot be loaded.
+    /// A model that cannot be loaded (boxed: its located errors are large).
     #[error(transparent)]
-    Model(#[from] crate::model_file::LoadError),
+    Model(Box<crate::model_file::LoadError>),
     /// A bad joint vector or input file.
     #[error(transparent)]
     Input(#[from] input::InputError),

@@ -104,9 +104,7 @@ pub enum ModelError {
     ///
     /// [`MAX_LENGTH`]: crate::kinematics::robot::MAX_LENGTH
     /// [`MAX_ANGLE`]: crate::kinematics::robot::MAX_ANGLE
-    #[error(
-        "joint {joint}: field `{field}` = {value:e} is out of range (|value| <= {max:e} {unit})"
-    )]
+    #[error("joint {joint}: field `{field}` = {value:e} is out of range (|value| <= {bound})")]
     OutOfRange {
         /// Zero-based joint index.
         joint: usize,
@@ -114,10 +112,8 @@ pub enum ModelError {
         field: &'static str,
         /// The value.
         value: f64,
-        /// The largest magnitude accepted.
-        max: f64,
-        /// "m" or "rad".
-        unit: &'static str,
+        /// Which bound it exceeds.
+        bound: Bound,
     },
     /// More joints than armlab handles.
     #[error("{count} joints: armlab handles at most {max}")]
@@ -133,4 +129,23 @@ pub enum ModelError {
         /// Zero-based joint index.
         joint: usize,
     },
+}
+
+/// The largest magnitude a robot's parameter may have (see [`ModelError::OutOfRange`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Bound {
+    /// A length: [`crate::kinematics::robot::MAX_LENGTH`] m.
+    Length,
+    /// An angle: [`crate::kinematics::robot::MAX_ANGLE`] rad.
+    Angle,
+}
+
+impl std::fmt::Display for Bound {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        use crate::kinematics::robot::{MAX_ANGLE, MAX_LENGTH};
+        match self {
+            Bound::Length => write!(f, "{MAX_LENGTH:e} m"),
+            Bound::Angle => write!(f, "{MAX_ANGLE:e} rad"),
+        }
+    }
 }

@@ -7,7 +7,7 @@
 //! calibration.
 
 use super::dh::{Convention, DhRow};
-use super::error::ModelError;
+use super::error::{Bound, ModelError};
 use super::pose::{Pose, rot_x, rot_z, trans_x, trans_z};
 use nalgebra::{Unit, Vector3};
 
@@ -648,32 +648,34 @@ fn check_finite(joint: usize, field: &'static str, value: f64) -> Result<(), Mod
     }
 }
 
-/// Finite and `|value| <= max`; `unit` is "m" or "rad".
+/// Finite and within `bound`.
 fn check_range(
     joint: usize,
     field: &'static str,
     value: f64,
-    max: f64,
-    unit: &'static str,
+    bound: Bound,
 ) -> Result<(), ModelError> {
     check_finite(joint, field, value)?;
+    let max = match bound {
+        Bound::Length => MAX_LENGTH,
+        Bound::Angle => MAX_ANGLE,
+    };
     if value.abs() > max {
         return Err(ModelError::OutOfRange {
             joint,
             field,
             value,
-            max,
-            unit,
+            bound,
         });
     }
     Ok(())
 }
 
-/// The (max, unit) of a joint variable's kind.
-fn variable_range(kind: JointKind) -> (f64, &'static str) {
+/// The bound of a joint variable's kind.
+fn variable_range(kind: JointKind) -> Bound {
     match kind {
-        JointKind::Prismatic => (MAX_LENGTH, "m"),
-        _ => (MAX_ANGLE, "rad"),
+        JointKind::Prismatic => Bound::Length,
+        _ => Bound::Angle,
     }
 }
 
@@ -702,7 +704,7 @@ fn check_pose(joint: usize, what: &'static str, p: &Pose) -> Result<(), ModelErr
             reason: "non-finite element".into(),
         });
     }
-    check_range(joint, what, p.translation.vector.norm(), MAX_LENGTH, "m")
+    check_range(joint, what, p.translation.vector.norm(), Bound::Length)
 }
 
 fn validate_joint(i: usize, j: &Joint, all: &[Joint]) -> Result<(), ModelError> {
@@ -714,15 +716,15 @@ fn validate_joint(i: usize, j: &Joint, all: &[Joint]) -> Result<(), ModelError> 
             parent: p,
         });
     }
-    let (var_max, var_unit) = variable_range(j.kind);
-    check_range(i, "offset", j.offset, var_max, var_unit)?;
+    let var_bound = variable_range(j.kind);
+    check_range(i, "offset", j.offset, var_bound)?;
     check_pose(i, "pre", &j.pre)?;
     match &j.geometry {
         JointGeometry::Dh { row, .. } => {
-            check_range(i, "a", row.a, MAX_LENGTH, "m")?;
-            check_range(i, "alpha", row.alpha, MAX_ANGLE, "rad")?;
-            check_range(i, "d", row.d, MAX_LENGTH, "m")?;
-            check_range(i, "theta", row.theta, MAX_ANGLE, "rad")?;
+            check_range(i, "a", row.a, Bound::Length)?;
+            check_range(i, "alpha", row.alpha, Bound::Angle)?;
+            check_range(i, "d", row.d, Bound::Length)?;
+            check_range(i, "theta", row.theta, Bound::Angle)?;
         }
         JointGeometry::Origin {
             parent_from_joint,
@@ -744,7 +746,7 @@ fn validate_joint(i: usize, j: &Joint, all: &[Joint]) -> Result<(), ModelError> 
             });
         }
         for bound in [lo, hi].into_iter().filter(|b| b.is_finite()) {
-            check_range(i, "limits", bound, var_max, var_unit)?;
+            check_range(i, "limits", bound, var_bound)?;
         }
     }
     match &j.drive {

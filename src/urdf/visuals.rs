@@ -74,23 +74,48 @@ fn resolve(filename: &str, urdf: &Path) -> Result<PathBuf, String> {
     ))
 }
 
-/// One mesh file as a single triangle mesh (every sub-mesh merged), decimated if large.
-fn read_mesh(path: &Path) -> Result<TriMesh, String> {
-    let meta = std::fs::metadata(path).map_err(|e| e.to_string())?;
+/// Reads a mesh file, or a file a mesh references (an OBJ's material library): a regular file
+/// (a device such as /dev/zero would be read forever) of at most [`MAX_MESH_BYTES`].
+fn read_capped(path: &Path) -> std::io::Result<Vec<u8>> {
+    use std::io::Read as _;
+    let refuse = |why: String| std::io::Error::new(std::io::ErrorKind::InvalidInput, why);
+    let meta = std::fs::metadata(path)?;
     if !meta.is_file() {
-        // A device (/dev/zero) or a pipe would be read forever.
-        return Err("not a regular file".into());
+        return Err(refuse(format!("{}: not a regular file", path.display())));
     }
-    let len = meta.len();
-    if len > MAX_MESH_BYTES {
-        return Err(format!(
-            "the file is {} MiB, larger than the {} MiB armlab reads from a mesh",
+    let too_large = |len: u64| {
+        refuse(format!(
+            "{}: the file is {} MiB, larger than the {} MiB armlab reads from a mesh",
+            path.display(),
             len >> 20,
             MAX_MESH_BYTES >> 20
-        ));
+        ))
+    };
+    if meta.len() > MAX_MESH_BYTES {
+        return Err(too_large(meta.len()));
     }
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)?
+        .take(MAX_MESH_BYTES + 1)
+        .read_to_end(&mut bytes)?;
+    if bytes.len() as u64 > MAX_MESH_BYTES {
+        return Err(too_large(bytes.len() as u64));
+    }
+    Ok(bytes)
+}
+
+/// One mesh file as a single triangle mesh (every sub-mesh merged), decimated if large.
+fn read_mesh(path: &Path) -> Result<TriMesh, String> {
+    let bytes = read_capped(path).map_err(|e| e.to_string())?;
+    parse_mesh(&bytes, path)
+}
+
+/// A mesh file's bytes (STL, OBJ or COLLADA, told by `path`'s extension or the bytes) as one
+/// triangle mesh, every sub-mesh merged, decimated to [`MAX_TRIANGLES`]; files it references
+/// are read from beside `path`, capped like the mesh itself. Errors say why in words.
+pub fn parse_mesh(bytes: &[u8], path: &Path) -> Result<TriMesh, String> {
     let scene = mesh_loader::Loader::default()
-        .load(path)
+        .load_from_slice_with_reader(bytes, path, read_capped)
         .map_err(|e| e.to_string())?;
     let mut mesh = TriMesh::default();
     for m in &scene.meshes {

@@ -196,7 +196,7 @@ fn write_joint(
     let parent_link = l.parent.map_or("base_link", |p| names.link[p].as_str());
     let parent_post = l.parent.map_or(Pose::identity(), |p| link_post(robot, p));
     let child = &names.link[j];
-    let _ = writeln!(s, "  <link name=\"{}\">", xml(&child));
+    let _ = writeln!(s, "  <link name=\"{}\">", xml(child));
     write_visuals(s, robot, Some(j), scale);
     let _ = writeln!(s, "  </link>");
     let Some((axis, kind)) = motion(l).filter(|_| joint.kind != JointKind::Fixed) else {
