@@ -303,3 +303,31 @@ fn the_status_bar_and_the_ik_panel_never_disagree() {
         assert!(mm.iter().all(|s| number(s) == number(&panel)), "{mm:?}");
     }
 }
+
+/// A 2D figure whose bounds have no extent (a workspace shrunk to a point when every length is
+/// edited to zero) or are not finite is drawn, not a panic in egui_plot (found by the long soak
+/// run, tests/app_soak.rs, in the Workspace tab).
+#[test]
+fn a_plot_without_extent_is_drawn() {
+    use armlab::figure::plot2d::{Plot2d, drawable_bounds, show};
+    for bounds in [
+        [1.0, 1.0, 0.0, 0.0],
+        [0.0, 0.0, 0.0, 0.0],
+        [f64::NAN, 1.0, 0.0, 1.0],
+        [2.0, -2.0, 1e300, f64::INFINITY],
+    ] {
+        let [x0, x1, y0, y1] = drawable_bounds(bounds);
+        assert!(x1 - x0 >= 1e-3 && y1 - y0 >= 1e-3, "{bounds:?}");
+        for equal_aspect in [false, true] {
+            let plot = Plot2d {
+                bounds,
+                equal_aspect,
+                ..Default::default()
+            };
+            let mut h = Harness::new_ui(|ui| {
+                show(ui, &plot, None);
+            });
+            h.run();
+        }
+    }
+}

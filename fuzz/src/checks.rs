@@ -212,6 +212,11 @@ pub fn mesh(data: &[u8]) {
         return;
     };
     let ext = ["stl", "obj", "dae"][usize::from(first % 3)];
+    // armlab catches a panic of the mesh loader (a third-party crate) and reports the file as
+    // unreadable; libfuzzer's panic hook would abort on the caught panic, so the default hook is
+    // put back. A panic armlab does not catch still aborts (libfuzzer-sys catches the unwind).
+    static DEFAULT_HOOK: std::sync::Once = std::sync::Once::new();
+    DEFAULT_HOOK.call_once(|| drop(std::panic::take_hook()));
     let path = std::env::temp_dir().join(format!("armlab-fuzz-mesh.{ext}"));
     if let Ok(mesh) = armlab::urdf::parse_mesh(rest, &path) {
         let n = mesh.positions.len() as u32;

@@ -169,7 +169,7 @@ pub fn show_at(
     if let Some(bar) = &plot.colorbar {
         colorbar(ui, bar);
     }
-    let [x0, x1, y0, y1] = plot.bounds;
+    let [x0, x1, y0, y1] = drawable_bounds(plot.bounds);
     let text_color = ui.visuals().text_color();
     let p = Plot::new(("figure", plot.title.as_str()))
         .x_axis_label(plot.x_label.clone())
@@ -197,6 +197,27 @@ pub fn show_at(
     }
 }
 
+/// Bounds egui_plot can show: finite, each side at least a millimetre-scale width wide (a
+/// workspace shrunk to a point or a segment, e.g. every length edited to zero, has zero extent,
+/// and egui_plot panics on `min == max`). Degenerate sides are widened about their centre.
+pub fn drawable_bounds(b: [f64; 4]) -> [f64; 4] {
+    let side = |lo: f64, hi: f64| -> [f64; 2] {
+        if !(lo.is_finite() && hi.is_finite()) {
+            return [-1.0, 1.0];
+        }
+        let (lo, hi) = (lo.min(hi), lo.max(hi));
+        let min_width = 1e-3 * lo.abs().max(hi.abs()).max(1.0);
+        if hi - lo >= min_width {
+            return [lo, hi];
+        }
+        let c = 0.5 * (lo + hi);
+        [c - 0.5 * min_width.max(1.0), c + 0.5 * min_width.max(1.0)]
+    };
+    let [x0, x1] = side(b[0], b[1]);
+    let [y0, y1] = side(b[2], b[3]);
+    [x0, x1, y0, y1]
+}
+
 /// The items of a plot: the equal-aspect bounds, the raster image, areas, legend swatches,
 /// curves and labels.
 fn draw_items(
@@ -205,7 +226,7 @@ fn draw_items(
     image: Option<(egui::TextureId, [f64; 4])>,
     text_color: Color32,
 ) {
-    let [x0, x1, y0, y1] = plot.bounds;
+    let [x0, x1, y0, y1] = drawable_bounds(plot.bounds);
     let equal = plot.equal_aspect;
     if equal {
         // One metre as long in x as in y: grow the shorter side of the bounds to the frame's

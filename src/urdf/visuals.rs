@@ -114,9 +114,13 @@ fn read_mesh(path: &Path) -> Result<TriMesh, String> {
 /// triangle mesh, every sub-mesh merged, decimated to [`MAX_TRIANGLES`]; files it references
 /// are read from beside `path`, capped like the mesh itself. Errors say why in words.
 pub fn parse_mesh(bytes: &[u8], path: &Path) -> Result<TriMesh, String> {
-    let scene = mesh_loader::Loader::default()
-        .load_from_slice_with_reader(bytes, path, read_capped)
-        .map_err(|e| e.to_string())?;
+    // mesh-loader 0.1.13 panics (`todo!()`) on some COLLADA files it cannot handle (found by
+    // fuzzing); such a file is a warning like any unreadable mesh, not a crash.
+    let loaded = std::panic::catch_unwind(|| {
+        mesh_loader::Loader::default().load_from_slice_with_reader(bytes, path, read_capped)
+    })
+    .map_err(|_| "the mesh loader cannot read this file (it stopped on a feature it does not support)")?;
+    let scene = loaded.map_err(|e| e.to_string())?;
     let mut mesh = TriMesh::default();
     for m in &scene.meshes {
         let base = mesh.positions.len() as u32;
