@@ -3,7 +3,8 @@
 //! every kind of widget (buttons, toggles, the posture list, the tabs, workspace start and
 //! cancel), keys and shortcuts, random text typed into the DH cells, the target fields and the
 //! model path, scrolling. After every event: no panic, q, the end-effector poses and the IK
-//! targets finite, q inside the joint limits (the state's invariant); every few hundred events
+//! targets finite, q inside the joint limits (the state's invariant), no text on screen showing
+//! NaN (readouts, DH table, status; found through the accessibility tree); every few hundred events
 //! and at the end the window is rendered (lavapipe) and must show more than the background.
 //!
 //! The normal suite runs `ARMLAB_SOAK_EVENTS` events per model (default 300); the long run
@@ -269,6 +270,15 @@ fn check(app: &AppUi) -> Result<(), String> {
     Ok(())
 }
 
+/// What the user reads: no text on screen shows a NaN (the readouts, the DH table, the status).
+fn check_readouts(h: &Harness<'_, AppUi>) -> Result<(), String> {
+    let by = egui_kittest::kittest::By::new().label_contains("NaN");
+    match h.query_all(by).next() {
+        Some(node) => Err(format!("a readout shows NaN: {node:?}")),
+        None => Ok(()),
+    }
+}
+
 /// Renders the window offscreen: it must work and show more than one colour.
 fn check_render(app: &AppUi) -> Result<(), String> {
     let img = screenshot_with(app, [640, 400], &ScreenshotOptions::default())
@@ -284,6 +294,9 @@ fn check_render(app: &AppUi) -> Result<(), String> {
 fn soak(spec: &str, events: usize, seed: u64) {
     let mut rng = ChaCha8Rng::seed_from_u64(seed ^ (spec.len() as u64 * 0x9E37_79B9));
     let mut h = harness(spec);
+    // The NaN check reads the labels of the accessibility tree: the readouts must be there.
+    let readout = egui_kittest::kittest::By::new().label_contains("manipulability");
+    assert!(h.query_all(readout).next().is_some(), "{spec}: no readout label seen");
     let mut last = Vec::new();
     for n in 0..events {
         let what = event(&mut h, &mut rng);
@@ -291,7 +304,7 @@ fn soak(spec: &str, events: usize, seed: u64) {
         if last.len() > 8 {
             last.remove(0);
         }
-        let mut result = check(h.state());
+        let mut result = check(h.state()).and_then(|()| check_readouts(&h));
         if result.is_ok() && (n + 1) % RENDER_EVERY == 0 {
             result = check_render(h.state());
         }
