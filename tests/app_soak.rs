@@ -296,7 +296,10 @@ fn soak(spec: &str, events: usize, seed: u64) {
     let mut h = harness(spec);
     // The NaN check reads the labels of the accessibility tree: the readouts must be there.
     let readout = egui_kittest::kittest::By::new().label_contains("manipulability");
-    assert!(h.query_all(readout).next().is_some(), "{spec}: no readout label seen");
+    assert!(
+        h.query_all(readout).next().is_some(),
+        "{spec}: no readout label seen"
+    );
     let mut last = Vec::new();
     for n in 0..events {
         let what = event(&mut h, &mut rng);

@@ -39,7 +39,9 @@ pub(crate) fn sub1_sc(w: &Vector3<f64>, p: &Vector3<f64>, q: &Vector3<f64>) -> A
     let pp = p - w * w.dot(p);
     let qq = q - w * w.dot(q);
     let (y, x) = (w.dot(&pp.cross(&qq)), pp.dot(&qq));
-    let r = x.hypot(y);
+    // Not `hypot`: x and y are products of bounded vectors (no overflow), and hypot's care costs
+    // more than the rest of the subproblem.
+    let r = (x * x + y * y).sqrt();
     let (s, c) = if r > 0.0 { (y / r, x / r) } else { (0.0, 1.0) };
     Angle {
         t: y.atan2(x),
@@ -65,6 +67,33 @@ pub(crate) fn sub2(
     sign: f64,
 ) -> Option<(f64, f64)> {
     sub2_sc(w1, w2, p, q, sign).map(|(a, b)| (a.t, b.t))
+}
+
+/// Both solutions of [`sub2_sc`] (sign +1, then -1), sharing the work they have in common.
+#[inline]
+pub(crate) fn sub2_pair_sc(
+    w1: &Vector3<f64>,
+    w2: &Vector3<f64>,
+    p: &Vector3<f64>,
+    q: &Vector3<f64>,
+) -> Option<[(Angle, Angle); 2]> {
+    let c12 = w1.dot(w2);
+    let den = c12 * c12 - 1.0;
+    if den.abs() < 1e-12 {
+        return None;
+    }
+    let (w2p, w1q) = (w2.dot(p), w1.dot(q));
+    let alpha = (c12 * w2p - w1q) / den;
+    let beta = (c12 * w1q - w2p) / den;
+    let x = w1.cross(w2);
+    let g2 = (p.norm_squared() - alpha * alpha - beta * beta - 2.0 * alpha * beta * c12)
+        / x.norm_squared();
+    if g2 < -1e-10 * p.norm_squared().max(1e-30) {
+        return None;
+    }
+    let base = w1 * alpha + w2 * beta;
+    let off = x * g2.max(0.0).sqrt();
+    Some([base + off, base - off].map(|c| (sub1_sc(w1, &c, q), sub1_sc(w2, p, &c))))
 }
 
 /// [`sub2`] with the sines and cosines of both angles.
@@ -103,7 +132,8 @@ pub(crate) fn triad(a: &Vector3<f64>, b: &Vector3<f64>) -> Matrix3<f64> {
 
 /// The roots psi (rad) of `a sin psi + b cos psi + c = 0`.
 pub(crate) fn trig_roots(a: f64, b: f64, c: f64, out: &mut Vec<f64>) {
-    let r = a.hypot(b);
+    // Not `hypot` (slow): a and b are products of bounded vectors.
+    let r = (a * a + b * b).sqrt();
     if r < 1e-14 || c.abs() > r {
         return;
     }

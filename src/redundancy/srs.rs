@@ -20,7 +20,7 @@
 //! Eight branches in all, labelled by the three signs.
 
 use super::geometry::{
-    meet, rot, rotv, rotv_sc, sub1, sub2, sub2_sc, triad, trig_roots, within, wrap_into,
+    meet, rot, rotv, rotv_sc, sub1, sub2, sub2_pair_sc, triad, trig_roots, within, wrap_into,
 };
 use crate::kinematics::{Pose, Robot};
 use nalgebra::{Matrix3, Point3, Rotation3, Vector3};
@@ -43,8 +43,14 @@ pub struct SrsPose {
     sw: Vector3<f64>,
     u: Vector3<f64>,
     m: Matrix3<f64>,
+    /// `m w_7` and `m x_7` (x_7 the probe of axis 7): the wrist triple needs only
+    /// `R_w w_7` and `R_w x_7`, and `R_w = (R_sh R_4)^T m`.
+    m_wrist: [Vector3<f64>; 2],
     elbows: [Option<ElbowPart>; 2],
 }
+
+/// Both branches of the shoulder triple and of the wrist triple at one arm angle.
+type TriplePairs = ([Option<[f64; 3]>; 2], [Option<[f64; 3]>; 2]);
 
 /// One elbow branch of a prepared target.
 #[derive(Debug, Clone, Copy)]
@@ -54,6 +60,11 @@ struct ElbowPart {
     r4: Matrix3<f64>,
     /// `triad(E_0 - S, W_4 - S)^T`: the shoulder's rotation at psi = 0 is `triad(E°, SW)` times it.
     zero: Matrix3<f64>,
+    /// `zero w_3` and `zero x_3`: the shoulder triple needs only `R_sh w_3` and `R_sh x_3`, and
+    /// `R_sh = triad(E, SW) zero`.
+    zero_shoulder: [Vector3<f64>; 2],
+    /// `(zero R_4)^T`: `R_w v = (zero R_4)^T triad(E, SW)^T (m v)`.
+    wrist_from_triad: Matrix3<f64>,
 }
 
 /// An SRS arm read from its axes (see the module documentation).
@@ -72,6 +83,63 @@ pub struct SrsArm {
     /// A unit vector perpendicular to each axis (for subproblem 1 on that axis).
     probe: [Vector3<f64>; 7],
     limits: Vec<[f64; 2]>,
+    /// What the limit crossings of the shoulder triple (0) and the wrist triple (1) need that
+    /// does not depend on the target.
+    crossings: [TripleCrossings; 2],
+}
+
+/// For a spherical triple of axes w1, w2, w3 (rotation R = R1 R2 R3), the equations
+/// `x . R y = v` that hold where a joint is at one of its finite limits or the two branches
+/// of subproblem 2 meet: one (x, y, v) each, from the axes and limits alone.
+#[derive(Debug, Clone, Default)]
+struct TripleCrossings {
+    equations: Vec<(Vector3<f64>, Vector3<f64>, f64)>,
+}
+
+impl TripleCrossings {
+    fn new(w: [Vector3<f64>; 3], limits: &[[f64; 2]]) -> Self {
+        let [w1, w2, w3] = w;
+        let finite = |k: usize| {
+            let [lo, hi] = limits[k];
+            (lo.is_finite() && hi.is_finite() && hi - lo < TAU - 1e-12)
+                .then_some([lo, hi])
+                .into_iter()
+                .flatten()
+        };
+        let mut equations = Vec::new();
+        // Middle joint: w1 . R w3 = w1 . R_mid(t) w3.
+        for t in finite(1) {
+            equations.push((w1, w3, w1.dot(&(rot(&w2, t) * w3))));
+        }
+        // First joint: (R_first(t) w2) . R w3 = w2 . w3.
+        for t in finite(0) {
+            equations.push((rot(&w1, t) * w2, w3, w2.dot(&w3)));
+        }
+        // Last joint: w1 . R (R_last(t)^T w2) = w1 . w2.
+        for t in finite(2) {
+            equations.push((w1, rot(&w3, -t) * w2, w1.dot(&w2)));
+        }
+        // Singular: gamma^2 = 0 in subproblem 2, a quadratic in s = w1 . R w3.
+        let c12 = w1.dot(&w2);
+        let den = c12 * c12 - 1.0;
+        if den.abs() > 1e-12 {
+            let k = w2.dot(&w3);
+            // alpha = (c12 k - s) / den, beta = (c12 s - k) / den.
+            let (a1, a0) = (-1.0 / den, c12 * k / den);
+            let (b1, b0) = (c12 / den, -k / den);
+            // 1 - (a1 s + a0)^2 - (b1 s + b0)^2 - 2 c12 (a1 s + a0)(b1 s + b0) = 0
+            let qa = -(a1 * a1 + b1 * b1 + 2.0 * c12 * a1 * b1);
+            let qb = -(2.0 * a1 * a0 + 2.0 * b1 * b0 + 2.0 * c12 * (a1 * b0 + a0 * b1));
+            let qc = 1.0 - a0 * a0 - b0 * b0 - 2.0 * c12 * a0 * b0;
+            let disc = qb * qb - 4.0 * qa * qc;
+            if disc >= 0.0 && qa.abs() > 1e-14 {
+                for sgn in [1.0, -1.0] {
+                    equations.push((w1, w3, (-qb + sgn * disc.sqrt()) / (2.0 * qa)));
+                }
+            }
+        }
+        Self { equations }
+    }
 }
 
 /// The elbow and wrist signs of branch index `k` (0..8): shoulder bit 2, elbow bit 1, wrist bit 0.
@@ -98,7 +166,11 @@ impl SrsArm {
         }
         let w_tool = t0.inverse_transform_point(&Point3::from(w0)).coords;
         let probe = super::geometry::probes(&w);
+        let limits = robot.limits();
+        let crossings =
+            [0, 4].map(|i| TripleCrossings::new([w[i], w[i + 1], w[i + 2]], &limits[i..i + 3]));
         Some(Self {
+            crossings,
             probe,
             w,
             s,
@@ -106,7 +178,7 @@ impl SrsArm {
             w0,
             w_tool,
             r0: t0.rotation,
-            limits: robot.limits(),
+            limits,
         })
     }
 
@@ -184,17 +256,21 @@ impl SrsArm {
             let reference = self.reference(&wc, q4)?;
             let r4 = rot(&self.w[3], q4).into_inner();
             let w4 = self.e0 - self.s + r4 * (self.w0 - self.e0);
+            let zero = triad(&(self.e0 - self.s), &w4).transpose();
             Some(ElbowPart {
                 q4,
                 reference,
                 r4,
-                zero: triad(&(self.e0 - self.s), &w4).transpose(),
+                zero,
+                zero_shoulder: [zero * self.w[2], zero * self.probe[2]],
+                wrist_from_triad: (zero * r4).transpose(),
             })
         });
         SrsPose {
             sw,
             u: sw.normalize(),
             m,
+            m_wrist: [m * self.w[6], m * self.probe[6]],
             elbows,
         }
     }
@@ -206,14 +282,9 @@ impl SrsArm {
             let Some(part) = part else {
                 continue;
             };
-            let e = rotv(&p.u, psi, &part.reference);
-            let r_sh = triad(&e, &p.sw) * part.zero;
-            // R_1 R_2 R_3 = R_sh whichever the shoulder branch, so the wrist sees the same
-            // rotation from both: R_5 R_6 R_7 = (R_sh R_4)^T R_e R(0)^T.
-            let r_w = (r_sh * part.r4).transpose() * p.m;
-            let wrists = [1.0, -1.0].map(|sign| self.triple(4, &r_w, sign));
-            for (is, ss) in [1.0, -1.0].into_iter().enumerate() {
-                let Some([q1, q2, q3]) = self.triple(0, &r_sh, ss) else {
+            let (shoulders, wrists) = self.sides(p, part, psi);
+            for (is, shoulder) in shoulders.into_iter().enumerate() {
+                let Some([q1, q2, q3]) = shoulder else {
                     continue;
                 };
                 for (iw, w) in wrists.iter().enumerate() {
@@ -228,17 +299,53 @@ impl SrsArm {
         mask
     }
 
-    /// The angles of the spherical triple of axes `i`, `i + 1`, `i + 2` whose product of
-    /// rotations is `r`, branch `sign` of subproblem 2.
+    /// The shoulder triples and the wrist triples (both branches each) at arm angle `psi`.
+    /// R_1 R_2 R_3 = R_sh whichever the shoulder branch, so the wrist sees the same rotation
+    /// from both: R_5 R_6 R_7 = R_w = (R_sh R_4)^T R_e R(0)^T. Only `R w_3` and `R x_3` of each
+    /// triple's rotation are needed, so no 3x3 product is formed (see [`ElbowPart`]).
     #[inline]
-    fn triple(&self, i: usize, r: &Matrix3<f64>, sign: f64) -> Option<[f64; 3]> {
+    fn sides(&self, p: &SrsPose, part: &ElbowPart, psi: f64) -> TriplePairs {
+        let t = Self::triad_at(p, part, psi);
+        (self.shoulders(part, &t), self.wrists(p, part, &t))
+    }
+
+    /// `triad(E, SW)` at arm angle `psi`: R_sh is this times `part.zero`.
+    #[inline]
+    fn triad_at(p: &SrsPose, part: &ElbowPart, psi: f64) -> Matrix3<f64> {
+        triad(&rotv(&p.u, psi, &part.reference), &p.sw)
+    }
+
+    /// Both shoulder triples for `t = triad_at(psi)`.
+    #[inline]
+    fn shoulders(&self, part: &ElbowPart, t: &Matrix3<f64>) -> [Option<[f64; 3]>; 2] {
+        let [zw, zx] = &part.zero_shoulder;
+        self.triples(0, &(t * zw), &(t * zx))
+    }
+
+    /// Both wrist triples for `t = triad_at(psi)`.
+    #[inline]
+    fn wrists(&self, p: &SrsPose, part: &ElbowPart, t: &Matrix3<f64>) -> [Option<[f64; 3]>; 2] {
+        let ww = part.wrist_from_triad * t.tr_mul(&p.m_wrist[0]);
+        let wx = part.wrist_from_triad * t.tr_mul(&p.m_wrist[1]);
+        self.triples(4, &ww, &wx)
+    }
+
+    /// The angles of the spherical triple of axes `i`, `i + 1`, `i + 2` whose product of
+    /// rotations R has `R w_{i+2}` = `rw` and `R x_{i+2}` = `rx` (x the axis's probe): both
+    /// branches of subproblem 2 (sign +1, then -1), `None` where there is no solution.
+    #[inline]
+    fn triples(&self, i: usize, rw: &Vector3<f64>, rx: &Vector3<f64>) -> [Option<[f64; 3]>; 2] {
         let (w1, w2, w3) = (&self.w[i], &self.w[i + 1], &self.w[i + 2]);
-        let (a1, a2) = sub2_sc(w1, w2, w3, &(r * w3), sign)?;
+        let Some(pair) = sub2_pair_sc(w1, w2, w3, rw) else {
+            return [None, None];
+        };
         let x = self.probe[i + 2];
         // R_2^T R_1^T (r x), rotating the vector only, with the sines and cosines subproblem 2
         // already has.
-        let v = rotv_sc(w2, -a2.s, a2.c, &rotv_sc(w1, -a1.s, a1.c, &(r * x)));
-        Some([a1.t, a2.t, sub1(w3, &x, &v)])
+        pair.map(|(a1, a2)| {
+            let v = rotv_sc(w2, -a2.s, a2.c, &rotv_sc(w1, -a1.s, a1.c, rx));
+            Some([a1.t, a2.t, sub1(w3, &x, &v)])
+        })
     }
 
     /// Every branch (up to 8) reaching `target` with arm angle `psi` (rad), named, wrapped into
@@ -298,49 +405,12 @@ impl TrigRotation {
 }
 
 impl SrsArm {
-    /// The psi where a joint of a spherical triple (axes `w[i]`, `w[i+1]`, `w[i+2]`, rotation
-    /// `m(psi)` = R_i R_{i+1} R_{i+2}) meets one of its limits or the triple is singular (its two
-    /// branches meet).
-    fn triple_roots(&self, i: usize, m: &TrigRotation, out: &mut Vec<f64>) {
-        let (w1, w2, w3) = (self.w[i], self.w[i + 1], self.w[i + 2]);
-        let finite = |k: usize| {
-            let [lo, hi] = self.limits[k];
-            (lo.is_finite() && hi.is_finite() && hi - lo < TAU - 1e-12)
-                .then_some([lo, hi])
-                .into_iter()
-                .flatten()
-        };
-        // Middle joint: w1 . R w3 = w1 . R_mid(t) w3.
-        for t in finite(i + 1) {
-            m.roots(&w1, &w3, w1.dot(&(rot(&w2, t) * w3)), out);
-        }
-        // First joint: (R_first(t) w2) . R w3 = w2 . w3.
-        for t in finite(i) {
-            m.roots(&(rot(&w1, t) * w2), &w3, w2.dot(&w3), out);
-        }
-        // Last joint: w1 . R (R_last(t)^T w2) = w1 . w2.
-        for t in finite(i + 2) {
-            m.roots(&w1, &(rot(&w3, -t) * w2), w1.dot(&w2), out);
-        }
-        // Singular: gamma^2 = 0 in subproblem 2, a quadratic in s = w1 . R w3.
-        let c12 = w1.dot(&w2);
-        let den = c12 * c12 - 1.0;
-        if den.abs() > 1e-12 {
-            let k = w2.dot(&w3);
-            // alpha = (c12 k - s) / den, beta = (c12 s - k) / den.
-            let (a1, a0) = (-1.0 / den, c12 * k / den);
-            let (b1, b0) = (c12 / den, -k / den);
-            // 1 - (a1 s + a0)^2 - (b1 s + b0)^2 - 2 c12 (a1 s + a0)(b1 s + b0) = 0
-            let qa = -(a1 * a1 + b1 * b1 + 2.0 * c12 * a1 * b1);
-            let qb = -(2.0 * a1 * a0 + 2.0 * b1 * b0 + 2.0 * c12 * (a1 * b0 + a0 * b1));
-            let qc = 1.0 - a0 * a0 - b0 * b0 - 2.0 * c12 * a0 * b0;
-            let disc = qb * qb - 4.0 * qa * qc;
-            if disc >= 0.0 && qa.abs() > 1e-14 {
-                for sgn in [1.0, -1.0] {
-                    let s = (-qb + sgn * disc.sqrt()) / (2.0 * qa);
-                    m.roots(&w1, &w3, s, out);
-                }
-            }
+    /// The psi where a joint of a spherical triple (the shoulder `side` 0 or the wrist 1, with
+    /// rotation `m(psi)`) meets one of its limits or the triple is singular (its two branches
+    /// meet).
+    fn triple_roots(&self, side: usize, m: &TrigRotation, out: &mut Vec<f64>) {
+        for (x, y, v) in &self.crossings[side].equations {
+            m.roots(x, y, *v, out);
         }
     }
 
@@ -387,7 +457,7 @@ impl SrsArm {
                 a: r4t * sh.a.transpose() * p.m,
                 b: r4t * sh.b.transpose() * p.m,
             };
-            self.triple_roots(4, &wr, wrist);
+            self.triple_roots(1, &wr, wrist);
             for list in [shoulder, wrist] {
                 for p in list.iter_mut() {
                     *p = p.rem_euclid(TAU);
@@ -419,25 +489,18 @@ impl SrsArm {
             if q4 < lo4 - 1e-12 || q4 > hi4 + 1e-12 {
                 continue;
             }
-            // R_sh and R_w at psi (the wrist's depends on the shoulder's rotation only).
-            let rotations = |psi: f64| {
-                let e = rotv(&p.u, psi, &part.reference);
-                let r_sh = triad(&e, &p.sw) * part.zero;
-                let r_w = (r_sh * part.r4).transpose() * p.m;
-                (r_sh, r_w)
-            };
             let shoulder = side_intervals(&parts[ie][0], |psi, ok: &mut [bool; 2]| {
-                let (r_sh, _) = rotations(psi);
-                for (is, ss) in [1.0, -1.0].into_iter().enumerate() {
-                    ok[is] = self.triple(0, &r_sh, ss).is_some_and(|t| {
+                let t = Self::triad_at(&p, part, psi);
+                for (is, t) in self.shoulders(part, &t).into_iter().enumerate() {
+                    ok[is] = t.is_some_and(|t| {
                         within(&wrap_into(t, &self.limits[0..3]), &self.limits[0..3])
                     });
                 }
             });
             let wrist = side_intervals(&parts[ie][1], |psi, ok: &mut [bool; 2]| {
-                let (_, r_w) = rotations(psi);
-                for (iw, sw) in [1.0, -1.0].into_iter().enumerate() {
-                    ok[iw] = self.triple(4, &r_w, sw).is_some_and(|t| {
+                let t = Self::triad_at(&p, part, psi);
+                for (iw, t) in self.wrists(&p, part, &t).into_iter().enumerate() {
+                    ok[iw] = t.is_some_and(|t| {
                         within(&wrap_into(t, &self.limits[4..7]), &self.limits[4..7])
                     });
                 }

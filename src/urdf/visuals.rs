@@ -119,7 +119,9 @@ pub fn parse_mesh(bytes: &[u8], path: &Path) -> Result<TriMesh, String> {
     let loaded = std::panic::catch_unwind(|| {
         mesh_loader::Loader::default().load_from_slice_with_reader(bytes, path, read_capped)
     })
-    .map_err(|_| "the mesh loader cannot read this file (it stopped on a feature it does not support)")?;
+    .map_err(
+        |_| "the mesh loader cannot read this file (it stopped on a feature it does not support)",
+    )?;
     let scene = loaded.map_err(|e| e.to_string())?;
     let mut mesh = TriMesh::default();
     for m in &scene.meshes {
