@@ -227,6 +227,27 @@ pub fn load_urdf(path: &Path) -> Result<Robot, UrdfError> {
     parse_urdf(&text, path)
 }
 
+/// Every link and every joint named once, as URDF requires.
+fn unique_names(urdf: &urdf_rs::Robot, path: &Path) -> Result<(), UrdfError> {
+    for (kind, names) in [
+        (
+            "link",
+            urdf.links.iter().map(|l| &l.name).collect::<Vec<_>>(),
+        ),
+        ("joint", urdf.joints.iter().map(|j| &j.name).collect()),
+    ] {
+        let mut seen = HashSet::new();
+        if let Some(name) = names.into_iter().find(|n| !seen.insert(n.as_str())) {
+            return Err(UrdfError::DuplicateName {
+                path: path.to_path_buf(),
+                kind,
+                name: name.clone(),
+            });
+        }
+    }
+    Ok(())
+}
+
 /// Reads URDF text into a [`Robot`]; `path` is only used in messages and the description.
 pub fn parse_urdf(text: &str, path: &Path) -> Result<Robot, UrdfError> {
     let p = || path.to_path_buf();
@@ -236,23 +257,7 @@ pub fn parse_urdf(text: &str, path: &Path) -> Result<Robot, UrdfError> {
     if uj.is_empty() {
         return Err(UrdfError::NoJoints { path: p() });
     }
-    for (kind, names) in [
-        (
-            "link",
-            urdf.links.iter().map(|l| &l.name).collect::<Vec<_>>(),
-        ),
-        ("joint", uj.iter().map(|j| &j.name).collect()),
-    ] {
-        let mut seen = HashSet::new();
-        if let Some(name) = names.into_iter().find(|n| !seen.insert(n.as_str())) {
-            let name = name.clone();
-            return Err(UrdfError::DuplicateName {
-                path: p(),
-                kind,
-                name,
-            });
-        }
-    }
+    unique_names(&urdf, path)?;
     let links: HashSet<&str> = urdf.links.iter().map(|l| l.name.as_str()).collect();
     let mut child_of: HashMap<&str, usize> = HashMap::new();
     let mut children: HashMap<&str, Vec<usize>> = HashMap::new();

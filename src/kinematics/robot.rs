@@ -286,15 +286,7 @@ impl Robot {
         joints: Vec<Joint>,
         mut end_effectors: Vec<EndEffector>,
     ) -> Result<Self, ModelError> {
-        if joints.is_empty() {
-            return Err(ModelError::Structure("a robot needs at least one joint"));
-        }
-        if joints.len() > MAX_JOINTS {
-            return Err(ModelError::TooManyJoints {
-                count: joints.len(),
-                max: MAX_JOINTS,
-            });
-        }
+        check_size(&joints, &base, &end_effectors)?;
         let mut dof_joint = Vec::new();
         for (i, j) in joints.iter().enumerate() {
             validate_joint(i, j, &joints)?;
@@ -311,10 +303,6 @@ impl Robot {
             return Err(ModelError::Structure(
                 "a robot needs at least one actuated joint",
             ));
-        }
-        check_placement("base", &base)?;
-        for (k, ee) in end_effectors.iter().enumerate() {
-            check_placement(&format!("tool of end-effector {k}"), &ee.tool)?;
         }
         if end_effectors.is_empty() {
             end_effectors.push(EndEffector {
@@ -677,6 +665,29 @@ fn variable_range(kind: JointKind) -> Bound {
         JointKind::Prismatic => Bound::Length,
         _ => Bound::Angle,
     }
+}
+
+/// At least one and at most [`MAX_JOINTS`] joints; base and tools finite and within
+/// [`MAX_LENGTH`].
+fn check_size(
+    joints: &[Joint],
+    base: &Pose,
+    end_effectors: &[EndEffector],
+) -> Result<(), ModelError> {
+    if joints.is_empty() {
+        return Err(ModelError::Structure("a robot needs at least one joint"));
+    }
+    if joints.len() > MAX_JOINTS {
+        return Err(ModelError::TooManyJoints {
+            count: joints.len(),
+            max: MAX_JOINTS,
+        });
+    }
+    check_placement("base", base)?;
+    for (k, ee) in end_effectors.iter().enumerate() {
+        check_placement(&format!("tool of end-effector {k}"), &ee.tool)?;
+    }
+    Ok(())
 }
 
 /// A base or tool: finite, translation within [`MAX_LENGTH`].
