@@ -51,13 +51,32 @@ const TEXTS: &[&str] = &[
     "dlr",
     "/dev/zero",
     "/nonexistent/robot.toml",
-    "assets/robots/panda.toml",
-    "tests/data/bad_models/nan_parameter.toml",
+    "panda.toml",
+    "nan_parameter.toml",
+    "saved.urdf",
     "\u{1F916}",
     "12.5",
     "-1000",
     "1e6",
 ];
+
+/// Runs the test in a folder of its own: typed texts become file names when the Save row or
+/// the calibration's save is clicked, and must not land in (or overwrite files of) the
+/// repository. Copies of a model and of a bad model are there to be opened (and overwritten).
+fn private_working_dir() -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("armlab-soak-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let repo = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    for (from, to) in [
+        ("assets/robots/panda.toml", "panda.toml"),
+        ("tests/data/bad_models/nan_parameter.toml", "nan_parameter.toml"),
+    ] {
+        std::fs::copy(repo.join(from), dir.join(to)).unwrap();
+    }
+    // The only test of this binary: changing the process's folder affects nothing else.
+    std::env::set_current_dir(&dir).unwrap();
+    dir
+}
 
 const KEYS: &[Key] = &[
     Key::W,
@@ -326,12 +345,20 @@ fn soak(spec: &str, events: usize, seed: u64) {
 
 #[test]
 fn random_events_on_every_built_in_keep_the_app_sound() {
+    let dir = private_working_dir();
     let events = env_number("ARMLAB_SOAK_EVENTS", 300) as usize;
     let seed = env_number("ARMLAB_SOAK_SEED", 1);
     let start = std::time::Instant::now();
     for b in BUILT_INS {
+        let t = std::time::Instant::now();
         soak(b.name, events, seed);
+        eprintln!(
+            "soak: {} {events} events in {:.1} s",
+            b.name,
+            t.elapsed().as_secs_f64()
+        );
     }
+    std::fs::remove_dir_all(&dir).ok();
     eprintln!(
         "soak: {} models x {events} events in {:.1} s",
         BUILT_INS.len(),
