@@ -10,14 +10,14 @@ pub(crate) fn rot(w: &Vector3<f64>, t: f64) -> Rotation3<f64> {
 }
 
 /// `Rot(w, t) v` by Rodrigues' formula (no matrix).
-#[inline]
+#[inline(always)]
 pub(crate) fn rotv(w: &Vector3<f64>, t: f64, v: &Vector3<f64>) -> Vector3<f64> {
     let (st, ct) = crate::kinematics::trig::sin_cos(t);
     v * ct + w.cross(v) * st + w * (w.dot(v) * (1.0 - ct))
 }
 
 /// `Rot(w, t) v` from the sine and cosine of t (no trigonometric call).
-#[inline]
+#[inline(always)]
 pub(crate) fn rotv_sc(w: &Vector3<f64>, st: f64, ct: f64, v: &Vector3<f64>) -> Vector3<f64> {
     v * ct + w.cross(v) * st + w * (w.dot(v) * (1.0 - ct))
 }
@@ -34,7 +34,7 @@ pub(crate) struct Angle {
 }
 
 /// [`sub1`] with the sine and cosine of the angle, read off the atan2 arguments.
-#[inline]
+#[inline(always)]
 pub(crate) fn sub1_sc(w: &Vector3<f64>, p: &Vector3<f64>, q: &Vector3<f64>) -> Angle {
     let pp = p - w * w.dot(p);
     let qq = q - w * w.dot(q);
@@ -57,20 +57,8 @@ pub(crate) fn sub1(w: &Vector3<f64>, p: &Vector3<f64>, q: &Vector3<f64>) -> f64 
     w.dot(&pp.cross(&qq)).atan2(pp.dot(&qq))
 }
 
-/// Subproblem 2: the angles (t1, t2) with Rot(w1, t1) Rot(w2, t2) p = q, for `sign` = +1 or -1
-/// (the two solutions); `None` when there is none (beyond rounding).
-pub(crate) fn sub2(
-    w1: &Vector3<f64>,
-    w2: &Vector3<f64>,
-    p: &Vector3<f64>,
-    q: &Vector3<f64>,
-    sign: f64,
-) -> Option<(f64, f64)> {
-    sub2_sc(w1, w2, p, q, sign).map(|(a, b)| (a.t, b.t))
-}
-
 /// Both solutions of [`sub2_sc`] (sign +1, then -1), sharing the work they have in common.
-#[inline]
+#[inline(always)]
 pub(crate) fn sub2_pair_sc(
     w1: &Vector3<f64>,
     w2: &Vector3<f64>,
@@ -96,7 +84,9 @@ pub(crate) fn sub2_pair_sc(
     Some([base + off, base - off].map(|c| (sub1_sc(w1, &c, q), sub1_sc(w2, p, &c))))
 }
 
-/// [`sub2`] with the sines and cosines of both angles.
+/// Subproblem 2: the angles (t1, t2) with Rot(w1, t1) Rot(w2, t2) p = q, for `sign` = +1 or -1
+/// (the two solutions), with their sines and cosines; `None` when there is none (beyond
+/// rounding).
 pub(crate) fn sub2_sc(
     w1: &Vector3<f64>,
     w2: &Vector3<f64>,

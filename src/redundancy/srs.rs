@@ -20,7 +20,7 @@
 //! Eight branches in all, labelled by the three signs.
 
 use super::geometry::{
-    meet, rot, rotv, rotv_sc, sub1, sub2, sub2_pair_sc, triad, trig_roots, within, wrap_into,
+    meet, rot, rotv, rotv_sc, sub1, sub2_pair_sc, sub2_sc, triad, trig_roots, within, wrap_into,
 };
 use crate::kinematics::{Pose, Robot};
 use nalgebra::{Matrix3, Point3, Rotation3, Vector3};
@@ -221,12 +221,19 @@ impl SrsArm {
     /// zero, and of the two shoulder solutions the one with sign +1 of subproblem 2. `None` at
     /// the algorithmic singularity (S-W line along axis 1) or out of reach.
     pub fn reference(&self, wc: &Vector3<f64>, q4: f64) -> Option<Vector3<f64>> {
-        let sw = wc - self.s;
+        self.reference_of(&(wc - self.s), &self.w4(q4))
+    }
+
+    /// [`Self::reference`] from S->W (`sw`) and the wrist after joint 4 alone (`w4`, see
+    /// [`Self::w4`]): R_1 R_2 (E_0 - S) with R_1 R_2 w4 = sw, rotating the vector only.
+    #[inline(always)]
+    fn reference_of(&self, sw: &Vector3<f64>, w4: &Vector3<f64>) -> Option<Vector3<f64>> {
         if sw.normalize().cross(&self.w[0]).norm() < 1e-9 {
             return None;
         }
-        let (t1, t2) = sub2(&self.w[0], &self.w[1], &self.w4(q4), &sw, 1.0)?;
-        Some(rot(&self.w[0], t1) * rot(&self.w[1], t2) * (self.e0 - self.s))
+        let (a1, a2) = sub2_sc(&self.w[0], &self.w[1], w4, sw, 1.0)?;
+        let e = rotv_sc(&self.w[1], a2.s, a2.c, &(self.e0 - self.s));
+        Some(rotv_sc(&self.w[0], a1.s, a1.c, &e))
     }
 
     /// Whether a target's shoulder-wrist line lies along axis 1 (the arm angle's algorithmic
@@ -253,9 +260,9 @@ impl SrsArm {
         let m = target.rotation.into_inner() * self.r0.inverse().into_inner();
         let elbows = [1.0, -1.0].map(|se| {
             let q4 = self.elbow(sw.norm(), se)?;
-            let reference = self.reference(&wc, q4)?;
             let r4 = rot(&self.w[3], q4).into_inner();
             let w4 = self.e0 - self.s + r4 * (self.w0 - self.e0);
+            let reference = self.reference_of(&sw, &w4)?;
             let zero = triad(&(self.e0 - self.s), &w4).transpose();
             Some(ElbowPart {
                 q4,
@@ -303,27 +310,27 @@ impl SrsArm {
     /// R_1 R_2 R_3 = R_sh whichever the shoulder branch, so the wrist sees the same rotation
     /// from both: R_5 R_6 R_7 = R_w = (R_sh R_4)^T R_e R(0)^T. Only `R w_3` and `R x_3` of each
     /// triple's rotation are needed, so no 3x3 product is formed (see [`ElbowPart`]).
-    #[inline]
+    #[inline(always)]
     fn sides(&self, p: &SrsPose, part: &ElbowPart, psi: f64) -> TriplePairs {
         let t = Self::triad_at(p, part, psi);
         (self.shoulders(part, &t), self.wrists(p, part, &t))
     }
 
     /// `triad(E, SW)` at arm angle `psi`: R_sh is this times `part.zero`.
-    #[inline]
+    #[inline(always)]
     fn triad_at(p: &SrsPose, part: &ElbowPart, psi: f64) -> Matrix3<f64> {
         triad(&rotv(&p.u, psi, &part.reference), &p.sw)
     }
 
     /// Both shoulder triples for `t = triad_at(psi)`.
-    #[inline]
+    #[inline(always)]
     fn shoulders(&self, part: &ElbowPart, t: &Matrix3<f64>) -> [Option<[f64; 3]>; 2] {
         let [zw, zx] = &part.zero_shoulder;
         self.triples(0, &(t * zw), &(t * zx))
     }
 
     /// Both wrist triples for `t = triad_at(psi)`.
-    #[inline]
+    #[inline(always)]
     fn wrists(&self, p: &SrsPose, part: &ElbowPart, t: &Matrix3<f64>) -> [Option<[f64; 3]>; 2] {
         let ww = part.wrist_from_triad * t.tr_mul(&p.m_wrist[0]);
         let wx = part.wrist_from_triad * t.tr_mul(&p.m_wrist[1]);
@@ -333,7 +340,7 @@ impl SrsArm {
     /// The angles of the spherical triple of axes `i`, `i + 1`, `i + 2` whose product of
     /// rotations R has `R w_{i+2}` = `rw` and `R x_{i+2}` = `rx` (x the axis's probe): both
     /// branches of subproblem 2 (sign +1, then -1), `None` where there is no solution.
-    #[inline]
+    #[inline(always)]
     fn triples(&self, i: usize, rw: &Vector3<f64>, rx: &Vector3<f64>) -> [Option<[f64; 3]>; 2] {
         let (w1, w2, w3) = (&self.w[i], &self.w[i + 1], &self.w[i + 2]);
         let Some(pair) = sub2_pair_sc(w1, w2, w3, rw) else {
