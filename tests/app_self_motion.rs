@@ -211,3 +211,38 @@ fn an_empty_traced_path_draws_nothing() {
         assert_eq!(scene.lines.len(), n.saturating_sub(1));
     }
 }
+
+/// The laser-cutting task in the app: the Puma holding only its tool point and approach axis
+/// has a self-motion slider (numerical, degree 1) that turns the hand about the axis; the
+/// readouts give the task's errors, and FK shows the point and the axis held.
+#[test]
+fn a_partial_task_gets_a_self_motion_slider() {
+    let mut s = state("puma560");
+    s.set_q(&[0.3, -0.5, 0.4, 0.6, -0.7, 0.2]).unwrap();
+    s.set_task(Task::PositionAxis).unwrap();
+    let held = fk(&s, 0);
+    let v = s.self_motion(0).unwrap();
+    assert!(!v.exact && v.parameter == "arc length", "{}", v.meaning);
+    assert!(v.meaning.contains("position+axis"));
+    let mut reached = 0.0;
+    for k in 0..200 {
+        let want = if k < 100 {
+            reached + 0.02
+        } else {
+            reached - 0.01
+        };
+        reached = s.set_self_motion(0, want).unwrap();
+        let t = fk(&s, 0);
+        let dp = (t.translation.vector - held.translation.vector).norm();
+        let (za, zb) = (t.rotation * Vector3::z(), held.rotation * Vector3::z());
+        assert!(dp < 1e-12, "step {k}: {dp} m");
+        assert!(za.cross(&zb).norm().atan2(za.dot(&zb)) < 1e-12, "step {k}");
+    }
+    let (_, turned) = gap(&fk(&s, 0), &held);
+    assert!(
+        turned > 0.1,
+        "the hand did not turn about its axis: {turned} rad"
+    );
+    let v = s.self_motion(0).unwrap();
+    assert!(v.position_error < 1e-12 && v.orientation_error < 1e-12);
+}

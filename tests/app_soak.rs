@@ -69,7 +69,10 @@ fn private_working_dir() -> std::path::PathBuf {
     let repo = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
     for (from, to) in [
         ("assets/robots/panda.toml", "panda.toml"),
-        ("tests/data/bad_models/nan_parameter.toml", "nan_parameter.toml"),
+        (
+            "tests/data/bad_models/nan_parameter.toml",
+            "nan_parameter.toml",
+        ),
     ] {
         std::fs::copy(repo.join(from), dir.join(to)).unwrap();
     }

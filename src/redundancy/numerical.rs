@@ -9,7 +9,7 @@
 //! parameter is the arc length s in joint space (rad).
 
 use super::RedundancyError;
-use crate::kinematics::orientation::angle_axis_from_rotation;
+use crate::kinematics::ik::numerical::{TaskMask, error, mask_rows};
 use crate::kinematics::{Pose, Robot};
 use nalgebra::{DVector, Matrix6, Matrix6xX, Vector6};
 
@@ -28,6 +28,8 @@ pub struct NullSpaceMotion<'a> {
     jac: Matrix6xX<f64>,
     trial: Vec<f64>,
     scale: f64,
+    /// The components held: the full pose, or a task of Sect. 2.10.2 in the tool frame.
+    mask: TaskMask,
 }
 
 impl<'a> NullSpaceMotion<'a> {
@@ -39,6 +41,19 @@ impl<'a> NullSpaceMotion<'a> {
         ee: usize,
         q0: &[f64],
         direction: Option<&[f64]>,
+    ) -> Result<Self, RedundancyError> {
+        Self::for_task(robot, ee, q0, direction, TaskMask::FULL)
+    }
+
+    /// [`Self::new`] holding only the components of `mask` (e.g. the position and the approach
+    /// axis, [`TaskMask::of_task`]): the other components move along the self-motion, whose
+    /// dimension is then n - r.
+    pub fn for_task(
+        robot: &'a Robot,
+        ee: usize,
+        q0: &[f64],
+        direction: Option<&[f64]>,
+        mask: TaskMask,
     ) -> Result<Self, RedundancyError> {
         robot.check_q(q0)?;
         let n = robot.dof();
@@ -71,10 +86,11 @@ impl<'a> NullSpaceMotion<'a> {
             jac: Matrix6xX::zeros(n),
             trial: vec![0.0; n],
             scale: robot.characteristic_length(),
+            mask,
         };
         if !me.update_tangent()? {
             return Err(RedundancyError::NotSupported(format!(
-                "{} has no self-motion at this configuration for a full pose (the null space of \
+                "{} has no self-motion at this configuration for this task (the null space of \
                  its Jacobian is empty)",
                 robot.name
             )));
@@ -98,33 +114,52 @@ impl<'a> NullSpaceMotion<'a> {
         self.tangent.as_slice()
     }
 
-    /// Position (m) and orientation (rad) errors of the hand from the pose it holds.
+    /// Position (m) and orientation (rad) errors of the hand from the pose it holds, over the
+    /// components the task holds.
     pub fn errors(&self) -> Result<(f64, f64), RedundancyError> {
         let e = self.error(&self.q)?;
         Ok((e.fixed_rows::<3>(0).norm(), e.fixed_rows::<3>(3).norm()))
     }
 
+    /// The held components' error (the mask's frame, the others zero).
     fn error(&self, q: &[f64]) -> Result<Vector6<f64>, RedundancyError> {
         let t = self.robot.fk_ee(q, self.ee)?;
-        let ep = self.target.translation.vector - t.translation.vector;
-        let aa = angle_axis_from_rotation(&(self.target.rotation * t.rotation.inverse()));
-        let eo = aa.axis.into_inner() * aa.angle;
-        Ok(Vector6::new(ep.x, ep.y, ep.z, eo.x, eo.y, eo.z))
+        Ok(error(&self.target, &t, &self.mask))
     }
 
-    /// `J J^T` at the current Jacobian, factored; `None` at a singularity.
+    /// The Jacobian at `q` in the mask's frame, the rows of free components zeroed.
+    fn jacobian_at(&mut self, q: &[f64]) -> Result<(), RedundancyError> {
+        self.robot
+            .jacobian_into(q, self.ee, &mut self.frames, &mut self.jac)?;
+        if self.mask != TaskMask::FULL {
+            let t = self.robot.fk_ee(q, self.ee)?;
+            mask_rows(&mut self.jac, &t, &self.mask);
+        }
+        Ok(())
+    }
+
+    /// `J J^T` at the current Jacobian, factored, with 1 on the diagonal of each free component
+    /// (its row of J is zero: its right-hand side is too, so it solves to zero); `None` at a
+    /// singularity of the task.
     fn jjt(&self) -> Option<nalgebra::Cholesky<f64, nalgebra::Const<6>>> {
         let mut m = Matrix6::zeros();
         for c in self.jac.column_iter() {
             m += c * c.transpose();
+        }
+        for (i, held) in self.mask.0.iter().enumerate() {
+            if !held {
+                m[(i, i)] = 1.0;
+            }
         }
         m.cholesky()
     }
 
     /// Projects the tangent on the null space at the current q; false when it vanishes.
     fn update_tangent(&mut self) -> Result<bool, RedundancyError> {
-        self.robot
-            .jacobian_into(&self.q, self.ee, &mut self.frames, &mut self.jac)?;
+        let q = std::mem::take(&mut self.q);
+        let r = self.jacobian_at(&q);
+        self.q = q;
+        r?;
         let Some(ch) = self.jjt() else {
             return Ok(false);
         };
@@ -173,8 +208,7 @@ impl<'a> NullSpaceMotion<'a> {
             if size < 1e-15 * self.scale {
                 break;
             }
-            self.robot
-                .jacobian_into(&q, self.ee, &mut self.frames, &mut self.jac)?;
+            self.jacobian_at(&q)?;
             let Some(ch) = self.jjt() else {
                 break;
             };

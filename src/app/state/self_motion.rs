@@ -191,41 +191,22 @@ impl AppState {
                 red.degree()
             ));
         }
-        let wants_exact = match ExactSelfMotion::new(&self.robot, pose) {
-            Ok(m) => {
-                let task = match m.parameter() {
-                    "phi" if self.robot.dof() == 3 => Task::Planar,
-                    "phi" => Task::PlanarPhi,
-                    _ => Task::Pose,
-                };
-                if task == self.task && ee == 0 {
-                    return Kind::Exact(Box::new(m));
-                }
-                Some(task)
-            }
-            Err(_) => None,
-        };
-        if self.task == Task::Pose {
-            return Kind::Numerical {
-                arc: 0.0,
-                tangent: None,
+        if let Ok(m) = ExactSelfMotion::new(&self.robot, pose) {
+            let task = match m.parameter() {
+                "phi" if self.robot.dof() == 3 => Task::Planar,
+                "phi" => Task::PlanarPhi,
+                _ => Task::Pose,
             };
+            if task == self.task && ee == 0 {
+                return Kind::Exact(Box::new(m));
+            }
         }
-        Kind::None(match wants_exact {
-            Some(t) => format!(
-                "the exact self-motion of this arm holds the task \"{}\"; the task \"{}\" \
-                 leaves {} free parameters",
-                t.name(),
-                self.task.name(),
-                red.degree()
-            ),
-            None => format!(
-                "the slider holds a full pose; the task \"{}\" leaves {} free parameters (use \
-                 the gizmo)",
-                self.task.name(),
-                red.degree()
-            ),
-        })
+        // Any other task with freedom left (the exact parameter holds another task, or there is
+        // none): the numerical self-motion holding what the task holds.
+        Kind::Numerical {
+            arc: 0.0,
+            tangent: None,
+        }
     }
 
     /// What the self-motion slider of `ee` shows, or why there is none.
@@ -235,7 +216,7 @@ impl AppState {
         let cache = self
             .self_motion_cache(ee)
             .ok_or_else(|| "no end-effector pose".to_string())?;
-        let (pe, oe) = errors(&robot, ee, &q, &cache.pose);
+        let (pe, oe) = errors(&robot, (ee, cache.task), &q, &cache.pose);
         if let Kind::Exact(m) = &cache.kind
             && let Some((branch, _)) = m.locate(&robot, &q)
         {
@@ -280,9 +261,11 @@ impl AppState {
             }
             Kind::Numerical { arc, .. } => Ok(SelfMotionView {
                 parameter: "arc length",
-                meaning: "arc length s walked in joint space along the null space (numerical: \
-                          tangent step, then Newton back onto the pose)"
-                    .into(),
+                meaning: format!(
+                    "arc length s walked in joint space along the null space (numerical: tangent \
+                     step, then Newton back onto the task \"{}\")",
+                    cache.task.name()
+                ),
                 exact: false,
                 value: *arc,
                 range: [-PI, PI],
@@ -363,7 +346,8 @@ impl AppState {
         let Kind::Numerical { arc, tangent } = cache.kind.clone() else {
             return Err(StateError::Task("no numerical self-motion".into()));
         };
-        let mut m = NullSpaceMotion::new(&self.robot, ee, &self.q, tangent.as_deref())
+        let mask = crate::kinematics::ik::numerical::TaskMask::of_task(self.task);
+        let mut m = NullSpaceMotion::for_task(&self.robot, ee, &self.q, tangent.as_deref(), mask)
             .map_err(|e| StateError::Task(e.to_string()))?;
         m.hold(cache.pose);
         let mut s = arc;
@@ -460,15 +444,17 @@ fn pose_close(a: &Pose, b: &Pose) -> bool {
 }
 
 /// Position (m) and orientation (rad) error of `q`'s end-effector `ee` from `pose`.
-fn errors(robot: &crate::kinematics::Robot, ee: usize, q: &[f64], pose: &Pose) -> (f64, f64) {
+/// The hand's position and orientation errors from the held pose over what `task` holds (a
+/// partial task lets the other components move).
+fn errors(
+    robot: &crate::kinematics::Robot,
+    (ee, task): (usize, Task),
+    q: &[f64],
+    pose: &Pose,
+) -> (f64, f64) {
+    use crate::kinematics::ik::numerical::{TaskMask, task_errors};
     match robot.fk_ee(q, ee) {
-        Ok(t) => (
-            (t.translation.vector - pose.translation.vector).norm(),
-            crate::kinematics::orientation::angle_axis_from_rotation(
-                &(t.rotation.inverse() * pose.rotation),
-            )
-            .angle,
-        ),
+        Ok(t) => task_errors(pose, &t, &TaskMask::of_task(task)),
         Err(_) => (f64::INFINITY, f64::INFINITY),
     }
 }

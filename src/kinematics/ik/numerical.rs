@@ -179,7 +179,7 @@ fn desired(target: &Target, mask: TaskMask) -> (Pose, TaskMask) {
 
 /// Error `[p_d - p; r theta]` with `R_d R^T = Rot(r, theta)` (world frame; rotated into the
 /// tool frame `R^T` for a tool-frame mask), masked.
-fn error(d: &Pose, t: &Pose, mask: &TaskMask) -> Vector6<f64> {
+pub(crate) fn error(d: &Pose, t: &Pose, mask: &TaskMask) -> Vector6<f64> {
     let ep = d.translation.vector - t.translation.vector;
     let re: Rotation3<f64> = d.rotation * t.rotation.inverse();
     // (2.26)-(2.27) through the robust atan2 form (nalgebra's angle() uses acos, which loses
@@ -204,7 +204,7 @@ fn error(d: &Pose, t: &Pose, mask: &TaskMask) -> Vector6<f64> {
 
 /// The Jacobian's rows in the mask's frame (`diag(R^T, R^T) J` for a tool-frame mask, R the
 /// tool's rotation at the same configuration), the rows the mask leaves out zeroed.
-fn mask_rows(jac: &mut Matrix6xX<f64>, t: &Pose, mask: &TaskMask) {
+pub(crate) fn mask_rows(jac: &mut Matrix6xX<f64>, t: &Pose, mask: &TaskMask) {
     if mask.1 == MaskFrame::Tool {
         let r = t.rotation.inverse();
         for c in 0..jac.ncols() {
@@ -219,6 +219,12 @@ fn mask_rows(jac: &mut Matrix6xX<f64>, t: &Pose, mask: &TaskMask) {
             jac.row_mut(i).fill(0.0);
         }
     }
+}
+
+/// Position (m) and orientation (rad) errors of `actual` from `desired` over the components
+/// the task constrains (in the mask's frame): what a partial task holds.
+pub fn task_errors(desired: &Pose, actual: &Pose, mask: &TaskMask) -> (f64, f64) {
+    split_norms(&error(desired, actual, mask))
 }
 
 fn split_norms(e: &Vector6<f64>) -> (f64, f64) {
