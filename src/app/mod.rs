@@ -35,7 +35,7 @@ pub struct ArmlabApp {
     inner: Option<inner::InnerUi>,
     /// Remember the settings across runs (not while measuring frames).
     remember: bool,
-    /// The window title last set ("armlab: <robot>"), kept in step with the model.
+    /// The window title last set (`armlab: <robot name>`), kept in step with the model.
     title: String,
 }
 
