@@ -16,8 +16,9 @@ struct DotIn {
 struct VertexOut {
     @builtin(position) clip: vec4<f32>,
     @location(0) color: vec4<f32>,
-    // Offset from the dot's centre (px).
-    @location(1) @interpolate(linear) local_px: vec2<f32>,
+    // Offset from the dot's centre (px). Every corner has the centre's w, so perspective
+    // interpolation is screen-linear here (WebGL2 has no `linear` qualifier).
+    @location(1) local_px: vec2<f32>,
     @location(2) @interpolate(flat) radius: f32,
 };
 

@@ -17,10 +17,12 @@ struct LineIn {
 struct VertexOut {
     @builtin(position) clip: vec4<f32>,
     @location(0) color: vec4<f32>,
-    // Signed distance from the centre line (px).
-    // Screen-space (not perspective) interpolation: the quad is a parallelogram in pixels.
-    @location(1) @interpolate(linear) across_px: f32,
+    // Signed distance from the centre line (px), interpolated in screen space (the quad is a
+    // parallelogram in pixels) without the `linear` qualifier, which WebGL2 lacks: across_px * w
+    // and w interpolated perspective-correctly have the screen-linear across_px as their ratio.
+    @location(1) across_w: f32,
     @location(2) @interpolate(flat) half_width: f32,
+    @location(3) w: f32,
 };
 
 // Extra quad margin (px) for the anti-aliased edge.
@@ -37,7 +39,8 @@ fn vs_main(@builtin(vertex_index) vi: u32, inst: LineIn) -> VertexOut {
     var out: VertexOut;
     out.color = inst.color;
     out.half_width = inst.width_px * 0.5;
-    out.across_px = 0.0;
+    out.across_w = 0.0;
+    out.w = 1.0;
     let ca0 = frame.clip_from_world * vec4<f32>(inst.a, 1.0);
     let cb0 = frame.clip_from_world * vec4<f32>(inst.b, 1.0);
     // In front of the near plane means z >= 0 in wgpu's clip space.
@@ -67,13 +70,15 @@ fn vs_main(@builtin(vertex_index) vi: u32, inst: LineIn) -> VertexOut {
     let c = select(ca, cb, at_b);
     let ndc = c.xy / c.w + offset_px / half_vp;
     out.clip = vec4<f32>(ndc * c.w, biased_depth(c) * c.w, c.w);
-    out.across_px = side * reach;
+    out.across_w = side * reach * c.w;
+    out.w = c.w;
     return out;
 }
 
 @fragment
 fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
-    let coverage = clamp(in.half_width + 0.5 - abs(in.across_px), 0.0, 1.0);
+    let across_px = in.across_w / in.w;
+    let coverage = clamp(in.half_width + 0.5 - abs(across_px), 0.0, 1.0);
     if (coverage <= 0.0) {
         discard;
     }

@@ -78,14 +78,14 @@ pub use nalgebra;
 /// implement, re-exported for the same reason.
 pub use serde;
 
-#[cfg(feature = "app")]
+#[cfg(feature = "gui")]
 pub mod app;
 pub mod calibration;
-#[cfg(feature = "app")]
+#[cfg(feature = "gui")]
 pub mod camera;
 #[cfg(feature = "app")]
 pub mod cli;
-#[cfg(feature = "app")]
+#[cfg(feature = "gui")]
 pub mod figure;
 #[cfg(feature = "app")]
 pub mod headless;
@@ -93,9 +93,11 @@ pub mod input;
 pub mod kinematics;
 pub mod model_file;
 pub mod redundancy;
-#[cfg(feature = "app")]
+#[cfg(feature = "gui")]
 pub mod render;
-#[cfg(feature = "app")]
+#[cfg(feature = "gui")]
 pub mod scene;
 pub mod urdf;
+#[cfg(all(feature = "gui", target_arch = "wasm32"))]
+pub mod web;
 pub mod workspace;

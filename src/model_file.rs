@@ -92,6 +92,30 @@ pub enum LoadError {
         /// The built-in names, comma-separated.
         built_ins: String,
     },
+    /// A file handed over by name and text whose name does not end in .toml or .urdf.
+    #[error("{name}: not a model file (the name of a model file ends in .toml or .urdf)")]
+    NotAModelFile {
+        /// The file's name.
+        name: String,
+    },
+}
+
+/// A robot from the text of a model file named `name` (`.toml` or `.urdf`, by the extension,
+/// case-insensitively), e.g. a file the browser handed over. Errors name `name` like a path. A
+/// URDF's meshes are looked up next to `name` (there are none in a browser: each is a warning).
+pub fn parse_model_text(name: &str, text: &str) -> Result<Robot, LoadError> {
+    let path = Path::new(name);
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    match ext.as_deref() {
+        Some("toml") => Ok(parse_model(text, path)?),
+        Some("urdf") => Ok(crate::urdf::parse_urdf(text, path)?),
+        _ => Err(LoadError::NotAModelFile {
+            name: name.to_string(),
+        }),
+    }
 }
 
 /// A robot from a built-in name (see [`BUILT_INS`]) or from a path ending in `.toml` (model

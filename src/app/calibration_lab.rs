@@ -251,11 +251,16 @@ impl CalibrationLab {
     /// Calibrates `robot` from the measurement file typed in `measurements_path`.
     pub fn run_file(&mut self, robot: &Robot) {
         let path = self.measurements_path.trim().to_string();
-        let result = crate::input::read_data_text(std::path::Path::new(&path))
+        match crate::input::read_data_text(std::path::Path::new(&path)) {
+            Ok(text) => self.run_text(robot, &path, &text),
+            Err(e) => self.message = Some(e.to_string()),
+        }
+    }
+
+    /// Calibrates `robot` from the text of a measurement file named `name` (errors name it).
+    pub fn run_text(&mut self, robot: &Robot, name: &str, text: &str) {
+        let result = parse_measurements(text, name, robot.dof())
             .map_err(|e| e.to_string())
-            .and_then(|text| {
-                parse_measurements(&text, &path, robot.dof()).map_err(|e| e.to_string())
-            })
             .and_then(|ms| {
                 let model = model_of(robot, self.settings.hayati)?;
                 finish(
@@ -263,7 +268,7 @@ impl CalibrationLab {
                     &ms,
                     None,
                     None,
-                    path.clone(),
+                    name.to_string(),
                     &options(&self.settings),
                 )
             });
@@ -277,23 +282,25 @@ impl CalibrationLab {
         }
     }
 
-    /// Writes the calibrated robot to `save_path` as a model file.
-    pub fn save_model(&mut self) {
-        let path = self.save_path.trim().to_string();
+    /// The calibrated robot as the text of a TOML model file.
+    pub fn calibrated_text(&self) -> Result<String, String> {
         let Some(r) = &self.result else {
-            self.message = Some("run a calibration first".into());
-            return;
+            return Err("run a calibration first".into());
         };
-        let text = r
-            .model
+        r.model
             .robot_with(&r.report.estimate)
             .map_err(|e| e.to_string())
             .and_then(|robot| {
                 crate::model_file::to_toml(&robot)
                     .ok_or_else(|| "the calibrated robot is not a DH model file".to_string())
-            });
+            })
+    }
+
+    /// Writes the calibrated robot to `save_path` as a model file.
+    pub fn save_model(&mut self) {
+        let path = self.save_path.trim().to_string();
         self.message = Some(
-            match text.and_then(|t| {
+            match self.calibrated_text().and_then(|t| {
                 std::fs::write(&path, t).map_err(|e| format!("cannot write {path}: {e}"))
             }) {
                 Ok(()) => format!("saved the calibrated model to {path}"),

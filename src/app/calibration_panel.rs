@@ -230,7 +230,21 @@ fn files(lab: &mut CalibrationLab, robot: &Robot, picker: &mut dyn FilePicker, u
         )
         .labelled_by(l.id);
         if ui.button("Save calibrated model").clicked() {
-            lab.save_model();
+            if picker.downloads() {
+                let name = match lab.save_path.trim() {
+                    "" => "calibrated.toml",
+                    n => n,
+                };
+                lab.message = Some(match lab.calibrated_text() {
+                    Ok(t) if picker.download(name, "application/toml", t.as_bytes()) => {
+                        format!("downloading the calibrated model as {name}")
+                    }
+                    Ok(_) => format!("the browser refused the download of {name}"),
+                    Err(e) => e,
+                });
+            } else {
+                lab.save_model();
+            }
         }
     });
 }

@@ -15,6 +15,7 @@ pub enum FileKind {
     Measurements,
 }
 
+#[cfg(feature = "app")]
 impl FileKind {
     fn title(self) -> &'static str {
         match self {
@@ -41,6 +42,25 @@ pub trait FilePicker {
     fn open(&mut self, kind: FileKind) -> Option<PathBuf>;
     /// A file to write, `suggested` as the proposed name.
     fn save(&mut self, kind: FileKind, suggested: &str) -> Option<PathBuf>;
+    /// Where files are not paths (the browser): a file the user picked since the last call, as
+    /// its name and contents. `open` starts such a pick and answers `None`.
+    fn poll_opened(&mut self) -> Option<(FileKind, String, Vec<u8>)> {
+        None
+    }
+    /// Where files are not paths (the browser): hands `bytes` to the user as a download named
+    /// `name`; `false` where there are no downloads (the desktop writes files instead).
+    fn download(&mut self, _name: &str, _mime: &str, _bytes: &[u8]) -> bool {
+        false
+    }
+    /// Where files are not paths (the browser): starts reading a file dropped onto the window,
+    /// to be handed over by [`Self::poll_opened`]; `false`: open it by its path.
+    fn take_dropped(&mut self, _file: &egui::DroppedFileHandle) -> bool {
+        false
+    }
+    /// Whether saving means a download (the browser) rather than writing a path.
+    fn downloads(&self) -> bool {
+        false
+    }
 }
 
 /// No dialogs (tests, screenshots): every request answers `None`.
@@ -60,9 +80,11 @@ impl FilePicker for NoDialogs {
 }
 
 /// The desktop's native file dialog (blocking while it is open, as egui apps do).
+#[cfg(feature = "app")]
 #[derive(Debug, Default)]
 pub struct NativeDialogs;
 
+#[cfg(feature = "app")]
 impl NativeDialogs {
     fn dialog(kind: FileKind) -> rfd::FileDialog {
         let mut d = rfd::FileDialog::new().set_title(kind.title());
@@ -76,6 +98,7 @@ impl NativeDialogs {
     }
 }
 
+#[cfg(feature = "app")]
 impl FilePicker for NativeDialogs {
     fn available(&self) -> bool {
         true

@@ -22,7 +22,6 @@ pub mod workspace_job;
 
 use crate::figure::ui_painter::UiPainter;
 use crate::render::Gpu;
-use state::AppState;
 use ui::AppUi;
 use viewport::Viewport3d;
 
@@ -37,6 +36,10 @@ pub struct ArmlabApp {
     remember: bool,
     /// The window title last set (`armlab: <robot name>`), kept in step with the model.
     title: String,
+    /// The window's device (screenshots in the browser, where no other can be opened).
+    gpu: Option<Gpu>,
+    /// Frames drawn so far.
+    frames: u64,
 }
 
 impl eframe::App for ArmlabApp {
@@ -52,6 +55,8 @@ impl eframe::App for ArmlabApp {
     }
 
     fn ui(&mut self, ui: &mut egui::Ui, frame: &mut eframe::Frame) {
+        self.frames += 1;
+        self.take_files(ui.ctx());
         if let Some(p) = &mut self.probe {
             let [w, h] = self.ui.window_points;
             let ppp = ui.ctx().pixels_per_point();
@@ -97,51 +102,149 @@ impl eframe::App for ArmlabApp {
         if std::mem::take(&mut self.ui.screenshot_requested) {
             self.save_screenshot();
         }
-        if self
-            .ui
-            .workspace
-            .as_ref()
-            .is_some_and(|w| w.progress().is_some())
-        {
-            ui.ctx().request_repaint();
+        if let Some(w) = &self.ui.workspace {
+            w.step(self.gpu.as_ref());
+            if w.progress().is_some() {
+                ui.ctx().request_repaint();
+            }
         }
+    }
+
+    #[cfg(target_arch = "wasm32")]
+    fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
+        Some(&mut *self)
     }
 }
 
 impl ArmlabApp {
-    /// Renders the current state offscreen at the window's size and saves it next to the
-    /// working directory as `armlab-<model>-<n>.png`; the status says where (or why not).
+    /// The app on the window eframe opened (`cc`): the 3D viewport and our UI painter on the
+    /// window's wgpu device, the remembered settings restored when `remember`.
+    pub fn new(
+        cc: &eframe::CreationContext<'_>,
+        mut ui: AppUi,
+        mut probe: Option<probe::FrameProbe>,
+        remember: bool,
+        model_given: bool,
+    ) -> Self {
+        let gpu = cc.wgpu_render_state.as_ref().map(|rs| {
+            let info = rs.adapter.get_info();
+            if let Some(p) = &mut probe {
+                p.adapter = format!("{} ({}, {:?})", info.name, info.driver_info, info.backend);
+            }
+            UiPainter::new(&rs.device, rs.target_format)
+                .install(&mut rs.renderer.write().callback_resources);
+            Gpu::from_parts(rs.device.clone(), rs.queue.clone(), info)
+        });
+        let viewport = gpu.clone().and_then(|g| Viewport3d::adaptive(g).ok());
+        // Our painter for the widgets when the window has a wgpu device (always with the
+        // wgpu renderer); ARMLAB_EGUI_PAINTER=1 leaves them to egui-wgpu (for comparison).
+        let inner = (viewport.is_some() && !egui_painter_asked()).then(inner::InnerUi::default);
+        if remember {
+            let stored = cc.storage.and_then(|s| s.get_string(settings::STORAGE_KEY));
+            let file = storage_file();
+            settings::restore(&mut ui, stored, file.as_deref(), model_given);
+        }
+        Self {
+            ui,
+            viewport,
+            probe,
+            inner,
+            remember,
+            title: String::new(),
+            gpu,
+            frames: 0,
+        }
+    }
+
+    /// The app's state and UI (read by the web page's test hooks).
+    pub fn app_ui(&self) -> &AppUi {
+        &self.ui
+    }
+
+    /// Frames drawn so far.
+    pub fn frames(&self) -> u64 {
+        self.frames
+    }
+
+    /// Files the browser handed over (picked or dropped onto the window) are opened.
+    fn take_files(&mut self, ctx: &egui::Context) {
+        let dropped: Vec<egui::DroppedFileHandle> = ctx.input(|i| i.raw.dropped_files.clone());
+        for f in dropped {
+            // In a browser the picker reads the bytes (asynchronously) and hands them over below.
+            if !self.ui.file_picker.take_dropped(&f) {
+                self.ui.load(&f.path().to_string_lossy());
+            }
+        }
+        while let Some((kind, name, bytes)) = self.ui.file_picker.poll_opened() {
+            self.ui.opened_file(kind, &name, &bytes);
+        }
+    }
+
+    /// Renders the current state offscreen at the window's size and saves it: next to the
+    /// working directory as `armlab-<model>-<n>.png` on the desktop, as a download in the
+    /// browser; the status says where (or why not).
     fn save_screenshot(&mut self) {
         let [w, h] = self.ui.window_points.map(|v| v.round().max(64.0) as u32);
         let stem = self.ui.state.robot().name.to_lowercase().replace(' ', "_");
-        let path = (1..1000)
-            .map(|n| std::path::PathBuf::from(format!("armlab-{stem}-{n}.png")))
-            .find(|p| !p.exists());
         let opts = screenshot::ScreenshotOptions {
             projector: self.ui.projector,
             ..Default::default()
         };
-        let result = screenshot::screenshot_with(&self.ui, [w, h], &opts)
+        let image = match &self.gpu {
+            Some(gpu) if cfg!(target_arch = "wasm32") => {
+                screenshot::screenshot_on(gpu, &self.ui, [w, h], &opts)
+            }
+            _ => screenshot::screenshot_with(&self.ui, [w, h], &opts),
+        };
+        let result = image
             .map_err(|e| e.to_string())
-            .and_then(|img| {
-                let path = path.ok_or_else(|| "no free file name".to_string())?;
-                crate::headless::write_png(&img, &path).map_err(|e| e.to_string())?;
-                Ok(path)
-            });
+            .and_then(|img| self.deliver_png(&img, &stem));
         match result {
-            Ok(p) => self
-                .ui
-                .state
-                .push_message(state::Level::Info, format!("saved {}", p.display())),
+            Ok(m) => self.ui.state.push_message(state::Level::Info, m),
             Err(e) => self
                 .ui
                 .state
                 .push_message(state::Level::Error, format!("screenshot failed: {e}")),
         }
     }
+
+    /// Writes `img` as `armlab-<stem>-<n>.png` (the first free n) in the working directory, or
+    /// offers it as a download where files are downloads.
+    fn deliver_png(&mut self, img: &image::RgbaImage, stem: &str) -> Result<String, String> {
+        let mut png = Vec::new();
+        img.write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
+            .map_err(|e| e.to_string())?;
+        let name = format!("armlab-{stem}.png");
+        if self.ui.file_picker.download(&name, "image/png", &png) {
+            return Ok(format!("downloading {name}"));
+        }
+        let path = (1..1000)
+            .map(|n| std::path::PathBuf::from(format!("armlab-{stem}-{n}.png")))
+            .find(|p| !p.exists())
+            .ok_or_else(|| "no free file name".to_string())?;
+        std::fs::write(&path, png).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        Ok(format!("saved {}", path.display()))
+    }
+}
+
+fn egui_painter_asked() -> bool {
+    !cfg!(target_arch = "wasm32") && std::env::var_os("ARMLAB_EGUI_PAINTER").is_some()
+}
+
+/// eframe's settings file on the desktop (`None` in the browser: local storage).
+fn storage_file() -> Option<std::path::PathBuf> {
+    #[cfg(not(target_arch = "wasm32"))]
+    {
+        eframe::storage_dir(APP_ID).map(|d| d.join("app.ron"))
+    }
+    #[cfg(target_arch = "wasm32")]
+    {
+        None
+    }
 }
 
 /// How to run the window.
+#[cfg(feature = "app")]
 #[derive(Debug, Clone, Default)]
 pub struct RunOptions {
     /// Drag the IK target for this many frames (after a warm-up), time them, close the window
@@ -158,13 +261,15 @@ pub struct RunOptions {
 pub const APP_ID: &str = "armlab";
 
 /// Opens the app window on the model `spec` (a built-in name or a .toml/.urdf path).
+#[cfg(feature = "app")]
 pub fn run(spec: &str) -> Result<(), AppError> {
     run_with(spec, &RunOptions::default()).map(|_| ())
 }
 
 /// Opens the app window with `opts`; returns the frame timings when they were asked for.
+#[cfg(feature = "app")]
 pub fn run_with(spec: &str, opts: &RunOptions) -> Result<Option<probe::FrameReport>, AppError> {
-    let mut state = AppState::from_spec(spec).map_err(|e| AppError::Model(e.to_string()))?;
+    let mut state = state::AppState::from_spec(spec).map_err(|e| AppError::Model(e.to_string()))?;
     if let Some(q) = &opts.q {
         let input = |e: state::StateError| AppError::Input(e.to_string());
         state.set_q(q).map_err(input)?;
@@ -198,36 +303,15 @@ pub fn run_with(spec: &str, opts: &RunOptions) -> Result<Option<probe::FrameRepo
         APP_ID,
         options,
         Box::new(move |cc| {
-            let mut probe = probe;
-            let viewport = cc.wgpu_render_state.as_ref().and_then(|rs| {
-                let info = rs.adapter.get_info();
-                if let Some(p) = &mut probe {
-                    p.adapter = format!("{} ({}, {:?})", info.name, info.driver_info, info.backend);
-                }
-                let gpu = Gpu::from_parts(rs.device.clone(), rs.queue.clone(), info);
-                UiPainter::new(&rs.device, rs.target_format)
-                    .install(&mut rs.renderer.write().callback_resources);
-                Viewport3d::adaptive(gpu).ok()
-            });
-            // Our painter for the widgets when the window has a wgpu device (always with the
-            // wgpu renderer); ARMLAB_EGUI_PAINTER=1 leaves them to egui-wgpu (for comparison).
-            let inner = (viewport.is_some() && std::env::var_os("ARMLAB_EGUI_PAINTER").is_none())
-                .then(inner::InnerUi::default);
             let mut ui = AppUi::new(state);
             ui.file_picker = Box::new(file_picker::NativeDialogs);
-            if remember {
-                let stored = cc.storage.and_then(|s| s.get_string(settings::STORAGE_KEY));
-                let file = eframe::storage_dir(APP_ID).map(|d| d.join("app.ron"));
-                settings::restore(&mut ui, stored, file.as_deref(), model_given);
-            }
-            Ok(Box::new(ArmlabApp {
+            Ok(Box::new(ArmlabApp::new(
+                cc,
                 ui,
-                viewport,
                 probe,
-                inner,
                 remember,
-                title: String::new(),
-            }))
+                model_given,
+            )))
         }),
     )
     .map_err(|e| AppError::Window(e.to_string()))?;

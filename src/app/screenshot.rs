@@ -28,6 +28,17 @@ pub fn screenshot_with(
     size: [u32; 2],
     opts: &ScreenshotOptions,
 ) -> Result<image::RgbaImage, AppError> {
+    let gpu = Gpu::new_headless().map_err(crate::figure::FigureError::from)?;
+    screenshot_on(&gpu, live, size, opts)
+}
+
+/// [`screenshot_with`] on a device already open (the window's own: the only one in a browser).
+pub fn screenshot_on(
+    gpu: &Gpu,
+    live: &AppUi,
+    size: [u32; 2],
+    opts: &ScreenshotOptions,
+) -> Result<image::RgbaImage, AppError> {
     let mut app = AppUi::new(live.state.clone());
     app.projector = opts.projector;
     app.tab = live.tab;
@@ -35,7 +46,7 @@ pub fn screenshot_with(
     app.ee = live.ee;
     app.construction = live.construction;
     app.construction_step = live.construction_step;
-    render_window(app, size, Some(live.camera))
+    render_window(gpu, app, size, Some(live.camera))
 }
 
 /// Renders the app for `state` at `size` pixels, after applying `opts`.
@@ -63,17 +74,18 @@ pub fn screenshot(
         app.state.display.ghosts = true;
     }
     app.state.clear_trails();
-    render_window(app, size, None)
+    let gpu = Gpu::new_headless().map_err(crate::figure::FigureError::from)?;
+    render_window(&gpu, app, size, None)
 }
 
 /// Lays the window out once to learn the viewport size, renders the 3D view (with `camera`, or
 /// framing the arm), and paints the window with it, all on a headless device.
 fn render_window(
+    gpu: &Gpu,
     mut app: AppUi,
     size: [u32; 2],
     camera: Option<crate::camera::Camera>,
 ) -> Result<image::RgbaImage, AppError> {
-    let gpu = Gpu::new_headless().map_err(crate::figure::FigureError::from)?;
     let mut offscreen = Offscreen::new(&gpu.device);
     offscreen.set_background(Some(app.background()));
     let mut vp = Viewport3d::new(gpu.clone()).map_err(crate::figure::FigureError::from)?;

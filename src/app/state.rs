@@ -135,7 +135,24 @@ impl AppState {
     /// Replaces the model. On error the previous model, q and targets are kept and the error is
     /// also put in the status messages. Display settings, units and the lock flag are kept.
     pub fn load_model(&mut self, spec: &str) -> Result<(), StateError> {
-        match crate::model_file::load_model(spec) {
+        let loaded = crate::model_file::load_model(spec);
+        self.install_model(spec, loaded)
+    }
+
+    /// Replaces the model with one read from the text of a file named `name` (`.toml` or
+    /// `.urdf`), e.g. a file the browser's file picker or a drop handed over; errors as
+    /// [`Self::load_model`].
+    pub fn load_model_text(&mut self, name: &str, text: &str) -> Result<(), StateError> {
+        let loaded = crate::model_file::parse_model_text(name, text);
+        self.install_model(name, loaded)
+    }
+
+    fn install_model(
+        &mut self,
+        spec: &str,
+        loaded: Result<Robot, crate::model_file::LoadError>,
+    ) -> Result<(), StateError> {
+        match loaded {
             Ok(robot) => {
                 self.spec = spec.to_string();
                 self.analyzer = SingularityAnalyzer::new(&robot);
@@ -281,20 +298,26 @@ impl AppState {
     /// robot is left as it is either way.
     pub fn save_model(&mut self, path: &str) -> Result<String, String> {
         let path = path.trim();
+        let text = self.model_text(path)?;
+        std::fs::write(path, text).map_err(|e| format!("cannot write {path}: {e}"))?;
+        Ok(format!("saved {path}"))
+    }
+
+    /// The text [`Self::save_model`] writes for a file named `path`: URDF for a name ending in
+    /// `.urdf`, else a TOML model file (the web build offers it as a download).
+    pub fn model_text(&self, path: &str) -> Result<String, String> {
         if path.is_empty() {
             return Err("type a file name ending in .urdf or .toml".into());
         }
-        let text = if path.to_ascii_lowercase().ends_with(".urdf") {
-            crate::urdf::to_urdf(&self.robot).map_err(|e| e.to_string())?
+        if path.to_ascii_lowercase().ends_with(".urdf") {
+            crate::urdf::to_urdf(&self.robot).map_err(|e| e.to_string())
         } else {
             crate::model_file::to_toml(&self.robot).ok_or_else(|| {
                 "a TOML model file holds one serial DH table with one variable per joint; save \
                  this model as .urdf"
                     .to_string()
-            })?
-        };
-        std::fs::write(path, text).map_err(|e| format!("cannot write {path}: {e}"))?;
-        Ok(format!("saved {path}"))
+            })
+        }
     }
 
     /// Adds a status message (an identical newest message is not repeated).

@@ -121,6 +121,10 @@ impl AppUi {
     /// or URDF for a name ending in .urdf; no extension: .toml).
     pub fn save_with_dialog(&mut self) {
         use super::file_picker::{FileKind, suggested_model_name, with_model_extension};
+        if self.file_picker.downloads() {
+            self.download_model();
+            return;
+        }
         if !self.file_picker.available() {
             self.state.push_message(
                 Level::Info,
@@ -142,14 +146,90 @@ impl AppUi {
     /// Loads a model; on error the previous model stays and the status says why.
     pub fn load(&mut self, spec: &str) {
         match self.state.load_model(spec) {
-            Ok(()) => {
-                self.camera_fitted = false;
-                self.workspace = None;
-                self.workspace_texture = None;
-                self.ee = 0;
-            }
+            Ok(()) => self.model_changed(),
             Err(e) => self.state.push_message(Level::Error, e.to_string()),
         }
+    }
+
+    /// A new model: the view is framed again, the workspace overlay and end-effector reset.
+    fn model_changed(&mut self) {
+        self.camera_fitted = false;
+        self.workspace = None;
+        self.workspace_texture = None;
+        self.ee = 0;
+    }
+
+    /// A model file the browser handed over (dropped onto the window): opened like a path.
+    pub fn open_bytes(&mut self, name: &str, bytes: &[u8]) {
+        let Ok(text) = std::str::from_utf8(bytes) else {
+            let e = format!("{name}: not a text file (a model file is TOML or URDF text)");
+            self.state.push_message(Level::Error, e);
+            return;
+        };
+        self.load_path = name.to_string();
+        match self.state.load_model_text(name, text) {
+            Ok(()) => self.model_changed(),
+            Err(e) => self.state.push_message(Level::Error, e.to_string()),
+        }
+    }
+
+    /// A file picked in the browser's file picker for `kind`: a model is opened, measurements
+    /// are calibrated against the current robot.
+    pub fn opened_file(&mut self, kind: super::file_picker::FileKind, name: &str, bytes: &[u8]) {
+        use super::file_picker::FileKind;
+        match kind {
+            FileKind::Measurements => match std::str::from_utf8(bytes) {
+                Ok(text) => {
+                    self.calibration.measurements_path = name.to_string();
+                    self.calibration.run_text(self.state.robot(), name, text);
+                }
+                Err(_) => self.calibration.message = Some(format!("{name}: not a text file")),
+            },
+            _ => self.open_bytes(name, bytes),
+        }
+    }
+
+    /// "Save model as..." in the browser: the edited robot offered as a download (TOML, or
+    /// URDF when the Save row's name ends in .urdf).
+    fn download_model(&mut self) {
+        let name = match self.save_path.trim() {
+            "" => super::file_picker::suggested_model_name(&self.state.robot().name),
+            n => n.to_string(),
+        };
+        let mime = if name.to_ascii_lowercase().ends_with(".urdf") {
+            "application/xml"
+        } else {
+            "application/toml"
+        };
+        let message = match self.state.model_text(&name) {
+            Ok(text) if self.file_picker.download(&name, mime, text.as_bytes()) => {
+                (Level::Info, format!("downloading {name}"))
+            }
+            Ok(_) => (Level::Error, format!("the browser refused the download of {name}")),
+            Err(e) => (Level::Error, e),
+        };
+        self.state.push_message(message.0, message.1);
+    }
+
+    /// Where a user would grab the IK target's gizmo to drag it (in points, window
+    /// coordinates): the first visible plane square (else arrow) of the current end-effector;
+    /// `None` before the viewport was laid out. The web page's test drags it.
+    pub fn gizmo_grip(&self) -> Option<egui::Pos2> {
+        use super::gizmo::Handle;
+        let rect = self.viewport_rect;
+        let ppp = self.viewport_px[0] as f32 / rect.width();
+        if !(ppp.is_finite() && ppp > 0.0) {
+            return None;
+        }
+        let pose = self.state.target(self.ee).ok()?.world_from_tool;
+        let handles = [0, 1, 2].map(Handle::Plane).into_iter();
+        handles
+            .chain([0, 1, 2].map(Handle::Axis))
+            .find_map(|h| {
+                self.gizmo
+                    .grip_px(&self.camera, self.viewport_px, &pose, ppp as f64, h)
+            })
+            .map(|[x, y]| rect.min + egui::vec2(x as f32, y as f32) / ppp)
     }
 
     /// Uses `camera` as is (no automatic framing).

@@ -45,7 +45,11 @@ pub struct Figures {
 impl Figures {
     /// Opens the GPU (software adapter on machines without one) and builds both renderers.
     pub fn new() -> Result<Self, FigureError> {
-        let gpu = Gpu::new_headless()?;
+        Self::with_gpu(Gpu::new_headless()?)
+    }
+
+    /// Builds both renderers on a device already open (the window's, in a browser).
+    pub fn with_gpu(gpu: Gpu) -> Result<Self, FigureError> {
         let offscreen = Offscreen::new(&gpu.device);
         let renderer = Renderer::new(&gpu, FIGURE_MSAA)?;
         Ok(Self {

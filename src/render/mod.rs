@@ -31,6 +31,7 @@
 //!   ones are drawn last without depth writes.
 
 mod buffer;
+mod gamma;
 mod error;
 mod geometry;
 mod gpu;
@@ -71,11 +72,15 @@ pub const DOT_WGSL: &str = concat!(
     include_str!("../../shaders/dot.wgsl")
 );
 
+/// WGSL of the sRGB re-encoding copy ([`RenderTarget::egui_view`] where formats cannot alias).
+pub const ENCODE_WGSL: &str = include_str!("../../shaders/encode.wgsl");
+
 /// Every shader as (file name, source), for validation.
 pub const SHADERS: &[(&str, &str)] = &[
     ("mesh.wgsl", MESH_WGSL),
     ("line.wgsl", LINE_WGSL),
     ("dot.wgsl", DOT_WGSL),
+    ("encode.wgsl", ENCODE_WGSL),
 ];
 
 /// Sample counts a [`Renderer`] and a [`RenderTarget`] accept.

@@ -1,6 +1,7 @@
 //! [`Renderer`]: draws a [`Scene`] into a [`RenderTarget`].
 
 use super::buffer::GrowBuffer;
+use super::gamma::GammaEncode;
 use super::geometry::{LOD_SEGMENTS, UnitMeshes};
 use super::gpu_types::{FrameUniforms, MeshVertex};
 use super::instances::{DrawLists, Projection};
@@ -34,6 +35,8 @@ pub struct Renderer {
     /// Custom meshes uploaded so far, by the address of their `Arc` (kept alive here, so the
     /// address is not reused while cached); dropped once nothing else holds the mesh.
     custom: HashMap<usize, CustomGpu>,
+    /// The sRGB re-encoding copy, made for the first target that needs it (WebGL2).
+    gamma: Option<GammaEncode>,
 }
 
 /// A custom mesh on the GPU: one vertex per triangle corner with the face normal (flat
@@ -165,6 +168,7 @@ impl Renderer {
             ),
             lists: DrawLists::default(),
             custom: HashMap::new(),
+            gamma: None,
         })
     }
 
@@ -267,6 +271,12 @@ impl Renderer {
         for translucent in [false, true] {
             self.draw_meshes(&mut pass, translucent);
             self.draw_overlays(&mut pass, translucent);
+        }
+        drop(pass);
+        if let Some(to) = target.encoded_view() {
+            let device = &gpu.device;
+            let gamma = self.gamma.get_or_insert_with(|| GammaEncode::new(device));
+            gamma.encode(device, encoder, target.color_view(), to);
         }
         Ok(())
     }

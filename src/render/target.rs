@@ -7,8 +7,9 @@ use super::{COLOR_FORMAT, DEPTH_FORMAT, Gpu, RenderError, SAMPLE_COUNTS, read_te
 #[derive(Debug)]
 pub struct RenderTarget {
     color: wgpu::Texture,
-    /// [`EGUI_FORMAT`] where the device can alias it, else [`COLOR_FORMAT`].
-    egui_format: wgpu::TextureFormat,
+    /// Where the device cannot view the colour texture as [`EGUI_FORMAT`] (WebGL2): a copy in
+    /// that format, re-encoded after every frame by the renderer.
+    encoded: Option<wgpu::TextureView>,
     color_view: wgpu::TextureView,
     msaa_view: Option<wgpu::TextureView>,
     depth_view: wgpu::TextureView,
@@ -65,12 +66,18 @@ impl RenderTarget {
             color_usage,
             &[EGUI_FORMAT],
         );
-        let (color, egui_format) = match pollster::block_on(alias.pop()) {
-            None => (aliased, EGUI_FORMAT),
-            Some(_) => (
-                texture("armlab colour", COLOR_FORMAT, 1, color_usage, &[]),
-                COLOR_FORMAT,
-            ),
+        let (color, encoded) = match pollster::block_on(alias.pop()) {
+            None => (aliased, None),
+            Some(_) => {
+                let usage = wgpu::TextureUsages::RENDER_ATTACHMENT
+                    | wgpu::TextureUsages::TEXTURE_BINDING
+                    | wgpu::TextureUsages::COPY_SRC;
+                let copy = texture("armlab colour (encoded)", EGUI_FORMAT, 1, usage, &[]);
+                (
+                    texture("armlab colour", COLOR_FORMAT, 1, color_usage, &[]),
+                    Some(copy.create_view(&wgpu::TextureViewDescriptor::default())),
+                )
+            }
         };
         let color_view = color.create_view(&wgpu::TextureViewDescriptor::default());
         let msaa_view = (sample_count > 1).then(|| {
@@ -98,7 +105,7 @@ impl RenderTarget {
         }
         Ok(Self {
             color,
-            egui_format,
+            encoded,
             color_view,
             msaa_view,
             depth_view,
@@ -121,12 +128,20 @@ impl RenderTarget {
     /// A view of the colour texture as `Rgba8Unorm`: the same sRGB-encoded bytes, read without
     /// conversion, which is what egui-wgpu expects of a native texture (egui blends in gamma
     /// space). The app and the figures show the 3D view through it. On a device that cannot
-    /// alias texture formats (some GL drivers) it is the plain sRGB view.
+    /// alias texture formats (WebGL2) it is a copy that the renderer re-encodes every frame.
     pub fn egui_view(&self) -> wgpu::TextureView {
-        self.color.create_view(&wgpu::TextureViewDescriptor {
-            format: Some(self.egui_format),
-            ..Default::default()
-        })
+        match &self.encoded {
+            Some(view) => view.clone(),
+            None => self.color.create_view(&wgpu::TextureViewDescriptor {
+                format: Some(EGUI_FORMAT),
+                ..Default::default()
+            }),
+        }
+    }
+
+    /// The re-encoded copy's view, where there is one (see [`Self::egui_view`]).
+    pub(crate) fn encoded_view(&self) -> Option<&wgpu::TextureView> {
+        self.encoded.as_ref()
     }
 
     /// (width, height) in pixels.

@@ -233,6 +233,29 @@ impl Gizmo {
         out
     }
 
+    /// Pure: where to grab `handle` (pixel coordinates in the viewport, drawn at `scale` pixels
+    /// per point): the middle of an arrow's shaft or of a plane's square; `None` for a ring or
+    /// a hidden handle.
+    pub fn grip_px(
+        &self,
+        camera: &Camera,
+        viewport_px: [u32; 2],
+        world_from_target: &Pose,
+        scale: f64,
+        handle: Handle,
+    ) -> Option<[f64; 2]> {
+        let (view, l) = self.frame(camera, viewport_px, world_from_target, scale)?;
+        let (_, outline) = Self::outlines(&view, &l)
+            .into_iter()
+            .find(|(h, _)| *h == handle)?;
+        let p = match outline {
+            Outline::Arrow(from, tip) => (from + tip) / 2.0,
+            Outline::Quad(c) => (c[0] + c[1] + c[2] + c[3]) / 4.0,
+            Outline::Ring(_) => return None,
+        };
+        Some([p.x, p.y])
+    }
+
     /// Pure: which handle is under the pointer (pixel coordinates in the viewport), if any.
     /// The closest handle within [`Gizmo::pick_radius_px`] wins, arrows and planes before rings
     /// crossing them.

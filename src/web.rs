@@ -1,0 +1,276 @@
+//! The app in a browser (wasm32, `gui` feature; built by `web/build.sh`): eframe's web runner on
+//! a canvas, with the web's ways of doing what the desktop does with files and flags.
+//!
+//! * The model comes from the page's URL (`?model=puma560`; a built-in name, optionally with a
+//!   joint vector `&q=0.3,0.8,-1,0.4,0.6,0.2` in rad or m), else the remembered one (local
+//!   storage), else the default robot.
+//! * Files: "Open file..." and "Browse..." show the browser's file picker, a file dropped onto the
+//!   page is opened, and saving (models, calibrated models, screenshots) is a download.
+//! * [`WebHandle::status`] reports the app's state as JSON, for the page and its tests.
+
+use crate::app::file_picker::{FileKind, FilePicker};
+use crate::app::state::{AppState, Level};
+use crate::app::ui::AppUi;
+use crate::app::{APP_ID, ArmlabApp};
+use std::cell::RefCell;
+use std::path::PathBuf;
+use std::rc::Rc;
+use wasm_bindgen::JsCast;
+use wasm_bindgen::prelude::*;
+
+/// The running app on one canvas, as the page's script holds it.
+#[wasm_bindgen]
+pub struct WebHandle {
+    runner: eframe::WebRunner,
+}
+
+impl Default for WebHandle {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+#[wasm_bindgen]
+impl WebHandle {
+    /// A handle with nothing running yet; panics are reported on the browser's console.
+    #[wasm_bindgen(constructor)]
+    pub fn new() -> Self {
+        Self {
+            runner: eframe::WebRunner::new(),
+        }
+    }
+
+    /// Starts the app on `canvas` with the model named in the page's URL (`?model=NAME`), at
+    /// the joint vector it gives (`&q=...`, rad or m).
+    pub async fn start(&self, canvas: web_sys::HtmlCanvasElement) -> Result<(), JsValue> {
+        let requested = url_parameter("model");
+        let q = url_parameter("q");
+        let (state, model_given) = initial_state(requested.as_deref(), q.as_deref());
+        let options = eframe::WebOptions {
+            // The window has flat colours only: nothing to dither.
+            dithering: false,
+            ..Default::default()
+        };
+        self.runner
+            .start(
+                canvas,
+                options,
+                Box::new(move |cc| {
+                    let mut ui = AppUi::new(state);
+                    ui.file_picker = Box::new(BrowserFiles::default());
+                    Ok(Box::new(ArmlabApp::new(cc, ui, None, true, model_given)))
+                }),
+            )
+            .await
+    }
+
+    /// The app's state as JSON: `{"started", "model", "dof", "q" (rad, m), "position" (m),
+    /// "rpy_deg", "solutions", "within_limits", "gizmo" ([x, y] in CSS pixels of a translation
+    /// handle), "workspace_progress", "messages", "frames", "panicked"}`.
+    pub fn status(&self) -> String {
+        let panicked = self.runner.has_panicked();
+        let Some(app) = self.runner.app_mut::<ArmlabApp>() else {
+            return serde_json::json!({ "started": false, "panicked": panicked }).to_string();
+        };
+        let mut v = status_json(app.app_ui());
+        v["panicked"] = panicked.into();
+        v["frames"] = app.frames().into();
+        v.to_string()
+    }
+
+    /// Whether the app has panicked (then the page shows the panic).
+    pub fn has_panicked(&self) -> bool {
+        self.runner.has_panicked()
+    }
+
+    /// The panic's message, if any.
+    pub fn panic_message(&self) -> Option<String> {
+        self.runner.panic_summary().map(|s| s.message())
+    }
+
+    /// Stops the app and removes its event handlers.
+    pub fn destroy(&self) {
+        self.runner.destroy();
+    }
+}
+
+/// The state for the model `requested` by the URL (a built-in name), else the default robot;
+/// whether the model was asked for (it then wins over the remembered one). A joint vector in
+/// the URL (`q=0.3,0.8,-1,0.4,0.6,0.2`: rad or m, or angles such as `pi/2` and `-90deg`) is
+/// opened with the IK target on the tool, as `armlab view --q` does.
+fn initial_state(requested: Option<&str>, q: Option<&str>) -> (AppState, bool) {
+    let default = || AppState::from_spec(crate::kinematics::models::DEFAULT_MODEL);
+    let (mut state, given) = match requested.map(AppState::from_spec) {
+        Some(Ok(s)) => (s, true),
+        Some(Err(e)) => {
+            let mut s = default().expect("the default model is built in");
+            s.push_message(Level::Error, format!("?model=: {e}"));
+            (s, false)
+        }
+        None => (default().expect("the default model is built in"), false),
+    };
+    if let Some(text) = q
+        && let Err(e) = open_at(&mut state, text)
+    {
+        state.push_message(Level::Error, format!("?q={text}: {e}"));
+    }
+    (state, given)
+}
+
+/// Puts the arm at the joint vector `text` (comma-separated) and the IK target on its tool.
+fn open_at(state: &mut AppState, text: &str) -> Result<(), String> {
+    let q: Vec<f64> = text
+        .split(',')
+        .map(|v| {
+            let v = v.trim();
+            v.parse::<f64>()
+                .ok()
+                .filter(|x| x.is_finite())
+                .or_else(|| crate::model_file::parse_angle(v))
+                .ok_or_else(|| format!("\"{v}\" is not a number or an angle"))
+        })
+        .collect::<Result<_, _>>()?;
+    state.set_q(&q).map_err(|e| e.to_string())?;
+    let tool = state
+        .robot()
+        .fk_ee(state.q(), 0)
+        .map_err(|e| e.to_string())?;
+    state.set_target(0, tool).map_err(|e| e.to_string())?;
+    state.clear_trails();
+    Ok(())
+}
+
+fn status_json(app: &AppUi) -> serde_json::Value {
+    let s = &app.state;
+    let tool = s.robot().fk_ee(s.q(), app.ee).ok();
+    let position = tool.map(|t| t.translation.vector.iter().copied().collect::<Vec<_>>());
+    let rpy_deg = tool.map(|t| {
+        let (r, p, y) = t.rotation.euler_angles();
+        [r, p, y].map(f64::to_degrees)
+    });
+    let ghosts = s.ghosts(app.ee);
+    serde_json::json!({
+        "started": true,
+        "app": APP_ID,
+        "model": s.robot().name,
+        "dof": s.robot().dof(),
+        "q": s.q(),
+        "position": position,
+        "rpy_deg": rpy_deg,
+        "solutions": ghosts.len(),
+        "within_limits": ghosts.iter().filter(|g| g.within_limits).count(),
+        "gizmo": app.gizmo_grip().map(|p| [p.x, p.y]),
+        "workspace_progress": app.workspace.as_ref().map(|w| w.progress().unwrap_or(1.0)),
+        "messages": s.messages().iter().map(|m| m.text.clone()).collect::<Vec<_>>(),
+    })
+}
+
+/// The model name in the page's URL query, e.g. `?model=puma560`.
+fn url_parameter(key: &str) -> Option<String> {
+    let search = web_sys::window()?.location().search().ok()?;
+    web_sys::UrlSearchParams::new_with_str(&search)
+        .ok()?
+        .get(key)
+        .filter(|v| !v.trim().is_empty())
+}
+
+/// Files the browser's way: a hidden file input for opening, downloads for saving.
+#[derive(Default)]
+struct BrowserFiles {
+    /// Files read since the last poll (filled by the input's change handler).
+    arrived: Rc<RefCell<Vec<(FileKind, String, Vec<u8>)>>>,
+}
+
+impl FilePicker for BrowserFiles {
+    fn available(&self) -> bool {
+        true
+    }
+
+    fn open(&mut self, kind: FileKind) -> Option<PathBuf> {
+        if let Err(e) = pick_file(kind, self.arrived.clone()) {
+            web_sys::console::error_1(&e);
+        }
+        None
+    }
+
+    fn save(&mut self, _kind: FileKind, _suggested: &str) -> Option<PathBuf> {
+        None
+    }
+
+    fn poll_opened(&mut self) -> Option<(FileKind, String, Vec<u8>)> {
+        let mut a = self.arrived.borrow_mut();
+        (!a.is_empty()).then(|| a.remove(0))
+    }
+
+    fn take_dropped(&mut self, file: &egui::DroppedFileHandle) -> bool {
+        let (file, arrived) = (file.clone(), self.arrived.clone());
+        wasm_bindgen_futures::spawn_local(async move {
+            let name = file.path().to_string_lossy().into_owned();
+            match file.bytes_async().await {
+                Ok(bytes) => arrived.borrow_mut().push((FileKind::Model, name, bytes)),
+                Err(e) => web_sys::console::error_1(&format!("{name}: {e}").into()),
+            }
+        });
+        true
+    }
+
+    fn download(&mut self, name: &str, mime: &str, bytes: &[u8]) -> bool {
+        download(name, mime, bytes).is_ok()
+    }
+
+    fn downloads(&self) -> bool {
+        true
+    }
+}
+
+/// Opens the browser's file picker; the chosen file's bytes are pushed onto `arrived`.
+fn pick_file(
+    kind: FileKind,
+    arrived: Rc<RefCell<Vec<(FileKind, String, Vec<u8>)>>>,
+) -> Result<(), JsValue> {
+    let document = web_sys::window()
+        .and_then(|w| w.document())
+        .ok_or("no document")?;
+    let input: web_sys::HtmlInputElement = document.create_element("input")?.dyn_into()?;
+    input.set_type("file");
+    input.set_accept(match kind {
+        FileKind::Measurements => ".csv,.txt",
+        _ => ".toml,.urdf",
+    });
+    let picked = input.clone();
+    let on_change = Closure::once(move || {
+        let Some(file) = picked.files().and_then(|f| f.get(0)) else {
+            return;
+        };
+        wasm_bindgen_futures::spawn_local(async move {
+            let name = file.name();
+            let buffer = wasm_bindgen_futures::JsFuture::from(file.array_buffer()).await;
+            if let Ok(buffer) = buffer {
+                let bytes = js_sys::Uint8Array::new(&buffer).to_vec();
+                arrived.borrow_mut().push((kind, name, bytes));
+            }
+        });
+    });
+    input.set_onchange(Some(on_change.as_ref().unchecked_ref()));
+    on_change.forget();
+    input.click();
+    Ok(())
+}
+
+/// Offers `bytes` as a download named `name` (a blob URL on a clicked link).
+fn download(name: &str, mime: &str, bytes: &[u8]) -> Result<(), JsValue> {
+    let document = web_sys::window()
+        .and_then(|w| w.document())
+        .ok_or("no document")?;
+    let parts = js_sys::Array::of1(&js_sys::Uint8Array::from(bytes));
+    let props = web_sys::BlobPropertyBag::new();
+    props.set_type(mime);
+    let blob = web_sys::Blob::new_with_u8_array_sequence_and_options(&parts, &props)?;
+    let url = web_sys::Url::create_object_url_with_blob(&blob)?;
+    let a: web_sys::HtmlAnchorElement = document.create_element("a")?.dyn_into()?;
+    a.set_href(&url);
+    a.set_download(name);
+    a.click();
+    web_sys::Url::revoke_object_url(&url)?;
+    Ok(())
+}

@@ -1,0 +1,307 @@
+#!/usr/bin/env python3
+"""The web build in headless Chromium, driven through chromedriver (WebDriver, standard library
+only). Serves the built folder on 127.0.0.1 and checks, from the page:
+
+1. the app starts and draws its first frame (time to first frame reported, 20 s at most);
+2. a screenshot of the canvas shows the default robot: the 3D view's pixels match the native
+   golden tests/snapshots/app_default_robot.png (rendered by lavapipe; here WebGL2 on
+   SwiftShader) within a stated tolerance, and the arm's link colour is there;
+3. a scripted mouse drag on the IK target's gizmo changes the pose readout;
+4. the Puma (``?model=puma560&q=...``, a generic pose) shows 8 solutions;
+5. no console errors, no panic.
+
+Usage: web/test_page.py DIST_DIR. Fails (never skips) when Chromium or chromedriver is missing.
+"""
+
+import base64
+import functools
+import http.server
+import json
+import os
+import shutil
+import socket
+import struct
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+import urllib.error
+import urllib.request
+import zlib
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+WIDTH, HEIGHT = 1280, 800
+
+
+def fail(msg):
+    print(f"web test FAILED: {msg}", file=sys.stderr)
+    sys.exit(1)
+
+
+def free_port():
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+# --- a PNG decoder (8-bit RGB/RGBA, non-interlaced: what Chromium and armlab write) -----------
+
+def decode_png(data):
+    assert data[:8] == b"\x89PNG\r\n\x1a\n", "not a PNG"
+    pos, idat, width = 8, b"", None
+    while pos < len(data):
+        (n,) = struct.unpack(">I", data[pos:pos + 4])
+        kind, body = data[pos + 4:pos + 8], data[pos + 8:pos + 8 + n]
+        pos += 12 + n
+        if kind == b"IHDR":
+            width, height, depth, color, _, _, interlace = struct.unpack(">IIBBBBB", body)
+            assert depth == 8 and color in (2, 6) and interlace == 0, (depth, color, interlace)
+            bpp = 4 if color == 6 else 3
+        elif kind == b"IDAT":
+            idat += body
+    raw = zlib.decompress(idat)
+    stride = width * bpp
+    rows, prev = [], bytearray(stride)
+    for y in range(height):
+        f = raw[y * (stride + 1)]
+        line = bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
+        for i in range(stride):
+            a = line[i - bpp] if i >= bpp else 0
+            b = prev[i]
+            c = prev[i - bpp] if i >= bpp else 0
+            if f == 1:
+                line[i] = (line[i] + a) & 255
+            elif f == 2:
+                line[i] = (line[i] + b) & 255
+            elif f == 3:
+                line[i] = (line[i] + (a + b) // 2) & 255
+            elif f == 4:
+                p = a + b - c
+                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+        rows.append(bytes(line))
+        prev = line
+    return width, height, bpp, rows
+
+
+def pixel(img, x, y):
+    _, _, bpp, rows = img
+    return rows[y][x * bpp:x * bpp + 3]
+
+
+# --- WebDriver ----------------------------------------------------------------------------
+
+class Driver:
+    def __init__(self, chromedriver, chromium):
+        self.port = free_port()
+        self.log = tempfile.NamedTemporaryFile(prefix="chromedriver-", suffix=".log", delete=False)
+        self.proc = subprocess.Popen(
+            [chromedriver, f"--port={self.port}"], stdout=self.log, stderr=subprocess.STDOUT)
+        self.base = f"http://127.0.0.1:{self.port}"
+        deadline = time.time() + 20
+        while True:
+            try:
+                self.call("GET", "/status")
+                break
+            except (urllib.error.URLError, ConnectionError):
+                if time.time() > deadline:
+                    fail("chromedriver did not start")
+                time.sleep(0.1)
+        self.profile = tempfile.mkdtemp(prefix="armlab-chromium-")
+        args = [
+            "--headless=new", "--no-sandbox", "--disable-gpu-sandbox", "--no-first-run",
+            "--disable-background-networking", "--disable-component-update", "--disable-sync",
+            "--disable-quic", "--enable-unsafe-swiftshader", "--use-angle=swiftshader",
+            f"--window-size={WIDTH},{HEIGHT}", "--force-device-scale-factor=1",
+            f"--user-data-dir={self.profile}",
+        ]
+        caps = {"capabilities": {"alwaysMatch": {
+            "browserName": "chrome",
+            "goog:chromeOptions": {"binary": chromium, "args": args},
+            "goog:loggingPrefs": {"browser": "ALL"},
+        }}}
+        self.sid = self.call("POST", "/session", caps)["sessionId"]
+        # The page exactly WIDTH x HEIGHT CSS pixels at one device pixel each (the window's size
+        # includes the browser's own bars).
+        self.call("POST", f"/session/{self.sid}/goog/cdp/execute", {
+            "cmd": "Emulation.setDeviceMetricsOverride",
+            "params": {"width": WIDTH, "height": HEIGHT, "deviceScaleFactor": 1, "mobile": False},
+        })
+        # Every console error and uncaught exception is kept on the page, from the first script on.
+        self.call("POST", f"/session/{self.sid}/goog/cdp/execute", {
+            "cmd": "Page.addScriptToEvaluateOnNewDocument",
+            "params": {"source": """
+                window.__errors = [];
+                const e = console.error.bind(console);
+                console.error = (...a) => { window.__errors.push(a.map(String).join(' ')); e(...a); };
+                addEventListener('error', ev => window.__errors.push('error: ' + ev.message));
+                addEventListener('unhandledrejection', ev => window.__errors.push('rejection: ' + ev.reason));
+            """},
+        })
+
+    def call(self, method, path, body=None):
+        data = None if body is None else json.dumps(body).encode()
+        req = urllib.request.Request(self.base + path, data=data, method=method,
+                                     headers={"Content-Type": "application/json"})
+        try:
+            with urllib.request.urlopen(req, timeout=120) as r:
+                return json.loads(r.read())["value"]
+        except urllib.error.HTTPError as e:
+            fail(f"WebDriver {method} {path}: {e.read().decode(errors='replace')[:500]}")
+
+    def s(self, path, body=None, method="POST"):
+        return self.call(method, f"/session/{self.sid}{path}", body)
+
+    def js(self, script, *args):
+        return self.s("/execute/sync", {"script": script, "args": list(args)})
+
+    def screenshot(self):
+        return decode_png(base64.b64decode(self.s("/screenshot", method="GET")))
+
+    def browser_log(self):
+        try:
+            return self.s("/se/log", {"type": "browser"}) or []
+        except SystemExit:
+            raise
+        except Exception:  # noqa: BLE001 (older drivers have no log endpoint)
+            return []
+
+    def quit(self):
+        try:
+            self.call("DELETE", f"/session/{self.sid}")
+        finally:
+            self.proc.terminate()
+            shutil.rmtree(self.profile, ignore_errors=True)
+
+
+def status(d):
+    text = d.js("return window.armlab ? window.armlab.status() : null")
+    return json.loads(text) if text else None
+
+
+def wait_for(d, what, cond, timeout):
+    deadline = time.time() + timeout
+    while True:
+        st = status(d)
+        if st and st.get("panicked"):
+            fail(f"the app panicked: {d.js('return window.armlab.panic_message()')}")
+        if st and cond(st):
+            return st
+        if time.time() > deadline:
+            errors = d.js("return window.__errors || []")
+            fail(f"{what}: not within {timeout} s; last status {st}; page errors {errors}")
+        time.sleep(0.05)
+
+
+def open_page(d, url, timeout=20.0):
+    """Loads `url` and waits for the first frame; returns (status, ms from navigation start)."""
+    d.s("/url", {"url": url})
+    st = wait_for(d, "the app's first frame", lambda s: s.get("frames", 0) >= 1, timeout)
+    return st, d.js("return performance.now()")
+
+
+# --- the checks -------------------------------------------------------------------------------
+
+def check_default_robot(d):
+    img = d.screenshot()
+    w, h, _, _ = img
+    if (w, h) != (WIDTH, HEIGHT):
+        fail(f"screenshot is {w}x{h}, expected {WIDTH}x{HEIGHT}")
+    with open(os.path.join(ROOT, "tests/snapshots/app_default_robot.png"), "rb") as f:
+        golden = decode_png(f.read())
+    # The 3D view (left and right panels hold text, whose hinting differs between renderers).
+    x0, x1, y0, y1 = 330, 940, 60, 740
+    diff, link, n = 0, 0, 0
+    for y in range(y0, y1, 2):
+        for x in range(x0, x1, 2):
+            a, b = pixel(img, x, y), pixel(golden, x, y)
+            n += 1
+            if max(abs(a[i] - b[i]) for i in range(3)) > 48:
+                diff += 1
+            r, g, bl = a
+            if abs(r - g) > 40 or abs(g - bl) > 40:  # coloured (links, frames), not grey
+                link += 1
+    share = diff / n
+    print(f"  canvas vs native golden (3D view): {share:.2%} of pixels differ by more than 48/255")
+    if share > 0.03:
+        path = os.path.join(tempfile.gettempdir(), "armlab-web-default.png")
+        with open(path, "wb") as f:
+            f.write(base64.b64decode(d.s("/screenshot", method="GET")))
+        fail(f"the canvas does not show the default robot like the native golden ({share:.2%} "
+             f"of pixels differ, tolerance 3 %); screenshot in {path}")
+    if link < 500:
+        fail(f"only {link} coloured pixels in the 3D view: no arm drawn")
+
+
+def check_gizmo_drag(d):
+    before = wait_for(d, "the gizmo's position", lambda s: s.get("gizmo"), 10)
+    x, y = before["gizmo"]
+    steps = [{"type": "pointerMove", "x": int(x), "y": int(y), "origin": "viewport",
+              "duration": 0}, {"type": "pointerDown", "button": 0}]
+    for k in range(1, 11):
+        steps.append({"type": "pointerMove", "x": int(x - 6 * k), "y": int(y + 4 * k),
+                      "origin": "viewport", "duration": 30})
+    steps.append({"type": "pointerUp", "button": 0})
+    d.s("/actions", {"actions": [{"type": "pointer", "id": "mouse",
+                                  "parameters": {"pointerType": "mouse"}, "actions": steps}]})
+    d.s("/actions", method="DELETE")
+    after = wait_for(d, "the pose readout to change after the drag",
+                     lambda s: s["position"] != before["position"], 10)
+    moved = sum((a - b) ** 2 for a, b in zip(after["position"], before["position"])) ** 0.5
+    print(f"  gizmo drag from ({x:.0f}, {y:.0f}) px: the tool moved {moved * 1000:.1f} mm")
+    if moved < 1e-3:
+        fail(f"the drag moved the tool only {moved} m")
+
+
+def main():
+    if len(sys.argv) != 2:
+        fail("usage: web/test_page.py DIST_DIR")
+    dist = sys.argv[1]
+    for f in ("index.html", "armlab.js", "armlab_bg.wasm"):
+        if not os.path.isfile(os.path.join(dist, f)):
+            fail(f"{dist}/{f} is missing: run web/build.sh first")
+    chromium = shutil.which("chromium") or shutil.which("chromium-browser")
+    chromedriver = shutil.which("chromedriver")
+    if not chromium or not chromedriver:
+        fail("headless Chromium and chromedriver are needed: apt-get install chromium chromium-driver")
+
+    port = free_port()
+    handler = functools.partial(QuietHandler, directory=dist)
+    server = http.server.ThreadingHTTPServer(("127.0.0.1", port), handler)
+    threading.Thread(target=server.serve_forever, daemon=True).start()
+    url = f"http://127.0.0.1:{port}/index.html"
+    d = Driver(chromedriver, chromium)
+    try:
+        st, ms = open_page(d, url)
+        print(f"  started {st['model']} ({st['dof']} DOF): first frame {ms / 1000:.2f} s after "
+              f"navigation")
+        if st["model"] != "anthropomorphic arm with spherical wrist" and st["dof"] != 6:
+            fail(f"expected the default robot, got {st['model']}")
+        time.sleep(0.5)  # a few frames: the camera framed, the 3D view at full quality
+        check_default_robot(d)
+        check_gizmo_drag(d)
+        st, ms = open_page(d, url + "?model=puma560&q=0.3,0.8,-1,0.4,0.6,0.2")
+        st = wait_for(d, "the Puma's solutions", lambda s: s.get("solutions") == 8, 10)
+        print(f"  ?model=puma560&q=...: {st['model']}, {st['solutions']} solutions "
+              f"({st['within_limits']} within limits)")
+        errors = d.js("return window.__errors || []")
+        severe = [e for e in d.browser_log() if e.get("level") == "SEVERE"]
+        if errors or severe:
+            fail(f"console errors: {errors} {severe}")
+    finally:
+        d.quit()
+        server.shutdown()
+    print("web test passed")
+
+
+class QuietHandler(http.server.SimpleHTTPRequestHandler):
+    extensions_map = {**http.server.SimpleHTTPRequestHandler.extensions_map,
+                      ".wasm": "application/wasm", ".js": "text/javascript"}
+
+    def log_message(self, *args):
+        pass
+
+
+if __name__ == "__main__":
+    main()
