@@ -58,6 +58,10 @@ impl WebHandle {
                 Box::new(move |cc| {
                     let mut ui = AppUi::new(state);
                     ui.file_picker = Box::new(BrowserFiles::default());
+                    match WorkerOffload::new() {
+                        Ok(w) => ui.offload = Some(Box::new(w)),
+                        Err(e) => web_sys::console::warn_1(&e),
+                    }
                     Ok(Box::new(ArmlabApp::new(cc, ui, None, true, model_given)))
                 }),
             )
@@ -91,6 +95,63 @@ impl WebHandle {
     /// Stops the app and removes its event handlers.
     pub fn destroy(&self) {
         self.runner.destroy();
+    }
+}
+
+/// What the web worker (`worker.js`) runs: one [`crate::app::offload::Request`] as JSON in,
+/// its answer as JSON out.
+#[wasm_bindgen]
+pub fn worker_compute(request: &str) -> String {
+    crate::app::offload::answer(request)
+}
+
+/// The page's web worker, for the workspace's heavy computations.
+struct WorkerOffload {
+    worker: web_sys::Worker,
+    answer: Rc<RefCell<Option<String>>>,
+    _on_message: Closure<dyn FnMut(web_sys::MessageEvent)>,
+    _on_error: Closure<dyn FnMut(web_sys::ErrorEvent)>,
+}
+
+impl WorkerOffload {
+    fn new() -> Result<Self, JsValue> {
+        let options = web_sys::WorkerOptions::new();
+        options.set_type(web_sys::WorkerType::Module);
+        let worker = web_sys::Worker::new_with_options("./worker.js", &options)?;
+        let answer: Rc<RefCell<Option<String>>> = Rc::default();
+        let slot = answer.clone();
+        let on_message =
+            Closure::<dyn FnMut(web_sys::MessageEvent)>::new(move |e: web_sys::MessageEvent| {
+                *slot.borrow_mut() = e.data().as_string();
+            });
+        worker.set_onmessage(Some(on_message.as_ref().unchecked_ref()));
+        let slot = answer.clone();
+        let on_error = Closure::<dyn FnMut(web_sys::ErrorEvent)>::new(
+            move |e: web_sys::ErrorEvent| {
+                let text = serde_json::json!({ "Error": format!("the web worker failed: {}", e.message()) });
+                *slot.borrow_mut() = Some(text.to_string());
+            },
+        );
+        worker.set_onerror(Some(on_error.as_ref().unchecked_ref()));
+        Ok(Self {
+            worker,
+            answer,
+            _on_message: on_message,
+            _on_error: on_error,
+        })
+    }
+}
+
+impl crate::app::offload::Offload for WorkerOffload {
+    fn submit(&mut self, request: String) -> bool {
+        self.answer.borrow_mut().take();
+        self.worker
+            .post_message(&JsValue::from_str(&request))
+            .is_ok()
+    }
+
+    fn poll(&mut self) -> Option<String> {
+        self.answer.borrow_mut().take()
     }
 }
 
@@ -161,6 +222,9 @@ fn status_json(app: &AppUi) -> serde_json::Value {
         "within_limits": ghosts.iter().filter(|g| g.within_limits).count(),
         "gizmo": app.gizmo_grip().map(|p| [p.x, p.y]),
         "workspace_progress": app.workspace.as_ref().map(|w| w.progress().unwrap_or(1.0)),
+        "workspace_figure": app.workspace.as_ref().and_then(|w| w.figure()).map(|f| [f.width(), f.height()]),
+        "workspace_dots": app.workspace.as_ref().and_then(|w| w.dots()).map(<[_]>::len),
+        "workspace_error": app.workspace.as_ref().and_then(|w| w.error()),
         "messages": s.messages().iter().map(|m| m.text.clone()).collect::<Vec<_>>(),
     })
 }
@@ -178,8 +242,11 @@ fn url_parameter(key: &str) -> Option<String> {
 #[derive(Default)]
 struct BrowserFiles {
     /// Files read since the last poll (filled by the input's change handler).
-    arrived: Rc<RefCell<Vec<(FileKind, String, Vec<u8>)>>>,
+    arrived: Arrived,
 }
+
+/// Files read by the browser (kind, name, bytes), waiting to be opened.
+type Arrived = Rc<RefCell<Vec<(FileKind, String, Vec<u8>)>>>;
 
 impl FilePicker for BrowserFiles {
     fn available(&self) -> bool {
@@ -224,10 +291,7 @@ impl FilePicker for BrowserFiles {
 }
 
 /// Opens the browser's file picker; the chosen file's bytes are pushed onto `arrived`.
-fn pick_file(
-    kind: FileKind,
-    arrived: Rc<RefCell<Vec<(FileKind, String, Vec<u8>)>>>,
-) -> Result<(), JsValue> {
+fn pick_file(kind: FileKind, arrived: Arrived) -> Result<(), JsValue> {
     let document = web_sys::window()
         .and_then(|w| w.document())
         .ok_or("no document")?;

@@ -151,3 +151,109 @@ fn the_file_dialogs_open_and_save_models() {
     assert!(last_message(&c).1.contains("type the model's path"));
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// Files the browser's way (the web build's picker): opening hands over a name and bytes later,
+/// saving is a download. Shared state so the test can feed and read it.
+#[derive(Default, Clone)]
+struct Browser {
+    files: Shared<(FileKind, String, Vec<u8>)>,
+    downloads: Shared<(String, String, Vec<u8>)>,
+    asked: Shared<FileKind>,
+}
+
+type Shared<T> = std::rc::Rc<std::cell::RefCell<Vec<T>>>;
+
+impl FilePicker for Browser {
+    fn available(&self) -> bool {
+        true
+    }
+    fn open(&mut self, kind: FileKind) -> Option<PathBuf> {
+        self.asked.borrow_mut().push(kind);
+        None
+    }
+    fn save(&mut self, _kind: FileKind, _suggested: &str) -> Option<PathBuf> {
+        panic!("the browser saves by downloading, never through a path")
+    }
+    fn poll_opened(&mut self) -> Option<(FileKind, String, Vec<u8>)> {
+        let mut f = self.files.borrow_mut();
+        (!f.is_empty()).then(|| f.remove(0))
+    }
+    fn download(&mut self, name: &str, mime: &str, bytes: &[u8]) -> bool {
+        let d = (name.to_string(), mime.to_string(), bytes.to_vec());
+        self.downloads.borrow_mut().push(d);
+        true
+    }
+    fn downloads(&self) -> bool {
+        true
+    }
+}
+
+/// The web build opens models from a name and bytes (picked or dropped) and saves by download:
+/// a Puma edited in one app, downloaded as TOML and as URDF, opens in another with the same FK
+/// (computed by each robot, compared here); a bad file keeps the model with a message naming
+/// the file and line; a non-text or unknown file is refused.
+#[test]
+fn the_browser_opens_bytes_and_saves_downloads() {
+    let browser = Browser::default();
+    let mut a = app("puma560");
+    a.file_picker = Box::new(browser.clone());
+    a.save_with_dialog();
+    a.save_path = "puma.urdf".into();
+    a.save_with_dialog();
+    let downloads = browser.downloads.borrow().clone();
+    assert_eq!(downloads.len(), 2, "{:?}", a.state.messages());
+    assert_eq!(downloads[0].0, "puma_560.toml");
+    assert_eq!(downloads[0].1, "application/toml");
+    assert_eq!(
+        (downloads[1].0.as_str(), downloads[1].1.as_str()),
+        ("puma.urdf", "application/xml")
+    );
+    let q = [0.3, 0.8, -1.0, 0.4, 0.6, 0.2];
+    let want = a.state.robot().fk(&q).unwrap();
+    for (name, _, bytes) in &downloads {
+        let mut b = app("planar2");
+        b.file_picker = Box::new(browser.clone());
+        b.open_with_dialog();
+        assert_eq!(browser.asked.borrow().last(), Some(&FileKind::Model));
+        assert_eq!(
+            b.state.robot().dof(),
+            2,
+            "nothing opens before the file arrives"
+        );
+        b.opened_file(FileKind::Model, name, bytes);
+        assert_eq!(b.state.spec(), name);
+        let got = b.state.robot().fk(&q).unwrap();
+        assert!(
+            (got.to_homogeneous() - want.to_homogeneous()).abs().max() < 1e-12,
+            "{name}"
+        );
+    }
+    // A TOML file with a bad line: the model stays, the message names the file and the line.
+    let mut c = app("planar2");
+    let bad = std::fs::read(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/bad_models/bad_angle_string.toml"
+    ))
+    .unwrap();
+    c.open_bytes("bad.toml", &bad);
+    assert_eq!(c.state.robot().dof(), 2);
+    let (level, text) = last_message(&c);
+    assert_eq!(level, Level::Error);
+    assert!(
+        text.contains("bad.toml:9") && text.contains("pi/two"),
+        "{text}"
+    );
+    c.open_bytes("robot.stl", b"solid x");
+    assert!(
+        last_message(&c).1.contains("not a model file"),
+        "{:?}",
+        last_message(&c)
+    );
+    c.open_bytes("robot.toml", &[0xff, 0xfe, 0x00]);
+    assert!(
+        last_message(&c).1.contains("not a text file"),
+        "{:?}",
+        last_message(&c)
+    );
+    assert_eq!(c.state.robot().dof(), 2);
+}

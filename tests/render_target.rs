@@ -288,3 +288,45 @@ fn a_million_dots_at_1600x1200() {
     // leaves room for a busy machine and still catches a regression to per-dot quads or draws.
     assert!(draw.as_secs_f64() < 1.5, "1M dots took {draw:?}");
 }
+
+/// Devices that cannot view the sRGB colour texture as `Rgba8Unorm` (WebGL2) get a copy
+/// re-encoded after every frame (`shaders/encode.wgsl`). Its bytes must be the colour texture's
+/// own: once, on the web, the 3D view came out too dark (linear values shown as sRGB). Checked
+/// against the sRGB texture's bytes (the independent path: the GPU's own encoding on write),
+/// at 1x and at 4x MSAA.
+#[test]
+fn the_reencoded_copy_has_the_colour_textures_bytes() {
+    let _serial = serial();
+    let gpu = gpu();
+    let (scene, camera) = arm_demo_scene();
+    let settings = RenderSettings::default();
+    for samples in [1, 4] {
+        let size = (200, 150);
+        let mut renderer = Renderer::new(gpu, samples).unwrap();
+        let target = RenderTarget::with_encoded_copy(gpu, size.0, size.1, samples).unwrap();
+        let view = ViewUniforms::from_camera(&camera, size.0, size.1);
+        renderer
+            .render(gpu, &target, &scene, &view, &settings)
+            .unwrap();
+        let srgb = target.read_rgba(gpu).unwrap();
+        let copy = target.read_egui_rgba(gpu).unwrap();
+        let worst = srgb
+            .as_raw()
+            .iter()
+            .zip(copy.as_raw())
+            .map(|(a, b)| a.abs_diff(*b))
+            .max()
+            .unwrap();
+        // One step of 8-bit rounding between the GPU's encoder and the shader's formula.
+        assert!(
+            worst <= 1,
+            "{samples}x: the copy differs by up to {worst}/255"
+        );
+        let bg = background(&settings);
+        let drawn = copy.pixels().filter(|p| p.0[..3] != bg[..]).count();
+        assert!(
+            drawn > 2000,
+            "{samples}x: the copy shows only {drawn} drawn pixels"
+        );
+    }
+}

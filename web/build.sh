@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds the app for the browser into a folder of static files (default web/dist): index.html,
-# armlab.js (the glue) and armlab_bg.wasm. Serve the folder with any static file server, e.g.
+# armlab.js (the glue), armlab_bg.wasm and worker.js (the web worker for heavy computations). Serve the folder with any static file server, e.g.
 #   python3 -m http.server 8765 --bind 127.0.0.1 --directory web/dist
 #
 # Toolchain, whichever is here:
@@ -16,11 +16,11 @@ export CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$PWD/target}/web"
 args=(rustc --lib --crate-type cdylib --profile web --target "$target" --no-default-features --features gui)
 
 if rustup target list --installed 2>/dev/null | grep -qx "$target"; then
-  cargo "${args[@]}"
+  cargo "${args[@]}" -- -D warnings
 elif [ -x /usr/bin/rustc ] && /usr/bin/rustc --print target-list | grep -qx "$target" \
   && [ -d /usr/lib/rustlib/src/rust/library ]; then
   PATH="/usr/bin:$PATH" RUSTC=/usr/bin/rustc RUSTC_BOOTSTRAP=1 \
-    /usr/bin/cargo "${args[@]}" -Zbuild-std=std,panic_abort
+    /usr/bin/cargo "${args[@]}" -Zbuild-std=std,panic_abort -- -D warnings
 else
   echo "web/build.sh: no Rust toolchain for $target here. Either" >&2
   echo "  rustup target add $target" >&2
@@ -39,7 +39,7 @@ rm -rf "$out"
 mkdir -p "$out"
 wasm-bindgen --target web --no-typescript --out-dir "$out" --out-name armlab \
   "$CARGO_TARGET_DIR/$target/web/armlab.wasm"
-cp web/index.html "$out/"
+cp web/index.html web/worker.js "$out/"
 wasm=$(stat -c %s "$out/armlab_bg.wasm")
 gz=$(gzip -9 -c "$out/armlab_bg.wasm" | wc -c)
 echo "web build in $out: armlab_bg.wasm $((wasm / 1024)) KiB, $((gz / 1024)) KiB gzipped"

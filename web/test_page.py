@@ -7,8 +7,10 @@ only). Serves the built folder on 127.0.0.1 and checks, from the page:
    golden tests/snapshots/app_default_robot.png (rendered by lavapipe; here WebGL2 on
    SwiftShader) within a stated tolerance, and the arm's link colour is there;
 3. a scripted mouse drag on the IK target's gizmo changes the pose readout;
-4. the Puma (``?model=puma560&q=...``, a generic pose) shows 8 solutions;
-5. no console errors, no panic.
+4. W computes the workspace in slices while the page keeps drawing: dots and the 2D figure;
+5. the Screenshot button saves the window as a PNG download;
+6. the Puma (``?model=puma560&q=...``, a generic pose) shows 8 solutions;
+7. no console errors, no panic.
 
 Usage: web/test_page.py DIST_DIR. Fails (never skips) when Chromium or chromedriver is missing.
 """
@@ -115,6 +117,7 @@ class Driver:
             "--disable-quic", "--enable-unsafe-swiftshader", "--use-angle=swiftshader",
             f"--window-size={WIDTH},{HEIGHT}", "--force-device-scale-factor=1",
             f"--user-data-dir={self.profile}",
+            *os.environ.get("ARMLAB_CHROMIUM_ARGS", "").split(),
         ]
         caps = {"capabilities": {"alwaysMatch": {
             "browserName": "chrome",
@@ -254,6 +257,93 @@ def check_gizmo_drag(d):
         fail(f"the drag moved the tool only {moved} m")
 
 
+def keep(d, name):
+    """Saves the page's screenshot under the temporary folder (to look at after a run)."""
+    with open(os.path.join(tempfile.gettempdir(), name), "wb") as f:
+        f.write(base64.b64decode(d.s("/screenshot", method="GET")))
+
+
+def press(d, key):
+    d.js("document.getElementById('armlab_canvas').focus()")
+    d.s("/actions", {"actions": [{"type": "key", "id": "keyboard", "actions": [
+        {"type": "keyDown", "value": key}, {"type": "keyUp", "value": key}]}]})
+    d.s("/actions", method="DELETE")
+
+
+def click(d, x, y):
+    d.s("/actions", {"actions": [{"type": "pointer", "id": "mouse",
+                                  "parameters": {"pointerType": "mouse"}, "actions": [
+                                      {"type": "pointerMove", "x": x, "y": y, "origin": "viewport",
+                                       "duration": 0},
+                                      {"type": "pointerDown", "button": 0},
+                                      {"type": "pointerUp", "button": 0}]}]})
+    d.s("/actions", method="DELETE")
+
+
+def check_workspace(d):
+    """W computes the workspace in slices across frames (no threads in a browser): the page
+    keeps drawing meanwhile, and the overlay's dots and the 2D figure arrive."""
+    press(d, "w")
+    t0, frames0, worst, last = time.time(), status(d)["frames"], 0.0, time.time()
+    while True:
+        st = status(d)
+        now = time.time()
+        worst, last = max(worst, now - last), now
+        if st.get("workspace_error"):
+            fail(f"workspace: {st['workspace_error']}")
+        if st.get("workspace_progress") == 1.0:
+            break
+        if now - t0 > 120:
+            fail(f"the workspace did not finish in 120 s: {st}")
+        time.sleep(0.05)
+    frames = st["frames"] - frames0
+    print(f"  workspace (W): {now - t0:.1f} s, {frames} frames meanwhile, longest wait for the "
+          f"page {worst * 1000:.0f} ms; {st['workspace_dots']} dots, figure {st['workspace_figure']}")
+    if not st["workspace_dots"] or not st["workspace_figure"]:
+        fail(f"the workspace has no dots or no figure: {st}")
+    if frames < 10:
+        fail(f"only {frames} frames while the workspace was computed: the page froze")
+    # The "Workspace (2D)" tab shows the figure.
+    click(d, 515, 12)
+    time.sleep(1.0)
+    img = d.screenshot()
+    keep(d, "armlab-web-workspace-tab.png")
+    colours = {pixel(img, x, y) for x in range(450, 900, 6) for y in range(100, 700, 6)}
+    print(f"  workspace tab: {len(colours)} colours in the figure's area")
+    if len(colours) < 30:
+        fail("the Workspace (2D) tab shows no figure")
+    click(d, 420, 12)
+    press(d, "w")
+
+
+def check_screenshot_download(d, folder):
+    """The Screenshot button (top bar) saves the window as a PNG download."""
+    d.call("POST", f"/session/{d.sid}/goog/cdp/execute", {
+        "cmd": "Browser.setDownloadBehavior",
+        "params": {"behavior": "allow", "downloadPath": folder},
+    })
+    click(d, 386, 35)
+    deadline = time.time() + 30
+    while True:
+        done = [f for f in os.listdir(folder) if f.endswith(".png")]
+        if done:
+            break
+        if time.time() > deadline:
+            fail(f"no screenshot download in 30 s (status: {status(d)['messages'][-3:]})")
+        time.sleep(0.1)
+    time.sleep(0.3)
+    with open(os.path.join(folder, done[0]), "rb") as f:
+        data = f.read()
+    with open(os.path.join(tempfile.gettempdir(), "armlab-web-download.png"), "wb") as f:
+        f.write(data)
+    img = decode_png(data)
+    w, h, _, _ = img
+    colours = {pixel(img, x, y) for x in range(0, w, 16) for y in range(0, h, 16)}
+    print(f"  screenshot download: {done[0]} {w}x{h}, {len(colours)} colours")
+    if (w, h) != (WIDTH, HEIGHT) or len(colours) < 20:
+        fail(f"the screenshot is {w}x{h} with {len(colours)} colours")
+
+
 def main():
     if len(sys.argv) != 2:
         fail("usage: web/test_page.py DIST_DIR")
@@ -281,6 +371,10 @@ def main():
         time.sleep(0.5)  # a few frames: the camera framed, the 3D view at full quality
         check_default_robot(d)
         check_gizmo_drag(d)
+        check_workspace(d)
+        downloads = tempfile.mkdtemp(prefix="armlab-downloads-")
+        check_screenshot_download(d, downloads)
+        shutil.rmtree(downloads, ignore_errors=True)
         st, ms = open_page(d, url + "?model=puma560&q=0.3,0.8,-1,0.4,0.6,0.2")
         st = wait_for(d, "the Puma's solutions", lambda s: s.get("solutions") == 8, 10)
         print(f"  ?model=puma560&q=...: {st['model']}, {st['solutions']} solutions "

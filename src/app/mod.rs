@@ -9,6 +9,7 @@ pub mod construction_panel;
 pub mod file_picker;
 pub mod gizmo;
 pub mod inner;
+pub mod offload;
 pub mod panels;
 pub mod probe;
 pub mod redundancy_panel;
@@ -40,6 +41,8 @@ pub struct ArmlabApp {
     gpu: Option<Gpu>,
     /// Frames drawn so far.
     frames: u64,
+    /// A screenshot whose pixels are on their way back from the GPU (browser), and its name.
+    pending_screenshot: Option<(crate::render::PendingRead, String)>,
 }
 
 impl eframe::App for ArmlabApp {
@@ -102,10 +105,16 @@ impl eframe::App for ArmlabApp {
         if std::mem::take(&mut self.ui.screenshot_requested) {
             self.save_screenshot();
         }
+        self.poll_screenshot(ui.ctx());
         if let Some(w) = &self.ui.workspace {
-            w.step(self.gpu.as_ref());
-            if w.progress().is_some() {
+            let worked = w.step(self.gpu.as_ref(), self.ui.offload.as_deref_mut());
+            if worked {
                 ui.ctx().request_repaint();
+            } else if w.progress().is_some() {
+                // Computed elsewhere (a thread, a web worker): a few frames a second show the
+                // progress without taking the CPU from that computation.
+                ui.ctx()
+                    .request_repaint_after(std::time::Duration::from_millis(250));
             }
         }
     }
@@ -153,6 +162,7 @@ impl ArmlabApp {
             title: String::new(),
             gpu,
             frames: 0,
+            pending_screenshot: None,
         }
     }
 
@@ -191,14 +201,38 @@ impl ArmlabApp {
             ..Default::default()
         };
         let image = match &self.gpu {
+            // In a browser: the window's device, and the pixels on a later frame.
             Some(gpu) if cfg!(target_arch = "wasm32") => {
-                screenshot::screenshot_on(gpu, &self.ui, [w, h], &opts)
+                match screenshot::screenshot_deferred(gpu, &self.ui, [w, h], &opts) {
+                    Ok(read) => {
+                        self.pending_screenshot = Some((read, stem));
+                        return;
+                    }
+                    Err(e) => Err(e),
+                }
             }
             _ => screenshot::screenshot_with(&self.ui, [w, h], &opts),
         };
-        let result = image
-            .map_err(|e| e.to_string())
-            .and_then(|img| self.deliver_png(&img, &stem));
+        self.report_screenshot(image.map_err(|e| e.to_string()), &stem);
+    }
+
+    /// Delivers a deferred screenshot once its pixels are back.
+    fn poll_screenshot(&mut self, ctx: &egui::Context) {
+        let (Some((read, stem)), Some(gpu)) = (&self.pending_screenshot, &self.gpu) else {
+            return;
+        };
+        match read.poll(&gpu.device) {
+            Some(image) => {
+                let stem = stem.clone();
+                self.pending_screenshot = None;
+                self.report_screenshot(image.map_err(|e| e.to_string()), &stem);
+            }
+            None => ctx.request_repaint(),
+        }
+    }
+
+    fn report_screenshot(&mut self, image: Result<image::RgbaImage, String>, stem: &str) {
+        let result = image.and_then(|img| self.ui.deliver_png(&img, stem));
         match result {
             Ok(m) => self.ui.state.push_message(state::Level::Info, m),
             Err(e) => self
@@ -206,24 +240,6 @@ impl ArmlabApp {
                 .state
                 .push_message(state::Level::Error, format!("screenshot failed: {e}")),
         }
-    }
-
-    /// Writes `img` as `armlab-<stem>-<n>.png` (the first free n) in the working directory, or
-    /// offers it as a download where files are downloads.
-    fn deliver_png(&mut self, img: &image::RgbaImage, stem: &str) -> Result<String, String> {
-        let mut png = Vec::new();
-        img.write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
-            .map_err(|e| e.to_string())?;
-        let name = format!("armlab-{stem}.png");
-        if self.ui.file_picker.download(&name, "image/png", &png) {
-            return Ok(format!("downloading {name}"));
-        }
-        let path = (1..1000)
-            .map(|n| std::path::PathBuf::from(format!("armlab-{stem}-{n}.png")))
-            .find(|p| !p.exists())
-            .ok_or_else(|| "no free file name".to_string())?;
-        std::fs::write(&path, png).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-        Ok(format!("saved {}", path.display()))
     }
 }
 

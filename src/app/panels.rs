@@ -69,10 +69,15 @@ fn save_row(app: &mut AppUi, ui: &mut egui::Ui) {
             )
             .clicked()
         {
-            let path = app.save_path.clone();
-            match app.state.save_model(&path) {
-                Ok(m) => app.state.push_message(Level::Info, m),
-                Err(e) => app.state.push_message(Level::Error, e),
+            if app.file_picker.downloads() {
+                // The browser: the typed name becomes the download's.
+                app.save_with_dialog();
+            } else {
+                let path = app.save_path.clone();
+                match app.state.save_model(&path) {
+                    Ok(m) => app.state.push_message(Level::Info, m),
+                    Err(e) => app.state.push_message(Level::Error, e),
+                }
             }
         }
     });

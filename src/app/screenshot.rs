@@ -39,6 +39,26 @@ pub fn screenshot_on(
     size: [u32; 2],
     opts: &ScreenshotOptions,
 ) -> Result<image::RgbaImage, AppError> {
+    let (app, camera) = copy_of(live, opts);
+    Ok(render_window(gpu, app, size, Some(camera), false)?.0)
+}
+
+/// [`screenshot_on`] without waiting for the pixels (a browser cannot wait for the GPU): they
+/// come from the returned read-back on a later frame.
+pub fn screenshot_deferred(
+    gpu: &Gpu,
+    live: &AppUi,
+    size: [u32; 2],
+    opts: &ScreenshotOptions,
+) -> Result<crate::render::PendingRead, AppError> {
+    let (app, camera) = copy_of(live, opts);
+    render_window(gpu, app, size, Some(camera), true)?
+        .1
+        .ok_or_else(|| AppError::Input("the screenshot was not read back".into()))
+}
+
+/// A copy of the live app's view (state, camera, tab, end-effector) to render offscreen.
+fn copy_of(live: &AppUi, opts: &ScreenshotOptions) -> (AppUi, crate::camera::Camera) {
     let mut app = AppUi::new(live.state.clone());
     app.projector = opts.projector;
     app.tab = live.tab;
@@ -46,7 +66,7 @@ pub fn screenshot_on(
     app.ee = live.ee;
     app.construction = live.construction;
     app.construction_step = live.construction_step;
-    render_window(gpu, app, size, Some(live.camera))
+    (app, live.camera)
 }
 
 /// Renders the app for `state` at `size` pixels, after applying `opts`.
@@ -75,27 +95,33 @@ pub fn screenshot(
     }
     app.state.clear_trails();
     let gpu = Gpu::new_headless().map_err(crate::figure::FigureError::from)?;
-    render_window(&gpu, app, size, None)
+    Ok(render_window(&gpu, app, size, None, false)?.0)
 }
 
 /// Lays the window out once to learn the viewport size, renders the 3D view (with `camera`, or
-/// framing the arm), and paints the window with it, all on a headless device.
+/// framing the arm), and paints the window with it, all on `gpu`. With `defer`, the image is
+/// blank and the pixels come from the read-back returned with it.
 fn render_window(
     gpu: &Gpu,
     mut app: AppUi,
     size: [u32; 2],
     camera: Option<crate::camera::Camera>,
-) -> Result<image::RgbaImage, AppError> {
+    defer: bool,
+) -> Result<(image::RgbaImage, Option<crate::render::PendingRead>), AppError> {
     let mut offscreen = Offscreen::new(&gpu.device);
     offscreen.set_background(Some(app.background()));
     let mut vp = Viewport3d::new(gpu.clone()).map_err(crate::figure::FigureError::from)?;
-    offscreen.render(&gpu.device, &gpu.queue, size, 1.0, |ui| app.show(ui, None))?;
+    offscreen.layout(&gpu.device, size, 1.0, |ui| app.show(ui, None))?;
     match camera {
         Some(c) => app.set_camera(c),
         None => app.fit(),
     }
     let texture = app.render_viewport(&mut vp, offscreen.renderer_mut(), false);
-    Ok(offscreen.render(&gpu.device, &gpu.queue, size, 1.0, |ui| {
+    if defer {
+        offscreen.defer_readback();
+    }
+    let image = offscreen.render(&gpu.device, &gpu.queue, size, 1.0, |ui| {
         app.show(ui, texture.clone())
-    })?)
+    })?;
+    Ok((image, offscreen.take_deferred()))
 }

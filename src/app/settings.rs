@@ -38,17 +38,22 @@ impl Default for Settings {
 
 impl Settings {
     /// What `app` shows now; a model file's path is made absolute so it opens from anywhere.
+    /// In a browser a file the user handed over cannot be opened again: only a built-in model is
+    /// remembered there.
     pub fn capture(app: &AppUi) -> Settings {
         let spec = app.state.spec();
         let model = if crate::kinematics::models::built_in(spec).is_some() {
-            spec.to_string()
+            Some(spec.to_string())
+        } else if cfg!(target_arch = "wasm32") {
+            None
         } else {
             std::fs::canonicalize(spec)
                 .map(|p| p.to_string_lossy().into_owned())
-                .unwrap_or_else(|_| spec.to_string())
+                .ok()
+                .or_else(|| Some(spec.to_string()))
         };
         Settings {
-            model: Some(model),
+            model,
             display: app.state.display,
             projector: app.projector,
             degrees: app.state.angle_unit() == AngleUnit::Degrees,

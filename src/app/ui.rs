@@ -63,6 +63,8 @@ pub struct AppUi {
     pub window_points: [f32; 2],
     /// File dialogs: native in the window, none in tests and screenshots.
     pub file_picker: Box<dyn super::file_picker::FilePicker>,
+    /// Where heavy computations go where the app has no threads (a browser's web worker).
+    pub offload: Option<Box<dyn super::offload::Offload>>,
     /// Draw the construction behind the closed-form solution (Sect. 2.12).
     pub construction: bool,
     /// The construction step shown (0-based; the steps before it stay drawn).
@@ -94,6 +96,7 @@ impl AppUi {
             screenshot_requested: false,
             window_points: [1280.0, 800.0],
             file_picker: Box::new(super::file_picker::NoDialogs),
+            offload: None,
             construction: false,
             construction_step: 0,
         }
@@ -205,7 +208,10 @@ impl AppUi {
             Ok(text) if self.file_picker.download(&name, mime, text.as_bytes()) => {
                 (Level::Info, format!("downloading {name}"))
             }
-            Ok(_) => (Level::Error, format!("the browser refused the download of {name}")),
+            Ok(_) => (
+                Level::Error,
+                format!("the browser refused the download of {name}"),
+            ),
             Err(e) => (Level::Error, e),
         };
         self.state.push_message(message.0, message.1);
@@ -230,6 +236,36 @@ impl AppUi {
                     .grip_px(&self.camera, self.viewport_px, &pose, ppp as f64, h)
             })
             .map(|[x, y]| rect.min + egui::vec2(x as f32, y as f32) / ppp)
+    }
+
+    /// Writes `img` as `armlab-<stem>-<n>.png` (the first free n) in the working directory, or
+    /// offers it as the download `armlab-<stem>.png` where files are downloads (a browser); the
+    /// message says which.
+    pub fn deliver_png(&mut self, img: &image::RgbaImage, stem: &str) -> Result<String, String> {
+        use image::ImageEncoder;
+        let mut png = Vec::new();
+        image::codecs::png::PngEncoder::new_with_quality(
+            &mut png,
+            image::codecs::png::CompressionType::Fast,
+            image::codecs::png::FilterType::Adaptive,
+        )
+        .write_image(
+            img.as_raw(),
+            img.width(),
+            img.height(),
+            image::ExtendedColorType::Rgba8,
+        )
+        .map_err(|e| e.to_string())?;
+        let name = format!("armlab-{stem}.png");
+        if self.file_picker.download(&name, "image/png", &png) {
+            return Ok(format!("downloading {name}"));
+        }
+        let path = (1..1000)
+            .map(|n| std::path::PathBuf::from(format!("armlab-{stem}-{n}.png")))
+            .find(|p| !p.exists())
+            .ok_or_else(|| "no free file name".to_string())?;
+        std::fs::write(&path, png).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        Ok(format!("saved {}", path.display()))
     }
 
     /// Uses `camera` as is (no automatic framing).
@@ -732,15 +768,19 @@ impl AppUi {
         }
         let Some(job) = &self.workspace else { return };
         if let Some(f) = job.progress() {
+            // The frame loop paces the repaints (it knows where the work is done).
             ui.centered_and_justified(|ui| {
                 ui.add(egui::ProgressBar::new(f).text("computing the workspace..."))
             });
-            ui.ctx().request_repaint();
             return;
         }
         if let Some(err) = job.error() {
             ui.colored_label(egui::Color32::from_rgb(190, 0, 0), err);
             return;
+        }
+        if let Some(err) = job.figure_error() {
+            let text = format!("no figure: {err}");
+            ui.colored_label(egui::Color32::from_rgb(190, 0, 0), text);
         }
         if self.workspace_texture.is_none()
             && let Some(img) = job.figure()
@@ -755,8 +795,21 @@ impl AppUi {
                 egui::TextureOptions::LINEAR,
             ));
         }
+        let save = ui
+            .button("Save figure (PNG)")
+            .on_hover_text("The figure at its full size, as `armlab workspace` writes it")
+            .clicked();
         if let Some(t) = &self.workspace_texture {
             ui.centered_and_justified(|ui| ui.add(egui::Image::new(t).shrink_to_fit()));
+        }
+        if save && let Some(img) = self.workspace.as_ref().and_then(|j| j.figure()).cloned() {
+            let stem = format!("{}-workspace", self.state.spec().replace(['/', '.'], "_"));
+            match self.deliver_png(&img, &stem) {
+                Ok(m) => self.state.push_message(Level::Info, m),
+                Err(e) => self
+                    .state
+                    .push_message(Level::Error, format!("figure not saved: {e}")),
+            }
         }
     }
 }

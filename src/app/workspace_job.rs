@@ -3,13 +3,16 @@
 //! `armlab workspace` writes). On the desktop a background thread computes it; in a browser
 //! (no threads) [`WorkspaceJob::step`] computes one slice per frame.
 
-use crate::figure::Theme;
+use super::offload::{Answer, Handed, Offload, Request, Task};
 use crate::figure::figures::Figures;
-use crate::figure::workspace::{ColorBy, WsFigureOptions, WsView, workspace_figure};
+use crate::figure::workspace::{
+    ColorBy, ComputeHere, WorkspaceSource, WsFigureOptions, WsView, workspace_figure_from,
+};
+use crate::figure::{FigureError, Theme};
 use crate::kinematics::Robot;
+use crate::render::{Gpu, PendingRead};
 use crate::scene::Dot;
 use crate::workspace::{SampleOptions, planar_frame, point_cloud, sample};
-use crate::render::Gpu;
 use std::sync::atomic::{AtomicU32, Ordering};
 use std::sync::{Arc, OnceLock};
 
@@ -22,6 +25,8 @@ pub struct WorkspaceData {
     pub dots: Vec<Dot>,
     /// The 2D figure (None if no GPU adapter could be opened for it).
     pub figure: Option<image::RgbaImage>,
+    /// Why there is no figure.
+    pub figure_error: Option<String>,
 }
 
 /// A running or finished workspace computation.
@@ -39,6 +44,21 @@ struct Slices {
     /// Overlay samples drawn so far, and their dots.
     drawn: usize,
     dots: Vec<Dot>,
+    /// Once the overlay is drawn: the figure, made again as results come in.
+    figure: Option<FigureSlices>,
+}
+
+/// The figure of a sliced job: its statistics and map computed by the [`Offload`] worker
+/// (where there is one), then painted, then read back, each over as many frames as it takes.
+struct FigureSlices {
+    figs: Figures,
+    handed: Handed,
+    /// The task submitted to the worker, waiting for its answer.
+    asked: Option<Task>,
+    /// The painted figure's pixels on their way back from the GPU.
+    readback: Option<PendingRead>,
+    /// The robot cannot travel to the worker: computed here.
+    in_place: bool,
 }
 
 /// Overlay samples per slice (a few milliseconds of work).
@@ -55,21 +75,11 @@ impl WorkspaceJob {
     /// Starts computing for `robot` (named `title` in the figure) on a background thread; where
     /// there are no threads (a browser), [`Self::step`] computes it a slice at a time.
     pub fn start(robot: Robot, title: String) -> Self {
+        if cfg!(target_arch = "wasm32") {
+            return Self::start_sliced(robot, title);
+        }
         let progress = Arc::new(AtomicU32::new(0));
         let done = Arc::new(OnceLock::new());
-        if cfg!(target_arch = "wasm32") {
-            let slices = Slices {
-                robot,
-                title,
-                drawn: 0,
-                dots: Vec::with_capacity(OVERLAY_SAMPLES),
-            };
-            return Self {
-                progress,
-                done,
-                slices: std::sync::Mutex::new(Some(slices)),
-            };
-        }
         let (p, d) = (progress.clone(), done.clone());
         std::thread::spawn(move || {
             let result = compute(&robot, &title, &p);
@@ -82,13 +92,36 @@ impl WorkspaceJob {
         }
     }
 
-    /// Computes the next slice of a sliced job (nothing for a threaded or finished one): a
-    /// chunk of overlay samples, then the figure, drawn on `gpu` (the window's device).
-    pub fn step(&self, gpu: Option<&Gpu>) {
-        let Ok(mut guard) = self.slices.lock() else {
-            return;
+    /// The browser's way on any platform: nothing runs until [`Self::step`] is called, once a
+    /// frame.
+    pub fn start_sliced(robot: Robot, title: String) -> Self {
+        let slices = Slices {
+            robot,
+            title,
+            drawn: 0,
+            dots: Vec::with_capacity(OVERLAY_SAMPLES),
+            figure: None,
         };
-        let Some(s) = guard.as_mut() else { return };
+        Self {
+            progress: Arc::new(AtomicU32::new(0)),
+            done: Arc::new(OnceLock::new()),
+            slices: std::sync::Mutex::new(Some(slices)),
+        }
+    }
+
+    /// Computes the next slice of a sliced job (nothing for a threaded or finished one): a
+    /// chunk of overlay samples; then the figure, drawn on `gpu` (the window's device), its
+    /// statistics and map computed by `offload` (a web worker) while frames go on, or here
+    /// when there is none.
+    /// Returns whether it worked here (then the next frame should come at once); `false` for
+    /// a threaded or finished job, or while the worker computes.
+    pub fn step(&self, gpu: Option<&Gpu>, offload: Option<&mut (dyn Offload + 'static)>) -> bool {
+        let Ok(mut guard) = self.slices.lock() else {
+            return false;
+        };
+        let Some(s) = guard.as_mut() else {
+            return false;
+        };
         if s.drawn < OVERLAY_SAMPLES {
             let n = SLICE.min(OVERLAY_SAMPLES - s.drawn);
             // Each slice its own seed: the same distribution as the threaded job's one draw.
@@ -97,20 +130,34 @@ impl WorkspaceJob {
                 Err(e) => {
                     let _ = self.done.set(Err(e));
                     *guard = None;
-                    return;
+                    return false;
                 }
             }
             s.drawn += n;
             let f = s.drawn as f32 / OVERLAY_SAMPLES as f32 * 500.0;
             self.progress.store(f as u32, Ordering::Relaxed);
-            return;
+            return true;
         }
-        let figure = gpu
-            .and_then(|g| Figures::with_gpu(g.clone()).ok())
-            .and_then(|mut f| figure(&mut f, &s.robot, &s.title, &self.progress));
-        let dots = std::mem::take(&mut s.dots);
-        let _ = self.done.set(Ok(WorkspaceData { dots, figure }));
-        *guard = None;
+        let waiting = s.figure.as_ref().is_some_and(|f| f.asked.is_some());
+        let finished = match gpu {
+            Some(gpu) => s.figure_step(gpu, offload, &self.progress),
+            None => Some(Err("no graphics device for the figure".into())),
+        };
+        if let Some(figure) = finished {
+            let dots = std::mem::take(&mut s.dots);
+            let (figure, figure_error) = match figure {
+                Ok(f) => (Some(f), None),
+                Err(e) => (None, Some(e)),
+            };
+            let data = WorkspaceData {
+                dots,
+                figure,
+                figure_error,
+            };
+            let _ = self.done.set(Ok(data));
+            *guard = None;
+        }
+        !waiting
     }
 
     /// Fraction done while running; `None` once finished.
@@ -128,6 +175,14 @@ impl WorkspaceJob {
             .get()
             .and_then(|r| r.as_ref().ok())
             .map(|d| d.dots.as_slice())
+    }
+
+    /// Why there is no 2D figure, once done without one.
+    pub fn figure_error(&self) -> Option<&str> {
+        self.done
+            .get()
+            .and_then(|r| r.as_ref().ok())
+            .and_then(|d| d.figure_error.as_deref())
     }
 
     /// The 2D figure, once done.
@@ -150,11 +205,89 @@ impl WorkspaceJob {
     pub fn wait(&self) {
         while self.done.get().is_none() {
             if self.slices.lock().is_ok_and(|s| s.is_some()) {
-                self.step(None);
+                self.step(None, None);
             } else {
                 std::thread::sleep(std::time::Duration::from_millis(5));
             }
         }
+    }
+}
+
+impl Slices {
+    /// One slice of the figure; `Some(figure or why not)` once it is finished.
+    fn figure_step(
+        &mut self,
+        gpu: &Gpu,
+        mut offload: Option<&mut (dyn Offload + 'static)>,
+        progress: &AtomicU32,
+    ) -> Option<Result<image::RgbaImage, String>> {
+        if self.figure.is_none() {
+            let mut figs = match Figures::with_gpu(gpu.clone()) {
+                Ok(f) => f,
+                Err(e) => return Some(Err(e.to_string())),
+            };
+            figs.defer_readback();
+            self.figure = Some(FigureSlices {
+                figs,
+                handed: Handed::default(),
+                asked: None,
+                readback: None,
+                in_place: false,
+            });
+        }
+        let f = self.figure.as_mut()?;
+        if let Some(read) = &f.readback {
+            return read.poll(&gpu.device).map(|r| r.map_err(|e| e.to_string()));
+        }
+        if let (Some(task), Some(offload)) = (&f.asked, offload.as_deref_mut()) {
+            let answer = offload.poll()?;
+            let answer = serde_json::from_str::<Answer>(&answer)
+                .unwrap_or_else(|e| Answer::Error(format!("unreadable answer: {e}")));
+            if let Err(e) = f.handed.hand_in(task.clone(), answer) {
+                return Some(Err(e));
+            }
+            f.asked = None;
+        }
+        let source: &mut dyn WorkspaceSource = match &offload {
+            Some(_) if !f.in_place => &mut f.handed,
+            // No worker: everything here, in one slice.
+            _ => &mut ComputeHere,
+        };
+        match figure_with(&mut f.figs, &self.robot, &self.title, progress, source) {
+            Ok(_) => {
+                f.readback = f.figs.take_deferred();
+                progress.store(950, Ordering::Relaxed);
+                return f
+                    .readback
+                    .is_none()
+                    .then(|| Err("the figure was not read back".to_string()));
+            }
+            Err(FigureError::Pending(_)) => {}
+            Err(e) => return Some(Err(e.to_string())),
+        }
+        let (Some(task), Some(offload)) = (f.handed.wanted.take(), offload) else {
+            return Some(Err(
+                "the figure lacks a result and nothing computes it".into()
+            ));
+        };
+        let Ok(request) = Request::new(&self.robot, &self.title, task.clone()) else {
+            // Next slice: here, at once.
+            f.in_place = true;
+            return None;
+        };
+        let json = serde_json::to_string(&request).map_err(|e| e.to_string());
+        match json.map(|j| offload.submit(j)) {
+            Ok(true) => {}
+            Ok(false) => return Some(Err("the web worker took no request".into())),
+            Err(e) => return Some(Err(e)),
+        }
+        let at = match task {
+            Task::Statistics { .. } => 550,
+            Task::Map(_) => 700,
+        };
+        progress.store(at, Ordering::Relaxed);
+        f.asked = Some(task);
+        None
     }
 }
 
@@ -163,10 +296,18 @@ fn compute(robot: &Robot, title: &str, progress: &AtomicU32) -> Result<Workspace
     let dots = overlay_dots(robot, n, 1, &|k| {
         progress.store((k as f32 / n as f32 * 500.0) as u32, Ordering::Relaxed)
     })?;
-    let figure = Figures::new()
-        .ok()
-        .and_then(|mut f| figure(&mut f, robot, title, progress));
-    Ok(WorkspaceData { dots, figure })
+    let figure = Figures::new().map_err(|e| e.to_string()).and_then(|mut f| {
+        figure_with(&mut f, robot, title, progress, &mut ComputeHere).map_err(|e| e.to_string())
+    });
+    let (figure, figure_error) = match figure {
+        Ok(f) => (Some(f), None),
+        Err(e) => (None, Some(e)),
+    };
+    Ok(WorkspaceData {
+        dots,
+        figure,
+        figure_error,
+    })
 }
 
 /// `n` overlay dots from samples drawn with `seed`, coloured by posture.
@@ -199,13 +340,15 @@ fn overlay_dots(
         .collect())
 }
 
-/// The workspace tab's figure (the second half of the progress bar).
-fn figure(
+/// The workspace tab's figure (the second half of the progress bar), with its statistics and map from `source` (`FigureError::Pending` while it lacks
+/// one).
+fn figure_with(
     figs: &mut Figures,
     robot: &Robot,
     title: &str,
     progress: &AtomicU32,
-) -> Option<image::RgbaImage> {
+    source: &mut dyn WorkspaceSource,
+) -> Result<image::RgbaImage, FigureError> {
     let view = if planar_frame(robot, 0).is_some() {
         WsView::Plane
     } else {
@@ -222,9 +365,13 @@ fn figure(
         point: Default::default(),
         caption: String::new(),
     };
-    workspace_figure(figs, robot, &title.replace('_', " "), &o, &|x| {
-        progress.store(500 + (x * 500.0) as u32, Ordering::Relaxed)
-    })
-    .ok()
-    .map(|w| w.image)
+    let r = workspace_figure_from(
+        figs,
+        robot,
+        &title.replace('_', " "),
+        &o,
+        &|x| progress.store(500 + (x * 500.0) as u32, Ordering::Relaxed),
+        source,
+    );
+    r.map(|w| w.image)
 }

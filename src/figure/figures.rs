@@ -59,6 +59,17 @@ impl Figures {
         })
     }
 
+    /// Renders return a blank image at once and leave the pixels to [`Self::take_deferred`]
+    /// (a browser cannot wait for the GPU; see [`Offscreen::defer_readback`]).
+    pub fn defer_readback(&mut self) {
+        self.offscreen.defer_readback();
+    }
+
+    /// The read-back of the last deferred figure, if any.
+    pub fn take_deferred(&mut self) -> Option<crate::render::PendingRead> {
+        self.offscreen.take_deferred()
+    }
+
     /// A 2D plot figure of `size` pixels; `raster` (an image covering `plot.bounds`) is shown
     /// under the curves.
     pub fn plot(

@@ -39,6 +39,10 @@ pub enum FigureError {
     /// The figure's layout could not be measured.
     #[error("figure layout: {0}")]
     Layout(String),
+    /// A result the figure needs is still being computed elsewhere (a browser's worker): the
+    /// figure is made again once it is handed in (see `workspace::WorkspaceSource`).
+    #[error("the {0} is still being computed")]
+    Pending(&'static str),
 }
 
 /// Light or dark colours.

@@ -15,6 +15,9 @@ pub struct Offscreen {
     background: Option<egui::Color32>,
     /// Texture updates of layout-only passes ([`Self::layout`]), applied by the next render.
     pending: TexturesDelta,
+    /// Renders return at once and leave their read-back here (a browser cannot wait for it).
+    defer_readback: bool,
+    deferred: Option<crate::render::PendingRead>,
 }
 
 impl Offscreen {
@@ -34,6 +37,8 @@ impl Offscreen {
             renderer,
             background: None,
             pending: TexturesDelta::default(),
+            defer_readback: false,
+            deferred: None,
         }
     }
 
@@ -86,7 +91,24 @@ impl Offscreen {
         let texture = canvas(device, size, true);
         let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
         self.paint(device, queue, &view, size, output);
+        if self.defer_readback {
+            let read = crate::render::PendingRead::start(device, queue, &texture)?;
+            self.deferred = Some(read);
+            return Ok(image::RgbaImage::new(size[0], size[1]));
+        }
         crate::render::read_texture_rgba(device, queue, &texture).map_err(FigureError::Render)
+    }
+
+    /// From now on [`Self::render`] returns a blank image of the right size at once and leaves
+    /// the pixels' read-back to [`Self::take_deferred`] (in a browser, where nothing can wait for
+    /// the GPU).
+    pub fn defer_readback(&mut self) {
+        self.defer_readback = true;
+    }
+
+    /// The read-back of the last deferred render, if any.
+    pub fn take_deferred(&mut self) -> Option<crate::render::PendingRead> {
+        self.deferred.take()
     }
 
     /// Lays `ui` out as [`Self::render`] would (two passes) without painting: for a figure that

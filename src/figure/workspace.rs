@@ -82,6 +82,39 @@ pub struct WsFigure {
 /// Name of the sequential colour map of the continuous colourings.
 pub const COLOR_MAP: &str = "viridis";
 
+/// Where a workspace figure gets the results it paints: computed on the spot
+/// ([`ComputeHere`]), or handed in from elsewhere (the browser's worker: a result not handed in
+/// yet is [`FigureError::Pending`], and the figure is made again once it is).
+pub trait WorkspaceSource {
+    /// The statistics of [`workspace::map_statistics`].
+    fn statistics(
+        &mut self,
+        robot: &Robot,
+        point: TrackedPoint,
+        fallback: &StatsOptions,
+    ) -> Result<WorkspaceStats, FigureError>;
+    /// The map of [`workspace::compute_map`] for `req` (its bounds always given).
+    fn map(&mut self, robot: &Robot, req: &MapRequest) -> Result<WorkspaceMap, FigureError>;
+}
+
+/// Computes what the figure needs where it is made.
+#[derive(Debug, Default, Clone, Copy)]
+pub struct ComputeHere;
+
+impl WorkspaceSource for ComputeHere {
+    fn statistics(
+        &mut self,
+        robot: &Robot,
+        point: TrackedPoint,
+        fallback: &StatsOptions,
+    ) -> Result<WorkspaceStats, FigureError> {
+        Ok(workspace::map_statistics(robot, point, fallback)?)
+    }
+    fn map(&mut self, robot: &Robot, req: &MapRequest) -> Result<WorkspaceMap, FigureError> {
+        Ok(workspace::compute_map(robot, req)?)
+    }
+}
+
 /// Makes a workspace figure. `progress(fraction)` is called as work proceeds.
 pub fn workspace_figure(
     figs: &mut Figures,
@@ -89,6 +122,19 @@ pub fn workspace_figure(
     title: &str,
     opts: &WsFigureOptions,
     progress: &(dyn Fn(f32) + Sync),
+) -> Result<WsFigure, FigureError> {
+    workspace_figure_from(figs, robot, title, opts, progress, &mut ComputeHere)
+}
+
+/// [`workspace_figure`] with the statistics and the map of the plane, top and side views
+/// taken from `source`.
+pub fn workspace_figure_from(
+    figs: &mut Figures,
+    robot: &Robot,
+    title: &str,
+    opts: &WsFigureOptions,
+    progress: &(dyn Fn(f32) + Sync),
+    source: &mut dyn WorkspaceSource,
 ) -> Result<WsFigure, FigureError> {
     let planar = workspace::planar_frame(robot, opts.end_effector).is_some();
     let fallback = StatsOptions {
@@ -103,7 +149,7 @@ pub fn workspace_figure(
         samples: opts.samples.clamp(1, 200_000),
         boundary: BoundaryOptions::default(),
     };
-    let stats = workspace::map_statistics(robot, opts.point, &fallback)?;
+    let stats = source.statistics(robot, opts.point, &fallback)?;
     progress(0.3);
     let image = match opts.view {
         WsView::ThreeD => three_d(figs, robot, title, opts, &stats, progress)?,
@@ -114,7 +160,8 @@ pub fn workspace_figure(
                 (WsView::Plane | WsView::Top, _) => MapView::Top,
                 _ => MapView::Side,
             };
-            map_figure(figs, robot, title, opts, view, &stats, progress)?
+            let subject = Subject { robot, title, opts };
+            map_figure(figs, subject, view, &stats, progress, source)?
         }
     };
     progress(1.0);
@@ -330,15 +377,22 @@ fn view_labels(view: MapView) -> (&'static str, &'static str, &'static str) {
     }
 }
 
+/// What a figure is of: the robot, its title and the options.
+struct Subject<'a> {
+    robot: &'a Robot,
+    title: &'a str,
+    opts: &'a WsFigureOptions,
+}
+
 fn map_figure(
     figs: &mut Figures,
-    robot: &Robot,
-    title: &str,
-    opts: &WsFigureOptions,
+    subject: Subject<'_>,
     view: MapView,
     stats: &WorkspaceStats,
     progress: &(dyn Fn(f32) + Sync),
+    source: &mut dyn WorkspaceSource,
 ) -> Result<image::RgbaImage, FigureError> {
+    let Subject { robot, title, opts } = subject;
     let extent = workspace::map_extent(robot, view, opts.point, opts.end_effector)?;
     let values = match opts.color_by {
         ColorBy::Dexterity => MapValues::Dexterity,
@@ -368,7 +422,7 @@ fn map_figure(
     };
     let text = text_color(opts.theme);
     let mut fill = |plot: &mut Plot2d, bounds: [f64; 4], px: [usize; 2]| {
-        let map = workspace::compute_map(
+        let map = source.map(
             robot,
             &MapRequest {
                 view,

@@ -31,8 +31,8 @@
 //!   ones are drawn last without depth writes.
 
 mod buffer;
-mod gamma;
 mod error;
+mod gamma;
 mod geometry;
 mod gpu;
 mod gpu_types;
@@ -45,7 +45,7 @@ mod target;
 
 pub use error::RenderError;
 pub use gpu::Gpu;
-pub use readback::read_texture_rgba;
+pub use readback::{PendingRead, read_texture_rgba};
 pub use renderer::Renderer;
 pub use settings::{RenderSettings, ViewUniforms};
 pub use target::RenderTarget;

@@ -276,7 +276,7 @@ impl Renderer {
         if let Some(to) = target.encoded_view() {
             let device = &gpu.device;
             let gamma = self.gamma.get_or_insert_with(|| GammaEncode::new(device));
-            gamma.encode(device, encoder, target.color_view(), to);
+            gamma.encode(device, encoder, target.color_view(), &to);
         }
         Ok(())
     }

@@ -9,7 +9,7 @@ pub struct RenderTarget {
     color: wgpu::Texture,
     /// Where the device cannot view the colour texture as [`EGUI_FORMAT`] (WebGL2): a copy in
     /// that format, re-encoded after every frame by the renderer.
-    encoded: Option<wgpu::TextureView>,
+    encoded: Option<wgpu::Texture>,
     color_view: wgpu::TextureView,
     msaa_view: Option<wgpu::TextureView>,
     depth_view: wgpu::TextureView,
@@ -26,6 +26,27 @@ impl RenderTarget {
     ///
     /// Errors on a zero side, a side above the device's limit, or another sample count.
     pub fn new(gpu: &Gpu, width: u32, height: u32, sample_count: u32) -> Result<Self, RenderError> {
+        Self::create(gpu, width, height, sample_count, false)
+    }
+
+    /// Like [`Self::new`], but with the re-encoded copy behind [`Self::egui_view`] that devices
+    /// without format aliasing get (WebGL2), so it can be checked on any device.
+    pub fn with_encoded_copy(
+        gpu: &Gpu,
+        width: u32,
+        height: u32,
+        sample_count: u32,
+    ) -> Result<Self, RenderError> {
+        Self::create(gpu, width, height, sample_count, true)
+    }
+
+    fn create(
+        gpu: &Gpu,
+        width: u32,
+        height: u32,
+        sample_count: u32,
+        copy: bool,
+    ) -> Result<Self, RenderError> {
         gpu.check_size(width, height)?;
         if !SAMPLE_COUNTS.contains(&sample_count) {
             return Err(RenderError::UnsupportedSampleCount {
@@ -67,15 +88,15 @@ impl RenderTarget {
             &[EGUI_FORMAT],
         );
         let (color, encoded) = match pollster::block_on(alias.pop()) {
-            None => (aliased, None),
-            Some(_) => {
+            None if !copy => (aliased, None),
+            _ => {
                 let usage = wgpu::TextureUsages::RENDER_ATTACHMENT
                     | wgpu::TextureUsages::TEXTURE_BINDING
                     | wgpu::TextureUsages::COPY_SRC;
-                let copy = texture("armlab colour (encoded)", EGUI_FORMAT, 1, usage, &[]);
+                let encoded = texture("armlab colour (encoded)", EGUI_FORMAT, 1, usage, &[]);
                 (
                     texture("armlab colour", COLOR_FORMAT, 1, color_usage, &[]),
-                    Some(copy.create_view(&wgpu::TextureViewDescriptor::default())),
+                    Some(encoded),
                 )
             }
         };
@@ -131,7 +152,7 @@ impl RenderTarget {
     /// alias texture formats (WebGL2) it is a copy that the renderer re-encodes every frame.
     pub fn egui_view(&self) -> wgpu::TextureView {
         match &self.encoded {
-            Some(view) => view.clone(),
+            Some(t) => t.create_view(&wgpu::TextureViewDescriptor::default()),
             None => self.color.create_view(&wgpu::TextureViewDescriptor {
                 format: Some(EGUI_FORMAT),
                 ..Default::default()
@@ -140,8 +161,20 @@ impl RenderTarget {
     }
 
     /// The re-encoded copy's view, where there is one (see [`Self::egui_view`]).
-    pub(crate) fn encoded_view(&self) -> Option<&wgpu::TextureView> {
-        self.encoded.as_ref()
+    pub(crate) fn encoded_view(&self) -> Option<wgpu::TextureView> {
+        self.encoded
+            .as_ref()
+            .map(|t| t.create_view(&wgpu::TextureViewDescriptor::default()))
+    }
+
+    /// Copies what [`Self::egui_view`] shows to the CPU (blocking): the colour texture's bytes,
+    /// or those of the re-encoded copy where there is one (they should be the same).
+    pub fn read_egui_rgba(&self, gpu: &Gpu) -> Result<image::RgbaImage, RenderError> {
+        read_texture_rgba(
+            &gpu.device,
+            &gpu.queue,
+            self.encoded.as_ref().unwrap_or(&self.color),
+        )
     }
 
     /// (width, height) in pixels.

@@ -24,7 +24,7 @@ use crate::kinematics::Robot;
 use rayon::prelude::*;
 
 /// How [`analyze_grid`] decides reachability.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 pub enum MethodChoice {
     /// The closed form when the arm has one that [`ReachTester`] supports, else sampling.
     #[default]
@@ -34,12 +34,12 @@ pub enum MethodChoice {
 }
 
 /// How a [`GridAnalysis`] was computed.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum GridMethod {
     /// Closed-form IK at every cell centre.
     ClosedForm {
         /// Name of the closed-form family.
-        family: &'static str,
+        family: std::borrow::Cow<'static, str>,
         /// Orientations tried per cell (1 for position-only arms, which report the distinct
         /// orientation bins of their solutions instead).
         orientations: usize,
@@ -52,7 +52,7 @@ pub enum GridMethod {
 }
 
 /// Options of [`analyze_grid`].
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct GridOptions {
     /// Cells per axis (N x N for planar arms, N x N x N voxels for spatial arms).
     pub resolution: usize,
@@ -319,7 +319,7 @@ pub fn analyze_grid(
         masks,
         orientation_fraction: frac,
         method: GridMethod::ClosedForm {
-            family: tester.family(),
+            family: tester.family().into(),
             orientations: tester.orientations(),
         },
     })

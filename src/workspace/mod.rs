@@ -80,7 +80,7 @@ pub enum WorkspaceError {
 }
 
 /// An axis-aligned box `[min, max]` (m), in the frame stated by whoever returns it.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Aabb {
     /// Smallest coordinates (m).
     pub min: [f64; 3],

@@ -25,7 +25,7 @@ use nalgebra::{Matrix6xX, Rotation3, Vector3};
 use std::f64::consts::{PI, TAU};
 
 /// Polyline resolution of [`planar_boundary`].
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct BoundaryOptions {
     /// Largest change of the moving joint between polyline vertices (rad). The chord error of an
     /// arc of radius r is about `r * step^2 / 8`.

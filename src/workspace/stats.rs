@@ -9,7 +9,7 @@ use super::{Aabb, WorkspaceError};
 use crate::kinematics::Robot;
 
 /// Options of [`statistics`].
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct StatsOptions {
     /// The grid of the area or volume and of the posture regions.
     pub grid: GridOptions,
@@ -31,7 +31,7 @@ impl Default for StatsOptions {
 }
 
 /// Measures of one posture class.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct ClassMeasure {
     /// Class name, e.g. "elbow down".
     pub name: String,
@@ -42,7 +42,7 @@ pub struct ClassMeasure {
 }
 
 /// Summary of a workspace.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct WorkspaceStats {
     /// Whether the arm is planar (then areas, else volumes).
     pub planar: bool,
@@ -156,14 +156,14 @@ pub fn statistics(
         cell_size: grid.grid.cell_size(),
         resolution: opts.grid.resolution,
         samples,
+        measure_method: method_words(&grid.method, opts.grid.resolution),
         method: grid.method,
-        measure_method: method_words(grid.method, opts.grid.resolution),
         measure_error: None,
     })
 }
 
 /// How a grid measure was computed, in words.
-fn method_words(method: GridMethod, resolution: usize) -> String {
+fn method_words(method: &GridMethod, resolution: usize) -> String {
     match method {
         GridMethod::ClosedForm { .. } => {
             format!("closed-form IK at the centres of a {resolution} grid")

@@ -33,7 +33,7 @@ use super::{Aabb, WorkspaceError, WorkspaceStats};
 use crate::kinematics::Robot;
 
 /// The view of a map.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum MapView {
     /// The arm plane of a planar arm, base-frame (x, y) (m).
     Plane,
@@ -44,7 +44,7 @@ pub enum MapView {
 }
 
 /// Which point of the arm the workspace is of.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 pub enum TrackedPoint {
     /// The end-effector (tool or flange) position.
     #[default]
@@ -55,7 +55,7 @@ pub enum TrackedPoint {
 }
 
 /// Continuous values per cell.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 pub enum MapValues {
     /// Posture classes only.
     #[default]
@@ -67,7 +67,7 @@ pub enum MapValues {
 }
 
 /// What to compute.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct MapRequest {
     /// View.
     pub view: MapView,
@@ -103,7 +103,7 @@ impl Default for MapRequest {
 }
 
 /// Continuous values of the cells.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct CellValues {
     /// Cells across and down of the values (the same rectangle as the map; may be coarser than
     /// the class cells).
@@ -121,7 +121,7 @@ pub struct CellValues {
 }
 
 /// What a curve of a map is.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum CurveRole {
     /// Boundary of the reachable set.
     Boundary,
@@ -132,7 +132,7 @@ pub enum CurveRole {
 }
 
 /// A curve of a map in view coordinates (m).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct MapCurve {
     /// Points (view coordinates, m).
     pub points: Vec<[f64; 2]>,
@@ -141,7 +141,7 @@ pub struct MapCurve {
 }
 
 /// A workspace map (see the module documentation).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct WorkspaceMap {
     /// View.
     pub view: MapView,

@@ -177,9 +177,9 @@ pub(super) fn statistics(e: &ExactPlanar) -> WorkspaceStats {
         samples: 0,
         method: GridMethod::ClosedForm {
             family: if e.orientation_free() {
-                "three-link planar arm"
+                "three-link planar arm".into()
             } else {
-                "two-link planar arm"
+                "two-link planar arm".into()
             },
             orientations: 0,
         },

@@ -3,7 +3,7 @@
 use rayon::prelude::*;
 
 /// A cell cut by an edge: the class masks of a 4 x 4 grid of sub-samples inside it.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct EdgeCell {
     /// Cell index (row-major from the top row).
     pub index: u32,

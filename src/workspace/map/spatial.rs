@@ -654,7 +654,7 @@ impl Section {
             resolution: n,
             samples: 0,
             method: GridMethod::ClosedForm {
-                family: self.family,
+                family: self.family.into(),
                 orientations: if self.exact() { 1 } else { APPROACHES },
             },
             measure_method: format!(

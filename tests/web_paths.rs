@@ -1,0 +1,180 @@
+//! The web build's ways of doing what the desktop does, run natively (the browser itself is
+//! tested by `web/test.sh`): the workspace job in slices with its statistics and map computed by
+//! an offload worker (here a synchronous stand-in that runs the worker's own function) gives the
+//! desktop's figure (to anti-aliased edges); the worker's answers, after the trip through a model file
+//! and JSON, equal the direct computation. Needs a graphics adapter (fails without one).
+
+use armlab::app::offload::{Answer, Offload, Request, Task, answer};
+use armlab::app::workspace_job::{OVERLAY_SAMPLES, WorkspaceJob};
+use armlab::kinematics::models::built_in;
+use armlab::render::Gpu;
+use armlab::workspace::{
+    MapRequest, MapValues, MapView, StatsOptions, TrackedPoint, compute_map, map_statistics,
+};
+
+/// The worker, run in place: each request answered by the next poll, as `worker.js` would.
+#[derive(Default)]
+struct InPlace {
+    pending: Option<String>,
+    requests: usize,
+}
+
+impl Offload for InPlace {
+    fn submit(&mut self, request: String) -> bool {
+        self.requests += 1;
+        self.pending = Some(answer(&request));
+        true
+    }
+    fn poll(&mut self) -> Option<String> {
+        self.pending.take()
+    }
+}
+
+fn json(v: &impl serde::Serialize) -> serde_json::Value {
+    serde_json::to_value(v).unwrap()
+}
+
+/// Equal, numbers to 1e-12 relative (sums over cells may be added in another order).
+fn assert_close(a: &serde_json::Value, b: &serde_json::Value, at: &str) {
+    use serde_json::Value as V;
+    match (a, b) {
+        (V::Number(x), V::Number(y)) => {
+            let (x, y) = (x.as_f64().unwrap(), y.as_f64().unwrap());
+            assert!(
+                (x - y).abs() <= 1e-12 * x.abs().max(y.abs()).max(1.0),
+                "{at}: {x} vs {y}"
+            );
+        }
+        (V::Array(x), V::Array(y)) => {
+            assert_eq!(x.len(), y.len(), "{at}");
+            for (k, (p, q)) in x.iter().zip(y).enumerate() {
+                assert_close(p, q, &format!("{at}[{k}]"));
+            }
+        }
+        (V::Object(x), V::Object(y)) => {
+            assert_eq!(x.len(), y.len(), "{at}");
+            for (k, p) in x {
+                assert_close(p, &y[k], &format!("{at}.{k}"));
+            }
+        }
+        _ => assert_eq!(a, b, "{at}"),
+    }
+}
+
+#[test]
+fn the_sliced_job_with_a_worker_makes_the_desktops_figure() {
+    let gpu = Gpu::new_headless().unwrap_or_else(|e| panic!("{e}"));
+    for name in ["planar2", "puma560"] {
+        let robot = built_in(name).unwrap();
+        let threaded = WorkspaceJob::start(robot.clone(), name.to_string());
+        threaded.wait();
+        let sliced = WorkspaceJob::start_sliced(robot, name.to_string());
+        let mut worker = InPlace::default();
+        let mut frames = 0;
+        while sliced.progress().is_some() {
+            sliced.step(Some(&gpu), Some(&mut worker));
+            frames += 1;
+            std::thread::sleep(std::time::Duration::from_millis(2));
+            assert!(
+                frames < 10_000,
+                "{name}: the sliced job never finishes (progress {:?})",
+                sliced.progress()
+            );
+        }
+        assert!(sliced.error().is_none(), "{name}: {:?}", sliced.error());
+        assert!(
+            sliced.figure_error().is_none(),
+            "{name}: {:?}",
+            sliced.figure_error()
+        );
+        assert!(
+            worker.requests >= 2,
+            "{name}: statistics and map go to the worker"
+        );
+        assert_eq!(sliced.dots().map(<[_]>::len), Some(OVERLAY_SAMPLES));
+        let (a, b) = (threaded.figure().unwrap(), sliced.figure().unwrap());
+        assert_eq!(a.dimensions(), b.dimensions());
+        // The same results painted: the pixels agree but for anti-aliased edges of glyphs and
+        // dashes (the figure was laid out three times, two attempts waiting for the worker, so
+        // egui's font atlas and tessellation caches differ): at most 0.5 % of the pixels; the
+        // results themselves are compared exactly in the next test.
+        let worst = a
+            .as_raw()
+            .iter()
+            .zip(b.as_raw())
+            .map(|(p, q)| p.abs_diff(*q))
+            .max();
+        let differ = a.pixels().zip(b.pixels()).filter(|(p, q)| p != q).count();
+        if differ * 200 > a.pixels().len() {
+            let dir = std::env::temp_dir();
+            a.save(dir.join(format!("web_paths_{name}_threaded.png")))
+                .unwrap();
+            b.save(dir.join(format!("web_paths_{name}_sliced.png")))
+                .unwrap();
+            panic!(
+                "{name}: the figures differ in {differ} pixels, by up to {worst:?} (both in {})",
+                dir.display()
+            );
+        }
+        assert!(frames > OVERLAY_SAMPLES / 4096, "{name}: {frames} frames");
+    }
+}
+
+#[test]
+fn the_workers_answers_equal_the_direct_computation() {
+    for name in [
+        "puma560",
+        "anthropomorphic_spherical_wrist",
+        "humanoid",
+        "planar3",
+    ] {
+        let robot = built_in(name).unwrap();
+        let fallback = StatsOptions {
+            samples: 20_000,
+            ..StatsOptions::default()
+        };
+        let point = TrackedPoint::WristCentre;
+        let task = Task::Statistics {
+            point,
+            fallback: fallback.clone(),
+        };
+        // Edited (a new name): the robot travels as a model file, where it has one.
+        let mut edited = robot.clone();
+        edited.name = format!("{name} (edited)");
+        let spec = if Request::new(&edited, name, task.clone()).is_ok() {
+            "edited"
+        } else {
+            name
+        };
+        let sent = if spec == name { &robot } else { &edited };
+        let request = serde_json::to_string(&Request::new(sent, spec, task).unwrap()).unwrap();
+        match serde_json::from_str::<Answer>(&answer(&request)).unwrap() {
+            Answer::Statistics(s) => {
+                let direct = map_statistics(&robot, point, &fallback).unwrap();
+                assert_close(&json(&s), &json(&direct), name);
+            }
+            other => panic!("{name}: {other:?}"),
+        }
+        let req = MapRequest {
+            view: MapView::Top,
+            point,
+            values: MapValues::Classes,
+            cells: [48, 36],
+            bounds: Some([-2.0, 2.0, -1.5, 1.5]),
+            samples: 20_000,
+            seed: 3,
+            end_effector: 0,
+        };
+        let request = Request::new(sent, spec, Task::Map(req.clone())).unwrap();
+        let text = serde_json::to_string(&request).unwrap();
+        match serde_json::from_str::<Answer>(&answer(&text)).unwrap() {
+            Answer::Map(m) => assert_eq!(m, compute_map(&robot, &req).unwrap(), "{name}"),
+            other => panic!("{name}: {other:?}"),
+        }
+    }
+    // A request the worker cannot read is an answer, not a crash.
+    assert!(matches!(
+        serde_json::from_str::<Answer>(&answer("{not json")).unwrap(),
+        Answer::Error(e) if e.contains("bad request")
+    ));
+}
