@@ -70,7 +70,8 @@ impl WebHandle {
 
     /// The app's state as JSON: `{"started", "model", "dof", "q" (rad, m), "position" (m),
     /// "rpy_deg", "solutions", "within_limits", "gizmo" ([x, y] in CSS pixels of a translation
-    /// handle), "workspace_progress", "messages", "frames", "panicked"}`.
+    /// handle), "workspace_progress" (0..1), "workspace_figure" ([w, h] px), "workspace_dots",
+    /// "workspace_error", "messages", "frames", "panicked"}`.
     pub fn status(&self) -> String {
         let panicked = self.runner.has_panicked();
         let Some(app) = self.runner.app_mut::<ArmlabApp>() else {
