@@ -8,7 +8,8 @@ only). Serves the built folder on 127.0.0.1 and checks, from the page:
    SwiftShader) within a stated tolerance, and the arm's link colour is there;
 3. a scripted mouse drag on the IK target's gizmo changes the pose readout;
 4. W computes the workspace in slices while the page keeps drawing: dots and the 2D figure;
-5. the Screenshot button saves the window as a PNG download;
+5. the Screenshot button saves the window as a PNG download; a model file dropped on the page
+   opens;
 6. the Puma (``?model=puma560&q=...``, a generic pose) shows 8 solutions;
 7. no console errors, no panic.
 
@@ -316,6 +317,22 @@ def check_workspace(d):
     press(d, "w")
 
 
+def check_drop(d):
+    """A model file dropped onto the page opens (the browser reads it asynchronously)."""
+    with open(os.path.join(ROOT, "assets/robots/planar3.toml")) as f:
+        text = f.read()
+    d.js("""
+        const dt = new DataTransfer();
+        dt.items.add(new File([arguments[0]], "planar3.toml", {type: "application/toml"}));
+        const c = document.getElementById('armlab_canvas');
+        for (const kind of ['dragenter', 'dragover', 'drop']) {
+            c.dispatchEvent(new DragEvent(kind, {dataTransfer: dt, bubbles: true, cancelable: true}));
+        }
+    """, text)
+    st = wait_for(d, "the dropped planar3.toml to open", lambda s: s["dof"] == 3, 10)
+    print(f"  dropped planar3.toml: {st['model']} ({st['dof']} DOF)")
+
+
 def check_screenshot_download(d, folder):
     """The Screenshot button (top bar) saves the window as a PNG download."""
     d.call("POST", f"/session/{d.sid}/goog/cdp/execute", {
@@ -375,6 +392,7 @@ def main():
         downloads = tempfile.mkdtemp(prefix="armlab-downloads-")
         check_screenshot_download(d, downloads)
         shutil.rmtree(downloads, ignore_errors=True)
+        check_drop(d)
         st, ms = open_page(d, url + "?model=puma560&q=0.3,0.8,-1,0.4,0.6,0.2")
         st = wait_for(d, "the Puma's solutions", lambda s: s.get("solutions") == 8, 10)
         print(f"  ?model=puma560&q=...: {st['model']}, {st['solutions']} solutions "
