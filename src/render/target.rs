@@ -62,44 +62,10 @@ impl RenderTarget {
             height,
             depth_or_array_layers: 1,
         };
-        let texture = |label, format, samples, usage, view_formats: &[wgpu::TextureFormat]| {
-            gpu.device.create_texture(&wgpu::TextureDescriptor {
-                label: Some(label),
-                size,
-                mip_level_count: 1,
-                sample_count: samples,
-                dimension: wgpu::TextureDimension::D2,
-                format,
-                usage,
-                view_formats,
-            })
+        let texture = |label, format, samples, usage| {
+            make_texture(&gpu.device, label, size, format, samples, usage, &[])
         };
-        let color_usage = wgpu::TextureUsages::RENDER_ATTACHMENT
-            | wgpu::TextureUsages::COPY_SRC
-            | wgpu::TextureUsages::TEXTURE_BINDING;
-        // The non-sRGB alias for egui needs view-format support, which some GL drivers lack;
-        // there the texture is made without it and `egui_view` falls back to the sRGB view.
-        let alias = gpu.device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let aliased = texture(
-            "armlab colour",
-            COLOR_FORMAT,
-            1,
-            color_usage,
-            &[EGUI_FORMAT],
-        );
-        let (color, encoded) = match pollster::block_on(alias.pop()) {
-            None if !copy => (aliased, None),
-            _ => {
-                let usage = wgpu::TextureUsages::RENDER_ATTACHMENT
-                    | wgpu::TextureUsages::TEXTURE_BINDING
-                    | wgpu::TextureUsages::COPY_SRC;
-                let encoded = texture("armlab colour (encoded)", EGUI_FORMAT, 1, usage, &[]);
-                (
-                    texture("armlab colour", COLOR_FORMAT, 1, color_usage, &[]),
-                    Some(encoded),
-                )
-            }
-        };
+        let (color, encoded) = color_textures(&gpu.device, size, copy);
         let color_view = color.create_view(&wgpu::TextureViewDescriptor::default());
         let msaa_view = (sample_count > 1).then(|| {
             texture(
@@ -107,7 +73,6 @@ impl RenderTarget {
                 COLOR_FORMAT,
                 sample_count,
                 wgpu::TextureUsages::RENDER_ATTACHMENT,
-                &[],
             )
             .create_view(&wgpu::TextureViewDescriptor::default())
         });
@@ -116,7 +81,6 @@ impl RenderTarget {
             DEPTH_FORMAT,
             sample_count,
             wgpu::TextureUsages::RENDER_ATTACHMENT,
-            &[],
         )
         .create_view(&wgpu::TextureViewDescriptor::default());
         for scope in [invalid, oom] {
@@ -226,5 +190,62 @@ impl RenderTarget {
     /// any width reads back without shear.
     pub fn read_rgba(&self, gpu: &Gpu) -> Result<image::RgbaImage, RenderError> {
         read_texture_rgba(&gpu.device, &gpu.queue, &self.color)
+    }
+}
+
+/// A 2D texture of `size` with one mip level.
+fn make_texture(
+    device: &wgpu::Device,
+    label: &str,
+    size: wgpu::Extent3d,
+    format: wgpu::TextureFormat,
+    sample_count: u32,
+    usage: wgpu::TextureUsages,
+    view_formats: &[wgpu::TextureFormat],
+) -> wgpu::Texture {
+    device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size,
+        mip_level_count: 1,
+        sample_count,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage,
+        view_formats,
+    })
+}
+
+/// The colour texture, with the [`EGUI_FORMAT`] view alias egui samples. The alias needs
+/// view-format support, which some GL drivers and WebGL2 lack: there (or when `copy` asks for
+/// it) the texture is made without it, with an [`EGUI_FORMAT`] copy that the renderer
+/// re-encodes after every frame.
+fn color_textures(
+    device: &wgpu::Device,
+    size: wgpu::Extent3d,
+    copy: bool,
+) -> (wgpu::Texture, Option<wgpu::Texture>) {
+    let usage = wgpu::TextureUsages::RENDER_ATTACHMENT
+        | wgpu::TextureUsages::COPY_SRC
+        | wgpu::TextureUsages::TEXTURE_BINDING;
+    let colour = |view_formats| {
+        make_texture(
+            device,
+            "armlab colour",
+            size,
+            COLOR_FORMAT,
+            1,
+            usage,
+            view_formats,
+        )
+    };
+    let alias = device.push_error_scope(wgpu::ErrorFilter::Validation);
+    let aliased = colour(&[EGUI_FORMAT]);
+    match pollster::block_on(alias.pop()) {
+        None if !copy => (aliased, None),
+        _ => {
+            let label = "armlab colour (encoded)";
+            let encoded = make_texture(device, label, size, EGUI_FORMAT, 1, usage, &[]);
+            (colour(&[]), Some(encoded))
+        }
     }
 }
