@@ -21,24 +21,12 @@ pub enum HeadlessError {
 /// Writes `img` as an 8-bit RGBA PNG (fast compression, no timestamps or metadata, so the same
 /// pixels always give the same bytes).
 pub fn write_png(img: &image::RgbaImage, path: &Path) -> Result<(), HeadlessError> {
-    use image::ImageEncoder;
     let wrap = |source| HeadlessError::Write {
         path: path.to_path_buf(),
         source,
     };
     let file = std::fs::File::create(path).map_err(|e| wrap(image::ImageError::IoError(e)))?;
-    let enc = image::codecs::png::PngEncoder::new_with_quality(
-        std::io::BufWriter::new(file),
-        image::codecs::png::CompressionType::Fast,
-        image::codecs::png::FilterType::Adaptive,
-    );
-    enc.write_image(
-        img.as_raw(),
-        img.width(),
-        img.height(),
-        image::ExtendedColorType::Rgba8,
-    )
-    .map_err(wrap)
+    crate::figure::encode_png(img, std::io::BufWriter::new(file)).map_err(wrap)
 }
 
 /// A progress bar on stderr when stdout is a terminal; a no-op otherwise.

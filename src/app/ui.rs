@@ -242,20 +242,8 @@ impl AppUi {
     /// offers it as the download `armlab-<stem>.png` where files are downloads (a browser); the
     /// message says which.
     pub fn deliver_png(&mut self, img: &image::RgbaImage, stem: &str) -> Result<String, String> {
-        use image::ImageEncoder;
         let mut png = Vec::new();
-        image::codecs::png::PngEncoder::new_with_quality(
-            &mut png,
-            image::codecs::png::CompressionType::Fast,
-            image::codecs::png::FilterType::Adaptive,
-        )
-        .write_image(
-            img.as_raw(),
-            img.width(),
-            img.height(),
-            image::ExtendedColorType::Rgba8,
-        )
-        .map_err(|e| e.to_string())?;
+        crate::figure::encode_png(img, &mut png).map_err(|e| e.to_string())?;
         let name = format!("armlab-{stem}.png");
         if self.file_picker.download(&name, "image/png", &png) {
             return Ok(format!("downloading {name}"));

@@ -82,3 +82,20 @@ pub fn apply_style(ctx: &egui::Context, theme: Theme) {
 pub fn pixels_per_point(width: u32) -> f32 {
     (width as f32 / 800.0).max(0.25)
 }
+
+/// Encodes `img` as an 8-bit RGBA PNG into `out` (fast compression, no timestamps or metadata,
+/// so the same pixels always give the same bytes): what figures, screenshots and downloads write.
+pub fn encode_png(img: &image::RgbaImage, out: impl std::io::Write) -> image::ImageResult<()> {
+    use image::ImageEncoder;
+    image::codecs::png::PngEncoder::new_with_quality(
+        out,
+        image::codecs::png::CompressionType::Fast,
+        image::codecs::png::FilterType::Adaptive,
+    )
+    .write_image(
+        img.as_raw(),
+        img.width(),
+        img.height(),
+        image::ExtendedColorType::Rgba8,
+    )
+}
