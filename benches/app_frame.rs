@@ -12,9 +12,9 @@
 use armlab::app::state::AppState;
 use armlab::app::ui::AppUi;
 use armlab::app::viewport::Viewport3d;
-use armlab::figure::offscreen::{FIGURE_FORMAT, Offscreen};
-use armlab::figure::ui_painter::{UiFrame, UiPainter};
 use armlab::render::Gpu;
+use armlab::ui_render::offscreen::{FIGURE_FORMAT, Offscreen};
+use armlab::ui_render::painter::{UiFrame, UiPainter};
 use criterion::{Criterion, criterion_group, criterion_main};
 
 const SIZE: [u32; 2] = [1280, 800];
@@ -56,7 +56,7 @@ impl Frame {
         let start = app.state.robot().fk(app.state.q()).unwrap();
         app.state.set_target(0, start).unwrap();
         offscreen.set_background(Some(app.background()));
-        let texture = armlab::figure::offscreen::canvas(&gpu.device, SIZE, false);
+        let texture = armlab::ui_render::offscreen::canvas(&gpu.device, SIZE, false);
         let view = texture.create_view(&Default::default());
         let painter = UiPainter::new(&gpu.device, FIGURE_FORMAT);
         let mut f = Self {

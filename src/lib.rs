@@ -85,18 +85,22 @@ pub mod calibration;
 pub mod camera;
 #[cfg(feature = "app")]
 pub mod cli;
+pub mod construction;
 #[cfg(feature = "gui")]
 pub mod figure;
 #[cfg(feature = "app")]
 pub mod headless;
 pub mod input;
 pub mod kinematics;
+pub mod mesh;
 pub mod model_file;
 pub mod redundancy;
 #[cfg(feature = "gui")]
 pub mod render;
 #[cfg(feature = "gui")]
 pub mod scene;
+#[cfg(feature = "gui")]
+pub mod ui_render;
 pub mod urdf;
 #[cfg(all(feature = "gui", target_arch = "wasm32"))]
 pub mod web;

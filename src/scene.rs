@@ -5,8 +5,9 @@
 //! triads with labels, the ground grid and the end-effector.
 
 use crate::kinematics::pose::{Pose, rot_x, trans_x};
-use crate::kinematics::visual::{TriMesh, VisualGeometry};
+use crate::kinematics::visual::VisualGeometry;
 use crate::kinematics::{Convention, JointGeometry, JointKind, KinematicsError, Robot};
+use crate::mesh::TriMesh;
 use nalgebra::{Matrix4, Point3, Rotation3, Unit, Vector3};
 use std::sync::Arc;
 
@@ -238,39 +239,6 @@ fn segment_transform(a: &Vector3<f64>, b: &Vector3<f64>, radius: f64) -> Option<
     Some(m)
 }
 
-/// A characteristic length of the robot (m): the longest sum of DH lengths and offsets (and
-/// prismatic strokes) along a chain from the base to an end-effector, at least 0.2 m. Sizes
-/// joint bodies, triads and the grid.
-pub fn robot_scale(robot: &Robot) -> f64 {
-    let len = |j: &crate::kinematics::Joint| match &j.geometry {
-        JointGeometry::Dh { row, .. } => {
-            row.a.abs()
-                + row.d.abs()
-                + if j.kind == JointKind::Prismatic && j.limits[1].is_finite() {
-                    j.limits[1].abs()
-                } else {
-                    0.0
-                }
-        }
-        JointGeometry::Origin {
-            parent_from_joint, ..
-        } => parent_from_joint.translation.vector.norm(),
-    };
-    let longest = robot
-        .end_effectors()
-        .iter()
-        .map(|e| {
-            let chain: f64 = robot
-                .chain_to(e.parent)
-                .iter()
-                .map(|&j| len(&robot.joints()[j]) + robot.joints()[j].pre.translation.vector.norm())
-                .sum();
-            chain + e.tool.translation.vector.norm()
-        })
-        .fold(0.0, f64::max);
-    longest.max(0.2)
-}
-
 /// For joint `j`: the frame whose z (DH) or `axis` (URDF) is the joint axis, in the world.
 fn axis_frame(robot: &Robot, frames: &[Pose], j: usize) -> (Pose, Unit<Vector3<f64>>) {
     let joint = &robot.joints()[j];
@@ -292,7 +260,7 @@ fn axis_frame(robot: &Robot, frames: &[Pose], j: usize) -> (Pose, Unit<Vector3<f
 /// The arm of `robot` at `q`, in world coordinates.
 pub fn arm_scene(robot: &Robot, q: &[f64], style: &ArmStyle) -> Result<Scene, KinematicsError> {
     let frames = robot.fk_frames(q)?;
-    let scale = robot_scale(robot);
+    let scale = robot.longest_chain_length();
     let mut p = ArmPainter {
         s: Scene::default(),
         style,
@@ -543,7 +511,7 @@ pub fn ground_grid(scale: f32) -> Vec<Line> {
 /// each padded by the size of the joint bodies along the three axes (world, m).
 pub fn arm_points(robot: &Robot, q: &[f64]) -> Result<Vec<Point3<f32>>, KinematicsError> {
     let frames = robot.fk_frames(q)?;
-    let pad = robot_scale(robot) * 0.1;
+    let pad = robot.longest_chain_length() * 0.1;
     let mut out = Vec::new();
     let centres = std::iter::once(robot.base.translation.vector)
         .chain(frames.iter().map(|f| f.translation.vector))
@@ -581,7 +549,8 @@ pub fn arm_bounds(robot: &Robot, q: &[f64]) -> Result<(Point3<f32>, f32), Kinema
         hi = hi.sup(p);
     }
     let c = (lo + hi) * 0.5;
-    let r = pts.iter().map(|p| (p - c).norm()).fold(0.0, f64::max) + robot_scale(robot) * 0.08;
+    let r = pts.iter().map(|p| (p - c).norm()).fold(0.0, f64::max)
+        + robot.longest_chain_length() * 0.08;
     Ok((point32(&c), r as f32))
 }
 

@@ -6,9 +6,9 @@
 use armlab::app::state::AppState;
 use armlab::app::ui::AppUi;
 use armlab::app::viewport::{Viewport3d, build_scene};
-use armlab::figure::offscreen::Offscreen;
 use armlab::render::Gpu;
 use armlab::scene::{ArmStyle, MeshInstance, arm_scene};
+use armlab::ui_render::offscreen::Offscreen;
 
 fn gpu() -> Gpu {
     Gpu::new_headless().unwrap_or_else(|e| panic!("{e}"))
@@ -152,8 +152,8 @@ fn the_view_is_shown_texel_for_texel() {
 /// window shows is what the screenshots and goldens show.
 #[test]
 fn the_ui_painter_paints_the_window_as_egui_wgpu_does() {
-    use armlab::figure::offscreen::FIGURE_FORMAT;
-    use armlab::figure::ui_painter::{UiFrame, UiPainter};
+    use armlab::ui_render::offscreen::FIGURE_FORMAT;
+    use armlab::ui_render::painter::{UiFrame, UiPainter};
     let gpu = gpu();
     let size = [1280u32, 800];
     let mut app = AppUi::new(AppState::from_spec("puma560").unwrap());
@@ -203,7 +203,7 @@ fn the_ui_painter_paints_the_window_as_egui_wgpu_does() {
             size_px: size,
             pixels_per_point: out.pixels_per_point,
         };
-        let texture = armlab::figure::offscreen::canvas(&gpu.device, size, true);
+        let texture = armlab::ui_render::offscreen::canvas(&gpu.device, size, true);
         let view = texture.create_view(&Default::default());
         painter.render_frame(&gpu.device, &gpu.queue, &view, &frame, app.background());
         // Each draw call costs a software rasterizer about as much as a hundred widgets: the

@@ -2,7 +2,7 @@
 //! labels equals the quantity it names, computed independently here (forward kinematics, angles
 //! between vectors, the DH table's own numbers).
 
-use armlab::kinematics::construction::{ConstructionError, TwoLinkConstruction, WristPoint};
+use armlab::construction::{ConstructionError, TwoLinkConstruction, WristPoint};
 use armlab::kinematics::models::anthropomorphic_spherical_wrist;
 use std::f64::consts::PI;
 
@@ -92,8 +92,8 @@ fn the_wrist_point_is_where_the_wrist_axes_meet() {
 }
 
 /// The arc labelled `name` in the steps: its signed angle (rad) and label.
-fn arc(steps: &[armlab::kinematics::construction::steps::Step], name: &str) -> (f64, String) {
-    use armlab::kinematics::construction::steps::Mark;
+fn arc(steps: &[armlab::construction::steps::Step], name: &str) -> (f64, String) {
+    use armlab::construction::steps::Mark;
     steps
         .iter()
         .flat_map(|s| &s.marks)
@@ -115,7 +115,7 @@ fn same_angle(a: f64, b: f64) -> bool {
 /// planar arms and the anthropomorphic arms, and the label prints that angle.
 #[test]
 fn construction_angles_are_the_joints_they_name() {
-    use armlab::kinematics::construction::steps::construction;
+    use armlab::construction::steps::construction;
     use armlab::kinematics::models::built_in;
     let mut s = 11u64;
     for (model, names) in [
@@ -183,8 +183,8 @@ fn construction_angles_are_the_joints_they_name() {
 }
 
 /// The segment whose label starts with `name` ("d3 = 0.600 m"): its length and label.
-fn segment(steps: &[armlab::kinematics::construction::steps::Step], name: &str) -> (f64, String) {
-    use armlab::kinematics::construction::steps::Mark;
+fn segment(steps: &[armlab::construction::steps::Step], name: &str) -> (f64, String) {
+    use armlab::construction::steps::Mark;
     steps
         .iter()
         .flat_map(|s| &s.marks)
@@ -216,7 +216,7 @@ fn label_value(label: &str) -> f64 {
 /// prismatic joint's value and prints it (millimetres); the joint values are those put in.
 #[test]
 fn every_family_draws_and_labels_its_joints() {
-    use armlab::kinematics::construction::steps::construction;
+    use armlab::construction::steps::construction;
     use armlab::kinematics::models::built_in;
     let mut s = 5u64;
     for (model, angles, lengths) in [

@@ -8,7 +8,7 @@ fn every_shader_parses_and_validates() {
     assert!(!SHADERS.is_empty());
     let ui = [(
         "ui.wgsl",
-        armlab::figure::ui_painter::UI_WGSL,
+        armlab::ui_render::painter::UI_WGSL,
         &["vs_main", "fs_gamma", "fs_linear"][..],
     )];
     let render = SHADERS
@@ -68,7 +68,7 @@ fn every_shader_translates_to_webgl2_glsl() {
     use naga::back::glsl;
     let ui = [(
         "ui.wgsl",
-        armlab::figure::ui_painter::UI_WGSL,
+        armlab::ui_render::painter::UI_WGSL,
         &[
             "vs_main",
             "fs_gamma",

@@ -2,9 +2,9 @@
 //! where that changes no pixel (no clip rectangle cuts them), and a mesh its clip rectangle
 //! cuts is still cut. Needs a graphics adapter (Mesa's lavapipe without a GPU).
 
-use armlab::figure::offscreen::{FIGURE_FORMAT, canvas};
-use armlab::figure::ui_painter::{UiFrame, UiPainter};
 use armlab::render::Gpu;
+use armlab::ui_render::offscreen::{FIGURE_FORMAT, canvas};
+use armlab::ui_render::painter::{UiFrame, UiPainter};
 use egui::epaint::{ClippedPrimitive, ImageDelta, Mesh, Primitive, TextureId};
 use egui::{Color32, ColorImage, Rect, TextureOptions, pos2};
 

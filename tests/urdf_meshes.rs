@@ -8,7 +8,8 @@ mod common;
 use armlab::camera::{Camera, Preset, Projection};
 use armlab::figure::Theme;
 use armlab::figure::figures::{Figures, Scene3d};
-use armlab::kinematics::visual::{TriMesh, VisualGeometry};
+use armlab::kinematics::visual::VisualGeometry;
+use armlab::mesh::TriMesh;
 use armlab::scene::{ArmStyle, arm_scene};
 use armlab::urdf::{load_urdf, set_package_paths};
 use std::path::{Path, PathBuf};
@@ -224,11 +225,7 @@ fn obj_and_collada_meshes_load() {
             .map(|p| p.iter().fold(0.0f32, |m, v| m.max(v.abs())))
             .fold(0.0, f32::max);
         assert!((far - 0.2).abs() < 1e-6, "{file}: scaled extent {far}");
-        assert_eq!(
-            mesh.winding(),
-            armlab::kinematics::visual::Winding::Outward,
-            "{file}"
-        );
+        assert_eq!(mesh.winding(), armlab::mesh::Winding::Outward, "{file}");
     }
 }
 

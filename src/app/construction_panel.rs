@@ -1,10 +1,10 @@
 //! "Show the construction": the geometry behind the closed-form solution the arm is in (Sect.
 //! 2.12), drawn in the 3D view one step at a time, with each step's formula and numbers in the
-//! side panel. The steps come from [`crate::kinematics::construction::steps::construction`] at
+//! side panel. The steps come from [`crate::construction::steps::construction`] at
 //! the current q, so the overlay follows the target while it is dragged.
 
 use super::ui::AppUi;
-use crate::kinematics::construction::steps::{Mark, Step, construction};
+use crate::construction::steps::{Mark, Step, construction};
 use crate::scene::{Dot, Label, Line, Scene, point32};
 use egui::RichText;
 use nalgebra::{Rotation3, Unit, Vector3};

@@ -1,11 +1,11 @@
 //! The app's widgets laid out in a context of their own and painted by
-//! [`crate::figure::ui_painter::UiPainter`] inside one paint callback of eframe's frame, rather
+//! [`crate::ui_render::painter::UiPainter`] inside one paint callback of eframe's frame, rather
 //! than painted by egui-wgpu (whose shader is several times dearer per pixel on Mesa 22's
 //! software rasterizer; see the painter's documentation). eframe's context keeps the window:
 //! it receives the input, which is handed on unchanged, and gets back what the inner context
 //! asks of the platform (cursor, clipboard, repaints, viewport commands).
 
-use crate::figure::ui_painter::UiFrame;
+use crate::ui_render::painter::UiFrame;
 
 /// The inner context.
 #[derive(Default)]

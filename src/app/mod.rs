@@ -15,14 +15,13 @@ pub mod probe;
 pub mod redundancy_panel;
 pub mod screenshot;
 pub mod settings;
-pub mod singularity;
 pub mod state;
 pub mod ui;
 pub mod viewport;
 pub mod workspace_job;
 
-use crate::figure::ui_painter::UiPainter;
 use crate::render::Gpu;
+use crate::ui_render::painter::UiPainter;
 use ui::AppUi;
 use viewport::Viewport3d;
 
@@ -348,6 +347,9 @@ pub enum AppError {
     /// Headless rendering failed.
     #[error(transparent)]
     Figure(#[from] crate::figure::FigureError),
+    /// Painting the window offscreen failed.
+    #[error(transparent)]
+    UiRender(#[from] crate::ui_render::UiRenderError),
     /// Bad screenshot input.
     #[error("{0}")]
     Input(String),

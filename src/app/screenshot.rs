@@ -5,8 +5,8 @@ use super::AppError;
 use super::state::AppState;
 use super::ui::AppUi;
 use super::viewport::Viewport3d;
-use crate::figure::offscreen::Offscreen;
 use crate::render::Gpu;
+use crate::ui_render::offscreen::Offscreen;
 
 /// What to show in a screenshot.
 #[derive(Debug, Clone, Default)]

@@ -49,9 +49,9 @@ pub use units::{
     without_negative_zero,
 };
 
-use super::singularity::SingularityAnalyzer;
 use crate::kinematics::orientation::angle_axis_from_rotation;
 use crate::kinematics::pose::Pose;
+use crate::kinematics::singularity::SingularityAnalyzer;
 use crate::kinematics::{EulerKind, Robot};
 use nalgebra::{Rotation3, Translation3, Vector3};
 use std::collections::VecDeque;

@@ -309,10 +309,8 @@ impl AppUi {
             super::viewport::add_measured_poses(&mut scene, self.state.robot(), &r.poses);
         }
         if self.construction
-            && let Ok(steps) = crate::kinematics::construction::steps::construction(
-                self.state.robot(),
-                self.state.q(),
-            )
+            && let Ok(steps) =
+                crate::construction::steps::construction(self.state.robot(), self.state.q())
         {
             let current = self.construction_step.min(steps.len().saturating_sub(1));
             super::construction_panel::add_to_scene(&mut scene, &steps, current);

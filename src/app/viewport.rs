@@ -5,7 +5,7 @@
 use super::state::{AppState, Ghost};
 use crate::camera::Camera;
 use crate::render::{Gpu, RenderError, RenderSettings, RenderTarget, Renderer, ViewUniforms};
-use crate::scene::{ArmStyle, Dot, Label, Line, Scene, arm_scene, point32, robot_scale};
+use crate::scene::{ArmStyle, Dot, Label, Line, Scene, arm_scene, point32};
 use egui::TextureId;
 
 /// Multisampling of the viewport: 4x gives smooth edges on a projector. On a software
@@ -30,7 +30,7 @@ impl TextureRegistry for egui_wgpu::Renderer {
     }
 }
 
-impl TextureRegistry for crate::figure::ui_painter::UiPainter {
+impl TextureRegistry for crate::ui_render::painter::UiPainter {
     fn register(&mut self, device: &wgpu::Device, view: &wgpu::TextureView) -> TextureId {
         self.register_native(device, view)
     }
@@ -328,7 +328,7 @@ pub fn build_scene(state: &AppState, workspace: Option<&[Dot]>, projector: bool)
             l.width_px *= 1.6;
         }
     }
-    let scale = robot_scale(robot) as f32;
+    let scale = robot.longest_chain_length() as f32;
     for (ee, target) in state.targets().iter().enumerate() {
         if d.ghosts {
             for g in state.ghosts(ee) {
@@ -399,7 +399,7 @@ fn add_ghost(
     ee: usize,
     label: bool,
 ) {
-    let scale = robot_scale(robot) as f32;
+    let scale = robot.longest_chain_length() as f32;
     let mut ghost = ArmStyle {
         frames: false,
         frame_labels: false,

@@ -1,12 +1,12 @@
 //! [`Figures`]: one GPU device, the scene renderer and the egui offscreen renderer, making PNG
 //! figures of plots and of 3D scenes with their titles, legends and labels.
 
-use super::offscreen::Offscreen;
 use super::plot2d::{self, Plot2d};
 use super::{FigureError, Theme, apply_style, pixels_per_point};
 use crate::camera::Camera;
 use crate::render::{Gpu, RenderSettings, RenderTarget, Renderer, ViewUniforms};
 use crate::scene::Scene;
+use crate::ui_render::offscreen::Offscreen;
 use egui::Color32;
 
 /// Makes the raster of a plot for the data bounds and pixel size of its frame (see
@@ -87,12 +87,13 @@ impl Figures {
         });
         let id = tex.as_ref().map(egui::TextureHandle::id);
         let ppp = pixels_per_point(size[0]);
-        self.offscreen
+        Ok(self
+            .offscreen
             .render(&self.gpu.device, &self.gpu.queue, size, ppp, |ui| {
                 egui::CentralPanel::default().show(ui, |ui| {
                     plot2d::show(ui, plot, id);
                 });
-            })
+            })?)
     }
 
     /// A plot whose raster is made for the plot's own frame: a layout pass finds the frame's
@@ -127,12 +128,13 @@ impl Figures {
         });
         let image = tex.as_ref().map(|t| (t.id(), frame.bounds));
         let plot = &*plot;
-        self.offscreen
+        Ok(self
+            .offscreen
             .render(&self.gpu.device, &self.gpu.queue, size, ppp, |ui| {
                 egui::CentralPanel::default().show(ui, |ui| {
                     plot2d::show_at(ui, plot, image);
                 });
-            })
+            })?)
     }
 
     /// A 3D figure: the scene rendered by the app's renderer at full size, with title, legend
@@ -198,7 +200,7 @@ impl Figures {
                 paint_caption_and_legend(painter, rect, fig, text, ui.visuals().weak_text_color());
             });
         self.offscreen.free_texture(id);
-        result
+        Ok(result?)
     }
 }
 

@@ -5,13 +5,11 @@
 pub mod accuracy;
 pub mod figures;
 pub mod labels;
-pub mod offscreen;
 pub(crate) mod palette;
 pub mod plot2d;
 pub mod raster;
 pub mod self_motion;
 pub mod textbook;
-pub mod ui_painter;
 pub mod workspace;
 
 use thiserror::Error;
@@ -22,14 +20,9 @@ pub enum FigureError {
     /// The GPU layer failed (no adapter, device lost, readback).
     #[error(transparent)]
     Render(#[from] crate::render::RenderError),
-    /// A size of zero or above 8192 pixels.
-    #[error("figure size {width}x{height} is not between 1x1 and 8192x8192 pixels")]
-    Size {
-        /// Width asked for.
-        width: u32,
-        /// Height asked for.
-        height: u32,
-    },
+    /// Painting the figure's egui layout failed (its size, the GPU).
+    #[error(transparent)]
+    UiRender(#[from] crate::ui_render::UiRenderError),
     /// The workspace computation failed.
     #[error(transparent)]
     Workspace(#[from] crate::workspace::WorkspaceError),

@@ -1,6 +1,6 @@
 //! The excerpt's figures from one call (`armlab figure NAME`): Figs 2.29-2.33 and Problem 2.17,
 //! drawn with the textbook's labels by the same renderer and plot code as every other figure.
-//! The numbers come from the compute layers ([`crate::kinematics::construction`], the closed
+//! The numbers come from the compute layers ([`crate::construction`], the closed
 //! form, the exact workspace); this module only paints them.
 
 use super::figures::{Figures, Scene3d};
@@ -10,8 +10,8 @@ use super::plot2d::{Curve, Plot2d};
 use super::workspace::{ColorBy, WsFigureOptions, WsView, workspace_figure};
 use super::{FigureError, Theme};
 use crate::camera::Preset;
+use crate::construction::{TwoLinkConstruction, WristPoint};
 use crate::kinematics::Robot;
-use crate::kinematics::construction::{TwoLinkConstruction, WristPoint};
 use crate::kinematics::ik::closed_form::{ClosedForm, RawSolutions};
 use crate::scene::{ArmStyle, Dot, Label, Line, arm_scene, point32};
 use egui::Color32;
@@ -210,7 +210,7 @@ fn add_posture(
     plot: &mut Plot2d,
     k: &TwoLinkConstruction,
     i: usize,
-    pos: &crate::kinematics::construction::TwoLinkPosture,
+    pos: &crate::construction::TwoLinkPosture,
 ) {
     let p = k.p;
     let color = c32(CLASS_COLORS[i]);

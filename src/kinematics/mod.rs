@@ -5,12 +5,12 @@
 //! poses are named `world_from_x`. Units: metres and radians.
 
 pub mod closure;
-pub mod construction;
 pub mod dh;
 pub mod dh_derive;
 pub mod error;
 pub mod fk;
 mod frame;
+pub mod hold;
 pub mod ik;
 pub mod jacobian;
 pub mod models;
@@ -18,6 +18,7 @@ pub mod orientation;
 pub mod pose;
 pub mod redundancy;
 pub mod robot;
+pub mod singularity;
 pub mod trig;
 pub mod visual;
 

@@ -504,6 +504,41 @@ impl Robot {
         }
     }
 
+    /// The length of the longest chain (m): the longest sum of DH lengths and offsets (and
+    /// prismatic strokes) along a chain from the base to an end-effector, at least 0.2 m. Sizes
+    /// joint bodies, triads and the grid of drawings, and makes Jacobians dimensionless.
+    pub fn longest_chain_length(&self) -> f64 {
+        let len = |j: &Joint| match &j.geometry {
+            JointGeometry::Dh { row, .. } => {
+                row.a.abs()
+                    + row.d.abs()
+                    + if j.kind == JointKind::Prismatic && j.limits[1].is_finite() {
+                        j.limits[1].abs()
+                    } else {
+                        0.0
+                    }
+            }
+            JointGeometry::Origin {
+                parent_from_joint, ..
+            } => parent_from_joint.translation.vector.norm(),
+        };
+        let longest = self
+            .end_effectors()
+            .iter()
+            .map(|e| {
+                let chain: f64 = self
+                    .chain_to(e.parent)
+                    .iter()
+                    .map(|&j| {
+                        len(&self.joints()[j]) + self.joints()[j].pre.translation.vector.norm()
+                    })
+                    .sum();
+                chain + e.tool.translation.vector.norm()
+            })
+            .fold(0.0, f64::max);
+        longest.max(0.2)
+    }
+
     /// Whether `q` lies inside the limits (inclusive, with `tol` slack).
     pub fn within_limits(&self, q: &[f64], tol: f64) -> bool {
         q.len() == self.dof()

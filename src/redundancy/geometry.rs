@@ -111,7 +111,7 @@ pub(crate) fn sub2_sc(
     Some((sub1_sc(w1, &c, q), sub1_sc(w2, p, &c)))
 }
 
-pub(crate) use crate::kinematics::construction::meet;
+pub(crate) use crate::construction::meet;
 
 /// The orthonormal frame of `a` and the part of `b` perpendicular to it, as columns.
 pub(crate) fn triad(a: &Vector3<f64>, b: &Vector3<f64>) -> Matrix3<f64> {

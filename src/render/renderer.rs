@@ -8,7 +8,7 @@ use super::instances::{DrawLists, Projection};
 use super::pipelines::Pipelines;
 use super::settings::frame_uniforms;
 use super::{Gpu, RenderError, RenderSettings, RenderTarget, SAMPLE_COUNTS, ViewUniforms};
-use crate::kinematics::visual::{TriMesh, Winding};
+use crate::mesh::{TriMesh, Winding};
 use crate::scene::Scene;
 use std::collections::HashMap;
 use std::ops::Range;

@@ -9,7 +9,8 @@
 //! robot still loads. Meshes over [`MAX_TRIANGLES`] are decimated by vertex clustering.
 
 use crate::kinematics::pose::{Pose, rot_x, rot_y, rot_z};
-use crate::kinematics::visual::{COARSE_TRIANGLES, TriMesh, Visual, VisualGeometry};
+use crate::kinematics::visual::{Visual, VisualGeometry};
+use crate::mesh::{COARSE_TRIANGLES, TriMesh};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex, OnceLock};

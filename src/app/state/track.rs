@@ -30,17 +30,17 @@
 //! the target with a [`Reach`] that says how far out it is.
 
 use super::{AppState, Level, Reach};
-use crate::app::singularity::NEAR_RATIO;
+use crate::kinematics::Robot;
+use crate::kinematics::hold::{Held, hold_joints, hold_other_chains};
 use crate::kinematics::ik::closed_form::Family;
 use crate::kinematics::ik::numerical::{self, NumericalOptions};
 use crate::kinematics::ik::solver::{self, SolverChoice, by_posture, joint_distance};
 use crate::kinematics::ik::{IkResult, IkSolution, IkStatus, Target};
 use crate::kinematics::orientation::wrap_angle;
 use crate::kinematics::pose::{Pose, rot_z};
-use crate::kinematics::{Drive, JointGeometry, JointKind, Robot};
-use nalgebra::{Rotation3, Translation3};
+use crate::kinematics::singularity::NEAR_RATIO;
 
-/// A geometric singularity measure (see [`crate::app::singularity`]: a sine, or a distance over
+/// A geometric singularity measure (see [`crate::kinematics::singularity`]: a sine, or a distance over
 /// the robot's size) below which the previous configuration counts as near a singularity, where
 /// a locked posture label may change meaning. The Jacobian's conditioning ratio below
 /// [`NEAR_RATIO`] counts as well.
@@ -278,7 +278,11 @@ impl AppState {
             start[f.index] = self.q[f.index];
             held[f.index] = true;
         }
-        let Some((reduced, free)) = held_robot(&self.robot, &start, &held) else {
+        let Some(Held {
+            robot: reduced,
+            free,
+        }) = hold_joints(&self.robot, &start, &held)
+        else {
             return;
         };
         let seed: Vec<f64> = free.iter().map(|&k| start[k]).collect();
@@ -316,7 +320,7 @@ impl AppState {
     pub(super) fn shift_towards_q(&self, q: &mut [f64]) {
         let limits = self.robot.limits();
         for (k, v) in q.iter_mut().enumerate() {
-            if self.robot.dof_joint(k).kind != JointKind::Revolute {
+            if self.robot.dof_joint(k).kind != crate::kinematics::JointKind::Revolute {
                 continue;
             }
             let cand = self.q[k] + wrap_angle(*v - self.q[k]);
@@ -339,9 +343,9 @@ impl AppState {
         } else {
             Target::Position(t.translation.vector)
         };
-        let reduced = reduced_robot(&self.robot, &self.q, ee);
+        let reduced = hold_other_chains(&self.robot, &self.q, ee);
         let (robot, free): (&Robot, Vec<usize>) = match &reduced {
-            Some((r, free)) => (r, free.clone()),
+            Some(Held { robot: r, free }) => (r, free.clone()),
             None => (&self.robot, (0..self.robot.dof()).collect()),
         };
         let seed: Vec<f64> = free.iter().map(|&k| self.q[k]).collect();
@@ -421,133 +425,4 @@ impl AppState {
         }
         self.robot.base * local
     }
-}
-
-/// With several end-effectors: a copy of `robot` in which every actuated joint on another
-/// end-effector's chain is turned into a fixed joint at its value in `q` (coupled joints keep
-/// their live terms, the held ones folded into the offset), and the map from the copy's q
-/// indices to the original's. `None` when nothing is held.
-pub(super) fn reduced_robot(robot: &Robot, q: &[f64], ee: usize) -> Option<(Robot, Vec<usize>)> {
-    let ees = robot.end_effectors();
-    if ees.len() < 2 {
-        return None;
-    }
-    let joints = robot.joints();
-    let mut held_joint = vec![false; joints.len()];
-    for (i, e) in ees.iter().enumerate() {
-        if i != ee {
-            for &j in robot.chain_to(e.parent) {
-                held_joint[j] = true;
-                match &joints[j].drive {
-                    Drive::Coupled(terms) => {
-                        for &(src, _) in terms {
-                            held_joint[src] = true;
-                        }
-                    }
-                    Drive::Closure(c) => {
-                        held_joint[c.mechanism.crank] = true;
-                        held_joint[c.mechanism.arm] = true;
-                    }
-                    _ => {}
-                }
-            }
-        }
-    }
-    let held: Vec<bool> = robot
-        .actuated_joints()
-        .iter()
-        .map(|&j| held_joint[j])
-        .collect();
-    held_robot(robot, q, &held)
-}
-
-/// A copy of `robot` in which every `q[k]` with `held[k]` is turned into a fixed joint at its
-/// value in `q` (coupled joints keep their live terms, the held ones folded into the offset),
-/// and the map from the copy's q indices to the original's. `None` when nothing is held.
-pub(super) fn held_robot(robot: &Robot, q: &[f64], held: &[bool]) -> Option<(Robot, Vec<usize>)> {
-    if !held.iter().any(|&h| h) {
-        return None;
-    }
-    let joints = robot.joints();
-    let dof_of = |j: usize| match joints[j].drive {
-        Drive::Actuated(k) => Some(k),
-        _ => None,
-    };
-    let mut free = Vec::new();
-    let mut out = Vec::with_capacity(joints.len());
-    for (ji, j) in joints.iter().enumerate() {
-        let mut nj = j.clone();
-        match &j.drive {
-            Drive::Actuated(k) if held[*k] => hold(&mut nj, q[*k]),
-            Drive::Actuated(k) => {
-                nj.drive = Drive::Actuated(free.len());
-                free.push(*k);
-            }
-            Drive::Coupled(terms) => {
-                let mut constant = 0.0;
-                let mut live = Vec::new();
-                for &(src, c) in terms {
-                    match dof_of(src) {
-                        Some(k) if held[k] => constant += c * q[k],
-                        _ => live.push((src, c)),
-                    }
-                }
-                if live.is_empty() {
-                    hold(&mut nj, constant);
-                } else {
-                    nj.drive = Drive::Coupled(live);
-                    nj.offset += constant;
-                }
-            }
-            Drive::Closure(c) => {
-                let held_src = [c.mechanism.crank, c.mechanism.arm]
-                    .map(|s| dof_of(s).is_some_and(|k| held[k]));
-                if held_src.iter().any(|&h| h) {
-                    // A loop read from a held and a free joint has no closed form here.
-                    if !held_src.iter().all(|&h| h) {
-                        return None;
-                    }
-                    hold(&mut nj, robot.joint_variable(ji, q));
-                }
-            }
-            Drive::None => {}
-        }
-        out.push(nj);
-    }
-    let ees = robot.end_effectors().to_vec();
-    let r = Robot::new(robot.name.clone(), robot.base, out, ees).ok()?;
-    Some((r, free))
-}
-
-/// Turns a joint into a fixed one at variable `value` (offset included in the geometry).
-fn hold(j: &mut crate::kinematics::Joint, value: f64) {
-    let v = value + j.offset;
-    match (&mut j.geometry, j.kind) {
-        (JointGeometry::Dh { row, .. }, JointKind::Revolute) => row.theta = v,
-        (JointGeometry::Dh { row, .. }, JointKind::Prismatic) => row.d = v,
-        (
-            JointGeometry::Origin {
-                parent_from_joint,
-                axis,
-            },
-            kind,
-        ) => {
-            let m = match kind {
-                JointKind::Revolute => Pose::from_parts(
-                    Translation3::identity(),
-                    Rotation3::from_axis_angle(axis, v),
-                ),
-                JointKind::Prismatic => Pose::from_parts(
-                    Translation3::from(axis.into_inner() * v),
-                    Rotation3::identity(),
-                ),
-                JointKind::Fixed => Pose::identity(),
-            };
-            *parent_from_joint *= m;
-        }
-        _ => {}
-    }
-    j.kind = JointKind::Fixed;
-    j.drive = Drive::None;
-    j.offset = 0.0;
 }

@@ -3,9 +3,9 @@
 
 use super::DhField;
 use super::units::{EntryError, MM_PER_M};
-use crate::app::singularity::SingularityReport;
 use crate::kinematics::ik::IkResult;
 use crate::kinematics::pose::Pose;
+use crate::kinematics::singularity::SingularityReport;
 use crate::kinematics::{EulerKind, KinematicsError};
 use crate::model_file::LoadError;
 use nalgebra::{Matrix4, Vector3};
@@ -177,7 +177,7 @@ pub struct Readouts {
     /// The representation is singular here (only a combination of angles is defined).
     pub phi_singular: bool,
     /// Numerical rank of the task Jacobian: the rows the arm controls of the geometric Jacobian
-    /// in the base frame ([`crate::app::singularity::SingularityAnalyzer::task_jacobian`]; all
+    /// in the base frame ([`crate::kinematics::singularity::SingularityAnalyzer::task_jacobian`]; all
     /// six rows for a six-DOF arm, x and y for the two-link planar arm).
     pub rank: usize,
     /// Task rank of the structure (the rank at generic configurations).

@@ -5,7 +5,7 @@
 //! # How it decides
 //!
 //! 1. **Conditioning.** The geometric Jacobian is expressed in the base frame, its linear rows
-//!    are divided by the robot's characteristic length L ([`crate::scene::robot_scale`], m) so
+//!    are divided by the robot's characteristic length L ([`Robot::longest_chain_length`], m) so
 //!    that every entry is dimensionless, and only the *task rows* are kept: the components the
 //!    arm controls ([`SingularityAnalyzer::task_rows`]: x, y for the two-link planar arm; x, y and
 //!    the rotation about z for the three-link one; x, y, z, rotation about z for the SCARA; the
@@ -201,7 +201,7 @@ impl SingularityAnalyzer {
                 )),
             )
         };
-        let scale = crate::scene::robot_scale(robot);
+        let scale = robot.longest_chain_length();
         let mut me = Self {
             family,
             no_closed_form,

@@ -8,7 +8,7 @@ use super::{
     Mark, Plane, Step, deg, planar_theta1, planar_theta2, planar_triangle, signed,
     wrist_point_step, wrist_step, wrist_steps,
 };
-use crate::kinematics::construction::{ConstructionError, TwoLinkConstruction, WristPoint};
+use crate::construction::{ConstructionError, TwoLinkConstruction, WristPoint};
 use crate::kinematics::orientation::wrap_angle;
 use crate::kinematics::{Pose, Robot};
 use nalgebra::Vector3;

@@ -1,7 +1,7 @@
 //! egui rendered offscreen through egui-wgpu into a texture and read back: the same widgets,
 //! fonts and plots the app shows, written to PNG with no window and no display.
 
-use super::FigureError;
+use super::UiRenderError;
 use egui::epaint::textures::TexturesDelta;
 
 /// Output format of figures: egui prefers a non-sRGB target (it blends in gamma space).
@@ -80,7 +80,7 @@ impl Offscreen {
         size: [u32; 2],
         pixels_per_point: f32,
         mut ui: impl FnMut(&mut egui::Ui),
-    ) -> Result<image::RgbaImage, FigureError> {
+    ) -> Result<image::RgbaImage, UiRenderError> {
         let input = raw_input(device, size, pixels_per_point)?;
         let mut deltas = std::mem::take(&mut self.pending);
         let mut output = self.ctx.run_ui(input.clone(), &mut ui);
@@ -96,7 +96,7 @@ impl Offscreen {
             self.deferred = Some(read);
             return Ok(image::RgbaImage::new(size[0], size[1]));
         }
-        crate::render::read_texture_rgba(device, queue, &texture).map_err(FigureError::Render)
+        crate::render::read_texture_rgba(device, queue, &texture).map_err(UiRenderError::Render)
     }
 
     /// From now on [`Self::render`] returns a blank image of the right size at once and leaves
@@ -120,7 +120,7 @@ impl Offscreen {
         size: [u32; 2],
         pixels_per_point: f32,
         mut ui: impl FnMut(&mut egui::Ui),
-    ) -> Result<(), FigureError> {
+    ) -> Result<(), UiRenderError> {
         let input = raw_input(device, size, pixels_per_point)?;
         for _ in 0..2 {
             let mut output = self.ctx.run_ui(input.clone(), &mut ui);
@@ -141,7 +141,7 @@ impl Offscreen {
         size: [u32; 2],
         pixels_per_point: f32,
         ui: impl FnMut(&mut egui::Ui),
-    ) -> Result<egui::PlatformOutput, FigureError> {
+    ) -> Result<egui::PlatformOutput, UiRenderError> {
         let input = raw_input(device, size, pixels_per_point)?;
         let mut output = self.ctx.run_ui(input, ui);
         let platform = std::mem::take(&mut output.platform_output);
@@ -196,10 +196,10 @@ fn raw_input(
     device: &wgpu::Device,
     size: [u32; 2],
     pixels_per_point: f32,
-) -> Result<egui::RawInput, FigureError> {
+) -> Result<egui::RawInput, UiRenderError> {
     let [w, h] = size;
     if w == 0 || h == 0 || w > 8192 || h > 8192 {
-        return Err(FigureError::Size {
+        return Err(UiRenderError::Size {
             width: w,
             height: h,
         });

@@ -25,7 +25,7 @@ pub use frame::UiFrame;
 
 /// The painter's WGSL: `vs_main`, and `fs_gamma` / `fs_linear` (blended widgets) and
 /// `fs_copy` / `fs_copy_linear` (opaque views) for non-sRGB / sRGB targets.
-pub const UI_WGSL: &str = include_str!("../../../shaders/ui.wgsl");
+pub const UI_WGSL: &str = include_str!("../../shaders/ui.wgsl");
 
 /// One indexed draw of a mesh primitive.
 struct Draw {

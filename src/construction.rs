@@ -5,7 +5,7 @@
 
 pub mod steps;
 
-use super::{JointKind, KinematicsError, Robot};
+use crate::kinematics::{JointKind, KinematicsError, Robot};
 use nalgebra::Vector3;
 use thiserror::Error;
 
