@@ -4,6 +4,7 @@
 //! `p_W = p_e - d6 a_e` (2.93, Fig. 2.32). Pure f64, no graphics.
 
 pub mod steps;
+pub mod textbook;
 
 use crate::kinematics::{JointKind, KinematicsError, Robot};
 use nalgebra::Vector3;
@@ -35,6 +36,20 @@ pub enum ConstructionError {
     /// Bad robot input.
     #[error(transparent)]
     Kinematics(#[from] KinematicsError),
+    /// The arm of a figure has no closed form.
+    #[error("no closed form: {0}")]
+    ClosedForm(#[from] crate::kinematics::ik::closed_form::NoClosedForm),
+    /// The closed form refused its input.
+    #[error(transparent)]
+    Ik(#[from] crate::kinematics::ik::IkError),
+    /// No figure of that name.
+    #[error("no figure {name:?} (the figures are: {figures})")]
+    NoFigure {
+        /// The name asked for.
+        name: String,
+        /// The figures there are, separated by ", ".
+        figures: String,
+    },
 }
 
 /// One posture of the two-link arm's triangle.

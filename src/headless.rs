@@ -1,9 +1,47 @@
-//! Headless output: PNG files written deterministically (same pixels, same bytes) and a
-//! progress bar shown only when standard output is a terminal.
+//! Headless figures: each figure planned, its data computed by the compute layers and painted,
+//! in one call ([`workspace_figure`], [`textbook_figure`]); PNG files written deterministically
+//! (same pixels, same bytes) and, with the command line, a progress bar shown only when standard
+//! output is a terminal.
 
-use std::io::IsTerminal;
+use crate::figure::figures::Figures;
+use crate::figure::workspace::{WsFigure, WsFigureOptions, paint, plan};
+use crate::figure::{FigureError, Theme};
+use crate::kinematics::Robot;
+use crate::workspace::compute_figure_data;
 use std::path::Path;
 use thiserror::Error;
+
+/// A workspace figure of `robot` (named `title` in it), planned, computed here and painted.
+/// `progress(fraction)` is called as work proceeds.
+pub fn workspace_figure(
+    figs: &mut Figures,
+    robot: &Robot,
+    title: &str,
+    opts: &WsFigureOptions,
+    progress: &(dyn Fn(f32) + Sync),
+) -> Result<WsFigure, FigureError> {
+    let plan = plan(figs, robot, title, opts)?;
+    let data = compute_figure_data(robot, &plan.request, progress)?;
+    let figure = paint(figs, robot, &plan, &data)?;
+    progress(1.0);
+    Ok(figure)
+}
+
+/// Figure `name` of the excerpt ([`crate::construction::textbook::FIGURES`]) at `size` pixels.
+pub fn textbook_figure(
+    figs: &mut Figures,
+    name: &str,
+    size: [u32; 2],
+    theme: Theme,
+) -> Result<image::RgbaImage, FigureError> {
+    let subject = crate::construction::textbook::subject(name)?;
+    match crate::figure::textbook::workspace_options(&subject, name, size, theme) {
+        Some((robot, title, opts)) => {
+            Ok(workspace_figure(figs, robot, title, &opts, &|_| {})?.image)
+        }
+        None => crate::figure::textbook::paint(figs, &subject, size, theme),
+    }
+}
 
 /// Writing a figure failed.
 #[derive(Debug, Error)]
@@ -30,11 +68,14 @@ pub fn write_png(img: &image::RgbaImage, path: &Path) -> Result<(), HeadlessErro
 }
 
 /// A progress bar on stderr when stdout is a terminal; a no-op otherwise.
+#[cfg(feature = "app")]
 pub struct Progress(Option<indicatif::ProgressBar>);
 
+#[cfg(feature = "app")]
 impl Progress {
     /// A bar of `total` steps with a message.
     pub fn new(total: u64, message: &str) -> Self {
+        use std::io::IsTerminal;
         if !std::io::stdout().is_terminal() {
             return Self(None);
         }

@@ -88,12 +88,13 @@ pub mod cli;
 pub mod construction;
 #[cfg(feature = "gui")]
 pub mod figure;
-#[cfg(feature = "app")]
+#[cfg(feature = "gui")]
 pub mod headless;
 pub mod input;
 pub mod kinematics;
 pub mod mesh;
 pub mod model_file;
+pub mod offload;
 pub mod redundancy;
 #[cfg(feature = "gui")]
 pub mod render;

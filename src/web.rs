@@ -99,11 +99,11 @@ impl WebHandle {
     }
 }
 
-/// What the web worker (`worker.js`) runs: one [`crate::app::offload::Request`] as JSON in,
+/// What the web worker (`worker.js`) runs: one [`crate::offload::Request`] as JSON in,
 /// its answer as JSON out.
 #[wasm_bindgen]
 pub fn worker_compute(request: &str) -> String {
-    crate::app::offload::answer(request)
+    crate::offload::answer(request)
 }
 
 /// The page's web worker, for the workspace's heavy computations.
@@ -143,7 +143,7 @@ impl WorkerOffload {
     }
 }
 
-impl crate::app::offload::Offload for WorkerOffload {
+impl crate::offload::Offload for WorkerOffload {
     fn submit(&mut self, request: String) -> bool {
         self.answer.borrow_mut().take();
         self.worker

@@ -126,7 +126,8 @@ fn empty_scene_and_bad_size() {
 /// Every figure of `armlab figure` as a golden image (looked at before committing), at 1000x750.
 #[test]
 fn the_excerpts_figures() {
-    use armlab::figure::textbook::{FIGURES, textbook_figure};
+    use armlab::construction::textbook::FIGURES;
+    use armlab::headless::textbook_figure;
     let mut f = figures();
     for (name, _) in FIGURES {
         let img = textbook_figure(&mut f, name, [1000, 750], Theme::Light)

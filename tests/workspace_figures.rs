@@ -5,7 +5,8 @@
 mod common;
 use armlab::figure::Theme;
 use armlab::figure::figures::Figures;
-use armlab::figure::workspace::{ColorBy, WsFigureOptions, WsView, workspace_figure};
+use armlab::figure::workspace::{ColorBy, WsFigureOptions, WsView};
+use armlab::headless::workspace_figure;
 use armlab::kinematics::Robot;
 use armlab::kinematics::models::built_in;
 use armlab::workspace::TrackedPoint;

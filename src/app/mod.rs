@@ -9,7 +9,6 @@ pub mod construction_panel;
 pub mod file_picker;
 pub mod gizmo;
 pub mod inner;
-pub mod offload;
 pub mod panels;
 pub mod probe;
 pub mod redundancy_panel;

@@ -64,7 +64,7 @@ pub struct AppUi {
     /// File dialogs: native in the window, none in tests and screenshots.
     pub file_picker: Box<dyn super::file_picker::FilePicker>,
     /// Where heavy computations go where the app has no threads (a browser's web worker).
-    pub offload: Option<Box<dyn super::offload::Offload>>,
+    pub offload: Option<Box<dyn crate::offload::Offload>>,
     /// Draw the construction behind the closed-form solution (Sect. 2.12).
     pub construction: bool,
     /// The construction step shown (0-based; the steps before it stay drawn).

@@ -3,16 +3,14 @@
 //! `armlab workspace` writes). On the desktop a background thread computes it; in a browser
 //! (no threads) [`WorkspaceJob::step`] computes one slice per frame.
 
-use super::offload::{Answer, Handed, Offload, Request, Task};
+use crate::figure::Theme;
 use crate::figure::figures::Figures;
-use crate::figure::workspace::{
-    ColorBy, ComputeHere, WorkspaceSource, WsFigureOptions, WsView, workspace_figure_from,
-};
-use crate::figure::{FigureError, Theme};
+use crate::figure::workspace::{ColorBy, WsFigureOptions, WsPlan, WsView, paint, plan};
 use crate::kinematics::Robot;
+use crate::offload::{Answer, Offload, Request};
 use crate::render::{Gpu, PendingRead};
 use crate::scene::Dot;
-use crate::workspace::{SampleOptions, planar_frame, point_cloud, sample};
+use crate::workspace::{SampleOptions, compute_figure_data, planar_frame, point_cloud, sample};
 use std::sync::atomic::{AtomicU32, Ordering};
 use std::sync::{Arc, OnceLock};
 
@@ -48,17 +46,16 @@ struct Slices {
     figure: Option<FigureSlices>,
 }
 
-/// The figure of a sliced job: its statistics and map computed by the [`Offload`] worker
-/// (where there is one), then painted, then read back, each over as many frames as it takes.
+/// The figure of a sliced job: planned on the window's device, its data computed by the
+/// [`Offload`] worker (where there is one and the robot can travel to it) or here in one slice,
+/// then painted and read back, each over as many frames as it takes.
 struct FigureSlices {
     figs: Figures,
-    handed: Handed,
-    /// The task submitted to the worker, waiting for its answer.
-    asked: Option<Task>,
+    plan: WsPlan,
+    /// A request is with the worker.
+    asked: bool,
     /// The painted figure's pixels on their way back from the GPU.
     readback: Option<PendingRead>,
-    /// The robot cannot travel to the worker: computed here.
-    in_place: bool,
 }
 
 /// Overlay samples per slice (a few milliseconds of work).
@@ -138,7 +135,7 @@ impl WorkspaceJob {
             self.progress.store(f as u32, Ordering::Relaxed);
             return true;
         }
-        let waiting = s.figure.as_ref().is_some_and(|f| f.asked.is_some());
+        let waiting = s.figure.as_ref().is_some_and(|f| f.asked);
         let finished = match gpu {
             Some(gpu) => s.figure_step(gpu, offload, &self.progress),
             None => Some(Err("no graphics device for the figure".into())),
@@ -218,76 +215,71 @@ impl Slices {
     fn figure_step(
         &mut self,
         gpu: &Gpu,
-        mut offload: Option<&mut (dyn Offload + 'static)>,
+        offload: Option<&mut (dyn Offload + 'static)>,
         progress: &AtomicU32,
     ) -> Option<Result<image::RgbaImage, String>> {
         if self.figure.is_none() {
-            let mut figs = match Figures::with_gpu(gpu.clone()) {
-                Ok(f) => f,
-                Err(e) => return Some(Err(e.to_string())),
-            };
-            figs.defer_readback();
-            self.figure = Some(FigureSlices {
-                figs,
-                handed: Handed::default(),
-                asked: None,
-                readback: None,
-                in_place: false,
+            let planned = Figures::with_gpu(gpu.clone()).and_then(|mut figs| {
+                figs.defer_readback();
+                let plan = plan(
+                    &mut figs,
+                    &self.robot,
+                    &figure_title(&self.title),
+                    &options(&self.robot),
+                )?;
+                Ok(FigureSlices {
+                    figs,
+                    plan,
+                    asked: false,
+                    readback: None,
+                })
             });
+            match planned {
+                Ok(f) => self.figure = Some(f),
+                Err(e) => return Some(Err(e.to_string())),
+            }
         }
         let f = self.figure.as_mut()?;
         if let Some(read) = &f.readback {
             return read.poll(&gpu.device).map(|r| r.map_err(|e| e.to_string()));
         }
-        if let (Some(task), Some(offload)) = (&f.asked, offload.as_deref_mut()) {
-            let answer = offload.poll()?;
-            let answer = serde_json::from_str::<Answer>(&answer)
-                .unwrap_or_else(|e| Answer::Error(format!("unreadable answer: {e}")));
-            if let Err(e) = f.handed.hand_in(task.clone(), answer) {
-                return Some(Err(e));
+        let data = match (f.asked, offload) {
+            (true, Some(offload)) => {
+                let answer = offload.poll()?;
+                match serde_json::from_str::<Answer>(&answer) {
+                    Ok(Answer::Data(d)) => *d,
+                    Ok(Answer::Error(e)) => return Some(Err(e)),
+                    Err(e) => return Some(Err(format!("unreadable answer: {e}"))),
+                }
             }
-            f.asked = None;
-        }
-        let source: &mut dyn WorkspaceSource = match &offload {
-            Some(_) if !f.in_place => &mut f.handed,
-            // No worker: everything here, in one slice.
-            _ => &mut ComputeHere,
-        };
-        match figure_with(&mut f.figs, &self.robot, &self.title, progress, source) {
-            Ok(_) => {
-                f.readback = f.figs.take_deferred();
-                progress.store(950, Ordering::Relaxed);
-                return f
-                    .readback
-                    .is_none()
-                    .then(|| Err("the figure was not read back".to_string()));
+            (true, None) => return Some(Err("the web worker went away".into())),
+            (false, Some(offload))
+                if let Ok(r) = Request::new(&self.robot, &self.title, f.plan.request.clone()) =>
+            {
+                let json = serde_json::to_string(&r).map_err(|e| e.to_string());
+                match json.map(|j| offload.submit(j)) {
+                    Ok(true) => {}
+                    Ok(false) => return Some(Err("the web worker took no request".into())),
+                    Err(e) => return Some(Err(e)),
+                }
+                f.asked = true;
+                progress.store(600, Ordering::Relaxed);
+                return None;
             }
-            Err(FigureError::Pending(_)) => {}
-            Err(e) => return Some(Err(e.to_string())),
+            // No worker, or a robot that cannot travel: here, in one slice.
+            (false, _) => match compute_figure_data(&self.robot, &f.plan.request, &|_| {}) {
+                Ok(d) => d,
+                Err(e) => return Some(Err(e.to_string())),
+            },
+        };
+        if let Err(e) = paint(&mut f.figs, &self.robot, &f.plan, &data) {
+            return Some(Err(e.to_string()));
         }
-        let (Some(task), Some(offload)) = (f.handed.wanted.take(), offload) else {
-            return Some(Err(
-                "the figure lacks a result and nothing computes it".into()
-            ));
-        };
-        let Ok(request) = Request::new(&self.robot, &self.title, task.clone()) else {
-            // Next slice: here, at once.
-            f.in_place = true;
-            return None;
-        };
-        let json = serde_json::to_string(&request).map_err(|e| e.to_string());
-        match json.map(|j| offload.submit(j)) {
-            Ok(true) => {}
-            Ok(false) => return Some(Err("the web worker took no request".into())),
-            Err(e) => return Some(Err(e)),
-        }
-        let at = match task {
-            Task::Statistics { .. } => 550,
-            Task::Map(_) => 700,
-        };
-        progress.store(at, Ordering::Relaxed);
-        f.asked = Some(task);
-        None
+        f.readback = f.figs.take_deferred();
+        progress.store(950, Ordering::Relaxed);
+        f.readback
+            .is_none()
+            .then(|| Err("the figure was not read back".to_string()))
     }
 }
 
@@ -296,9 +288,20 @@ fn compute(robot: &Robot, title: &str, progress: &AtomicU32) -> Result<Workspace
     let dots = overlay_dots(robot, n, 1, &|k| {
         progress.store((k as f32 / n as f32 * 500.0) as u32, Ordering::Relaxed)
     })?;
-    let figure = Figures::new().map_err(|e| e.to_string()).and_then(|mut f| {
-        figure_with(&mut f, robot, title, progress, &mut ComputeHere).map_err(|e| e.to_string())
-    });
+    let figure = Figures::new()
+        .map_err(|e| e.to_string())
+        .and_then(|mut figs| {
+            let on_progress = |x: f32| progress.store(500 + (x * 500.0) as u32, Ordering::Relaxed);
+            crate::headless::workspace_figure(
+                &mut figs,
+                robot,
+                &figure_title(title),
+                &options(robot),
+                &on_progress,
+            )
+            .map(|w| w.image)
+            .map_err(|e| e.to_string())
+        });
     let (figure, figure_error) = match figure {
         Ok(f) => (Some(f), None),
         Err(e) => (None, Some(e)),
@@ -340,21 +343,20 @@ fn overlay_dots(
         .collect())
 }
 
-/// The workspace tab's figure (the second half of the progress bar), with its statistics and map from `source` (`FigureError::Pending` while it lacks
-/// one).
-fn figure_with(
-    figs: &mut Figures,
-    robot: &Robot,
-    title: &str,
-    progress: &AtomicU32,
-    source: &mut dyn WorkspaceSource,
-) -> Result<image::RgbaImage, FigureError> {
+/// The robot's name in the workspace tab's figure.
+fn figure_title(title: &str) -> String {
+    title.replace('_', " ")
+}
+
+/// The workspace tab's figure: the arm's plane (planar arms) or the top view, coloured by
+/// posture, 1200 x 900 pixels.
+fn options(robot: &Robot) -> WsFigureOptions {
     let view = if planar_frame(robot, 0).is_some() {
         WsView::Plane
     } else {
         WsView::Top
     };
-    let o = WsFigureOptions {
+    WsFigureOptions {
         view,
         color_by: ColorBy::Posture,
         samples: 200_000,
@@ -364,14 +366,5 @@ fn figure_with(
         end_effector: 0,
         point: Default::default(),
         caption: String::new(),
-    };
-    let r = workspace_figure_from(
-        figs,
-        robot,
-        &title.replace('_', " "),
-        &o,
-        &|x| progress.store(500 + (x * 500.0) as u32, Ordering::Relaxed),
-        source,
-    );
-    r.map(|w| w.image)
+    }
 }

@@ -260,7 +260,8 @@ pub(super) fn workspace(
     args: &WorkspaceArgs,
     out: &mut dyn std::io::Write,
 ) -> Result<(), CliError> {
-    use crate::figure::workspace::{ColorBy, WsFigureOptions, WsView, workspace_figure};
+    use crate::figure::workspace::{ColorBy, WsFigureOptions, WsView};
+    use crate::headless::workspace_figure;
     let robot = super::load_model(&args.model)?;
     if args.samples == 0 || args.samples > 100_000_000 {
         return Err(CliError::Usage("--samples must be between 1 and 100000000"));
@@ -384,7 +385,8 @@ pub struct FigureArgs {
 
 /// Runs `figure`.
 pub(super) fn figure(args: &FigureArgs, out: &mut dyn std::io::Write) -> Result<(), CliError> {
-    use crate::figure::textbook::{FIGURES, textbook_figure};
+    use crate::construction::textbook::FIGURES;
+    use crate::headless::textbook_figure;
     if args.list {
         for (name, what) in FIGURES {
             writeln!(out, "{name:<13} {what}")?;

@@ -9,10 +9,14 @@ use crate::scene::Scene;
 use crate::ui_render::offscreen::Offscreen;
 use egui::Color32;
 
-/// Makes the raster of a plot for the data bounds and pixel size of its frame (see
-/// [`Figures::plot_fitted`]); may add curves or labels to the plot.
-pub type RasterFill<'a> = dyn FnMut(&mut Plot2d, [f64; 4], [usize; 2]) -> Result<Option<egui::ColorImage>, FigureError>
-    + 'a;
+/// Where a plot's data lie on the canvas ([`Figures::plot_frame`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlotFrame {
+    /// `[x_min, x_max, y_min, y_max]` shown in the frame (data units).
+    pub bounds: [f64; 4],
+    /// The frame's size (px).
+    pub px: [usize; 2],
+}
 
 /// Multisampling of 3D figures (4x: smooth edges; lavapipe renders it deterministically).
 pub const FIGURE_MSAA: u32 = 4;
@@ -96,17 +100,16 @@ impl Figures {
             })?)
     }
 
-    /// A plot whose raster is made for the plot's own frame: a layout pass finds the frame's
-    /// size in pixels and the data bounds shown (grown for an equal aspect), `fill(plot, bounds,
-    /// pixels)` makes the raster for exactly those (and may add curves to the plot), and the
-    /// plot is drawn with it.
-    pub fn plot_fitted(
+    /// Where a plot's data will lie once drawn at `size`: a layout pass (nothing painted) finds
+    /// its frame's size in pixels and the data bounds shown there (grown for an equal aspect), so
+    /// that a raster can be computed for exactly those before the plot is drawn
+    /// ([`Self::plot_at`]).
+    pub fn plot_frame(
         &mut self,
         size: [u32; 2],
         theme: Theme,
-        plot: &mut Plot2d,
-        fill: &mut RasterFill<'_>,
-    ) -> Result<image::RgbaImage, FigureError> {
+        plot: &Plot2d,
+    ) -> Result<PlotFrame, FigureError> {
         apply_style(&self.offscreen.ctx, theme);
         let ppp = pixels_per_point(size[0]);
         let mut frame = None;
@@ -115,19 +118,35 @@ impl Figures {
                 frame = Some(plot2d::show(ui, plot, None));
             });
         })?;
-        let frame = frame.ok_or_else(|| FigureError::Layout("the plot was not laid out".into()))?;
-        let px = [
-            ((frame.rect.width() * ppp).round() as usize).max(1),
-            ((frame.rect.height() * ppp).round() as usize).max(1),
-        ];
-        let raster = fill(plot, frame.bounds, px)?;
-        let tex = raster.map(|img| {
-            self.offscreen
+        let frame = frame.ok_or(FigureError::NotLaidOut)?;
+        Ok(PlotFrame {
+            bounds: frame.bounds,
+            px: [
+                ((frame.rect.width() * ppp).round() as usize).max(1),
+                ((frame.rect.height() * ppp).round() as usize).max(1),
+            ],
+        })
+    }
+
+    /// A plot with `raster` laid under its curves over the data bounds it was made for (those of
+    /// [`Self::plot_frame`]).
+    pub fn plot_at(
+        &mut self,
+        size: [u32; 2],
+        theme: Theme,
+        plot: &Plot2d,
+        raster: Option<(egui::ColorImage, [f64; 4])>,
+    ) -> Result<image::RgbaImage, FigureError> {
+        apply_style(&self.offscreen.ctx, theme);
+        let ppp = pixels_per_point(size[0]);
+        let tex = raster.map(|(img, bounds)| {
+            let t = self
+                .offscreen
                 .ctx
-                .load_texture("raster", img, egui::TextureOptions::NEAREST)
+                .load_texture("raster", img, egui::TextureOptions::NEAREST);
+            (t, bounds)
         });
-        let image = tex.as_ref().map(|t| (t.id(), frame.bounds));
-        let plot = &*plot;
+        let image = tex.as_ref().map(|(t, bounds)| (t.id(), *bounds));
         Ok(self
             .offscreen
             .render(&self.gpu.device, &self.gpu.queue, size, ppp, |ui| {

@@ -29,13 +29,20 @@ pub enum FigureError {
     /// Bad robot input (wrong joint count, NaN).
     #[error(transparent)]
     Kinematics(#[from] crate::kinematics::KinematicsError),
-    /// The figure's layout could not be measured.
-    #[error("figure layout: {0}")]
-    Layout(String),
-    /// A result the figure needs is still being computed elsewhere (a browser's worker): the
-    /// figure is made again once it is handed in (see `workspace::WorkspaceSource`).
-    #[error("the {0} is still being computed")]
-    Pending(&'static str),
+    /// The plot's frame was not laid out, so its size could not be measured.
+    #[error("figure layout: the plot was not laid out")]
+    NotLaidOut,
+    /// The figure's subject could not be computed (a figure of the excerpt).
+    #[error(transparent)]
+    Construction(#[from] crate::construction::ConstructionError),
+    /// The figure was handed data of another kind than its plan asked for.
+    #[error("the figure was handed {got} where its plan asked for {wanted}")]
+    WrongData {
+        /// What the plan asked for.
+        wanted: &'static str,
+        /// What came.
+        got: &'static str,
+    },
 }
 
 /// Light or dark colours.

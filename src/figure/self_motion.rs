@@ -6,7 +6,7 @@ use super::palette::CLASS_COLORS;
 use super::plot2d::{Area, Curve, Plot2d};
 use super::{FigureError, Theme};
 use crate::kinematics::Robot;
-use crate::redundancy::BranchSolution;
+use crate::redundancy::sampler::SelfMotionSamples;
 use egui::Color32;
 
 /// Joint colours (colour-blind safe), by joint index.
@@ -20,15 +20,16 @@ const JOINT_COLORS: [[u8; 3]; 7] = [
     [120, 120, 120],
 ];
 
-/// The figure (1200 x 800, light theme) for `samples` (parameter value, solutions), the feasible
-/// intervals of each branch (rad) and the branch names.
-pub fn figure(
-    robot: &Robot,
-    parameter: &str,
-    samples: &[(f64, Vec<BranchSolution>)],
-    feasible: &[Vec<[f64; 2]>],
-    names: &[String],
-) -> Result<image::RgbaImage, FigureError> {
+/// The figure (1200 x 800, light theme) of a sampled self-motion: its samples (parameter value,
+/// solutions), the feasible intervals of each branch (rad) and the branch names.
+pub fn figure(robot: &Robot, motion: &SelfMotionSamples) -> Result<image::RgbaImage, FigureError> {
+    let SelfMotionSamples {
+        parameter,
+        samples,
+        feasible,
+        names,
+        ..
+    } = motion;
     let mut plot = Plot2d {
         title: format!("Self-motion of the {}", robot.name.to_lowercase()),
         subtitle: format!(

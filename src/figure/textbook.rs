@@ -5,54 +5,16 @@
 
 use super::figures::{Figures, Scene3d};
 use super::palette::{CLASS_COLORS, c32};
-
 use super::plot2d::{Curve, Plot2d};
-use super::workspace::{ColorBy, WsFigureOptions, WsView, workspace_figure};
+use super::workspace::{ColorBy, WsFigureOptions, WsView};
 use super::{FigureError, Theme};
 use crate::camera::Preset;
+use crate::construction::textbook::{Subject, WorkspaceView};
 use crate::construction::{TwoLinkConstruction, WristPoint};
 use crate::kinematics::Robot;
-use crate::kinematics::ik::closed_form::{ClosedForm, RawSolutions};
 use crate::scene::{ArmStyle, Dot, Label, Line, arm_scene, point32};
 use egui::Color32;
 use nalgebra::Vector3;
-
-/// Every figure: name and what it shows.
-pub const FIGURES: [(&str, &str); 6] = [
-    (
-        "2.29",
-        "joint-space rectangle of the two-link arm with limits, segments ab, bc, cd, da, ae, ef, fd",
-    ),
-    (
-        "2.30",
-        "workspace of the two-link arm with points A-H, its arcs and the elbow-up / elbow-down / both regions",
-    ),
-    (
-        "2.31",
-        "the two admissible postures of the two-link arm for one point, with alpha, beta and theta2",
-    ),
-    (
-        "2.32",
-        "a manipulator with spherical wrist: p_e, a_e, d6 and p_W = p_e - d6 a_e (2.93)",
-    ),
-    (
-        "2.33",
-        "the four configurations of the anthropomorphic arm compatible with one wrist position",
-    ),
-    (
-        "problem-2.17",
-        "workspace of the three-link arm with the problem's data",
-    ),
-];
-
-/// The two-link arm of Example 2.6 with its limits (the model of Figs 2.29-2.30), embedded.
-fn limited_two_link() -> Result<Robot, FigureError> {
-    crate::model_file::parse_model(
-        include_str!("../../assets/robots/example_2_6.toml"),
-        std::path::Path::new("example_2_6.toml"),
-    )
-    .map_err(|e| FigureError::Layout(e.to_string()))
-}
 
 /// An isometric camera framing `points`, the picture a little below the title.
 fn framing(points: &[nalgebra::Point3<f32>], size: [u32; 2]) -> crate::camera::Camera {
@@ -68,56 +30,57 @@ fn after(fig: &str) -> String {
     format!("after {fig} of Siciliano et al., Robotics: Modelling, Planning and Control")
 }
 
-/// Draws figure `name` (see [`FIGURES`]) at `size` pixels.
-pub fn textbook_figure(
-    figs: &mut Figures,
+/// The workspace figure's options of a workspace subject (Figs 2.29-2.30, Problem 2.17): the
+/// arm, its title and the options to plan it with ([`super::workspace::plan`]); `None` for the
+/// other figures.
+pub fn workspace_options<'s>(
+    subject: &'s Subject,
     name: &str,
     size: [u32; 2],
     theme: Theme,
-) -> Result<image::RgbaImage, FigureError> {
-    let ws = |figs: &mut Figures, robot: &Robot, title: &str, view, caption: String| {
-        let opts = WsFigureOptions {
-            view,
-            color_by: ColorBy::Posture,
-            samples: 100_000,
-            seed: 1,
-            size,
-            theme,
-            end_effector: 0,
-            point: crate::workspace::TrackedPoint::WristCentre,
-            caption,
-        };
-        workspace_figure(figs, robot, title, &opts, &|_| {}).map(|f| f.image)
+) -> Option<(&'s Robot, &'static str, WsFigureOptions)> {
+    let Subject::Workspace { robot, title, view } = subject else {
+        return None;
     };
-    match name {
-        "2.29" => ws(
-            figs,
-            &limited_two_link()?,
-            "two-link arm",
-            WsView::JointSpace,
-            after("Fig. 2.29"),
-        ),
-        "2.30" => ws(
-            figs,
-            &limited_two_link()?,
-            "two-link arm",
-            WsView::Plane,
-            after("Fig. 2.30"),
-        ),
-        "problem-2.17" => ws(
-            figs,
-            &crate::kinematics::models::planar3(),
-            "three-link arm of Problem 2.17",
-            WsView::Plane,
-            after("Problem 2.17"),
-        ),
-        "2.31" => two_link_postures(figs, size, theme),
-        "2.32" => spherical_wrist(figs, size, theme),
-        "2.33" => anthropomorphic_configurations(figs, size, theme),
-        other => Err(FigureError::Layout(format!(
-            "no figure {other:?} (the figures are: {})",
-            FIGURES.map(|f| f.0).join(", ")
-        ))),
+    let opts = WsFigureOptions {
+        view: match view {
+            WorkspaceView::JointSpace => WsView::JointSpace,
+            WorkspaceView::Plane => WsView::Plane,
+        },
+        color_by: ColorBy::Posture,
+        samples: 100_000,
+        seed: 1,
+        size,
+        theme,
+        end_effector: 0,
+        point: crate::workspace::TrackedPoint::WristCentre,
+        caption: after(Subject::source(name)),
+    };
+    Some((robot, title, opts))
+}
+
+/// Paints figure `name` from its subject at `size` pixels; the workspace subjects are workspace
+/// figures (see [`workspace_options`]) and are refused here.
+pub fn paint(
+    figs: &mut Figures,
+    subject: &Subject,
+    size: [u32; 2],
+    theme: Theme,
+) -> Result<image::RgbaImage, FigureError> {
+    match subject {
+        Subject::TwoLinkPostures(k) => two_link_postures(figs, k, size, theme),
+        Subject::SphericalWrist { robot, q, wrist } => {
+            spherical_wrist(figs, robot, q, wrist, size, theme)
+        }
+        Subject::FourConfigurations {
+            robot,
+            p,
+            solutions,
+        } => anthropomorphic_configurations(figs, robot, p, solutions, size, theme),
+        Subject::Workspace { .. } => Err(FigureError::WrongData {
+            wanted: "a scene",
+            got: "a workspace subject",
+        }),
     }
 }
 
@@ -153,12 +116,11 @@ fn arc(c: [f64; 2], r: f64, a0: f64, a1: f64) -> Vec<[f64; 2]> {
 /// of the cosine-theorem construction.
 fn two_link_postures(
     figs: &mut Figures,
+    k: &TwoLinkConstruction,
     size: [u32; 2],
     theme: Theme,
 ) -> Result<image::RgbaImage, FigureError> {
-    let p = [1.2, 0.8];
-    let k =
-        TwoLinkConstruction::new(1.0, 1.0, p).map_err(|e| FigureError::Layout(e.to_string()))?;
+    let p = k.p;
     let ink = if theme == Theme::Dark {
         Color32::from_gray(220)
     } else {
@@ -198,7 +160,7 @@ fn two_link_postures(
         [0.42 * (k.alpha / 2.0).cos(), 0.42 * (k.alpha / 2.0).sin()],
     ));
     for (i, pos) in k.postures.iter().enumerate() {
-        add_posture(&mut plot, &k, i, pos);
+        add_posture(&mut plot, k, i, pos);
     }
     plot.labels.push(("W".into(), [p[0] + 0.06, p[1] + 0.06]));
     plot.labels.push(("O".into(), [-0.08, -0.08]));
@@ -266,12 +228,12 @@ fn add_posture(
 /// Fig. 2.32: the anthropomorphic arm with spherical wrist, with p_e, a_e, d6 and p_W.
 fn spherical_wrist(
     figs: &mut Figures,
+    robot: &Robot,
+    q: &[f64; 6],
+    w: &WristPoint,
     size: [u32; 2],
     theme: Theme,
 ) -> Result<image::RgbaImage, FigureError> {
-    let robot = crate::kinematics::models::anthropomorphic_spherical_wrist();
-    let q = [0.3, 0.5, 0.6, 0.4, 0.9, 0.2];
-    let w = WristPoint::of(&robot, &q).map_err(|e| FigureError::Layout(e.to_string()))?;
     // Translucent bodies, no frames: the vectors at the wrist stay visible.
     let style = ArmStyle {
         frames: false,
@@ -279,11 +241,11 @@ fn spherical_wrist(
         alpha: 0.45,
         ..ArmStyle::default()
     };
-    let mut scene = arm_scene(&robot, &q, &style)?;
-    add_wrist_marks(&mut scene, &w);
+    let mut scene = arm_scene(robot, q, &style)?;
+    add_wrist_marks(&mut scene, w);
     // Top: the whole arm; bottom: the wrist close up, the same scene.
     let panel = [size[0], size[1] / 2];
-    let whole = framing(&crate::scene::arm_points(&robot, &q)?, panel);
+    let whole = framing(&crate::scene::arm_points(robot, q)?, panel);
     let r = 0.8 * w.d6;
     let near: Vec<nalgebra::Point3<f32>> = [-1.0, 1.0]
         .iter()
@@ -375,39 +337,21 @@ fn add_wrist_marks(scene: &mut crate::scene::Scene, w: &WristPoint) {
 /// shoulder-left links lie on the shoulder-right ones; only the frames turn).
 fn anthropomorphic_configurations(
     figs: &mut Figures,
+    robot: &Robot,
+    p: &Vector3<f64>,
+    solutions: &[(String, [f64; 3], usize)],
     size: [u32; 2],
     theme: Theme,
 ) -> Result<image::RgbaImage, FigureError> {
-    let robot = crate::kinematics::models::anthropomorphic3r();
-    let cf = ClosedForm::detect(&robot).map_err(|e| FigureError::Layout(e.to_string()))?;
-    let p = robot.fk(&[0.5, 0.8, -1.0])?.translation.vector;
-    let mut raw = RawSolutions::default();
-    let n = cf
-        .solve_position_raw(&p, &mut raw)
-        .map_err(|e| FigureError::Layout(e.to_string()))?;
     let panel = [size[0] / 2, size[1] / 2];
     let mut points = Vec::new();
-    for k in 0..n {
-        points.extend(crate::scene::arm_points(&robot, &raw.q[k][..3])?);
+    for (_, q, _) in solutions {
+        points.extend(crate::scene::arm_points(robot, q)?);
     }
     let camera = framing(&points, panel);
-    // The excerpt's order: shoulder-right/elbow-up, shoulder-left/elbow-up, shoulder-right/
-    // elbow-down, shoulder-left/elbow-down.
-    let order = [
-        "right, elbow up",
-        "left, elbow up",
-        "right, elbow down",
-        "left, elbow down",
-    ];
-    let mut ks: Vec<usize> = (0..n.min(4)).collect();
-    ks.sort_by_key(|&k| {
-        let label = raw.postures[k].label();
-        order.iter().position(|o| label.ends_with(o)).unwrap_or(4)
-    });
     let mut out = image::RgbaImage::new(size[0], size[1]);
-    for (slot, &k) in ks.iter().enumerate() {
-        let q = &raw.q[k][..3];
-        let c8 = CLASS_COLORS[k % CLASS_COLORS.len()];
+    for (slot, (label, q, k)) in solutions.iter().enumerate() {
+        let c8 = CLASS_COLORS[*k % CLASS_COLORS.len()];
         let c = [c8[0], c8[1], c8[2]].map(|v| f32::from(v) / 255.0);
         let style = ArmStyle {
             link: [c[0], c[1], c[2], 1.0],
@@ -415,9 +359,9 @@ fn anthropomorphic_configurations(
             frame_labels: true,
             ..ArmStyle::default()
         };
-        let mut scene = arm_scene(&robot, q, &style)?;
+        let mut scene = arm_scene(robot, q, &style)?;
         scene.dots.push(Dot {
-            p: point32(&p).into(),
+            p: point32(p).into(),
             color: [0.1, 0.1, 0.12, 1.0],
             size_px: 10.0,
         });
@@ -429,7 +373,7 @@ fn anthropomorphic_configurations(
             panel,
             theme,
             &Scene3d {
-                title: format!("Fig. 2.33: {}", raw.postures[k].label()),
+                title: format!("Fig. 2.33: {label}"),
                 subtitle: format!(
                     "theta = ({}) deg; p_W = ({:.3}, {:.3}, {:.3}) m",
                     deg.join(", "),
@@ -440,7 +384,7 @@ fn anthropomorphic_configurations(
                 scene: &scene,
                 camera,
                 legend: Vec::new(),
-                caption: if slot + 1 == ks.len() {
+                caption: if slot + 1 == solutions.len() {
                     after("Fig. 2.33")
                 } else {
                     String::new()

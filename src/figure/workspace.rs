@@ -6,16 +6,17 @@
 //! pixel size and bounds (a layout pass measures them), so region edges fall on the exact
 //! boundary at any output size; this module only paints the map it is handed.
 
-use super::figures::{Figures, Scene3d};
+use super::figures::{Figures, PlotFrame, Scene3d};
 use super::palette::{CLASS_COLORS, PLAIN, SEVERAL, c32, class_palette, sequential};
 use super::plot2d::{Area, ColorBar, Curve, Plot2d};
 use super::{FigureError, Theme};
 use crate::camera::Preset;
 use crate::kinematics::Robot;
 use crate::scene::{ArmStyle, Dot, arm_scene};
+use crate::workspace::figure_data::PlaneMarks;
 use crate::workspace::{
-    self, BoundaryOptions, CurveKind, CurveRole, GridOptions, MapRequest, MapValues, MapView,
-    SampleOptions, StatsOptions, TrackedPoint, WorkspaceMap, WorkspaceStats,
+    self, Content, ContentRequest, CurveKind, CurveRole, FigureData, FigureRequest, MapRequest,
+    MapValues, MapView, SampleOptions, StatsOptions, TrackedPoint, WorkspaceMap, WorkspaceStats,
 };
 use egui::Color32;
 
@@ -82,90 +83,128 @@ pub struct WsFigure {
 /// Name of the sequential colour map of the continuous colourings.
 pub const COLOR_MAP: &str = "viridis";
 
-/// Where a workspace figure gets the results it paints: computed on the spot
-/// ([`ComputeHere`]), or handed in from elsewhere (the browser's worker: a result not handed in
-/// yet is [`FigureError::Pending`], and the figure is made again once it is).
-pub trait WorkspaceSource {
-    /// The statistics of [`workspace::map_statistics`].
-    fn statistics(
-        &mut self,
-        robot: &Robot,
-        point: TrackedPoint,
-        fallback: &StatsOptions,
-    ) -> Result<WorkspaceStats, FigureError>;
-    /// The map of [`workspace::compute_map`] for `req` (its bounds always given).
-    fn map(&mut self, robot: &Robot, req: &MapRequest) -> Result<WorkspaceMap, FigureError>;
+/// A workspace figure planned: its frame laid out and what it needs computed
+/// ([`Self::request`]). [`paint`] draws it once that is computed ([`compute_figure_data`]).
+#[derive(Debug, Clone)]
+pub struct WsPlan {
+    /// What the figure needs computed.
+    pub request: FigureRequest,
+    title: String,
+    opts: WsFigureOptions,
+    body: PlanBody,
 }
 
-/// Computes what the figure needs where it is made.
-#[derive(Debug, Default, Clone, Copy)]
-pub struct ComputeHere;
-
-impl WorkspaceSource for ComputeHere {
-    fn statistics(
-        &mut self,
-        robot: &Robot,
-        point: TrackedPoint,
-        fallback: &StatsOptions,
-    ) -> Result<WorkspaceStats, FigureError> {
-        Ok(workspace::map_statistics(robot, point, fallback)?)
-    }
-    fn map(&mut self, robot: &Robot, req: &MapRequest) -> Result<WorkspaceMap, FigureError> {
-        Ok(workspace::compute_map(robot, req)?)
-    }
+/// The body of a planned figure.
+#[derive(Debug, Clone)]
+enum PlanBody {
+    /// A map view: its plot (undecorated) and where its data will lie.
+    Map {
+        view: MapView,
+        plot: Box<Plot2d>,
+        frame: PlotFrame,
+    },
+    /// The 3D point cloud.
+    Cloud,
+    /// The joint-space rectangle.
+    JointSpace,
 }
 
-/// Makes a workspace figure. `progress(fraction)` is called as work proceeds.
-pub fn workspace_figure(
+/// Plans a workspace figure of `robot` (named `title`): lays out a map view's frame at its pixel
+/// size so that the map can be computed for exactly its cells and data bounds, and says what is
+/// to be computed. Cheap: nothing is sampled or solved here.
+pub fn plan(
     figs: &mut Figures,
     robot: &Robot,
     title: &str,
     opts: &WsFigureOptions,
-    progress: &(dyn Fn(f32) + Sync),
-) -> Result<WsFigure, FigureError> {
-    workspace_figure_from(figs, robot, title, opts, progress, &mut ComputeHere)
-}
-
-/// [`workspace_figure`] with the statistics and the map of the plane, top and side views
-/// taken from `source`.
-pub fn workspace_figure_from(
-    figs: &mut Figures,
-    robot: &Robot,
-    title: &str,
-    opts: &WsFigureOptions,
-    progress: &(dyn Fn(f32) + Sync),
-    source: &mut dyn WorkspaceSource,
-) -> Result<WsFigure, FigureError> {
+) -> Result<WsPlan, FigureError> {
     let planar = workspace::planar_frame(robot, opts.end_effector).is_some();
-    let fallback = StatsOptions {
-        grid: GridOptions {
-            resolution: if planar { 256 } else { 48 },
-            orientations: 16,
-            samples: opts.samples.clamp(1, 200_000),
-            seed: opts.seed,
-            end_effector: opts.end_effector,
-            ..GridOptions::default()
-        },
-        samples: opts.samples.clamp(1, 200_000),
-        boundary: BoundaryOptions::default(),
-    };
-    let stats = source.statistics(robot, opts.point, &fallback)?;
-    progress(0.3);
-    let image = match opts.view {
-        WsView::ThreeD => three_d(figs, robot, title, opts, &stats, progress)?,
-        WsView::JointSpace => joint_space(figs, robot, title, opts)?,
+    let fallback = StatsOptions::for_figure(planar, opts.samples, opts.seed, opts.end_effector);
+    let (content, body) = match opts.view {
+        WsView::ThreeD => (
+            ContentRequest::Cloud(SampleOptions {
+                samples: opts.samples.max(1),
+                seed: opts.seed,
+                end_effector: opts.end_effector,
+                classes: opts.color_by == ColorBy::Posture,
+                manipulability: opts.color_by == ColorBy::Manipulability,
+                keep_joints: false,
+            }),
+            PlanBody::Cloud,
+        ),
+        WsView::JointSpace => (ContentRequest::JointRectangle, PlanBody::JointSpace),
         WsView::Plane | WsView::Top | WsView::Side => {
             let view = match (opts.view, planar) {
                 (WsView::Plane, true) => MapView::Plane,
                 (WsView::Plane | WsView::Top, _) => MapView::Top,
                 _ => MapView::Side,
             };
-            let subject = Subject { robot, title, opts };
-            map_figure(figs, subject, view, &stats, progress, source)?
+            let (plot, req) = map_plot(figs, robot, title, opts, view)?;
+            let body = PlanBody::Map {
+                view,
+                plot: Box::new(plot.0),
+                frame: plot.1,
+            };
+            (ContentRequest::Map(req), body)
         }
     };
-    progress(1.0);
-    Ok(WsFigure { image, stats })
+    Ok(WsPlan {
+        request: FigureRequest {
+            point: opts.point,
+            fallback,
+            content,
+        },
+        title: title.to_string(),
+        opts: opts.clone(),
+        body,
+    })
+}
+
+/// Paints a planned figure with the data computed for its request.
+pub fn paint(
+    figs: &mut Figures,
+    robot: &Robot,
+    plan: &WsPlan,
+    data: &FigureData,
+) -> Result<WsFigure, FigureError> {
+    let (title, opts, stats) = (plan.title.as_str(), &plan.opts, &data.stats);
+    let image = match (&plan.body, &data.content) {
+        (PlanBody::Cloud, Content::Cloud(cloud)) => {
+            three_d(figs, robot, title, opts, stats, cloud)?
+        }
+        (PlanBody::JointSpace, Content::JointRectangle(rect)) => {
+            joint_space(figs, title, opts, rect)?
+        }
+        (PlanBody::Map { view, plot, frame }, Content::Map(map)) => {
+            let mut plot = (**plot).clone();
+            decorate(&mut plot, map, stats, opts, text_color(opts.theme));
+            if *view == MapView::Plane
+                && let Some(marks) = &data.plane_marks
+            {
+                add_plane_marks(&mut plot, marks);
+            }
+            let raster = paint_map(map, opts.color_by);
+            figs.plot_at(opts.size, opts.theme, &plot, Some((raster, frame.bounds)))?
+        }
+        (body, content) => {
+            return Err(FigureError::WrongData {
+                wanted: match body {
+                    PlanBody::Map { .. } => "a map",
+                    PlanBody::Cloud => "a point cloud",
+                    PlanBody::JointSpace => "a joint-space rectangle",
+                },
+                got: match content {
+                    Content::Map(_) => "a map",
+                    Content::Cloud(_) => "a point cloud",
+                    Content::JointRectangle(_) => "a joint-space rectangle",
+                },
+            });
+        }
+    };
+    Ok(WsFigure {
+        image,
+        stats: stats.clone(),
+    })
 }
 
 fn text_color(theme: Theme) -> Color32 {
@@ -198,21 +237,9 @@ fn three_d(
     title: &str,
     opts: &WsFigureOptions,
     stats: &WorkspaceStats,
-    progress: &(dyn Fn(f32) + Sync),
+    cloud: &workspace::PointCloud,
 ) -> Result<image::RgbaImage, FigureError> {
     let n = opts.samples.max(1);
-    let samples = workspace::sample(
-        robot,
-        &SampleOptions {
-            samples: n,
-            seed: opts.seed,
-            end_effector: opts.end_effector,
-            classes: opts.color_by == ColorBy::Posture,
-            manipulability: opts.color_by == ColorBy::Manipulability,
-            keep_joints: false,
-        },
-        &|done| progress(0.3 + 0.6 * done as f32 / n as f32),
-    )?;
     let subtitle = format!(
         "{n} samples (seed {}), {}, reach {:.3}-{:.3} m",
         opts.seed,
@@ -232,8 +259,7 @@ fn three_d(
             ..ArmStyle::default()
         },
     )?;
-    let cloud = workspace::point_cloud(&samples);
-    let legend = cloud_dots(&mut scene, &cloud, opts.color_by);
+    let legend = cloud_dots(&mut scene, cloud, opts.color_by);
     let pts: Vec<_> = cloud
         .positions
         .iter()
@@ -303,13 +329,11 @@ fn cloud_dots(
 
 fn joint_space(
     figs: &mut Figures,
-    robot: &Robot,
     title: &str,
     opts: &WsFigureOptions,
+    rect: &workspace::JointRectangle,
 ) -> Result<image::RgbaImage, FigureError> {
     let text = text_color(opts.theme);
-
-    let rect = workspace::joint_rectangle(robot)?;
     let deg = |q: [f64; 2]| [q[0].to_degrees(), q[1].to_degrees()];
     let mut plot = Plot2d {
         title: format!("Joint space of the {title} (Fig. 2.29)"),
@@ -377,22 +401,15 @@ fn view_labels(view: MapView) -> (&'static str, &'static str, &'static str) {
     }
 }
 
-/// What a figure is of: the robot, its title and the options.
-struct Subject<'a> {
-    robot: &'a Robot,
-    title: &'a str,
-    opts: &'a WsFigureOptions,
-}
-
-fn map_figure(
+/// The undecorated plot of a map view, where its data will lie, and the map to compute for
+/// exactly that frame.
+fn map_plot(
     figs: &mut Figures,
-    subject: Subject<'_>,
+    robot: &Robot,
+    title: &str,
+    opts: &WsFigureOptions,
     view: MapView,
-    stats: &WorkspaceStats,
-    progress: &(dyn Fn(f32) + Sync),
-    source: &mut dyn WorkspaceSource,
-) -> Result<image::RgbaImage, FigureError> {
-    let Subject { robot, title, opts } = subject;
+) -> Result<((Plot2d, PlotFrame), MapRequest), FigureError> {
     let extent = workspace::map_extent(robot, view, opts.point, opts.end_effector)?;
     let values = match opts.color_by {
         ColorBy::Dexterity => MapValues::Dexterity,
@@ -410,7 +427,7 @@ fn map_figure(
         _ if wrist => " (flange)",
         _ => "",
     };
-    let mut plot = Plot2d {
+    let plot = Plot2d {
         title: format!("Workspace of the {title}{point}{which}"),
         x_label: xl.into(),
         y_label: yl.into(),
@@ -420,29 +437,18 @@ fn map_figure(
         caption: opts.caption.clone(),
         ..Plot2d::default()
     };
-    let text = text_color(opts.theme);
-    let mut fill = |plot: &mut Plot2d, bounds: [f64; 4], px: [usize; 2]| {
-        let map = source.map(
-            robot,
-            &MapRequest {
-                view,
-                point: opts.point,
-                values,
-                cells: px,
-                bounds: Some(bounds),
-                samples: opts.samples,
-                seed: opts.seed,
-                end_effector: opts.end_effector,
-            },
-        )?;
-        progress(0.8);
-        decorate(plot, &map, stats, opts, text);
-        if view == MapView::Plane {
-            fig_2_30_labels(plot, robot);
-        }
-        Ok(Some(paint(&map, opts.color_by)))
+    let frame = figs.plot_frame(opts.size, opts.theme, &plot)?;
+    let req = MapRequest {
+        view,
+        point: opts.point,
+        values,
+        cells: frame.px,
+        bounds: Some(frame.bounds),
+        samples: opts.samples,
+        seed: opts.seed,
+        end_effector: opts.end_effector,
     };
-    figs.plot_fitted(opts.size, opts.theme, &mut plot, &mut fill)
+    Ok(((plot, frame), req))
 }
 
 /// Subtitle, legend or colour bar, and the map's curves.
@@ -515,37 +521,18 @@ fn legend(map: &WorkspaceMap) -> Vec<(String, Color32)> {
         .collect()
 }
 
-/// The letters of Fig. 2.30 at the corners of the two-link arm's arcs.
-fn fig_2_30_labels(plot: &mut Plot2d, robot: &Robot) {
-    let Ok(e) = workspace::planar_boundary(robot, &BoundaryOptions::default()) else {
-        return;
-    };
-    if e.rectangle.is_none() {
-        return;
+/// Fig. 2.30's singular lines (dashed) and letters on the plane of a two-link arm.
+fn add_plane_marks(plot: &mut Plot2d, marks: &PlaneMarks) {
+    for points in &marks.singular {
+        plot.curves.push(Curve {
+            name: None,
+            points: points.clone(),
+            color: Color32::from_gray(110),
+            width: 1.2,
+            dashed: true,
+        });
     }
-    for c in &e.curves {
-        if let (Some(first), Some(last)) = (c.points.first(), c.points.last()) {
-            let name = c.label.chars().collect::<Vec<_>>();
-            if name.len() == 2 && name.iter().all(char::is_ascii_uppercase) {
-                plot.labels.push((name[0].to_string(), *first));
-                plot.labels.push((name[1].to_string(), *last));
-            }
-        }
-        if c.kind == CurveKind::Singular {
-            plot.curves.push(Curve {
-                name: None,
-                points: c.points.clone(),
-                color: Color32::from_gray(110),
-                width: 1.2,
-                dashed: true,
-            });
-        }
-    }
-    plot.labels.sort_by(|a, b| a.0.cmp(&b.0));
-    plot.labels.dedup_by(|a, b| a.0 == b.0);
-    if let Some(h) = e.crossing("FD", "BC") {
-        plot.labels.push(("H".into(), h));
-    }
+    plot.labels.extend(marks.labels.iter().cloned());
 }
 
 /// The colour of a class mask.
@@ -561,7 +548,7 @@ fn class_color(mask: u8, classes: usize, color_by: ColorBy) -> [u8; 3] {
 
 /// The map's pixels: class colours (or the values' colour map), edge cells blended by their
 /// sub-samples, transparent where nothing is reached.
-fn paint(map: &WorkspaceMap, color_by: ColorBy) -> egui::ColorImage {
+fn paint_map(map: &WorkspaceMap, color_by: ColorBy) -> egui::ColorImage {
     let classes = map.class_names.len();
     let (w, h) = (map.width, map.height);
     let value_at = |k: usize| -> Option<[u8; 3]> {

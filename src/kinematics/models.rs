@@ -31,6 +31,11 @@ pub const BUILT_INS: &[BuiltIn] = &[
         build: planar2,
     },
     BuiltIn {
+        name: "planar2_fig2_30",
+        summary: "two-link planar arm with the joint limits of Figs 2.29-2.30, so that point H exists (Sect. 2.10.1, Example 2.6)",
+        build: planar2_fig2_30,
+    },
+    BuiltIn {
         name: "planar3",
         summary: "three-link planar arm of Problem 2.17, a = 0.5, 0.3, 0.2 m (Sect. 2.9.1, Fig. 2.20)",
         build: planar3,
@@ -141,6 +146,26 @@ fn serial(name: &str, conv: Convention, rows: &[Row], tool: Pose, description: &
 
 fn deg(v: f64) -> f64 {
     v.to_radians()
+}
+
+/// The two-link arm of Example 2.6 as drawn in Figs 2.29-2.30 (Sect. 2.10.1), a1 = a2 = 1 m. The
+/// excerpt gives no numbers; the limits -pi/2 <= q1 <= pi/2, -3pi/4 <= q2 <= pi/2 are chosen so
+/// that the figures have every point the text names: with q2M < |q2m| the arc FD (q1 = q1M) cuts
+/// the arc BC (q2 = q2M) at H = (1, 1) m, the outer contour is CDAEFHC and the region reached
+/// with both postures is BADHB. The same arm as `assets/robots/example_2_6.toml`.
+pub fn planar2_fig2_30() -> Robot {
+    serial(
+        "Two-link planar arm of Example 2.6",
+        Convention::Standard,
+        &[
+            row(R, 1.0, 0.0, 0.0, 0.0, [-FRAC_PI_2, FRAC_PI_2]),
+            row(R, 1.0, 0.0, 0.0, 0.0, [-3.0 * PI / 4.0, FRAC_PI_2]),
+        ],
+        Pose::identity(),
+        "Two-link planar arm of Example 2.6 as drawn in Figs 2.29-2.30, a1 = a2 = 1 m, joint limits -pi/2 <= q1 <= pi/2, -3pi/4 <= q2 <= pi/2 (chosen so that point H exists).",
+    )
+    .with_config("ready", vec![FRAC_PI_4, FRAC_PI_4])
+    .with_config("figure", vec![FRAC_PI_6, FRAC_PI_3])
 }
 
 /// Two-link planar arm, a1 = a2 = 1 m, joints within [-pi, pi] (Sect. 2.12.1, Figs 2.29–2.31).

@@ -12,6 +12,7 @@ mod geometry;
 pub mod motion;
 pub mod numerical;
 pub mod offset_elbow;
+pub mod sampler;
 pub mod srs;
 
 use crate::kinematics::{KinematicsError, Robot};
@@ -39,6 +40,27 @@ pub enum RedundancyError {
     /// Bad robot input.
     #[error(transparent)]
     Kinematics(#[from] KinematicsError),
+    /// The inverse kinematics that finds a configuration to start from failed on its input.
+    #[error(transparent)]
+    Ik(#[from] crate::kinematics::ik::IkError),
+    /// Numerical IK did not reach the pose whose self-motion was asked for.
+    #[error(
+        "numerical IK did not reach the pose (error {position_error:.3e} m, {orientation_error:.3e} rad)"
+    )]
+    NotReached {
+        /// Position error left (m).
+        position_error: f64,
+        /// Orientation error left (rad).
+        orientation_error: f64,
+    },
+    /// No branch of that name.
+    #[error("no branch {name:?} (the branches are: {branches})")]
+    NoBranch {
+        /// The name asked for.
+        name: String,
+        /// The branches there are, separated by "; ".
+        branches: String,
+    },
 }
 
 /// One solution of the self-motion at one value of the parameter.

@@ -23,6 +23,7 @@
 //! that plane ([`PlanarFrame`]). Angles are in rad.
 
 pub mod exact;
+pub mod figure_data;
 pub mod grid;
 pub mod map;
 pub mod planar;
@@ -35,6 +36,7 @@ pub mod stats;
 pub mod views;
 
 pub use exact::{Arc, ExactPlanar, ExactRegion, Membership, RegionSet};
+pub use figure_data::{Content, ContentRequest, FigureData, FigureRequest, compute_figure_data};
 pub use grid::{
     DexterousSet, GridAnalysis, GridMethod, GridOptions, GridSpec, MethodChoice, analyze_grid,
 };

@@ -42,7 +42,7 @@ impl Default for BoundaryOptions {
 }
 
 /// Why the arm loses mobility along a boundary curve.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum CurveKind {
     /// Every fixed joint is at one of its limits.
     JointLimit,

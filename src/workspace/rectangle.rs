@@ -9,7 +9,7 @@ use super::posture::PostureClassifier;
 use crate::kinematics::Robot;
 
 /// A labelled point of the joint-space rectangle (Fig. 2.29).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct RectPoint {
     /// Label ("a" ... "f" as in Fig. 2.29, or "l0", "r0", ... when q2 has several singular
     /// values inside its limits).
@@ -19,7 +19,7 @@ pub struct RectPoint {
 }
 
 /// A labelled segment of the joint-space rectangle.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct RectSegment {
     /// Label, e.g. "ab".
     pub label: String,
@@ -35,7 +35,7 @@ pub struct RectSegment {
 }
 
 /// The rectangle of admissible configurations of a two-link arm (Fig. 2.29), as data for a figure.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct JointRectangle {
     /// Limits of q1 (rad).
     pub q1: [f64; 2],

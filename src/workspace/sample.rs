@@ -13,7 +13,7 @@ use rayon::prelude::*;
 pub const SAMPLE_CHUNK: usize = 4096;
 
 /// What [`sample`] computes.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct SampleOptions {
     /// Number of joint vectors.
     pub samples: usize,

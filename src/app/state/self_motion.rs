@@ -14,8 +14,9 @@ use crate::kinematics::redundancy::{Redundancy, Task};
 use crate::redundancy::BranchSolution;
 use crate::redundancy::motion::ExactSelfMotion;
 use crate::redundancy::numerical::NullSpaceMotion;
+use crate::redundancy::sampler::SelfMotionSamples;
 use nalgebra::Vector3;
-use std::f64::consts::{PI, TAU};
+use std::f64::consts::PI;
 
 /// Samples of the parameter over [-pi, pi) for the curves of the Self-motion tab and the
 /// traced path.
@@ -160,12 +161,9 @@ impl AppState {
         if !fresh {
             let kind = self.self_motion_kind(ee, &pose);
             let samples = match &kind {
-                Kind::Exact(m) => (0..SELF_MOTION_SAMPLES)
-                    .map(|k| {
-                        let v = -PI + TAU * k as f64 / SELF_MOTION_SAMPLES as f64;
-                        (v, m.solutions(&self.robot, v))
-                    })
-                    .collect(),
+                Kind::Exact(m) => {
+                    SelfMotionSamples::exact(&self.robot, m, SELF_MOTION_SAMPLES).samples
+                }
                 _ => Vec::new(),
             };
             self.self_motion = Some(SelfMotionCache {
