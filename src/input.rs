@@ -114,6 +114,36 @@ pub fn read_text(path: &Path, max_bytes: u64, what: &str) -> std::io::Result<Str
     Ok(text)
 }
 
+/// Reads a regular file (a device such as /dev/zero would be read forever) of at most
+/// `max_bytes`, refusing a larger one with its size in the error; `what` names the kind
+/// ("a mesh").
+pub fn read_bytes(path: &Path, max_bytes: u64, what: &str) -> std::io::Result<Vec<u8>> {
+    let refuse = |why: String| std::io::Error::new(std::io::ErrorKind::InvalidInput, why);
+    let meta = std::fs::metadata(path)?;
+    if !meta.is_file() {
+        return Err(refuse(format!("{}: not a regular file", path.display())));
+    }
+    let too_large = |len: u64| {
+        refuse(format!(
+            "{}: the file is {} MiB, larger than the {} MiB armlab reads from {what}",
+            path.display(),
+            len >> 20,
+            max_bytes >> 20
+        ))
+    };
+    if meta.len() > max_bytes {
+        return Err(too_large(meta.len()));
+    }
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)?
+        .take(max_bytes + 1)
+        .read_to_end(&mut bytes)?;
+    if bytes.len() as u64 > max_bytes {
+        return Err(too_large(bytes.len() as u64));
+    }
+    Ok(bytes)
+}
+
 /// Cuts a field's text for a message (at most 40 characters).
 fn excerpt(text: &str) -> String {
     match text.char_indices().nth(40) {

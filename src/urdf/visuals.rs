@@ -76,33 +76,9 @@ fn resolve(filename: &str, urdf: &Path) -> Result<PathBuf, String> {
 }
 
 /// Reads a mesh file, or a file a mesh references (an OBJ's material library): a regular file
-/// (a device such as /dev/zero would be read forever) of at most [`MAX_MESH_BYTES`].
+/// of at most [`MAX_MESH_BYTES`].
 fn read_capped(path: &Path) -> std::io::Result<Vec<u8>> {
-    use std::io::Read as _;
-    let refuse = |why: String| std::io::Error::new(std::io::ErrorKind::InvalidInput, why);
-    let meta = std::fs::metadata(path)?;
-    if !meta.is_file() {
-        return Err(refuse(format!("{}: not a regular file", path.display())));
-    }
-    let too_large = |len: u64| {
-        refuse(format!(
-            "{}: the file is {} MiB, larger than the {} MiB armlab reads from a mesh",
-            path.display(),
-            len >> 20,
-            MAX_MESH_BYTES >> 20
-        ))
-    };
-    if meta.len() > MAX_MESH_BYTES {
-        return Err(too_large(meta.len()));
-    }
-    let mut bytes = Vec::new();
-    std::fs::File::open(path)?
-        .take(MAX_MESH_BYTES + 1)
-        .read_to_end(&mut bytes)?;
-    if bytes.len() as u64 > MAX_MESH_BYTES {
-        return Err(too_large(bytes.len() as u64));
-    }
-    Ok(bytes)
+    crate::input::read_bytes(path, MAX_MESH_BYTES, "a mesh")
 }
 
 /// One mesh file as a single triangle mesh (every sub-mesh merged), decimated if large.

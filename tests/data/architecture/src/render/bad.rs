@@ -1,0 +1,3 @@
+//! The renderer naming the kinematics and egui (fixture).
+use crate::kinematics::Robot;
+fn paint(ui: &mut egui::Ui) {}

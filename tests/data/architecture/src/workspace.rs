@@ -1,0 +1,2 @@
+//! A compute module that names a layer above it (fixture).
+use crate::scene::Scene;
