@@ -5,10 +5,13 @@
 //!
 //! A solver that does not converge returns an [`IkReport`] with `converged = false`, not an error.
 
+mod secondary;
+
 use super::{IkError, Target, check_target};
 use crate::kinematics::pose::Pose;
 use crate::kinematics::robot::Robot;
 use nalgebra::{DMatrix, DVector, Matrix6, Matrix6xX, Rotation3, Vector3, Vector6};
+use secondary::improve_secondary;
 use std::f64::consts::TAU;
 
 /// The update rule.
@@ -315,7 +318,7 @@ pub fn solve(
                 robot, ee, &goal, &mask, opts, &bounds, free_only, &mut q, &mut s,
             )?
         } else {
-            attempt_solve(robot, ee, &goal, &mask, opts, &bounds, &mut q, &mut s)?
+            descend(robot, ee, &goal, &mask, opts, &bounds, &mut q, &mut s)?
         };
         iterations += it;
         let (pe, oe) = split_norms(&e);
@@ -376,103 +379,6 @@ fn clamp(q: &mut [f64], limits: &[[f64; 2]], revolute: &[bool]) {
     }
 }
 
-/// `(J J^T + lambda I)^-1 e` for the masked rows (unmasked rows get a unit diagonal), then
-/// `J^T` of it: the damped least-squares step, allocation-free.
-fn dls_step(
-    jac: &Matrix6xX<f64>,
-    e: &Vector6<f64>,
-    lambda: f64,
-    mask: &TaskMask,
-    dq: &mut DVector<f64>,
-) -> bool {
-    let mut a: Matrix6<f64> = gram(jac);
-    for i in 0..6 {
-        if mask.0[i] {
-            a[(i, i)] += lambda;
-        } else {
-            a.row_mut(i).fill(0.0);
-            a.column_mut(i).fill(0.0);
-            a[(i, i)] = 1.0;
-        }
-    }
-    let Some(ch) = a.cholesky() else { return false };
-    let y = ch.solve(e);
-    dq.gemv_tr(1.0, jac, &y, 0.0);
-    true
-}
-
-#[allow(clippy::too_many_arguments)]
-fn attempt_solve(
-    robot: &Robot,
-    ee: usize,
-    goal: &Pose,
-    mask: &TaskMask,
-    opts: &NumericalOptions,
-    bounds: &Bounds,
-    q: &mut [f64],
-    s: &mut Scratch,
-) -> Result<(usize, Vector6<f64>), IkError> {
-    if opts.method == Method::LevenbergMarquardt {
-        return lm_attempt(robot, ee, goal, mask, opts, bounds, q, s);
-    }
-    let mut lambda = opts.damping;
-    let t = robot.jacobian_into(q, ee, &mut s.frames, &mut s.jac)?;
-    let mut e = error(goal, &t, mask);
-    let mut cost = e.norm_squared();
-    mask_rows(&mut s.jac, &t, mask);
-    for it in 1..=opts.max_iterations {
-        let (pe, oe) = split_norms(&e);
-        if pe <= opts.tolerance && oe <= opts.tolerance {
-            return Ok((it - 1, e));
-        }
-        let ok = match opts.method {
-            Method::LevenbergMarquardt => dls_step(&s.jac, &e, lambda, mask, &mut s.dq),
-            Method::DampedLeastSquares => {
-                dls_step(&s.jac, &e, opts.damping * opts.damping, mask, &mut s.dq)
-            }
-            Method::PseudoInverse => pinv_step(&s.jac, &e, &mut s.dq),
-            Method::Transpose => {
-                s.dq.gemv_tr(opts.transpose_gain, &s.jac, &e, 0.0);
-                true
-            }
-        };
-        if !ok {
-            return Ok((it, e));
-        }
-        let norm = s.dq.amax();
-        if norm > opts.max_step {
-            s.dq *= opts.max_step / norm;
-        }
-        for ((t, &v), d) in s.trial.iter_mut().zip(q.iter()).zip(s.dq.iter()) {
-            *t = v + d;
-        }
-        if opts.enforce_limits {
-            bounds.clamp(&mut s.trial);
-        }
-        let t_trial = robot.fk_ee(&s.trial, ee)?;
-        let e_trial = error(goal, &t_trial, mask);
-        let c_trial = e_trial.norm_squared();
-        let accept = opts.method != Method::LevenbergMarquardt || c_trial < cost;
-        if accept {
-            q.copy_from_slice(&s.trial);
-            let t = robot.jacobian_into(q, ee, &mut s.frames, &mut s.jac)?;
-            e = error(goal, &t, mask);
-            cost = e.norm_squared();
-            mask_rows(&mut s.jac, &t, mask);
-            lambda = (lambda * 0.1).max(1e-12);
-        } else {
-            lambda *= 10.0;
-            if lambda > 1e8 {
-                return Ok((it, e));
-            }
-        }
-        if !cost.is_finite() {
-            return Ok((it, e));
-        }
-    }
-    Ok((opts.max_iterations, e))
-}
-
 /// One attempt under joint limits, in two tries from the same start: first without the limits
 /// (Levenberg–Marquardt converges in a few steps where the limits would stop it at a local
 /// minimum against a bound), and if the answer lies inside the limits after shifting revolute
@@ -497,7 +403,7 @@ fn limited_attempt(
         enforce_limits: false,
         ..*opts
     };
-    let (it_free, e_free) = lm_attempt(robot, ee, goal, mask, &unlimited, bounds, &mut free, s)?;
+    let (it_free, e_free) = descend(robot, ee, goal, mask, &unlimited, bounds, &mut free, s)?;
     let (pe, oe) = split_norms(&e_free);
     if pe <= opts.tolerance && oe <= opts.tolerance {
         bounds.clamp(&mut free);
@@ -521,7 +427,7 @@ fn limited_attempt(
         let e = error(goal, &robot.fk_ee(q, ee)?, mask);
         return Ok((it_free, e));
     }
-    let (it, e) = lm_attempt(robot, ee, goal, mask, opts, bounds, q, s)?;
+    let (it, e) = descend(robot, ee, goal, mask, opts, bounds, q, s)?;
     Ok((it_free + it, e))
 }
 
@@ -642,15 +548,19 @@ fn accelerate(
     Ok(())
 }
 
-/// One Levenberg–Marquardt attempt from `q`: the damped Gauss–Newton step
+/// One attempt from `q`, the one iteration loop of every method: a step (see [`Method`]),
+/// capped at `max_step`, clamped into the limits when they are enforced, and the trial's error.
+///
+/// For Levenberg–Marquardt the step is the damped Gauss–Newton step
 /// `v = J^T (J J^T + lambda I)^-1 e`, with its geodesic acceleration whenever the previous step
 /// fitted the linear model poorly (Transtrum & Sethna 2012: the second directional derivative of
 /// the error along v, by one extra forward kinematics, corrects the step for the curvature of the
-/// solution's valley, which is what makes plain LM crawl beside singular goals), Nielsen's damping
-/// update from the ratio of actual to predicted decrease, and an early end when the error stalls
-/// far from the goal ([`STALL_WINDOW`]).
+/// solution's valley, which is what makes plain LM crawl beside singular goals); a trial is kept
+/// only if it lowers the error, with Nielsen's damping update from the ratio of actual to
+/// predicted decrease, and the attempt ends early when the error stalls far from the goal
+/// ([`STALL_WINDOW`]). The other methods take every step.
 #[allow(clippy::too_many_arguments)]
-fn lm_attempt(
+fn descend(
     robot: &Robot,
     ee: usize,
     goal: &Pose,
@@ -660,6 +570,7 @@ fn lm_attempt(
     q: &mut [f64],
     s: &mut Scratch,
 ) -> Result<(usize, Vector6<f64>), IkError> {
+    let lm = opts.method == Method::LevenbergMarquardt;
     let mut lambda = opts.damping;
     let mut nu = 2.0;
     let mut e = masked_jacobian(robot, ee, goal, mask, q, s)?;
@@ -672,7 +583,7 @@ fn lm_attempt(
         if pe <= opts.tolerance && oe <= opts.tolerance {
             return Ok((it - 1, e));
         }
-        if it % STALL_WINDOW == 0 {
+        if lm && it % STALL_WINDOW == 0 {
             match progress(cost, cost_before) {
                 Progress::Stalled => return Ok((it, e)),
                 Progress::Crawling => crawling = true,
@@ -680,15 +591,31 @@ fn lm_attempt(
             }
             cost_before = cost;
         }
-        let Some(ch) = damped_factor(&s.jac, lambda, mask) else {
-            return Ok((it, e));
+        let factor = match opts.method {
+            Method::LevenbergMarquardt => damped_factor(&s.jac, lambda, mask),
+            Method::DampedLeastSquares => damped_factor(&s.jac, opts.damping * opts.damping, mask),
+            Method::PseudoInverse | Method::Transpose => None,
         };
-        s.dq.gemv_tr(1.0, &s.jac, &ch.solve(&e), 0.0);
+        let stepped = match (opts.method, &factor) {
+            (Method::LevenbergMarquardt | Method::DampedLeastSquares, Some(ch)) => {
+                s.dq.gemv_tr(1.0, &s.jac, &ch.solve(&e), 0.0);
+                true
+            }
+            (Method::PseudoInverse, _) => pinv_step(&s.jac, &e, &mut s.dq),
+            (Method::Transpose, _) => {
+                s.dq.gemv_tr(opts.transpose_gain, &s.jac, &e, 0.0);
+                true
+            }
+            _ => false,
+        };
+        if !stepped {
+            return Ok((it, e));
+        }
         let jv: Vector6<f64> = &s.jac * &s.dq;
-        if poor_fit || crawling {
+        if let (true, Some(ch)) = (lm && (poor_fit || crawling), &factor) {
             // The last step's decrease fell short of the linear model's: correct for the
             // curvature (once the model fits, plain steps converge quadratically).
-            accelerate(robot, ee, goal, mask, q, &e, &jv, &ch, s)?;
+            accelerate(robot, ee, goal, mask, q, &e, &jv, ch, s)?;
         }
         let norm = s.dq.amax();
         if norm > opts.max_step {
@@ -700,18 +627,23 @@ fn lm_attempt(
         if opts.enforce_limits {
             bounds.clamp(&mut s.trial);
         }
-        let e_trial = error(goal, &robot.fk_ee(&s.trial, ee)?, mask);
-        let c_trial = e_trial.norm_squared();
-        if c_trial < cost {
-            let predicted = cost - (e - jv).norm_squared();
-            let rho = if predicted > 0.0 {
-                (cost - c_trial) / predicted
-            } else {
-                1.0
-            };
-            lambda = (lambda * (1.0 / 3.0f64).max(1.0 - (2.0 * rho - 1.0).powi(3))).max(1e-14);
-            nu = 2.0;
-            poor_fit = rho < 0.25;
+        let c_trial = if lm {
+            error(goal, &robot.fk_ee(&s.trial, ee)?, mask).norm_squared()
+        } else {
+            0.0
+        };
+        if !lm || c_trial < cost {
+            if lm {
+                let predicted = cost - (e - jv).norm_squared();
+                let rho = if predicted > 0.0 {
+                    (cost - c_trial) / predicted
+                } else {
+                    1.0
+                };
+                lambda = (lambda * (1.0 / 3.0f64).max(1.0 - (2.0 * rho - 1.0).powi(3))).max(1e-14);
+                nu = 2.0;
+                poor_fit = rho < 0.25;
+            }
             q.copy_from_slice(&s.trial);
             e = masked_jacobian(robot, ee, goal, mask, q, s)?;
             cost = e.norm_squared();
@@ -739,165 +671,6 @@ fn pinv_step(jac: &Matrix6xX<f64>, e: &Vector6<f64>, dq: &mut DVector<f64>) -> b
             true
         }
         Err(_) => false,
-    }
-}
-
-/// Value of the secondary objective (larger is better).
-fn objective(
-    robot: &Robot,
-    ee: usize,
-    q: &[f64],
-    mask: &TaskMask,
-    secondary: Secondary,
-    limits: &[[f64; 2]],
-) -> f64 {
-    match secondary {
-        Secondary::None => 0.0,
-        Secondary::JointLimits { .. } => {
-            let n = q.len() as f64;
-            -q.iter()
-                .zip(limits)
-                .filter(|(_, l)| l[0].is_finite() && l[1].is_finite())
-                .map(|(&v, l)| ((v - 0.5 * (l[0] + l[1])) / (l[1] - l[0]).max(1e-9)).powi(2))
-                .sum::<f64>()
-                / (2.0 * n)
-        }
-        Secondary::Manipulability { .. } => manipulability(robot, ee, q, mask),
-    }
-}
-
-fn manipulability(robot: &Robot, ee: usize, q: &[f64], mask: &TaskMask) -> f64 {
-    let Ok(t) = robot.fk_ee(q, ee) else {
-        return 0.0;
-    };
-    robot.jacobian(q, ee).map_or(0.0, |mut j| {
-        mask_rows(&mut j, &t, mask);
-        let mut m = j.clone() * j.transpose();
-        for i in 0..6 {
-            if !mask.0[i] {
-                m[(i, i)] = 1.0;
-            }
-        }
-        m.determinant().max(0.0).sqrt()
-    })
-}
-
-/// Second phase for redundant arms: step along the null-space projection of the objective's
-/// gradient, (3.54), then re-converge the task with LM; keep a step only if the task still
-/// converges and the objective improved.
-#[allow(clippy::too_many_arguments)]
-fn improve_secondary(
-    robot: &Robot,
-    ee: usize,
-    goal: &Pose,
-    mask: &TaskMask,
-    opts: &NumericalOptions,
-    bounds: &Bounds,
-    mut q: Vec<f64>,
-    mut e: Vector6<f64>,
-    s: &mut Scratch,
-) -> Result<(Vec<f64>, Vector6<f64>, usize), IkError> {
-    let limits = &bounds.limits;
-    let mut best = objective(robot, ee, &q, mask, opts.secondary, limits);
-    let mut iterations = 0;
-    let inner = NumericalOptions {
-        method: Method::LevenbergMarquardt,
-        max_iterations: 30,
-        ..*opts
-    };
-    for _ in 0..opts.max_iterations {
-        let t = robot.jacobian_into(&q, ee, &mut s.frames, &mut s.jac)?;
-        mask_rows(&mut s.jac, &t, mask);
-        s.dq.fill(0.0);
-        add_null_space(
-            robot,
-            ee,
-            &q,
-            &s.jac,
-            mask,
-            1e-9,
-            opts.secondary,
-            limits,
-            &mut s.dq,
-        );
-        let norm = s.dq.amax();
-        if norm < 1e-9 {
-            break;
-        }
-        if norm > opts.max_step {
-            s.dq *= opts.max_step / norm;
-        }
-        let mut trial: Vec<f64> = q.iter().zip(s.dq.iter()).map(|(a, b)| a + b).collect();
-        if opts.enforce_limits {
-            bounds.clamp(&mut trial);
-        }
-        let (it, e_trial) = attempt_solve(robot, ee, goal, mask, &inner, bounds, &mut trial, s)?;
-        iterations += it;
-        let (pe, oe) = split_norms(&e_trial);
-        let value = objective(robot, ee, &trial, mask, opts.secondary, limits);
-        if pe <= opts.tolerance && oe <= opts.tolerance && value > best + 1e-12 {
-            best = value;
-            q = trial;
-            e = e_trial;
-        } else {
-            break;
-        }
-    }
-    Ok((q, e, iterations))
-}
-
-/// Adds `(I - J^# J) k grad w` to `dq`, (3.54).
-#[allow(clippy::too_many_arguments)]
-fn add_null_space(
-    robot: &Robot,
-    ee: usize,
-    q: &[f64],
-    jac: &Matrix6xX<f64>,
-    mask: &TaskMask,
-    lambda: f64,
-    secondary: Secondary,
-    limits: &[[f64; 2]],
-    dq: &mut DVector<f64>,
-) {
-    let n = q.len();
-    let (gain, grad) = match secondary {
-        Secondary::None => return,
-        Secondary::JointLimits { gain } => {
-            let g = DVector::from_iterator(
-                n,
-                q.iter().zip(limits).map(|(&v, l)| {
-                    if !(l[0].is_finite() && l[1].is_finite()) {
-                        return 0.0;
-                    }
-                    let range = (l[1] - l[0]).max(1e-9);
-                    -(v - 0.5 * (l[0] + l[1])) / (n as f64 * range * range)
-                }),
-            );
-            (gain, g)
-        }
-        Secondary::Manipulability { gain } => {
-            let w = |q: &[f64]| manipulability(robot, ee, q, mask);
-            let h = 1e-6;
-            let mut qq = q.to_vec();
-            let g = DVector::from_iterator(
-                n,
-                (0..n).map(|k| {
-                    qq[k] = q[k] + h;
-                    let wp = w(&qq);
-                    qq[k] = q[k] - h;
-                    let wm = w(&qq);
-                    qq[k] = q[k];
-                    (wp - wm) / (2.0 * h)
-                }),
-            );
-            (gain, g)
-        }
-    };
-    // J^# J grad = J^T (J J^T + lambda I)^-1 J grad
-    let jg: Vector6<f64> = jac * &grad;
-    let mut proj = DVector::zeros(n);
-    if dls_step(jac, &jg, lambda, mask, &mut proj) {
-        *dq += (grad - proj) * gain;
     }
 }
 
