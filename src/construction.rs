@@ -28,11 +28,13 @@ pub enum ConstructionError {
         outer: f64,
     },
     /// The robot has no spherical wrist (its last three axes do not meet in a point).
-    #[error("{0}")]
-    NoSphericalWrist(String),
-    /// The robot has no construction to show (no closed form, or a family not drawn), and why.
-    #[error("{0}")]
-    NoConstruction(String),
+    #[error("{robot} has no spherical wrist: {why}")]
+    NoSphericalWrist {
+        /// The robot's name.
+        robot: String,
+        /// What fails, in words.
+        why: &'static str,
+    },
     /// Bad robot input.
     #[error(transparent)]
     Kinematics(#[from] KinematicsError),
@@ -150,11 +152,9 @@ impl WristPoint {
     /// three axes do not meet, or when the tool is not offset along a_e alone (then (2.93) does
     /// not give W).
     pub fn of(robot: &Robot, q: &[f64]) -> Result<Self, ConstructionError> {
-        let no = |why: &str| {
-            ConstructionError::NoSphericalWrist(format!(
-                "{} has no spherical wrist: {why}",
-                robot.name
-            ))
+        let no = |why: &'static str| ConstructionError::NoSphericalWrist {
+            robot: robot.name.clone(),
+            why,
         };
         if robot.dof() != 6 || (3..6).any(|k| robot.dof_joint(k).kind != JointKind::Revolute) {
             return Err(no("it needs six joints, the last three revolute"));

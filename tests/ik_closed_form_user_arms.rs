@@ -529,7 +529,11 @@ fn absurd_targets_never_give_nan() {
                 },
             ] {
                 match c.solve(&r, &t) {
-                    Err(IkError::TargetKind(_)) => {}
+                    Err(
+                        IkError::TargetKind { .. }
+                        | IkError::TiltedOutOfPlane { .. }
+                        | IkError::OffPlane { .. },
+                    ) => {}
                     Err(e) => panic!("{name}: {e}"),
                     Ok(res) => {
                         if let IkStatus::Unreachable { distance } = res.status {

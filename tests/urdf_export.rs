@@ -184,7 +184,7 @@ fn trees_and_mimic_joints_have_no_dh_table_and_say_why() {
     let humanoid = built_in("humanoid").unwrap();
     let err = derive_dh(&humanoid, 0, Convention::Standard).unwrap_err();
     assert!(
-        matches!(err, NoDhTable::Coupled(_) | NoDhTable::Tree { .. }),
+        matches!(err, NoDhTable::Coupled { .. } | NoDhTable::Tree { .. }),
         "{err}"
     );
     let urdf = |second: &str| {
@@ -205,7 +205,10 @@ fn trees_and_mimic_joints_have_no_dh_table_and_say_why() {
     // A mimic joint: one variable for two rows.
     let r = parse_urdf(&urdf("b"), Path::new("mimic.urdf")).unwrap();
     let e = derive_dh(&r, 0, Convention::Standard).unwrap_err();
-    assert!(matches!(e, NoDhTable::Coupled(ref j) if j == "j2"), "{e}");
+    assert!(
+        matches!(e, NoDhTable::Coupled { ref joint } if joint == "j2"),
+        "{e}"
+    );
     // Two joints on the root link: a tree with two leaves.
     let r = parse_urdf(&urdf("a"), Path::new("tree.urdf")).unwrap();
     let e = derive_dh(&r, 0, Convention::Standard).unwrap_err();
@@ -214,7 +217,7 @@ fn trees_and_mimic_joints_have_no_dh_table_and_say_why() {
     let parallelogram = built_in("parallelogram").unwrap();
     let err = derive_dh(&parallelogram, 0, Convention::Standard).unwrap_err();
     assert!(
-        matches!(err, NoDhTable::Coupled(_) | NoDhTable::Tree { .. }),
+        matches!(err, NoDhTable::Coupled { .. } | NoDhTable::Tree { .. }),
         "{err}"
     );
 }

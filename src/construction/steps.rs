@@ -92,8 +92,7 @@ fn signed(u: &Vector3<f64>, v: &Vector3<f64>, n: &Vector3<f64>) -> f64 {
 
 /// The construction of the closed-form solution at `q`, or why there is none.
 pub fn construction(robot: &Robot, q: &[f64]) -> Result<Vec<Step>, ConstructionError> {
-    let cf = ClosedForm::detect(robot)
-        .map_err(|e| ConstructionError::NoConstruction(format!("no closed form: {e}")))?;
+    let cf = ClosedForm::detect(robot)?;
     match cf.family() {
         Family::Planar2 => planar(robot, q, false),
         Family::Planar3 => planar(robot, q, true),

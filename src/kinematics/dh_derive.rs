@@ -55,16 +55,22 @@ pub enum NoDhTable {
     },
     /// A joint that follows others (a mimic joint, a closed chain).
     #[error(
-        "no DH table: joint \"{0}\" follows other joints (mimic or closed chain), and a DH table \
-         has one variable per row"
+        "no DH table: joint \"{joint}\" follows other joints (mimic or closed chain), and a DH \
+         table has one variable per row"
     )]
-    Coupled(String),
+    Coupled {
+        /// The coupled joint's name.
+        joint: String,
+    },
     /// The chain has no moving joint.
     #[error("no DH table: the chain has no moving joint")]
     NoJoints,
     /// The derived table's forward kinematics did not reproduce the chain's.
-    #[error("no DH table: the derived table misses the chain's pose by {0:.3e} m at some q")]
-    Mismatch(f64),
+    #[error("no DH table: the derived table misses the chain's pose by {error:.3e} m at some q")]
+    Mismatch {
+        /// The largest position error found (m).
+        error: f64,
+    },
     /// Bad robot input.
     #[error(transparent)]
     Kinematics(#[from] KinematicsError),
@@ -123,7 +129,9 @@ fn chain_axes(robot: &Robot, ee: usize) -> Result<(Vec<usize>, Vec<Axis>), NoDhT
             continue;
         }
         if !matches!(joint.drive, Drive::Actuated(_)) {
-            return Err(NoDhTable::Coupled(joint.name.clone()));
+            return Err(NoDhTable::Coupled {
+                joint: joint.name.clone(),
+            });
         }
         if !chain.contains(&j) {
             return Err(NoDhTable::Tree {
@@ -333,7 +341,7 @@ impl DerivedDh {
 fn check(robot: &Robot, ee: usize, d: &DerivedDh, scale: f64) -> Result<(), NoDhTable> {
     let dh = d
         .robot(&robot.name)
-        .map_err(|_| NoDhTable::Mismatch(f64::NAN))?;
+        .map_err(|_| NoDhTable::Mismatch { error: f64::NAN })?;
     let ranges = robot.sampling_ranges();
     let mut worst: f64 = 0.0;
     for k in 0..9 {
@@ -357,6 +365,6 @@ fn check(robot: &Robot, ee: usize, d: &DerivedDh, scale: f64) -> Result<(), NoDh
     if worst.is_finite() && worst <= 1e-9 * scale {
         Ok(())
     } else {
-        Err(NoDhTable::Mismatch(worst))
+        Err(NoDhTable::Mismatch { error: worst })
     }
 }

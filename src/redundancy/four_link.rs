@@ -33,11 +33,10 @@ impl FourLinkSelfMotion {
     /// its end-effector at `target`: the position in the plane and the orientation phi about the
     /// plane normal are used.
     pub fn new(robot: &Robot, target: &Pose) -> Result<Self, RedundancyError> {
-        let not = |why: &str| {
-            RedundancyError::NotSupported(format!(
-                "{} has no exact four-link planar self-motion: {why}",
-                robot.name
-            ))
+        let not = |why: &str| RedundancyError::NoPlanarSelfMotion {
+            robot: robot.name.clone(),
+            kind: "four-link",
+            why: why.to_string(),
         };
         let frame = crate::workspace::planar_frame(robot, 0).ok_or_else(|| not("not planar"))?;
         let (convention, rows) = robot

@@ -24,9 +24,66 @@ use thiserror::Error;
 #[derive(Debug, Error)]
 #[non_exhaustive]
 pub enum RedundancyError {
-    /// The robot has no exact self-motion for this task (not redundant, or no structure).
-    #[error("{0}")]
-    NotSupported(String),
+    /// The robot is not redundant for the task: it has no self-motion.
+    #[error("{robot} is not redundant for a full pose ({redundancy}): it has no self-motion")]
+    NotRedundant {
+        /// The robot's name.
+        robot: String,
+        /// n, m and r in words.
+        redundancy: String,
+    },
+    /// The robot has none of the structures with an exact self-motion.
+    #[error(
+        "{robot} is neither an SRS or offset-elbow 7R arm nor a three- or four-link planar arm"
+    )]
+    NoExactSelfMotion {
+        /// The robot's name.
+        robot: String,
+    },
+    /// A planar arm whose exact self-motion does not exist, and why.
+    #[error("{robot} has no exact {kind} planar self-motion: {why}")]
+    NoPlanarSelfMotion {
+        /// The robot's name.
+        robot: String,
+        /// "three-link" or "four-link".
+        kind: &'static str,
+        /// Why, in words.
+        why: String,
+    },
+    /// The pose's wrist centre is out of the reach of an SRS arm.
+    #[error("the pose's wrist centre is out of reach")]
+    WristOutOfReach,
+    /// No value of q7 reaches the pose (offset-elbow arm).
+    #[error("the pose is out of reach for every q7")]
+    OutOfReachForEveryQ7,
+    /// The null space of the Jacobian is empty at the start of a numerical self-motion.
+    #[error(
+        "{robot} has no self-motion at this configuration for this task (the null space of its \
+         Jacobian is empty)"
+    )]
+    EmptyNullSpace {
+        /// The robot's name.
+        robot: String,
+    },
+    /// The numerical self-motion reached a singularity.
+    #[error(
+        "the self-motion reached a singularity (the null space of the Jacobian changed dimension)"
+    )]
+    NullSpaceChanged,
+    /// A starting direction of the wrong length.
+    #[error("a direction of {got} values for {joints} joints")]
+    DirectionLength {
+        /// Values given.
+        got: usize,
+        /// Joints of the robot.
+        joints: usize,
+    },
+    /// A step of the numerical self-motion that is not a number.
+    #[error("step {step} is not finite")]
+    NonFiniteStep {
+        /// The step asked for (rad of joint-space arc).
+        step: f64,
+    },
     /// The point is not reachable at all (no branch, any phi).
     #[error("the point ({x}, {y}) is out of reach of the arm (distance {distance:.6} m)")]
     Unreachable {
@@ -61,6 +118,25 @@ pub enum RedundancyError {
         /// The branches there are, separated by "; ".
         branches: String,
     },
+}
+
+impl RedundancyError {
+    /// Whether the error says the arm (or the pose) has no exact self-motion of the kind asked
+    /// for, rather than that the input was bad: the numerical self-motion may still apply.
+    pub fn unsupported(&self) -> bool {
+        matches!(
+            self,
+            Self::NotRedundant { .. }
+                | Self::NoExactSelfMotion { .. }
+                | Self::NoPlanarSelfMotion { .. }
+                | Self::WristOutOfReach
+                | Self::OutOfReachForEveryQ7
+                | Self::EmptyNullSpace { .. }
+                | Self::NullSpaceChanged
+                | Self::DirectionLength { .. }
+                | Self::NonFiniteStep { .. }
+        )
+    }
 }
 
 /// One solution of the self-motion at one value of the parameter.
@@ -99,12 +175,16 @@ impl PlanarSelfMotion {
     /// The self-motion of a three-link planar arm (closed-form family) holding its end-effector
     /// at `target` (plane coordinates, m).
     pub fn new(robot: &Robot, target: [f64; 2]) -> Result<Self, RedundancyError> {
-        let (chain, frame) = PlanarChain::from_robot(robot)
-            .map_err(|e| RedundancyError::NotSupported(e.to_string()))?;
+        let not = |why: String| RedundancyError::NoPlanarSelfMotion {
+            robot: robot.name.clone(),
+            kind: "three-link",
+            why,
+        };
+        let (chain, frame) = PlanarChain::from_robot(robot).map_err(|e| not(e.to_string()))?;
         if chain.n != 3 {
-            return Err(RedundancyError::NotSupported(format!(
-                "{} has {} joints: a planar position task (r = 2) leaves no self-motion",
-                robot.name, chain.n
+            return Err(not(format!(
+                "it has {} joints: a planar position task (r = 2) leaves no self-motion",
+                chain.n
             )));
         }
         let t0 = robot.fk(&[0.0; 3])?;

@@ -35,14 +35,13 @@ impl ExactSelfMotion {
     /// The exact self-motion of `robot` holding its (only) end-effector at `target`: SRS 7R
     /// arms by the arm angle, offset-elbow 7R arms (the Panda) by q7, three-link planar arms
     /// with a position task by phi, four-link planar arms with a position-and-phi task by phi_3.
-    /// Other arms are [`RedundancyError::NotSupported`] (they have the numerical self-motion).
+    /// Other arms are [`RedundancyError::NoExactSelfMotion`] (they have the numerical
+    /// self-motion).
     pub fn new(robot: &Robot, target: &Pose) -> Result<Self, RedundancyError> {
         let (solver, names, feasible, manifolds, singular) =
             if let Some(arm) = SrsArm::detect(robot) {
                 if arm.solve(target, 0.0).is_empty() && !arm.singular(target) {
-                    return Err(RedundancyError::NotSupported(
-                        "the pose's wrist centre is out of reach".into(),
-                    ));
+                    return Err(RedundancyError::WristOutOfReach);
                 }
                 let f = arm.feasible_intervals(target).to_vec();
                 let (m, s) = (arm.manifolds(target), arm.singular(target));
@@ -55,9 +54,7 @@ impl ExactSelfMotion {
                     arm.solve_raw(target, t, &mut [[0.0; 7]; 8]) & 0xff != 0
                 });
                 if !reach && f.iter().all(Vec::is_empty) {
-                    return Err(RedundancyError::NotSupported(
-                        "the pose is out of reach for every q7".into(),
-                    ));
+                    return Err(RedundancyError::OutOfReachForEveryQ7);
                 }
                 let names = OffsetElbowArm::branch_names().to_vec();
                 (Solver::OffsetElbow(arm), names, f, m, false)
@@ -74,11 +71,9 @@ impl ExactSelfMotion {
                 )
             } else {
                 let frame = crate::workspace::planar_frame(robot, 0).ok_or_else(|| {
-                    RedundancyError::NotSupported(format!(
-                        "{} is neither an SRS or offset-elbow 7R arm nor a three- or four-link \
-                     planar arm",
-                        robot.name
-                    ))
+                    RedundancyError::NoExactSelfMotion {
+                        robot: robot.name.clone(),
+                    }
                 })?;
                 let p = target.translation.vector;
                 let m = PlanarSelfMotion::new(robot, frame.to_plane([p.x, p.y, p.z]))?;

@@ -61,10 +61,10 @@ impl<'a> NullSpaceMotion<'a> {
         let dir = match direction {
             Some(d) if d.len() == n => DVector::from_column_slice(d),
             Some(d) => {
-                return Err(RedundancyError::NotSupported(format!(
-                    "a direction of {} values for {n} joints",
-                    d.len()
-                )));
+                return Err(RedundancyError::DirectionLength {
+                    got: d.len(),
+                    joints: n,
+                });
             }
             None => {
                 // Every joint that moves the hand, equally; the others stay.
@@ -89,11 +89,9 @@ impl<'a> NullSpaceMotion<'a> {
             mask,
         };
         if !me.update_tangent()? {
-            return Err(RedundancyError::NotSupported(format!(
-                "{} has no self-motion at this configuration for this task (the null space of \
-                 its Jacobian is empty)",
-                robot.name
-            )));
+            return Err(RedundancyError::EmptyNullSpace {
+                robot: robot.name.clone(),
+            });
         }
         Ok(me)
     }
@@ -178,9 +176,7 @@ impl<'a> NullSpaceMotion<'a> {
     /// task (`q += J^+ e`) until the error stops decreasing below 1e-15 of the arm's size.
     pub fn step(&mut self, ds: f64) -> Result<(), RedundancyError> {
         if !ds.is_finite() {
-            return Err(RedundancyError::NotSupported(format!(
-                "step {ds} is not finite"
-            )));
+            return Err(RedundancyError::NonFiniteStep { step: ds });
         }
         for (t, (q, d)) in self
             .trial
@@ -221,11 +217,7 @@ impl<'a> NullSpaceMotion<'a> {
         }
         self.trial = std::mem::replace(&mut self.q, q);
         if !self.update_tangent()? {
-            return Err(RedundancyError::NotSupported(
-                "the self-motion reached a singularity (the null space of the Jacobian changed \
-                 dimension)"
-                    .into(),
-            ));
+            return Err(RedundancyError::NullSpaceChanged);
         }
         Ok(())
     }

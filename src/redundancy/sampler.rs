@@ -171,17 +171,16 @@ pub fn sample_self_motion(
     if ee == 0 {
         match ExactSelfMotion::new(robot, pose) {
             Ok(m) => return Ok(SelfMotionSamples::exact(robot, &m, n)),
-            Err(e @ RedundancyError::NotSupported(_)) if has_exact_shape(robot) => return Err(e),
-            Err(RedundancyError::NotSupported(_)) => {}
+            Err(e) if e.unsupported() && !has_exact_shape(robot) => {}
             Err(e) => return Err(e),
         }
     }
     let red = Redundancy::of(robot, Task::Pose);
     if red.degree() <= 0 {
-        return Err(RedundancyError::NotSupported(format!(
-            "{} is not redundant for a full pose ({red}): it has no self-motion",
-            robot.name
-        )));
+        return Err(RedundancyError::NotRedundant {
+            robot: robot.name.clone(),
+            redundancy: red.to_string(),
+        });
     }
     let seed = robot
         .config("ready")

@@ -251,10 +251,11 @@ pub fn analyze_grid(
     let ee = opts.end_effector;
     check_ee(robot, ee)?;
     if opts.resolution == 0 || opts.resolution > 4096 {
-        return Err(WorkspaceError::InvalidOption(format!(
-            "grid resolution must be 1 to 4096, got {}",
-            opts.resolution
-        )));
+        return Err(WorkspaceError::InvalidOption {
+            option: "grid resolution",
+            value: opts.resolution.to_string(),
+            expected: "must be 1 to 4096",
+        });
     }
     let frame = planar_frame(robot, ee);
     let tester = if opts.method == MethodChoice::Auto && ee == 0 {
@@ -267,9 +268,11 @@ pub fn analyze_grid(
         return sampling_grid(robot, opts, frame, progress);
     };
     if opts.samples == 0 && tester.frame().is_none() {
-        return Err(WorkspaceError::InvalidOption(
-            "a spatial grid needs samples for its bounding box".into(),
-        ));
+        return Err(WorkspaceError::InvalidOption {
+            option: "samples",
+            value: opts.samples.to_string(),
+            expected: "a spatial grid needs samples for its bounding box",
+        });
     }
     let grid = match tester.frame() {
         Some(_) => {
@@ -381,9 +384,11 @@ fn sampling_grid(
 ) -> Result<GridAnalysis, WorkspaceError> {
     let (ee, n, samples) = (opts.end_effector, opts.resolution, opts.samples);
     if samples == 0 {
-        return Err(WorkspaceError::InvalidOption(
-            "the sampling method needs at least one sample".into(),
-        ));
+        return Err(WorkspaceError::InvalidOption {
+            option: "samples",
+            value: opts.samples.to_string(),
+            expected: "the sampling method needs at least one sample",
+        });
     }
     let b = sampled_bounds(robot, ee, samples, opts.seed, frame.as_ref())?;
     let grid = match frame {

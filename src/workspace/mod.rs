@@ -71,11 +71,29 @@ pub enum WorkspaceError {
         count: usize,
     },
     /// An option is out of range (e.g. a zero grid resolution).
-    #[error("invalid workspace option: {0}")]
-    InvalidOption(String),
-    /// The computation needs a planar arm of a given kind.
-    #[error("{0}")]
-    NotPlanar(String),
+    #[error("invalid workspace option: {option} {value}: {expected}")]
+    InvalidOption {
+        /// The option, e.g. "grid resolution".
+        option: &'static str,
+        /// The value given, in words.
+        value: String,
+        /// What it must be.
+        expected: &'static str,
+    },
+    /// The computation needs a planar arm of a given kind, and the robot is not one.
+    #[error("{robot} {reason}")]
+    NotPlanar {
+        /// The robot's name.
+        robot: String,
+        /// What it lacks, e.g. "is not a two- or three-link planar arm".
+        reason: String,
+    },
+    /// The dexterous workspace needs orientations, and the arm controls position only.
+    #[error("the {family} controls position only: the dexterous workspace needs a wrist")]
+    PositionOnly {
+        /// The closed-form family's name.
+        family: String,
+    },
     /// Forward kinematics failed.
     #[error(transparent)]
     Kinematics(#[from] KinematicsError),

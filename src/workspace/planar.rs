@@ -287,14 +287,14 @@ fn polyline_distance(p: [f64; 2], pts: &[[f64; 2]], closed: bool) -> f64 {
 
 /// The planar arm's frame and number of joints, or why it is not a two-/three-link planar arm.
 pub(super) fn planar_arm(robot: &Robot) -> Result<(PlanarFrame, usize), WorkspaceError> {
-    let not = || {
-        WorkspaceError::NotPlanar(format!(
-            "{} is not a two- or three-link planar arm (revolute joints with parallel axes)",
-            robot.name
-        ))
+    let not = || WorkspaceError::NotPlanar {
+        robot: robot.name.clone(),
+        reason: "is not a two- or three-link planar arm (revolute joints with parallel axes)"
+            .into(),
     };
-    let cf = ClosedForm::detect(robot).map_err(|e| {
-        WorkspaceError::NotPlanar(format!("{} has no planar closed form: {e}", robot.name))
+    let cf = ClosedForm::detect(robot).map_err(|e| WorkspaceError::NotPlanar {
+        robot: robot.name.clone(),
+        reason: format!("has no planar closed form: {e}"),
     })?;
     let n = match cf.family() {
         Family::Planar2 => 2,
@@ -434,10 +434,11 @@ pub fn planar_boundary(
     opts: &BoundaryOptions,
 ) -> Result<PlanarBoundary, WorkspaceError> {
     if !(opts.step > 0.0 && opts.step.is_finite()) {
-        return Err(WorkspaceError::InvalidOption(format!(
-            "polyline step must be positive, got {}",
-            opts.step
-        )));
+        return Err(WorkspaceError::InvalidOption {
+            option: "polyline step",
+            value: opts.step.to_string(),
+            expected: "must be positive",
+        });
     }
     let (frame, n) = planar_arm(robot)?;
     let mut ev = Eval::new(robot, frame);

@@ -59,9 +59,12 @@ pub struct JointRectangle {
 pub fn joint_rectangle(robot: &Robot) -> Result<JointRectangle, WorkspaceError> {
     let (frame, n) = planar_arm(robot)?;
     if n != 2 {
-        return Err(WorkspaceError::NotPlanar(
-            "the joint-space rectangle of Fig. 2.29 needs a two-link planar arm".into(),
-        ));
+        return Err(WorkspaceError::NotPlanar {
+            robot: robot.name.clone(),
+            reason: format!(
+                "has {n} links: the joint-space rectangle of Fig. 2.29 needs a two-link planar arm"
+            ),
+        });
     }
     let mut ev = Eval::new(robot, frame);
     let lim = robot.sampling_ranges();

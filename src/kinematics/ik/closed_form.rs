@@ -322,12 +322,11 @@ impl ClosedForm {
         out.clear();
         check_target(target)?;
         if robot.dof() != self.dof {
-            return Err(IkError::NoClosedForm(format!(
-                "this closed form is for a {}-DOF {}, the robot has {} DOF",
-                self.dof,
-                self.name(),
-                robot.dof()
-            )));
+            return Err(IkError::OtherRobot {
+                dof: self.dof,
+                family: self.name(),
+                robot_dof: robot.dof(),
+            });
         }
         let (goal, world) = self.prepare(target)?;
         let mut raw = RawSolutions::default();
@@ -445,10 +444,11 @@ impl ClosedForm {
         let arm = match &self.geometry {
             Geometry::Arm(a) | Geometry::Decoupled { arm: a, .. } => a,
             _ => {
-                return Err(IkError::TargetKind(format!(
-                    "the {} has no positioning arm solved apart",
-                    self.name()
-                )));
+                return Err(IkError::TargetKind {
+                    target: "position",
+                    solver: self.name(),
+                    hint: "it has no positioning arm solved apart",
+                });
             }
         };
         out.len = 0;
@@ -495,44 +495,47 @@ impl ClosedForm {
             Target::Pose(t) => Ok((self.goal_of_pose(&t), World::Pose(t))),
             Target::Position(p) => {
                 if self.family.uses_frame() {
-                    return Err(IkError::TargetKind(format!(
-                        "a position target does not determine the {}: {}",
-                        self.name(),
-                        match self.family {
+                    return Err(IkError::TargetKind {
+                        target: "position",
+                        solver: self.name(),
+                        hint: match self.family {
                             Family::Planar3 => {
                                 "the three-link planar arm is redundant for a position; give a \
                                  planar target (px, py, phi) or a pose whose z axis is along z0"
                             }
                             Family::SphericalWrist => "the wrist needs an orientation: give a pose",
-                            _ => "give a pose target",
-                        }
-                    )));
+                            _ => "a position does not determine it: give a pose target",
+                        },
+                    });
                 }
                 let local = self.base_inv * Point3::from(p);
                 Ok((Goal::Point(local.coords), World::Point(p)))
             }
             Target::Planar { px, py, phi } => {
                 let Geometry::Parallel(arm) = &self.geometry else {
-                    return Err(IkError::TargetKind(format!(
-                        "a planar target (px, py, phi) needs a planar arm, not a {}",
-                        self.name()
-                    )));
+                    return Err(IkError::TargetKind {
+                        target: "planar (px, py, phi)",
+                        solver: self.name(),
+                        hint: "a planar target needs a planar arm",
+                    });
                 };
                 if arm.prismatic.is_some() {
-                    return Err(IkError::TargetKind(format!(
-                        "a planar target has no z: give the {} a pose target",
-                        self.name()
-                    )));
+                    return Err(IkError::TargetKind {
+                        target: "planar (px, py, phi)",
+                        solver: self.name(),
+                        hint: "a planar target has no z: give a pose target",
+                    });
                 }
                 // The tool pose in the base frame with psi_n = phi - phi0.
                 let r0 = arm.tool_rot0;
                 let (cx, cy) = (r0[(0, 0)], r0[(1, 0)]);
                 if cx.hypot(cy) < 1e-9 {
-                    return Err(IkError::TargetKind(
-                        "the tool x axis is perpendicular to the arm plane, so phi is undefined: \
-                         give a pose target"
-                            .into(),
-                    ));
+                    return Err(IkError::TargetKind {
+                        target: "planar (px, py, phi)",
+                        solver: self.name(),
+                        hint: "the tool x axis is perpendicular to the arm plane, so phi is \
+                               undefined: give a pose target",
+                    });
                 }
                 let rot = rot_z(phi - cy.atan2(cx)).rotation.matrix() * r0;
                 let local = Pose::from_parts(
@@ -610,10 +613,11 @@ impl ClosedForm {
                 }
             }
             _ => {
-                return Err(IkError::TargetKind(format!(
-                    "this target kind does not fit the {}",
-                    self.name()
-                )));
+                return Err(IkError::TargetKind {
+                    target: "position",
+                    solver: self.name(),
+                    hint: "give a pose target",
+                });
             }
         }
         for q in &mut out.q[..out.len] {

@@ -91,11 +91,48 @@ pub enum IkError {
     #[error("the target contains a non-finite number")]
     NonFiniteTarget,
     /// A target kind the solver cannot use (e.g. a planar target for a spatial arm).
-    #[error("{0}")]
-    TargetKind(String),
+    #[error("a {target} target does not fit the {solver}: {hint}")]
+    TargetKind {
+        /// The target's kind: "position", "planar (px, py, phi)", "pose".
+        target: &'static str,
+        /// The closed-form family's name.
+        solver: &'static str,
+        /// Why, and what to give instead.
+        hint: &'static str,
+    },
+    /// A pose target whose orientation tilts out of a planar arm's plane.
+    #[error(
+        "the target orientation is tilted {tilt:.3e} rad out of the plane of this planar arm: give \
+         a planar target or a pose whose z axis is along z0"
+    )]
+    TiltedOutOfPlane {
+        /// Angle between the target's z axis and the plane's normal (rad).
+        tilt: f64,
+    },
+    /// A target off the plane of a planar arm without a prismatic joint.
+    #[error(
+        "the target is {offset:.3e} m off the plane of this planar arm (z = {plane_z} in the base \
+         frame)"
+    )]
+    OffPlane {
+        /// Signed distance from the plane (m).
+        offset: f64,
+        /// The plane's z in the base frame (m).
+        plane_z: f64,
+    },
     /// No closed form exists for this arm's structure.
     #[error("no closed-form solver matches this arm's structure ({0})")]
-    NoClosedForm(String),
+    NoClosedForm(#[from] closed_form::NoClosedForm),
+    /// A closed form applied to a robot it was not detected for.
+    #[error("this closed form is for a {dof}-DOF {family}, the robot has {robot_dof} DOF")]
+    OtherRobot {
+        /// The closed form's joint count.
+        dof: usize,
+        /// Its family's name.
+        family: &'static str,
+        /// The robot's joint count.
+        robot_dof: usize,
+    },
     /// Bad joint vector (seed).
     #[error(transparent)]
     Kinematics(#[from] super::error::KinematicsError),

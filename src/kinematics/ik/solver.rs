@@ -2,7 +2,7 @@
 //! polished numerically where that helps), the numerical solver otherwise (seeded with the
 //! caller's q); plus picking a solution by posture or by closeness to a configuration.
 
-use super::closed_form::ClosedForm;
+use super::closed_form::{ClosedForm, NoClosedForm};
 use super::numerical::{self, NumericalOptions};
 use super::{IkError, IkResult, IkSolution, IkStatus, Target};
 use crate::kinematics::orientation::wrap_angle;
@@ -55,12 +55,12 @@ pub fn solve(
 ) -> Result<(IkResult, SolverUsed), IkError> {
     super::check_target(target)?;
     let cf = if ee == 0 && robot.end_effectors().len() == 1 {
-        ClosedForm::detect(robot).map_err(|e| e.to_string())
+        ClosedForm::detect(robot)
     } else {
-        Err(format!(
-            "end-effector {ee} of {}: the closed forms solve robots with a single end-effector",
-            robot.end_effectors().len()
-        ))
+        Err(NoClosedForm::SeveralEndEffectors {
+            ee,
+            count: robot.end_effectors().len(),
+        })
     };
     match (choice, cf) {
         (SolverChoice::ClosedForm, Err(why)) => Err(IkError::NoClosedForm(why)),

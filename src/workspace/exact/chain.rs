@@ -109,11 +109,9 @@ impl PlanarChain {
     /// Reads the chain of a two- or three-link planar arm (closed-form family `Planar2` or
     /// `Planar3`, every joint revolute, one end-effector).
     pub fn from_robot(robot: &Robot) -> Result<(Self, PlanarFrame), WorkspaceError> {
-        let not = |why: &str| {
-            WorkspaceError::NotPlanar(format!(
-                "{} has no exact planar workspace: {why}",
-                robot.name
-            ))
+        let not = |why: &str| WorkspaceError::NotPlanar {
+            robot: robot.name.clone(),
+            reason: format!("has no exact planar workspace: {why}"),
         };
         let cf = ClosedForm::detect(robot).map_err(|e| not(&e.to_string()))?;
         let n = match cf.family() {
@@ -223,10 +221,12 @@ impl PlanarChain {
             let want = frame.to_plane([p.x, p.y, p.z]);
             let got = self.point(&self.alpha_of_q(q), self.n);
             if (got[0] - want[0]).hypot(got[1] - want[1]) > 1e-9 * self.scale {
-                return Err(WorkspaceError::NotPlanar(format!(
-                    "{}: the plane model of the chain does not reproduce its forward kinematics",
-                    robot.name
-                )));
+                return Err(WorkspaceError::NotPlanar {
+                    robot: robot.name.clone(),
+                    reason: "has no exact planar workspace: the plane model of the chain does \
+                             not reproduce its forward kinematics"
+                        .into(),
+                });
             }
         }
         Ok(())

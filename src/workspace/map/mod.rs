@@ -222,10 +222,11 @@ pub fn padded(b: &Aabb, pad: f64) -> [f64; 4] {
 /// Computes a map.
 pub fn compute_map(robot: &Robot, req: &MapRequest) -> Result<WorkspaceMap, WorkspaceError> {
     if req.cells[0] == 0 || req.cells[1] == 0 || req.cells[0] * req.cells[1] > 64_000_000 {
-        return Err(WorkspaceError::InvalidOption(format!(
-            "map size {}x{} cells: each side must be at least 1, at most 64 million cells",
-            req.cells[0], req.cells[1]
-        )));
+        return Err(WorkspaceError::InvalidOption {
+            option: "map size",
+            value: format!("{}x{} cells", req.cells[0], req.cells[1]),
+            expected: "each side must be at least 1, at most 64 million cells",
+        });
     }
     let bounds = match req.bounds {
         Some(b) => b,
@@ -235,9 +236,11 @@ pub fn compute_map(robot: &Robot, req: &MapRequest) -> Result<WorkspaceMap, Work
         ),
     };
     if !(bounds[1] > bounds[0] && bounds[3] > bounds[2] && bounds.iter().all(|v| v.is_finite())) {
-        return Err(WorkspaceError::InvalidOption(format!(
-            "map bounds {bounds:?} are empty or not finite"
-        )));
+        return Err(WorkspaceError::InvalidOption {
+            option: "map bounds",
+            value: format!("{bounds:?}"),
+            expected: "must be finite and not empty",
+        });
     }
     super::check_ee(robot, req.end_effector)?;
     if req.end_effector == 0 {

@@ -59,12 +59,14 @@ impl PointQuery {
                     kind: Kind::Spatial(Box::new(s)),
                     scale,
                 }),
-                None => Err(WorkspaceError::NotPlanar(format!(
-                    "point queries need a two- or three-link planar arm or a closed-form \
-                     positioning arm whose joint 1 turns about the base z axis; {} has neither \
-                     ({planar})",
-                    robot.name
-                ))),
+                None => Err(WorkspaceError::NotPlanar {
+                    robot: robot.name.clone(),
+                    reason: format!(
+                        "has neither a two- or three-link planar arm nor a closed-form \
+                         positioning arm whose joint 1 turns about the base z axis, which point \
+                         queries need ({planar})"
+                    ),
+                }),
             },
         }
     }

@@ -694,10 +694,9 @@ impl Section {
         dims: [usize; 2],
     ) -> Result<CellValues, WorkspaceError> {
         if !matches!(self.cf.family(), Family::Decoupled6 { .. }) {
-            return Err(WorkspaceError::InvalidOption(format!(
-                "the {} controls position only: the dexterous workspace needs a wrist",
-                self.family
-            )));
+            return Err(WorkspaceError::PositionOnly {
+                family: self.family.to_string(),
+            });
         }
         // At most 256 cells across: the values are smooth, the classes carry the edges.
         let k = (dims[0].max(dims[1]) as f64 / 256.0).max(1.0);

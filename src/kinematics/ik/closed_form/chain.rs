@@ -157,7 +157,11 @@ fn check_serial(robot: &Robot) -> Result<(), NoClosedForm> {
     for j in joints {
         match (j.kind, &j.drive) {
             (JointKind::Fixed, Drive::None) | (_, Drive::Actuated(_)) => {}
-            _ => return Err(NoClosedForm::Coupled(j.name.clone())),
+            _ => {
+                return Err(NoClosedForm::Coupled {
+                    joint: j.name.clone(),
+                });
+            }
         }
     }
     for (i, j) in joints.iter().enumerate() {
@@ -187,10 +191,10 @@ pub(super) fn normalize_checked(robot: &Robot) -> Result<Chain, NoClosedForm> {
         .iter()
         .all(|j| matches!(j.drive, Drive::Actuated(_) | Drive::None));
     if not_plain_dh && one_variable_each {
-        let no = |e: String| NoClosedForm::NoDhTable(e);
-        let derived = crate::kinematics::dh_derive::derive_dh(robot, 0, Convention::Standard)
-            .map_err(|e| no(e.to_string()))?;
-        let dh = derived.robot(&robot.name).map_err(|e| no(e.to_string()))?;
+        let derived = crate::kinematics::dh_derive::derive_dh(robot, 0, Convention::Standard)?;
+        let dh = derived
+            .robot(&robot.name)
+            .map_err(|source| NoClosedForm::InvalidDerivedTable { source })?;
         return normalize_checked(&dh);
     }
     check_serial(robot)?;

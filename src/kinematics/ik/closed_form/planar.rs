@@ -223,10 +223,7 @@ impl ParallelArm {
                 let tilt = r[(0, 2)].hypot(r[(1, 2)]).atan2(self.end_flip * r[(2, 2)]);
                 if tilt > TILT_TOL {
                     if self.prismatic.is_none() {
-                        return Err(IkError::TargetKind(format!(
-                            "the target orientation is tilted {tilt:.3e} rad out of the plane of \
-                             this planar arm: give a planar target or a pose whose z axis is along z0"
-                        )));
+                        return Err(IkError::TiltedOutOfPlane { tilt });
                     }
                     out.unreachable = Some(tilt);
                     return Ok(());
@@ -252,11 +249,10 @@ impl ParallelArm {
             Some((i, sp)) => Some((i, sp * (z - zref))),
             None => {
                 if (z - zref).abs() > PLANE_TOL {
-                    return Err(IkError::TargetKind(format!(
-                        "the target is {:.3e} m off the plane of this planar arm (z = {zref} in the \
-                         base frame)",
-                        z - zref
-                    )));
+                    return Err(IkError::OffPlane {
+                        offset: z - zref,
+                        plane_z: zref,
+                    });
                 }
                 None
             }

@@ -9,7 +9,7 @@ use crate::kinematics::robot::Robot;
 use thiserror::Error;
 
 /// Why [`super::ClosedForm::detect`] found no closed-form family for a robot.
-#[derive(Debug, Clone, PartialEq, Eq, Error)]
+#[derive(Debug, Clone, PartialEq, Error)]
 pub enum NoClosedForm {
     /// The robot is not one serial chain of DH rows.
     #[error(
@@ -19,14 +19,33 @@ pub enum NoClosedForm {
     NotSerialDh(&'static str),
     /// A joint follows others (a closed chain or a mimic joint).
     #[error(
-        "joint {0} is coupled to other joints (closed chain or mimic joint): the closed forms need \
-         one variable per joint"
+        "joint {joint} is coupled to other joints (closed chain or mimic joint): the closed forms \
+         need one variable per joint"
     )]
-    Coupled(String),
+    Coupled {
+        /// The coupled joint's name.
+        joint: String,
+    },
     /// The chain is given by origins and axes (a URDF) and no DH table could be derived from
     /// them (a tree, for instance), and why.
-    #[error("{0}")]
-    NoDhTable(String),
+    #[error(transparent)]
+    NoDhTable(#[from] crate::kinematics::dh_derive::NoDhTable),
+    /// The DH table derived from a URDF chain does not make a valid robot.
+    #[error("the DH table derived from the chain is not a valid robot: {source}")]
+    InvalidDerivedTable {
+        /// Why.
+        source: crate::kinematics::ModelError,
+    },
+    /// The closed forms solve robots with a single end-effector.
+    #[error(
+        "end-effector {ee} of {count}: the closed forms solve robots with a single end-effector"
+    )]
+    SeveralEndEffectors {
+        /// The end-effector asked for.
+        ee: usize,
+        /// How many the robot has.
+        count: usize,
+    },
     /// The number of joint variables has no family.
     #[error("{count} joints: {why}")]
     JointCount {
@@ -36,8 +55,11 @@ pub enum NoClosedForm {
         why: &'static str,
     },
     /// The joint count fits a family but the geometry does not.
-    #[error("{0}")]
-    Geometry(String),
+    #[error("{why}")]
+    Geometry {
+        /// What in the geometry rules the families out, in words.
+        why: String,
+    },
 }
 
 /// Why `robot` has no closed form (call only when detection failed).
@@ -64,7 +86,7 @@ pub(super) fn diagnose(robot: &Robot) -> NoClosedForm {
             why: "more joints than the 6 components of a pose: the arm is redundant (Sect. 2.10.2) \
                   and a pose has infinitely many solutions; use numerical IK",
         },
-        6 => NoClosedForm::Geometry(match wrist_problem(&rows[3..], tol) {
+        6 => geometry(match wrist_problem(&rows[3..], tol) {
             Some(w) => {
                 format!("{w}: no spherical wrist, so position and orientation do not decouple")
             }
@@ -76,15 +98,20 @@ pub(super) fn diagnose(robot: &Robot) -> NoClosedForm {
                 None => unmatched(),
             },
         }),
-        4 => NoClosedForm::Geometry(match planar_problem(rows) {
+        4 => geometry(match planar_problem(rows) {
             Some(p) => format!(
                 "4 joints: only the SCARA (three revolute joints, one prismatic, all axes \
                  parallel) has a closed form; {p}"
             ),
             None => unmatched(),
         }),
-        _ => NoClosedForm::Geometry(three_or_two(&chain, tol)),
+        _ => geometry(three_or_two(&chain, tol)),
     }
+}
+
+/// [`NoClosedForm::Geometry`] with its reason.
+fn geometry(why: String) -> NoClosedForm {
+    NoClosedForm::Geometry { why }
 }
 
 fn unmatched() -> String {
