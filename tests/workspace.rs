@@ -562,7 +562,7 @@ fn sampling_throughput() {
             classes,
             ..SampleOptions::default()
         };
-        sample(&r, &o, &none).unwrap();
+        let _warm_up = sample(&r, &o, &none).unwrap();
         let t = std::time::Instant::now();
         let s = sample(&r, &o, &none).unwrap();
         let dt = t.elapsed().as_secs_f64();

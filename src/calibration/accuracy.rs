@@ -11,6 +11,7 @@ use rayon::prelude::*;
 /// deviation (m) over the sampled configurations whose tool point (of the first model) falls in
 /// it: the accuracy to expect at that position, whatever the height and orientation.
 #[derive(Debug, Clone, PartialEq)]
+#[must_use]
 pub struct AccuracyMap {
     /// `[x_min, x_max, y_min, y_max]` (m, world frame).
     pub bounds: [f64; 4],

@@ -40,6 +40,7 @@ impl Observability {
 
 /// The identifiability of the free parameters for a set of measurements.
 #[derive(Debug, Clone, PartialEq)]
+#[must_use]
 pub struct Identifiability {
     /// Free parameters (columns of the system).
     pub parameter_count: usize,

@@ -45,6 +45,7 @@ impl Default for CalibrationOptions {
 /// largest |dp|, and the same for the rotation angle of `R_measured R_model^T` (`None` for
 /// position-only data).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[must_use]
 pub struct Fit {
     /// RMS position error (m).
     pub position_rms: f64,
@@ -73,6 +74,7 @@ pub struct Iteration {
 
 /// What [`calibrate`] found.
 #[derive(Debug, Clone, PartialEq)]
+#[must_use]
 pub struct CalibrationReport {
     /// Every parameter (nominal value, fixed or not), in the order of zeta.
     pub parameters: Vec<Parameter>,

@@ -13,6 +13,7 @@ pub const RANK_TOLERANCE: f64 = 1e-9;
 
 /// Singular-value analysis of a Jacobian.
 #[derive(Debug, Clone, PartialEq)]
+#[must_use]
 pub struct JacobianAnalysis {
     /// Singular values, descending.
     pub singular_values: DVector<f64>,

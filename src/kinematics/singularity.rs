@@ -126,6 +126,7 @@ pub struct SingularCondition {
 
 /// A singularity warning.
 #[derive(Debug, Clone, PartialEq)]
+#[must_use]
 pub struct SingularityReport {
     /// At or near.
     pub proximity: Proximity,

@@ -159,6 +159,7 @@ impl GridSpec {
 
 /// The cells reached by each posture class, and the orientation coverage of each cell.
 #[derive(Debug, Clone, PartialEq)]
+#[must_use]
 pub struct GridAnalysis {
     /// The grid (plane coordinates for a planar arm, else world frame).
     pub grid: GridSpec,

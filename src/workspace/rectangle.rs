@@ -36,6 +36,7 @@ pub struct RectSegment {
 
 /// The rectangle of admissible configurations of a two-link arm (Fig. 2.29), as data for a figure.
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+#[must_use]
 pub struct JointRectangle {
     /// Limits of q1 (rad).
     pub q1: [f64; 2],

@@ -45,6 +45,7 @@ impl Default for SampleOptions {
 
 /// The result of [`sample`].
 #[derive(Debug, Clone, PartialEq)]
+#[must_use]
 pub struct Samples {
     /// End-effector positions `p_e` in the world frame (m), one per sample.
     pub positions: Vec<[f64; 3]>,

@@ -43,6 +43,7 @@ pub struct ClassMeasure {
 
 /// Summary of a workspace.
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+#[must_use]
 pub struct WorkspaceStats {
     /// Whether the arm is planar (then areas, else volumes).
     pub planar: bool,

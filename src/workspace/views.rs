@@ -76,6 +76,7 @@ pub fn project(robot: &Robot, samples: &Samples, view: View) -> Projection {
 
 /// A 3D point cloud for rendering (world frame, m, single precision).
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+#[must_use]
 pub struct PointCloud {
     /// Positions (world frame, m).
     pub positions: Vec<[f32; 3]>,

@@ -77,6 +77,7 @@ pub enum IkStatus {
 
 /// The result of an IK query: status and every solution found.
 #[derive(Debug, Clone, PartialEq)]
+#[must_use]
 pub struct IkResult {
     /// Overall status.
     pub status: IkStatus,

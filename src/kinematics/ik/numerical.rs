@@ -135,6 +135,7 @@ impl Default for NumericalOptions {
 
 /// What the numerical solver did.
 #[derive(Debug, Clone, PartialEq)]
+#[must_use]
 pub struct IkReport {
     /// Final joint vector (the best found when not converged).
     pub q: Vec<f64>,

@@ -142,6 +142,7 @@ pub struct MapCurve {
 
 /// A workspace map (see the module documentation).
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+#[must_use]
 pub struct WorkspaceMap {
     /// View.
     pub view: MapView,
