@@ -43,51 +43,75 @@ pub fn figure(robot: &Robot, motion: &SelfMotionSamples) -> Result<image::RgbaIm
     };
     let dof = robot.dof().min(JOINT_COLORS.len());
     for (b, name) in names.iter().enumerate() {
-        for (j, c) in JOINT_COLORS.iter().copied().enumerate().take(dof) {
-            let mut run: Vec<[f64; 2]> = Vec::new();
-            let mut labelled = false;
-            let mut flush = |run: &mut Vec<[f64; 2]>| {
-                if run.len() > 1 {
-                    plot.curves.push(Curve {
-                        name: (!labelled).then(|| format!("q{} ({name})", j + 1)),
-                        points: std::mem::take(run),
-                        color: Color32::from_rgb(c[0], c[1], c[2]),
-                        width: 1.8,
-                        dashed: b % 2 == 1,
-                    });
-                    labelled = true;
-                }
-                run.clear();
-            };
-            for (phi, sols) in samples {
-                match sols.iter().find(|s| &s.name == name) {
-                    Some(s) => {
-                        let p = [phi.to_degrees(), s.q[j].to_degrees()];
-                        if run.last().is_some_and(|l| (l[1] - p[1]).abs() > 180.0) {
-                            flush(&mut run);
-                        }
-                        run.push(p);
-                    }
-                    None => flush(&mut run),
-                }
-            }
-            flush(&mut run);
-        }
-        let c = CLASS_COLORS[b % CLASS_COLORS.len()];
-        for iv in &feasible[b] {
-            let y = -196.0 + 3.0 * b as f64;
-            plot.areas.push(Area {
-                name: format!("{name} feasible"),
-                points: vec![
-                    [iv[0].to_degrees(), y],
-                    [iv[1].to_degrees(), y],
-                    [iv[1].to_degrees(), y + 2.0],
-                    [iv[0].to_degrees(), y + 2.0],
-                ],
-                fill: Color32::from_rgb(c[0], c[1], c[2]),
-            });
-        }
+        add_branch(&mut plot, b, name, samples, dof);
+        add_feasible_bars(&mut plot, b, name, &feasible[b]);
     }
+    add_limit_lines(&mut plot, robot, dof);
+    let mut figs = Figures::new()?;
+    figs.plot([1200, 800], Theme::Light, &plot, None)
+}
+
+/// Branch `b`'s joint curves (the first `dof` joints), broken where a branch has no solution or
+/// an angle wraps; solid for even branches, dashed for odd ones.
+fn add_branch(
+    plot: &mut Plot2d,
+    b: usize,
+    name: &str,
+    samples: &[(f64, Vec<crate::redundancy::BranchSolution>)],
+    dof: usize,
+) {
+    for (j, c) in JOINT_COLORS.iter().copied().enumerate().take(dof) {
+        let mut run: Vec<[f64; 2]> = Vec::new();
+        let mut labelled = false;
+        let mut flush = |run: &mut Vec<[f64; 2]>| {
+            if run.len() > 1 {
+                plot.curves.push(Curve {
+                    name: (!labelled).then(|| format!("q{} ({name})", j + 1)),
+                    points: std::mem::take(run),
+                    color: Color32::from_rgb(c[0], c[1], c[2]),
+                    width: 1.8,
+                    dashed: b % 2 == 1,
+                });
+                labelled = true;
+            }
+            run.clear();
+        };
+        for (phi, sols) in samples {
+            match sols.iter().find(|s| s.name == name) {
+                Some(s) => {
+                    let p = [phi.to_degrees(), s.q[j].to_degrees()];
+                    if run.last().is_some_and(|l| (l[1] - p[1]).abs() > 180.0) {
+                        flush(&mut run);
+                    }
+                    run.push(p);
+                }
+                None => flush(&mut run),
+            }
+        }
+        flush(&mut run);
+    }
+}
+
+/// Branch `b`'s feasible intervals (rad) as bars in its posture colour under the curves.
+fn add_feasible_bars(plot: &mut Plot2d, b: usize, name: &str, intervals: &[[f64; 2]]) {
+    let c = CLASS_COLORS[b % CLASS_COLORS.len()];
+    for iv in intervals {
+        let y = -196.0 + 3.0 * b as f64;
+        plot.areas.push(Area {
+            name: format!("{name} feasible"),
+            points: vec![
+                [iv[0].to_degrees(), y],
+                [iv[1].to_degrees(), y],
+                [iv[1].to_degrees(), y + 2.0],
+                [iv[0].to_degrees(), y + 2.0],
+            ],
+            fill: Color32::from_rgb(c[0], c[1], c[2]),
+        });
+    }
+}
+
+/// The finite joint limits of the first `dof` joints as dashed lines in the joints' colours.
+fn add_limit_lines(plot: &mut Plot2d, robot: &Robot, dof: usize) {
     for (j, l) in robot.limits().iter().enumerate().take(dof) {
         let c = JOINT_COLORS[j];
         for v in l.iter().filter(|v| v.is_finite() && v.abs() < 3.5) {
@@ -100,6 +124,4 @@ pub fn figure(robot: &Robot, motion: &SelfMotionSamples) -> Result<image::RgbaIm
             });
         }
     }
-    let mut figs = Figures::new()?;
-    figs.plot([1200, 800], Theme::Light, &plot, None)
 }

@@ -554,93 +554,8 @@ pub fn dlr() -> Robot {
 /// 0.1 m above it, arm bases tilted down by beta = 30 deg; hands d7 = 0.1 m (the excerpt does not
 /// give the modified seventh row of Problem 2.14, so the DLR row is kept with a longer hand).
 pub fn humanoid() -> Robot {
-    let dh = |a: f64, alpha: f64, d: f64| JointGeometry::Dh {
-        row: DhRow {
-            a,
-            alpha,
-            d,
-            theta: 0.0,
-        },
-        convention: Convention::Standard,
-    };
-    let mut joints = vec![
-        Joint {
-            name: "torso1".into(),
-            kind: R,
-            parent: None,
-            pre: Pose::identity(),
-            geometry: dh(0.0, FRAC_PI_2, 0.0),
-            offset: 0.0,
-            drive: Drive::Actuated(0),
-            limits: [deg(-90.0), deg(90.0)],
-        },
-        Joint {
-            name: "torso2".into(),
-            kind: R,
-            parent: Some(0),
-            pre: Pose::identity(),
-            geometry: dh(0.25, 0.0, 0.0),
-            offset: 0.0,
-            drive: Drive::Actuated(1),
-            limits: [deg(45.0), deg(135.0)],
-        },
-        Joint {
-            name: "torso3".into(),
-            kind: R,
-            parent: Some(1),
-            pre: Pose::identity(),
-            geometry: dh(0.25, 0.0, 0.0),
-            offset: 0.0,
-            drive: Drive::Actuated(2),
-            limits: [deg(-45.0), deg(45.0)],
-        },
-        // Joint 4: theta4 = -theta2 - theta3, T_t^3 of Sect. 2.9.9.
-        Joint {
-            name: "torso4".into(),
-            kind: R,
-            parent: Some(2),
-            pre: Pose::identity(),
-            geometry: dh(0.0, 0.0, 0.0),
-            offset: 0.0,
-            drive: Drive::Coupled(vec![(1, -1.0), (2, -1.0)]),
-            limits: FULL,
-        },
-    ];
-    let beta = FRAC_PI_6;
-    // Frame t: x forward, y up, z to the right. T_r^t and T_l^t of (2.78)-(2.79).
-    let t_from_r = trans_y(0.1) * trans_z(0.2) * rot_x(beta);
-    let t_from_l = trans_y(0.1) * trans_z(-0.2) * rot_x(PI - beta);
-    let mut ees = Vec::new();
-    for (side, pre) in [("r", t_from_r), ("l", t_from_l)] {
-        for (k, (&(alpha, d), lim)) in DLR_ROWS.iter().zip(DLR_LIMITS).enumerate() {
-            let d = if k == 6 { 0.1 } else { d };
-            let dof = joints
-                .iter()
-                .filter(|j| matches!(j.drive, Drive::Actuated(_)))
-                .count();
-            let parent = if k == 0 { 3 } else { joints.len() - 1 };
-            joints.push(Joint {
-                name: format!("{side}{}", k + 1),
-                kind: R,
-                parent: Some(parent),
-                pre: if k == 0 { pre } else { Pose::identity() },
-                geometry: dh(0.0, alpha, d),
-                offset: 0.0,
-                drive: Drive::Actuated(dof),
-                limits: [deg(-lim), deg(lim)],
-            });
-        }
-        let name = if side == "r" {
-            "right hand"
-        } else {
-            "left hand"
-        };
-        ees.push(EndEffector {
-            name: name.into(),
-            parent: joints.len() - 1,
-            tool: Pose::identity(),
-        });
-    }
+    let mut joints = humanoid_torso();
+    let ees = add_humanoid_arms(&mut joints);
     let r = Robot::new("Humanoid", Pose::identity(), joints, ees)
         .unwrap_or_else(|e| unreachable!("humanoid: {e}"));
     let mut ready = vec![0.0; 17];
@@ -660,6 +575,106 @@ pub fn humanoid() -> Robot {
     )
     .with_config("ready", ready)
     .with_config("figure", figure)
+}
+
+/// A standard DH row's geometry with theta = 0 (the joint variable adds to it).
+fn dh_geometry(a: f64, alpha: f64, d: f64) -> JointGeometry {
+    JointGeometry::Dh {
+        row: DhRow {
+            a,
+            alpha,
+            d,
+            theta: 0.0,
+        },
+        convention: Convention::Standard,
+    }
+}
+
+/// The humanoid's torso: an anthropomorphic arm (2.66) and a fourth joint coupled as
+/// theta4 = -theta2 - theta3 (T_t^3 of Sect. 2.9.9).
+fn humanoid_torso() -> Vec<Joint> {
+    let joint = |name: &str, parent, geometry, drive, limits| Joint {
+        name: name.into(),
+        kind: R,
+        parent,
+        pre: Pose::identity(),
+        geometry,
+        offset: 0.0,
+        drive,
+        limits,
+    };
+    vec![
+        joint(
+            "torso1",
+            None,
+            dh_geometry(0.0, FRAC_PI_2, 0.0),
+            Drive::Actuated(0),
+            [deg(-90.0), deg(90.0)],
+        ),
+        joint(
+            "torso2",
+            Some(0),
+            dh_geometry(0.25, 0.0, 0.0),
+            Drive::Actuated(1),
+            [deg(45.0), deg(135.0)],
+        ),
+        joint(
+            "torso3",
+            Some(1),
+            dh_geometry(0.25, 0.0, 0.0),
+            Drive::Actuated(2),
+            [deg(-45.0), deg(45.0)],
+        ),
+        // Joint 4: theta4 = -theta2 - theta3, T_t^3 of Sect. 2.9.9.
+        joint(
+            "torso4",
+            Some(2),
+            dh_geometry(0.0, 0.0, 0.0),
+            Drive::Coupled(vec![(1, -1.0), (2, -1.0)]),
+            FULL,
+        ),
+    ]
+}
+
+/// Two DLR arms (Table 2.8) on the torso's chest frame t, T_r^t and T_l^t of (2.78)-(2.79), with
+/// hands d7 = 0.1 m; returns their end-effectors (right, left).
+fn add_humanoid_arms(joints: &mut Vec<Joint>) -> Vec<EndEffector> {
+    let beta = FRAC_PI_6;
+    // Frame t: x forward, y up, z to the right. T_r^t and T_l^t of (2.78)-(2.79).
+    let t_from_r = trans_y(0.1) * trans_z(0.2) * rot_x(beta);
+    let t_from_l = trans_y(0.1) * trans_z(-0.2) * rot_x(PI - beta);
+    let mut ees = Vec::new();
+    for (side, pre) in [("r", t_from_r), ("l", t_from_l)] {
+        for (k, (&(alpha, d), lim)) in DLR_ROWS.iter().zip(DLR_LIMITS).enumerate() {
+            let d = if k == 6 { 0.1 } else { d };
+            let dof = joints
+                .iter()
+                .filter(|j| matches!(j.drive, Drive::Actuated(_)))
+                .count();
+            let parent = if k == 0 { 3 } else { joints.len() - 1 };
+            joints.push(Joint {
+                name: format!("{side}{}", k + 1),
+                kind: R,
+                parent: Some(parent),
+                pre: if k == 0 { pre } else { Pose::identity() },
+                geometry: dh_geometry(0.0, alpha, d),
+                offset: 0.0,
+                drive: Drive::Actuated(dof),
+                limits: [deg(-lim), deg(lim)],
+            });
+        }
+        let name = if side == "r" {
+            "right hand"
+        } else {
+            "left hand"
+        };
+        ees.push(EndEffector {
+            name: name.into(),
+            parent: joints.len() - 1,
+            tool: Pose::identity(),
+        });
+    }
+    ees
 }
 
 /// SCARA manipulator R-R-P-R (Problem 2.13, Fig. 2.36).

@@ -540,8 +540,22 @@ impl Gizmo {
         let fill = [Color32::from_gray(240), Color32::from_rgb(230, 30, 30)][unreachable as usize];
         painter.circle_filled(centre, 5.0, fill);
         painter.circle_stroke(centre, 5.0, Stroke::new(1.5, Color32::from_gray(30)));
+        self.paint_readout(ui, &painter, rect, centre, readout, highlight);
+    }
 
-        // While dragging: the swept angle's spokes and a readout next to the pointer.
+    /// While dragging: the swept angle's spokes (rotation rings) and a readout of the drag next
+    /// to the pointer.
+    fn paint_readout(
+        &self,
+        ui: &egui::Ui,
+        painter: &egui::Painter,
+        rect: egui::Rect,
+        centre: egui::Pos2,
+        readout: Option<Readout>,
+        highlight: egui::Color32,
+    ) {
+        use egui::{Align2, Color32, FontId, Shape, Stroke};
+        let ppp = ui.ctx().pixels_per_point();
         let (Some(d), Some(r), Some(p)) =
             (self.drag, readout, ui.input(|i| i.pointer.latest_pos()))
         else {

@@ -572,8 +572,10 @@ fn descend(
     s: &mut Scratch,
 ) -> Result<(usize, Vector6<f64>), IkError> {
     let lm = opts.method == Method::LevenbergMarquardt;
-    let mut lambda = opts.damping;
-    let mut nu = 2.0;
+    let mut damping = Damping {
+        lambda: opts.damping,
+        nu: 2.0,
+    };
     let mut e = masked_jacobian(robot, ee, goal, mask, q, s)?;
     let mut cost = e.norm_squared();
     let mut cost_before = cost;
@@ -592,42 +594,16 @@ fn descend(
             }
             cost_before = cost;
         }
-        let factor = match opts.method {
-            Method::LevenbergMarquardt => damped_factor(&s.jac, lambda, mask),
-            Method::DampedLeastSquares => damped_factor(&s.jac, opts.damping * opts.damping, mask),
-            Method::PseudoInverse | Method::Transpose => None,
-        };
-        let stepped = match (opts.method, &factor) {
-            (Method::LevenbergMarquardt | Method::DampedLeastSquares, Some(ch)) => {
-                s.dq.gemv_tr(1.0, &s.jac, &ch.solve(&e), 0.0);
-                true
-            }
-            (Method::PseudoInverse, _) => pinv_step(&s.jac, &e, &mut s.dq),
-            (Method::Transpose, _) => {
-                s.dq.gemv_tr(opts.transpose_gain, &s.jac, &e, 0.0);
-                true
-            }
-            _ => false,
-        };
-        if !stepped {
+        let Some(factor) = take_step(opts, damping.lambda, mask, &e, s) else {
             return Ok((it, e));
-        }
+        };
         let jv: Vector6<f64> = &s.jac * &s.dq;
         if let (true, Some(ch)) = (lm && (poor_fit || crawling), &factor) {
             // The last step's decrease fell short of the linear model's: correct for the
             // curvature (once the model fits, plain steps converge quadratically).
             accelerate(robot, ee, goal, mask, q, &e, &jv, ch, s)?;
         }
-        let norm = s.dq.amax();
-        if norm > opts.max_step {
-            s.dq *= opts.max_step / norm;
-        }
-        for ((t, &v), d) in s.trial.iter_mut().zip(q.iter()).zip(s.dq.iter()) {
-            *t = v + d;
-        }
-        if opts.enforce_limits {
-            bounds.clamp(&mut s.trial);
-        }
+        set_trial(q, opts, bounds, s);
         let c_trial = if lm {
             error(goal, &robot.fk_ee(&s.trial, ee)?, mask).norm_squared()
         } else {
@@ -641,8 +617,7 @@ fn descend(
                 } else {
                     1.0
                 };
-                lambda = (lambda * (1.0 / 3.0f64).max(1.0 - (2.0 * rho - 1.0).powi(3))).max(1e-14);
-                nu = 2.0;
+                damping.accepted(rho);
                 poor_fit = rho < 0.25;
             }
             q.copy_from_slice(&s.trial);
@@ -650,9 +625,7 @@ fn descend(
             cost = e.norm_squared();
         } else {
             poor_fit = true;
-            lambda *= nu;
-            nu *= 2.0;
-            if lambda > 1e8 {
+            if !damping.rejected() {
                 return Ok((it, e));
             }
         }
@@ -661,6 +634,77 @@ fn descend(
         }
     }
     Ok((opts.max_iterations, e))
+}
+
+/// Levenberg–Marquardt's damping lambda and the factor nu it grows by after a rejected step.
+struct Damping {
+    lambda: f64,
+    nu: f64,
+}
+
+impl Damping {
+    /// Nielsen's update after an accepted step whose actual decrease was `rho` times the
+    /// predicted one.
+    fn accepted(&mut self, rho: f64) {
+        self.lambda =
+            (self.lambda * (1.0 / 3.0f64).max(1.0 - (2.0 * rho - 1.0).powi(3))).max(1e-14);
+        self.nu = 2.0;
+    }
+
+    /// After a rejected step: damp more; `false` once the damping is past any use (1e8).
+    fn rejected(&mut self) -> bool {
+        self.lambda *= self.nu;
+        self.nu *= 2.0;
+        self.lambda <= 1e8
+    }
+}
+
+/// The factor of `J J^T + lambda I` that a damped step was made with.
+type Factor = nalgebra::Cholesky<f64, nalgebra::U6>;
+
+/// The step of `opts.method` from the error `e` into `s.dq`: damped least squares with `lambda`
+/// (Levenberg–Marquardt) or `damping^2` (DLS), the pseudo-inverse, or the scaled transpose.
+/// `Some(factor)` when a step was made (the factor for LM and DLS, `None` for the others);
+/// `None` when none could be (a factorization or the pseudo-inverse failed).
+fn take_step(
+    opts: &NumericalOptions,
+    lambda: f64,
+    mask: &TaskMask,
+    e: &Vector6<f64>,
+    s: &mut Scratch,
+) -> Option<Option<Factor>> {
+    match opts.method {
+        Method::LevenbergMarquardt | Method::DampedLeastSquares => {
+            let damping = if opts.method == Method::LevenbergMarquardt {
+                lambda
+            } else {
+                opts.damping * opts.damping
+            };
+            let ch = damped_factor(&s.jac, damping, mask)?;
+            s.dq.gemv_tr(1.0, &s.jac, &ch.solve(e), 0.0);
+            Some(Some(ch))
+        }
+        Method::PseudoInverse => pinv_step(&s.jac, e, &mut s.dq).then_some(None),
+        Method::Transpose => {
+            s.dq.gemv_tr(opts.transpose_gain, &s.jac, e, 0.0);
+            Some(None)
+        }
+    }
+}
+
+/// `s.trial = q + s.dq`, the step first capped at `max_step` (its largest component) and the
+/// trial then clamped into the limits when they are enforced.
+fn set_trial(q: &[f64], opts: &NumericalOptions, bounds: &Bounds, s: &mut Scratch) {
+    let norm = s.dq.amax();
+    if norm > opts.max_step {
+        s.dq *= opts.max_step / norm;
+    }
+    for ((t, &v), d) in s.trial.iter_mut().zip(q.iter()).zip(s.dq.iter()) {
+        *t = v + d;
+    }
+    if opts.enforce_limits {
+        bounds.clamp(&mut s.trial);
+    }
 }
 
 fn pinv_step(jac: &Matrix6xX<f64>, e: &Vector6<f64>, dq: &mut DVector<f64>) -> bool {
