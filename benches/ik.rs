@@ -1,8 +1,8 @@
 //! Inverse kinematics speed. Run: `cargo bench --bench ik`.
 //!
 //! Besides criterion's timings, prints per-solve median and p95 and the success rate of the
-//! numerical solver over 2000 random reachable poses (tolerance 1e-10), the figures the README's
-//! performance table quotes.
+//! numerical solver over 2000 random reachable poses (tolerance 1e-10), the figures the performance
+//! table quotes.
 
 use armlab::kinematics::ik::Target;
 use armlab::kinematics::ik::numerical::{NumericalOptions, solve};

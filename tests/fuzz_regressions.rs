@@ -1,6 +1,6 @@
 //! Replays every input kept from fuzzing (`tests/data/fuzz/<target>/`: crashes found and fixed,
 //! and seeds) through the same checks the cargo-fuzz targets run (`fuzz/src/checks.rs`), so the
-//! stable suite keeps them fixed. How to fuzz: README, "Fuzzing".
+//! stable suite keeps them fixed. How to fuzz: the guide, docs/src/architecture.md, "Fuzzing".
 
 #[path = "../fuzz/src/checks.rs"]
 mod checks;

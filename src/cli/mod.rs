@@ -9,6 +9,7 @@ mod ik;
 mod info;
 pub use crate::input;
 mod reach;
+pub mod reference;
 mod self_motion;
 mod view;
 
