@@ -258,6 +258,50 @@ pub fn parse_urdf(text: &str, path: &Path) -> Result<Robot, UrdfError> {
         return Err(UrdfError::NoJoints { path: p() });
     }
     unique_names(&urdf, path)?;
+    let (child_of, children) = joint_tree(&urdf, path)?;
+    let roots: Vec<String> = (urdf.links.iter())
+        .filter(|l| !child_of.contains_key(l.name.as_str()))
+        .map(|l| l.name.clone())
+        .collect();
+    if roots.len() != 1 {
+        return Err(UrdfError::Roots { path: p(), roots });
+    }
+    let order = joint_order(uj, &roots[0], &children, &child_of, path)?;
+    let mut new_id = vec![usize::MAX; uj.len()];
+    for (k, &i) in order.iter().enumerate() {
+        new_id[i] = k;
+    }
+    let (joints, ees) = assemble(uj, &order, &new_id, &child_of, &children, path)?;
+    let mut robot = Robot::new(robot_name(&urdf, path), Pose::identity(), joints, ees)
+        .map_err(|source| UrdfError::Model { path: p(), source })?;
+    let (visuals, warnings) =
+        visuals::read(&urdf, path, |link| child_of.get(link).map(|&s| new_id[s]));
+    robot.visuals = visuals;
+    robot.load_warnings = warnings;
+    let description = format!(
+        "Read from the URDF file {}: {} joints, {} degrees of freedom; joint frames are the \
+         URDF child-link frames.",
+        path.display(),
+        robot.joints().len(),
+        robot.dof()
+    );
+    Ok(robot.with_description(description))
+}
+
+/// Link name -> index of the URDF joint whose child it is.
+type ChildOf<'u> = HashMap<&'u str, usize>;
+/// Link name -> indices of the URDF joints whose parent it is, in file order.
+type Children<'u> = HashMap<&'u str, Vec<usize>>;
+
+/// Which URDF joint (index) has each link as its child, and which joints each link is the parent
+/// of (file order). Rejects joint types without a [`JointKind`], links that do not exist and
+/// links with two parents.
+fn joint_tree<'u>(
+    urdf: &'u urdf_rs::Robot,
+    path: &Path,
+) -> Result<(ChildOf<'u>, Children<'u>), UrdfError> {
+    let p = || path.to_path_buf();
+    let uj = &urdf.joints;
     let links: HashSet<&str> = urdf.links.iter().map(|l| l.name.as_str()).collect();
     let mut child_of: HashMap<&str, usize> = HashMap::new();
     let mut children: HashMap<&str, Vec<usize>> = HashMap::new();
@@ -297,21 +341,22 @@ pub fn parse_urdf(text: &str, path: &Path) -> Result<Robot, UrdfError> {
         child_of.insert(&j.child.link, i);
         children.entry(&j.parent.link).or_default().push(i);
     }
-    let roots: Vec<String> = (urdf.links.iter())
-        .filter(|l| !child_of.contains_key(l.name.as_str()))
-        .map(|l| l.name.clone())
-        .collect();
-    if roots.len() != 1 {
-        return Err(UrdfError::Roots { path: p(), roots });
-    }
-    let order = joint_order(uj, &roots[0], &children, &child_of, path)?;
-    let mut new_id = vec![usize::MAX; uj.len()];
-    for (k, &i) in order.iter().enumerate() {
-        new_id[i] = k;
-    }
+    Ok((child_of, children))
+}
+
+/// The joints converted in `order` (`new_id` maps a URDF joint index to its place in it), with
+/// their parents, and an end-effector at every leaf link.
+fn assemble(
+    uj: &[urdf_rs::Joint],
+    order: &[usize],
+    new_id: &[usize],
+    child_of: &HashMap<&str, usize>,
+    children: &HashMap<&str, Vec<usize>>,
+    path: &Path,
+) -> Result<(Vec<Joint>, Vec<EndEffector>), UrdfError> {
     let mut joints = Vec::with_capacity(uj.len());
     let mut ees = Vec::new();
-    for &i in &order {
+    for &i in order {
         let j = convert(&uj[i], &joints, path, |name| {
             uj.iter().position(|x| x.name == name).map(|s| new_id[s])
         })?;
@@ -325,20 +370,7 @@ pub fn parse_urdf(text: &str, path: &Path) -> Result<Robot, UrdfError> {
             });
         }
     }
-    let mut robot = Robot::new(robot_name(&urdf, path), Pose::identity(), joints, ees)
-        .map_err(|source| UrdfError::Model { path: p(), source })?;
-    let (visuals, warnings) =
-        visuals::read(&urdf, path, |link| child_of.get(link).map(|&s| new_id[s]));
-    robot.visuals = visuals;
-    robot.load_warnings = warnings;
-    let description = format!(
-        "Read from the URDF file {}: {} joints, {} degrees of freedom; joint frames are the \
-         URDF child-link frames.",
-        path.display(),
-        robot.joints().len(),
-        robot.dof()
-    );
-    Ok(robot.with_description(description))
+    Ok((joints, ees))
 }
 
 /// The robot's name, or the file's stem when the URDF gives none.
@@ -436,23 +468,10 @@ fn convert(
     path: &Path,
     id_of: impl Fn(&str) -> Option<usize>,
 ) -> Result<Joint, UrdfError> {
-    let name = || j.name.clone();
-    let p = || path.to_path_buf();
-    let finite = |v: &[f64], field| {
-        if v.iter().all(|x| x.is_finite()) {
-            Ok(())
-        } else {
-            Err(UrdfError::NonFinite {
-                path: p(),
-                joint: name(),
-                field,
-            })
-        }
-    };
     let (xyz, rpy) = (j.origin.xyz.0, j.origin.rpy.0);
-    finite(&xyz, "origin xyz")?;
-    finite(&rpy, "origin rpy")?;
-    finite(&j.axis.xyz.0, "axis")?;
+    finite(j, path, &xyz, "origin xyz")?;
+    finite(j, path, &rpy, "origin rpy")?;
+    finite(j, path, &j.axis.xyz.0, "axis")?;
     let parent_from_joint =
         Pose::translation(xyz[0], xyz[1], xyz[2]) * rot_z(rpy[2]) * rot_y(rpy[1]) * rot_x(rpy[0]);
     let kind = match j.joint_type {
@@ -465,11 +484,49 @@ fn convert(
         None if kind == JointKind::Fixed => Vector3::z_axis(),
         None => {
             return Err(UrdfError::ZeroAxis {
-                path: p(),
-                joint: name(),
+                path: path.to_path_buf(),
+                joint: j.name.clone(),
             });
         }
     };
+    let limits = joint_limits(j, path)?;
+    let (drive, offset) = drive_of(j, kind, earlier, path, id_of)?;
+    Ok(Joint {
+        name: j.name.clone(),
+        kind,
+        parent: None,
+        pre: Pose::identity(),
+        geometry: JointGeometry::Origin {
+            parent_from_joint,
+            axis,
+        },
+        offset,
+        drive,
+        limits,
+    })
+}
+
+/// Rejects a non-finite number in `field` of joint `j`.
+fn finite(
+    j: &urdf_rs::Joint,
+    path: &Path,
+    v: &[f64],
+    field: &'static str,
+) -> Result<(), UrdfError> {
+    if v.iter().all(|x| x.is_finite()) {
+        Ok(())
+    } else {
+        Err(UrdfError::NonFinite {
+            path: path.to_path_buf(),
+            joint: j.name.clone(),
+            field,
+        })
+    }
+}
+
+/// The joint's limits: [`CONTINUOUS_LIMITS`] for a continuous joint, zero for a fixed one, an
+/// unbounded side of a revolute joint at one turn; finite and ordered, or an error.
+fn joint_limits(j: &urdf_rs::Joint, path: &Path) -> Result<[f64; 2], UrdfError> {
     let (lo, hi) = (j.limit.lower, j.limit.upper);
     let limits = match j.joint_type {
         JointType::Continuous => CONTINUOUS_LIMITS,
@@ -483,20 +540,32 @@ fn convert(
     if !(limits[0].is_finite() && limits[1].is_finite() && limits[0] <= limits[1]) {
         let (lower, upper) = (lo, hi);
         return Err(UrdfError::BadLimits {
-            path: p(),
-            joint: name(),
+            path: path.to_path_buf(),
+            joint: j.name.clone(),
             lower,
             upper,
         });
     }
-    let (drive, offset) = match (&j.mimic, kind) {
+    Ok(limits)
+}
+
+/// How the joint is driven, and its offset: none (fixed), coupled to the joint it mimics
+/// (`multiplier`, `offset`), or actuated as the next actuated joint after `earlier`.
+fn drive_of(
+    j: &urdf_rs::Joint,
+    kind: JointKind,
+    earlier: &[Joint],
+    path: &Path,
+    id_of: impl Fn(&str) -> Option<usize>,
+) -> Result<(Drive, f64), UrdfError> {
+    Ok(match (&j.mimic, kind) {
         (_, JointKind::Fixed) => (Drive::None, 0.0),
         (Some(m), _) => {
             let (factor, offset) = (m.multiplier.unwrap_or(1.0), m.offset.unwrap_or(0.0));
-            finite(&[factor, offset], "mimic")?;
+            finite(j, path, &[factor, offset], "mimic")?;
             let src = id_of(&m.joint).ok_or_else(|| UrdfError::Mimic {
-                path: p(),
-                joint: name(),
+                path: path.to_path_buf(),
+                joint: j.name.clone(),
                 mimicked: m.joint.clone(),
                 problem: MimicProblem::NoSuchJoint,
             })?;
@@ -509,18 +578,5 @@ fn convert(
                 .count();
             (Drive::Actuated(dof), 0.0)
         }
-    };
-    Ok(Joint {
-        name: name(),
-        kind,
-        parent: None,
-        pre: Pose::identity(),
-        geometry: JointGeometry::Origin {
-            parent_from_joint,
-            axis,
-        },
-        offset,
-        drive,
-        limits,
     })
 }

@@ -41,7 +41,13 @@ fn every_subcommand_and_flag_is_in_the_reference() {
     ] {
         assert!(md.contains(section), "no section {section:?}");
     }
-    for flag in ["`--q <Q>`", "--package-path", "--format", "--all", "--hayati"] {
+    for flag in [
+        "`--q <Q>`",
+        "--package-path",
+        "--format",
+        "--all",
+        "--hayati",
+    ] {
         assert!(md.contains(flag), "no flag {flag:?}");
     }
 }

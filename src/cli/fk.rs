@@ -2,7 +2,7 @@
 
 use super::{CliError, Format, JointInput, joint_vectors};
 use crate::kinematics::pose::pose_to_rows;
-use crate::kinematics::{EulerKind, Pose};
+use crate::kinematics::{EulerKind, Pose, Robot};
 use serde_json::{Value, json};
 use std::io::Write;
 
@@ -31,32 +31,7 @@ pub(super) fn run(
         Format::Json => {
             let arr: Vec<Value> = results
                 .iter()
-                .map(|(q, all, ees)| {
-                    let mut o = json!({ "q": q, "T": pose_to_rows(&ees[0]), "p": ees[0].translation.vector.as_slice() });
-                    if let Some(kind) = euler {
-                        let phi = kind.from_rotation(&ees[0].rotation);
-                        o["euler"] = json!(kind.as_str());
-                        o["phi"] = json!(phi.angles.as_slice());
-                        o["phi_singular"] = json!(phi.singular);
-                    }
-                    if ees.len() > 1 {
-                        o["end_effectors"] = robot
-                            .end_effectors()
-                            .iter()
-                            .zip(ees)
-                            .map(|(e, t)| json!({ "name": e.name, "T": pose_to_rows(t) }))
-                            .collect();
-                    }
-                    if frames {
-                        o["frames"] = robot
-                            .joints()
-                            .iter()
-                            .zip(all)
-                            .map(|(j, t)| json!({ "name": j.name, "T": pose_to_rows(t) }))
-                            .collect();
-                    }
-                    o
-                })
+                .map(|(q, all, ees)| fk_json(&robot, q, all, ees, frames, euler))
                 .collect();
             serde_json::to_writer_pretty(&mut *out, &arr).map_err(std::io::Error::from)?;
             writeln!(out)?;
@@ -66,32 +41,84 @@ pub(super) fn run(
                 if i > 0 {
                     writeln!(out)?;
                 }
-                writeln!(out, "q = {}", fmt_vec(q))?;
-                for (e, t) in robot.end_effectors().iter().zip(ees) {
-                    writeln!(out, "T ({}) =", e.name)?;
-                    write_pose(out, t)?;
-                    if let Some(kind) = euler {
-                        let phi = kind.from_rotation(&t.rotation);
-                        let note = if phi.singular {
-                            "  (representation singular: phi set to 0)"
-                        } else {
-                            ""
-                        };
-                        writeln!(
-                            out,
-                            "phi ({}) = {} rad{note}",
-                            kind.as_str(),
-                            fmt_vec(phi.angles.as_slice())
-                        )?;
-                    }
-                }
-                if frames {
-                    for (j, t) in robot.joints().iter().zip(all) {
-                        writeln!(out, "frame {} =", j.name)?;
-                        write_pose(out, t)?;
-                    }
-                }
+                write_fk_text(&robot, q, all, ees, frames, euler, out)?;
             }
+        }
+    }
+    Ok(())
+}
+
+/// One joint vector's JSON object: q, the first end-effector's pose (and Euler angles when
+/// asked), every end-effector's pose when there are several, and the joint frames if `frames`.
+fn fk_json(
+    robot: &Robot,
+    q: &[f64],
+    all: &[Pose],
+    ees: &[Pose],
+    frames: bool,
+    euler: Option<EulerKind>,
+) -> Value {
+    let mut o =
+        json!({ "q": q, "T": pose_to_rows(&ees[0]), "p": ees[0].translation.vector.as_slice() });
+    if let Some(kind) = euler {
+        let phi = kind.from_rotation(&ees[0].rotation);
+        o["euler"] = json!(kind.as_str());
+        o["phi"] = json!(phi.angles.as_slice());
+        o["phi_singular"] = json!(phi.singular);
+    }
+    if ees.len() > 1 {
+        o["end_effectors"] = robot
+            .end_effectors()
+            .iter()
+            .zip(ees)
+            .map(|(e, t)| json!({ "name": e.name, "T": pose_to_rows(t) }))
+            .collect();
+    }
+    if frames {
+        o["frames"] = robot
+            .joints()
+            .iter()
+            .zip(all)
+            .map(|(j, t)| json!({ "name": j.name, "T": pose_to_rows(t) }))
+            .collect();
+    }
+    o
+}
+
+/// One joint vector as text: q, each end-effector's pose (and Euler angles when asked), then the
+/// joint frames if `frames`.
+fn write_fk_text(
+    robot: &Robot,
+    q: &[f64],
+    all: &[Pose],
+    ees: &[Pose],
+    frames: bool,
+    euler: Option<EulerKind>,
+    out: &mut dyn Write,
+) -> std::io::Result<()> {
+    writeln!(out, "q = {}", fmt_vec(q))?;
+    for (e, t) in robot.end_effectors().iter().zip(ees) {
+        writeln!(out, "T ({}) =", e.name)?;
+        write_pose(out, t)?;
+        if let Some(kind) = euler {
+            let phi = kind.from_rotation(&t.rotation);
+            let note = if phi.singular {
+                "  (representation singular: phi set to 0)"
+            } else {
+                ""
+            };
+            writeln!(
+                out,
+                "phi ({}) = {} rad{note}",
+                kind.as_str(),
+                fmt_vec(phi.angles.as_slice())
+            )?;
+        }
+    }
+    if frames {
+        for (j, t) in robot.joints().iter().zip(all) {
+            writeln!(out, "frame {} =", j.name)?;
+            write_pose(out, t)?;
         }
     }
     Ok(())

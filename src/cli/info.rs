@@ -6,7 +6,9 @@ use crate::kinematics::dh_derive::derive_dh;
 use crate::kinematics::ik::ClosedForm;
 use crate::kinematics::models::{BUILT_INS, DEFAULT_MODEL};
 use crate::kinematics::pose::pose_to_rows;
-use crate::kinematics::{Convention, EulerKind, JointGeometry, JointKind, Robot};
+use crate::kinematics::{
+    Convention, EulerKind, JacobianAnalysis, JointGeometry, JointKind, Pose, Robot,
+};
 use serde_json::json;
 use std::io::Write;
 
@@ -69,51 +71,75 @@ pub(super) fn run(
         .map(|e| robot.analyze_jacobian(q, e))
         .collect::<Result<_, _>>()?;
     if format == Format::Json {
-        let ees: Vec<_> = robot
-            .end_effectors()
-            .iter()
-            .zip(&poses)
-            .zip(&analyses)
-            .map(|((e, t), a)| {
-                json!({
-                    "name": e.name,
-                    "T": pose_to_rows(t),
-                    "phi_zyz": EulerKind::Zyz.from_rotation(&t.rotation).angles.as_slice(),
-                    "phi_rpy": EulerKind::Rpy.from_rotation(&t.rotation).angles.as_slice(),
-                    "jacobian_rank": a.rank,
-                    "singular_values": a.singular_values.as_slice(),
-                    "manipulability": a.manipulability,
-                })
-            })
-            .collect();
-        let (family, why_not) = match ClosedForm::detect(&robot) {
-            Ok(cf) => (Some(cf.name()), None),
-            Err(e) => (None, Some(e.to_string())),
-        };
-        let v = json!({
-            "name": robot.name,
-            "description": robot.description,
-            "dof": robot.dof(),
-            "limits": robot.limits(),
-            "q": q,
-            "end_effectors": ees,
-            "closed_form": family,
-            "no_closed_form": why_not,
-        });
-        serde_json::to_writer_pretty(&mut *out, &v).map_err(std::io::Error::from)?;
-        writeln!(out)?;
-        return Ok(());
+        return write_info_json(&robot, q, &poses, &analyses, out);
     }
+    write_info_text(&robot, q, &poses, &analyses, out)
+}
+
+/// `armlab info --format json`: the model, q and, per end-effector, its pose, Euler angles and
+/// Jacobian analysis.
+fn write_info_json(
+    robot: &Robot,
+    q: &[f64],
+    poses: &[Pose],
+    analyses: &[JacobianAnalysis],
+    out: &mut dyn Write,
+) -> Result<(), CliError> {
+    let ees: Vec<_> = robot
+        .end_effectors()
+        .iter()
+        .zip(poses)
+        .zip(analyses)
+        .map(|((e, t), a)| {
+            json!({
+                "name": e.name,
+                "T": pose_to_rows(t),
+                "phi_zyz": EulerKind::Zyz.from_rotation(&t.rotation).angles.as_slice(),
+                "phi_rpy": EulerKind::Rpy.from_rotation(&t.rotation).angles.as_slice(),
+                "jacobian_rank": a.rank,
+                "singular_values": a.singular_values.as_slice(),
+                "manipulability": a.manipulability,
+            })
+        })
+        .collect();
+    let (family, why_not) = match ClosedForm::detect(robot) {
+        Ok(cf) => (Some(cf.name()), None),
+        Err(e) => (None, Some(e.to_string())),
+    };
+    let v = json!({
+        "name": robot.name,
+        "description": robot.description,
+        "dof": robot.dof(),
+        "limits": robot.limits(),
+        "q": q,
+        "end_effectors": ees,
+        "closed_form": family,
+        "no_closed_form": why_not,
+    });
+    serde_json::to_writer_pretty(&mut *out, &v).map_err(std::io::Error::from)?;
+    writeln!(out)?;
+    Ok(())
+}
+
+/// `armlab info` as text: the model, its joint table, configurations, closed form, then each
+/// end-effector at q.
+fn write_info_text(
+    robot: &Robot,
+    q: &[f64],
+    poses: &[Pose],
+    analyses: &[JacobianAnalysis],
+    out: &mut dyn Write,
+) -> Result<(), CliError> {
     writeln!(out, "{} ({} DOF)", robot.name, robot.dof())?;
     writeln!(out, "{}", robot.description)?;
     writeln!(out)?;
-    write_table(&robot, out)?;
+    write_table(robot, out)?;
     writeln!(out)?;
     for c in &robot.configurations {
         writeln!(out, "configuration {:<8} q = {}", c.name, fmt_vec(&c.q))?;
     }
     writeln!(out)?;
-    match ClosedForm::detect(&robot) {
+    match ClosedForm::detect(robot) {
         Ok(cf) => writeln!(out, "inverse kinematics: closed form ({})", cf.name())?,
         Err(e) => writeln!(
             out,
@@ -122,35 +148,46 @@ pub(super) fn run(
     }
     writeln!(out)?;
     writeln!(out, "at q = {}", fmt_vec(q))?;
-    for ((e, t), a) in robot.end_effectors().iter().zip(&poses).zip(&analyses) {
+    for ((e, t), a) in robot.end_effectors().iter().zip(poses).zip(analyses) {
         writeln!(out, "T ({}) =", e.name)?;
         write_pose(out, t)?;
-        writeln!(out, "p = {} m", fmt_vec(t.translation.vector.as_slice()))?;
-        for kind in [EulerKind::Zyz, EulerKind::Rpy] {
-            let phi = kind.from_rotation(&t.rotation);
-            let deg: Vec<f64> = phi.angles.iter().map(|a| a.to_degrees()).collect();
-            let note = if phi.singular {
-                " (singular representation)"
-            } else {
-                ""
-            };
-            writeln!(out, "phi {} = {} deg{note}", kind.as_str(), fmt_vec(&deg))?;
-        }
-        writeln!(
-            out,
-            "Jacobian rank {} of {}, manipulability {:.6}, smallest singular value {:.3e}{}",
-            a.rank,
-            robot.dof().min(6),
-            a.manipulability,
-            a.min_singular_value(),
-            if a.rank < robot.dof().min(6) {
-                "  <- singular configuration"
-            } else {
-                ""
-            }
-        )?;
+        write_ee_analysis(robot, t, a, out)?;
     }
     Ok(())
+}
+
+/// One end-effector's position, ZYZ and RPY angles (flagging a singular representation) and
+/// Jacobian rank, manipulability and smallest singular value.
+fn write_ee_analysis(
+    robot: &Robot,
+    t: &Pose,
+    a: &JacobianAnalysis,
+    out: &mut dyn Write,
+) -> std::io::Result<()> {
+    writeln!(out, "p = {} m", fmt_vec(t.translation.vector.as_slice()))?;
+    for kind in [EulerKind::Zyz, EulerKind::Rpy] {
+        let phi = kind.from_rotation(&t.rotation);
+        let deg: Vec<f64> = phi.angles.iter().map(|a| a.to_degrees()).collect();
+        let note = if phi.singular {
+            " (singular representation)"
+        } else {
+            ""
+        };
+        writeln!(out, "phi {} = {} deg{note}", kind.as_str(), fmt_vec(&deg))?;
+    }
+    writeln!(
+        out,
+        "Jacobian rank {} of {}, manipulability {:.6}, smallest singular value {:.3e}{}",
+        a.rank,
+        robot.dof().min(6),
+        a.manipulability,
+        a.min_singular_value(),
+        if a.rank < robot.dof().min(6) {
+            "  <- singular configuration"
+        } else {
+            ""
+        }
+    )
 }
 
 /// The joint table: DH rows as given, or, for a chain given by URDF origins and axes, the

@@ -7,8 +7,7 @@ use clap::{Arg, Command, CommandFactory};
 use std::fmt::Write as _;
 
 /// The marker line in `docs/src/cli.md` under which the generated reference stands.
-pub const MARKER: &str =
-    "<!-- generated from the parser by tests/cli_reference.rs: UPDATE_DOCS=1 cargo test --test cli_reference rewrites it; do not edit below -->";
+pub const MARKER: &str = "<!-- generated from the parser by tests/cli_reference.rs: UPDATE_DOCS=1 cargo test --test cli_reference rewrites it; do not edit below -->";
 
 /// The whole reference: one section per subcommand (in the parser's order), each with its
 /// description, its usage line and its arguments.
@@ -59,7 +58,7 @@ fn write_arguments(out: &mut String, heading: &str, cmd: &Command) {
     let args: Vec<&Arg> = cmd
         .get_arguments()
         .filter(|a| !a.is_hide_set() && !matches!(a.get_id().as_str(), "help" | "version"))
-        .filter(|a| heading.is_empty() == !a.is_global_set())
+        .filter(|a| heading.is_empty() != a.is_global_set())
         .collect();
     if args.is_empty() {
         return;
@@ -79,7 +78,11 @@ fn write_arguments(out: &mut String, heading: &str, cmd: &Command) {
             .unwrap_or_default();
         let help = help.trim();
         if !help.is_empty() {
-            let stop = if help.ends_with(['.', ')', '?']) { "" } else { "." };
+            let stop = if help.ends_with(['.', ')', '?']) {
+                ""
+            } else {
+                "."
+            };
             let _ = write!(out, ": {help}{stop}");
         }
         let values: Vec<String> = a
@@ -108,7 +111,12 @@ fn write_arguments(out: &mut String, heading: &str, cmd: &Command) {
 fn spelling(a: &Arg) -> String {
     let value = || {
         a.get_value_names()
-            .map(|v| v.iter().map(|n| format!("<{n}>")).collect::<Vec<_>>().join(" "))
+            .map(|v| {
+                v.iter()
+                    .map(|n| format!("<{n}>"))
+                    .collect::<Vec<_>>()
+                    .join(" ")
+            })
             .unwrap_or_else(|| format!("<{}>", a.get_id().as_str().to_uppercase()))
     };
     if a.is_positional() {

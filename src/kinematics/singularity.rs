@@ -405,40 +405,12 @@ impl SingularityAnalyzer {
             Family::SphericalArm => (None, Some(*pe), Some(ArmKind::Spherical)),
             Family::Cylindrical => (None, None, None),
             Family::Planar2 | Family::Planar3 | Family::Scara => {
-                let p = match family {
-                    Family::Planar2 => Some(*pe),
-                    Family::Planar3 => ax(2).map(|a| a.c),
-                    _ => ax(3).map(|a| a.c),
-                };
-                if let (Some(a1), Some(a2), Some(p)) = (ax(0), ax(1), p)
-                    && let Some((s, stretched)) = bend(&a1, &a2, &p)
-                {
-                    out.push(SingularCondition {
-                        kind: SingularityKind::PlanarElbow,
-                        measure: s,
-                        detail: format!(
-                            "links 1 and 2 {} (|sin theta2| = {s:.1e})",
-                            if stretched { "stretched" } else { "folded" }
-                        ),
-                    });
-                }
+                out.extend(planar_elbow(family, pe, ax));
                 return out;
             }
         };
-        if let Some((i, k)) = wrist
-            && let (Some(a), Some(b)) = (ax(i), ax(k))
-        {
-            let s = a.z.cross(&b.z).norm();
-            out.push(SingularCondition {
-                kind: SingularityKind::Wrist,
-                measure: s,
-                detail: format!(
-                    "axes of joints {} and {} aligned (|sin theta{}| = {s:.1e})",
-                    i + 1,
-                    k + 1,
-                    i + 2
-                ),
-            });
+        if let Some((i, k)) = wrist {
+            out.extend(wrist_condition(ax, i, k));
         }
         let (Some(p), Some(arm)) = (arm_point, arm) else {
             return out;
@@ -448,39 +420,112 @@ impl SingularityAnalyzer {
         } else {
             "tool point"
         };
-        if arm == ArmKind::Anthropomorphic
-            && let (Some(a2), Some(a3)) = (ax(1), ax(2))
-            && let Some((s, stretched)) = bend(&a2, &a3, &p)
-        {
-            out.push(SingularCondition {
-                kind: SingularityKind::Elbow,
-                measure: s,
-                detail: format!(
-                    "arm {}: axes 2, 3 and the {what} in one plane (sine = {s:.1e})",
-                    if stretched { "stretched" } else { "folded" }
-                ),
-            });
+        if arm == ArmKind::Anthropomorphic {
+            out.extend(elbow_condition(ax, &p, what));
         }
-        if arm != ArmKind::Cylindrical
-            && let (Some(a1), Some(a2)) = (ax(0), ax(1))
-        {
-            let n = a1.z.cross(&a2.z);
-            if n.norm() > 0.5 {
-                let d = (p - a1.c).dot(&n.normalize()).abs();
-                let measure = d / self.scale;
-                out.push(SingularCondition {
-                    kind: SingularityKind::Shoulder,
-                    measure,
-                    detail: format!(
-                        "{what} {:.1} mm from the plane through axis 1 parallel to axis 2 (on the \
-                         axis of joint 1 when there is no shoulder offset)",
-                        d * 1000.0
-                    ),
-                });
-            }
+        if arm != ArmKind::Cylindrical {
+            out.extend(self.shoulder_condition(ax, &p, what));
         }
         out
     }
+
+    /// The shoulder measure: the distance of `p` (the `what`) from the plane through axis 1
+    /// parallel to axis 2, over the arm's length scale; `None` when axes 1 and 2 are missing or
+    /// nearly parallel.
+    fn shoulder_condition(
+        &self,
+        ax: impl Fn(usize) -> Option<Axis>,
+        p: &Vector3<f64>,
+        what: &str,
+    ) -> Option<SingularCondition> {
+        let (Some(a1), Some(a2)) = (ax(0), ax(1)) else {
+            return None;
+        };
+        let n = a1.z.cross(&a2.z);
+        if n.norm() > 0.5 {
+            let d = (p - a1.c).dot(&n.normalize()).abs();
+            let measure = d / self.scale;
+            return Some(SingularCondition {
+                kind: SingularityKind::Shoulder,
+                measure,
+                detail: format!(
+                    "{what} {:.1} mm from the plane through axis 1 parallel to axis 2 (on the \
+                     axis of joint 1 when there is no shoulder offset)",
+                    d * 1000.0
+                ),
+            });
+        }
+        None
+    }
+}
+
+/// The elbow of a planar arm or SCARA: links 1 and 2 stretched or folded (axes 1 and 2 and the
+/// tool point, the axis of joint 3 or that of joint 4 in one plane).
+fn planar_elbow(
+    family: Family,
+    pe: &Vector3<f64>,
+    ax: impl Fn(usize) -> Option<Axis>,
+) -> Option<SingularCondition> {
+    let p = match family {
+        Family::Planar2 => Some(*pe),
+        Family::Planar3 => ax(2).map(|a| a.c),
+        _ => ax(3).map(|a| a.c),
+    };
+    let (Some(a1), Some(a2), Some(p)) = (ax(0), ax(1), p) else {
+        return None;
+    };
+    let (s, stretched) = bend(&a1, &a2, &p)?;
+    Some(SingularCondition {
+        kind: SingularityKind::PlanarElbow,
+        measure: s,
+        detail: format!(
+            "links 1 and 2 {} (|sin theta2| = {s:.1e})",
+            if stretched { "stretched" } else { "folded" }
+        ),
+    })
+}
+
+/// The wrist measure: |sin| of the angle between the axes of joints `i` and `k` (0-based).
+fn wrist_condition(
+    ax: impl Fn(usize) -> Option<Axis>,
+    i: usize,
+    k: usize,
+) -> Option<SingularCondition> {
+    let (Some(a), Some(b)) = (ax(i), ax(k)) else {
+        return None;
+    };
+    let s = a.z.cross(&b.z).norm();
+    Some(SingularCondition {
+        kind: SingularityKind::Wrist,
+        measure: s,
+        detail: format!(
+            "axes of joints {} and {} aligned (|sin theta{}| = {s:.1e})",
+            i + 1,
+            k + 1,
+            i + 2
+        ),
+    })
+}
+
+/// The elbow measure of an anthropomorphic arm: axes 2 and 3 and `p` (the `what`) in one plane,
+/// the arm stretched or folded.
+fn elbow_condition(
+    ax: impl Fn(usize) -> Option<Axis>,
+    p: &Vector3<f64>,
+    what: &str,
+) -> Option<SingularCondition> {
+    let (Some(a2), Some(a3)) = (ax(1), ax(2)) else {
+        return None;
+    };
+    let (s, stretched) = bend(&a2, &a3, p)?;
+    Some(SingularCondition {
+        kind: SingularityKind::Elbow,
+        measure: s,
+        detail: format!(
+            "arm {}: axes 2, 3 and the {what} in one plane (sine = {s:.1e})",
+            if stretched { "stretched" } else { "folded" }
+        ),
+    })
 }
 
 /// Classifies with a one-off [`SingularityAnalyzer`] (build the analyzer once for repeated use).

@@ -138,6 +138,8 @@ fn not_applicable(ctx: &Ctx, t: &Table, key: &str, reason: &'static str) -> E {
     }
 }
 
+/// Joint `i` (0-based) of `count` from its `[[joints]]` table; `earlier` are the joints before
+/// it and `names` their names (this joint's is added).
 fn joint(
     ctx: &Ctx,
     t: &Table,
@@ -148,8 +150,38 @@ fn joint(
     names: &mut Names,
 ) -> Res<Joint> {
     t.check_keys(ctx, JOINT_KEYS)?;
+    let kind = joint_kind(ctx, t)?;
+    let row = dh_row(ctx, t, kind)?;
+    let (offset, limits) = joint_variable(ctx, t, kind)?;
+    let (name, name_span) = joint_name(ctx, t, i)?;
+    let parent = joint_parent(ctx, t, i, names)?;
+    unique_name(
+        ctx,
+        names,
+        NameKind::Joint,
+        t.path("name"),
+        &name,
+        i,
+        &name_span,
+    )?;
+    let pre = optional_pose(ctx, t, "pre")?;
+    let drive = joint_drive(ctx, t, kind, i, count, earlier)?;
+    Ok(Joint {
+        name,
+        kind,
+        parent,
+        pre,
+        geometry: JointGeometry::Dh { row, convention },
+        offset,
+        drive,
+        limits,
+    })
+}
+
+/// The joint's `type`: revolute, prismatic or fixed.
+fn joint_kind(ctx: &Ctx, t: &Table) -> Res<JointKind> {
     let type_v = t.required(ctx, "type")?;
-    let kind = match ctx.string(&t.path("type"), type_v)? {
+    Ok(match ctx.string(&t.path("type"), type_v)? {
         "revolute" => JointKind::Revolute,
         "prismatic" => JointKind::Prismatic,
         "fixed" => JointKind::Fixed,
@@ -160,8 +192,12 @@ fn joint(
                 at: ctx.at(&type_v.span()),
             });
         }
-    };
-    let revolute = kind == JointKind::Revolute;
+    })
+}
+
+/// The DH row: `a` and `alpha` required; `d` required unless prismatic (then its variable, absent
+/// or zero); `theta` absent or zero for a revolute joint (its variable), else 0 by default.
+fn dh_row(ctx: &Ctx, t: &Table, kind: JointKind) -> Res<DhRow> {
     let a = ctx.number(&t.path("a"), t.required(ctx, "a")?)?;
     let alpha = ctx.angle(&t.path("alpha"), t.required(ctx, "alpha")?)?;
     let d = match (kind, t.get("d")) {
@@ -180,23 +216,33 @@ fn joint(
         (_, Some(v)) => ctx.angle(&t.path("theta"), v)?,
         (_, None) => 0.0,
     };
-    let (offset, limits) = if kind == JointKind::Fixed {
+    Ok(DhRow { a, alpha, d, theta })
+}
+
+/// `offset` and `limits` of the joint variable (a fixed joint takes neither, nor `couple`);
+/// limits default to [-pi, pi] for a revolute joint and are required for a prismatic one.
+fn joint_variable(ctx: &Ctx, t: &Table, kind: JointKind) -> Res<(f64, [f64; 2])> {
+    let revolute = kind == JointKind::Revolute;
+    if kind == JointKind::Fixed {
         reject(ctx, t, "offset", FIXED_NO_VARIABLE)?;
         reject(ctx, t, "limits", FIXED_NO_VARIABLE)?;
         reject(ctx, t, "couple", FIXED_NO_VARIABLE)?;
-        (0.0, [0.0, 0.0])
-    } else {
-        let offset = match t.get("offset") {
-            Some(v) => ctx.scalar(&t.path("offset"), v, revolute)?,
-            None => 0.0,
-        };
-        let limits = match t.get("limits") {
-            Some(v) => limits_of(ctx, &t.path("limits"), v, revolute)?,
-            None if revolute => [-PI, PI],
-            None => return Err(t.missing(ctx, "limits")),
-        };
-        (offset, limits)
+        return Ok((0.0, [0.0, 0.0]));
+    }
+    let offset = match t.get("offset") {
+        Some(v) => ctx.scalar(&t.path("offset"), v, revolute)?,
+        None => 0.0,
     };
+    let limits = match t.get("limits") {
+        Some(v) => limits_of(ctx, &t.path("limits"), v, revolute)?,
+        None if revolute => [-PI, PI],
+        None => return Err(t.missing(ctx, "limits")),
+    };
+    Ok((offset, limits))
+}
+
+/// The joint's `name` and where it is (default `q{i+1}` at the table); "base" is reserved.
+fn joint_name(ctx: &Ctx, t: &Table, i: usize) -> Res<(String, Span)> {
     let (name, name_span) = match t.get("name") {
         Some(v) => (ctx.string(&t.path("name"), v)?.to_string(), v.span()),
         None => (format!("q{}", i + 1), t.span.clone()),
@@ -208,7 +254,13 @@ fn joint(
             at: ctx.at(&name_span),
         });
     }
-    let parent = match t.get("parent") {
+    Ok((name, name_span))
+}
+
+/// The joint's `parent`: a joint named earlier, "base" (none), or by default the joint before
+/// it (none for the first).
+fn joint_parent(ctx: &Ctx, t: &Table, i: usize, names: &Names) -> Res<Option<usize>> {
+    Ok(match t.get("parent") {
         None => i.checked_sub(1),
         Some(v) => match ctx.string(&t.path("parent"), v)? {
             "base" => None,
@@ -223,18 +275,20 @@ fn joint(
                 }
             },
         },
-    };
-    unique_name(
-        ctx,
-        names,
-        NameKind::Joint,
-        t.path("name"),
-        &name,
-        i,
-        &name_span,
-    )?;
-    let pre = optional_pose(ctx, t, "pre")?;
-    let drive = match (kind, t.get("couple")) {
+    })
+}
+
+/// How the joint is driven: none (fixed), coupled to earlier joints (`couple`), or actuated as
+/// the next actuated joint.
+fn joint_drive(
+    ctx: &Ctx,
+    t: &Table,
+    kind: JointKind,
+    i: usize,
+    count: usize,
+    earlier: &[Joint],
+) -> Res<Drive> {
+    Ok(match (kind, t.get("couple")) {
         (JointKind::Fixed, _) => Drive::None,
         (_, Some(v)) => Drive::Coupled(couple(ctx, &t.path("couple"), v, i, count, earlier)?),
         (_, None) => {
@@ -244,19 +298,6 @@ fn joint(
                 .count();
             Drive::Actuated(dof)
         }
-    };
-    Ok(Joint {
-        name,
-        kind,
-        parent,
-        pre,
-        geometry: JointGeometry::Dh {
-            row: DhRow { a, alpha, d, theta },
-            convention,
-        },
-        offset,
-        drive,
-        limits,
     })
 }
 

@@ -77,83 +77,103 @@ struct PipelineSpec<'a> {
     depth_write: bool,
 }
 
+/// Layout of group 0: the frame uniforms, visible to vertex and fragment stages.
+fn frame_bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("armlab frame"),
+        entries: &[wgpu::BindGroupLayoutEntry {
+            binding: 0,
+            visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Uniform,
+                has_dynamic_offset: false,
+                min_binding_size: wgpu::BufferSize::new(size_of::<FrameUniforms>() as u64),
+            },
+            count: None,
+        }],
+    })
+}
+
+/// Compiles one WGSL shader.
+fn shader_module(
+    device: &wgpu::Device,
+    label: &'static str,
+    source: &'static str,
+) -> wgpu::ShaderModule {
+    device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some(label),
+        source: wgpu::ShaderSource::Wgsl(Cow::Borrowed(source)),
+    })
+}
+
+/// Builds one pipeline from `spec`: entry points `vs_main` / `fs_main`, depth test `Less`
+/// against [`DEPTH_FORMAT`], one [`COLOR_FORMAT`] target, `sample_count` samples per pixel.
+fn render_pipeline(
+    device: &wgpu::Device,
+    layout: &wgpu::PipelineLayout,
+    sample_count: u32,
+    spec: PipelineSpec<'_>,
+) -> wgpu::RenderPipeline {
+    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some(spec.label),
+        layout: Some(layout),
+        vertex: wgpu::VertexState {
+            module: spec.module,
+            entry_point: Some("vs_main"),
+            compilation_options: Default::default(),
+            buffers: spec.buffers,
+        },
+        primitive: wgpu::PrimitiveState {
+            topology: spec.topology,
+            strip_index_format: None,
+            front_face: spec.front_face,
+            cull_mode: spec.cull_mode,
+            unclipped_depth: false,
+            polygon_mode: wgpu::PolygonMode::Fill,
+            conservative: false,
+        },
+        depth_stencil: Some(wgpu::DepthStencilState {
+            format: DEPTH_FORMAT,
+            depth_write_enabled: Some(spec.depth_write),
+            depth_compare: Some(wgpu::CompareFunction::Less),
+            stencil: Default::default(),
+            bias: Default::default(),
+        }),
+        multisample: wgpu::MultisampleState {
+            count: sample_count,
+            mask: !0,
+            alpha_to_coverage_enabled: false,
+        },
+        fragment: Some(wgpu::FragmentState {
+            module: spec.module,
+            entry_point: Some("fs_main"),
+            compilation_options: Default::default(),
+            targets: &[Some(wgpu::ColorTargetState {
+                format: COLOR_FORMAT,
+                blend: spec.blend,
+                write_mask: wgpu::ColorWrites::ALL,
+            })],
+        }),
+        multiview_mask: None,
+        cache: None,
+    })
+}
+
 impl Pipelines {
     /// Compiles the shaders and builds every pipeline for `sample_count` samples per pixel.
     pub(crate) fn new(device: &wgpu::Device, sample_count: u32) -> Self {
-        let frame_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("armlab frame"),
-            entries: &[wgpu::BindGroupLayoutEntry {
-                binding: 0,
-                visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
-                ty: wgpu::BindingType::Buffer {
-                    ty: wgpu::BufferBindingType::Uniform,
-                    has_dynamic_offset: false,
-                    min_binding_size: wgpu::BufferSize::new(size_of::<FrameUniforms>() as u64),
-                },
-                count: None,
-            }],
-        });
+        let frame_layout = frame_bind_group_layout(device);
         let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("armlab"),
             bind_group_layouts: &[Some(&frame_layout)],
             immediate_size: 0,
         });
-        let module = |label, source: &'static str| {
-            device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some(label),
-                source: wgpu::ShaderSource::Wgsl(Cow::Borrowed(source)),
-            })
-        };
         let (mesh_module, line_module, dot_module) = (
-            module("mesh.wgsl", MESH_WGSL),
-            module("line.wgsl", LINE_WGSL),
-            module("dot.wgsl", DOT_WGSL),
+            shader_module(device, "mesh.wgsl", MESH_WGSL),
+            shader_module(device, "line.wgsl", LINE_WGSL),
+            shader_module(device, "dot.wgsl", DOT_WGSL),
         );
-        let build = |spec: PipelineSpec<'_>| {
-            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some(spec.label),
-                layout: Some(&layout),
-                vertex: wgpu::VertexState {
-                    module: spec.module,
-                    entry_point: Some("vs_main"),
-                    compilation_options: Default::default(),
-                    buffers: spec.buffers,
-                },
-                primitive: wgpu::PrimitiveState {
-                    topology: spec.topology,
-                    strip_index_format: None,
-                    front_face: spec.front_face,
-                    cull_mode: spec.cull_mode,
-                    unclipped_depth: false,
-                    polygon_mode: wgpu::PolygonMode::Fill,
-                    conservative: false,
-                },
-                depth_stencil: Some(wgpu::DepthStencilState {
-                    format: DEPTH_FORMAT,
-                    depth_write_enabled: Some(spec.depth_write),
-                    depth_compare: Some(wgpu::CompareFunction::Less),
-                    stencil: Default::default(),
-                    bias: Default::default(),
-                }),
-                multisample: wgpu::MultisampleState {
-                    count: sample_count,
-                    mask: !0,
-                    alpha_to_coverage_enabled: false,
-                },
-                fragment: Some(wgpu::FragmentState {
-                    module: spec.module,
-                    entry_point: Some("fs_main"),
-                    compilation_options: Default::default(),
-                    targets: &[Some(wgpu::ColorTargetState {
-                        format: COLOR_FORMAT,
-                        blend: spec.blend,
-                        write_mask: wgpu::ColorWrites::ALL,
-                    })],
-                }),
-                multiview_mask: None,
-                cache: None,
-            })
-        };
+        let build = |spec: PipelineSpec<'_>| render_pipeline(device, &layout, sample_count, spec);
         let mesh_buffers = [
             Some(wgpu::VertexBufferLayout {
                 array_stride: size_of::<MeshVertex>() as u64,

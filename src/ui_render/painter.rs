@@ -71,58 +71,77 @@ pub struct UiPainter {
     belt: wgpu::util::StagingBelt,
 }
 
+/// Layout of group 0: the screen-size uniform, read by the vertex shader.
+fn screen_bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+    let uniform = wgpu::BindGroupLayoutEntry {
+        binding: 0,
+        visibility: wgpu::ShaderStages::VERTEX,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Uniform,
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    };
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("armlab ui screen"),
+        entries: &[uniform],
+    })
+}
+
+/// Layout of group 1: a filterable 2D texture and its sampler, read by the fragment shader.
+fn texture_bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("armlab ui texture"),
+        entries: &[
+            wgpu::BindGroupLayoutEntry {
+                binding: 0,
+                visibility: wgpu::ShaderStages::FRAGMENT,
+                ty: wgpu::BindingType::Texture {
+                    sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                    view_dimension: wgpu::TextureViewDimension::D2,
+                    multisampled: false,
+                },
+                count: None,
+            },
+            wgpu::BindGroupLayoutEntry {
+                binding: 1,
+                visibility: wgpu::ShaderStages::FRAGMENT,
+                ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                count: None,
+            },
+        ],
+    })
+}
+
+/// The 16-byte screen uniform buffer and its bind group (group 0).
+fn screen_uniform(
+    device: &wgpu::Device,
+    screen_layout: &wgpu::BindGroupLayout,
+) -> (wgpu::Buffer, wgpu::BindGroup) {
+    let screen = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("armlab ui screen"),
+        size: 16,
+        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    let screen_bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("armlab ui screen"),
+        layout: screen_layout,
+        entries: &[wgpu::BindGroupEntry {
+            binding: 0,
+            resource: screen.as_entire_binding(),
+        }],
+    });
+    (screen, screen_bind)
+}
+
 impl UiPainter {
     /// A painter for render passes into `format` (one sample, no depth, as eframe's window).
     pub fn new(device: &wgpu::Device, format: wgpu::TextureFormat) -> Self {
-        let uniform = wgpu::BindGroupLayoutEntry {
-            binding: 0,
-            visibility: wgpu::ShaderStages::VERTEX,
-            ty: wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Uniform,
-                has_dynamic_offset: false,
-                min_binding_size: None,
-            },
-            count: None,
-        };
-        let screen_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("armlab ui screen"),
-            entries: &[uniform],
-        });
-        let texture_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("armlab ui texture"),
-            entries: &[
-                wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Float { filterable: true },
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                        multisampled: false,
-                    },
-                    count: None,
-                },
-                wgpu::BindGroupLayoutEntry {
-                    binding: 1,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-                    count: None,
-                },
-            ],
-        });
-        let screen = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("armlab ui screen"),
-            size: 16,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        let screen_bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("armlab ui screen"),
-            layout: &screen_layout,
-            entries: &[wgpu::BindGroupEntry {
-                binding: 0,
-                resource: screen.as_entire_binding(),
-            }],
-        });
+        let screen_layout = screen_bind_group_layout(device);
+        let texture_layout = texture_bind_group_layout(device);
+        let (screen, screen_bind) = screen_uniform(device, &screen_layout);
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("ui.wgsl"),
             source: wgpu::ShaderSource::Wgsl(UI_WGSL.into()),
@@ -372,58 +391,13 @@ impl UiPainter {
                 continue;
             };
             // The clip rectangle in whole pixels, inside the target.
-            let r = p.clip_rect;
-            let px = |v: f32| (v * pixels_per_point).round();
-            let [w, h] = size_px.map(|v| v as f32);
-            let (x0, y0) = (px(r.min.x).clamp(0.0, w), px(r.min.y).clamp(0.0, h));
-            let (x1, y1) = (px(r.max.x).clamp(0.0, w), px(r.max.y).clamp(0.0, h));
+            let [x0, y0, x1, y1] = clip_pixels(p.clip_rect, size_px, pixels_per_point);
             if x1 <= x0 || y1 <= y0 || mesh.indices.is_empty() || mesh.vertices.is_empty() {
                 continue;
             }
-            // Does the scissor cut this mesh? A pixel is drawn when its centre is inside a
-            // triangle, so compare the pixels whose centres lie within the mesh's bounds with
-            // the scissor's (pixels outside the target do not exist either way).
-            let bounds = mesh_bounds(&mesh.vertices);
-            let first = |v: f32| (v * pixels_per_point - 0.5).ceil().max(0.0);
-            let last = |v: f32, n: f32| (v * pixels_per_point - 0.5).floor().min(n - 1.0);
-            let uncut = first(bounds.min.x) >= x0
-                && first(bounds.min.y) >= y0
-                && last(bounds.max.x, w) < x1
-                && last(bounds.max.y, h) < y1;
+            let uncut = uncut_by(&mesh.vertices, [x0, y0, x1, y1], size_px, pixels_per_point);
             let clip = [x0 as u32, y0 as u32, x1 as u32, y1 as u32];
-            let base = self.vertex_data.len() as u32;
-            let start = self.index_data.len() as u32;
-            self.index_data
-                .extend(mesh.indices.iter().map(|&i| base + i));
-            self.vertex_data.extend_from_slice(&mesh.vertices);
-            let end = self.index_data.len() as u32;
-            // Consecutive meshes that no clip rectangle cuts and that show the same texture
-            // are drawn at once (one draw call costs lavapipe as much as a hundred widgets),
-            // with a scissor around all of them: the same pixels as one draw each.
-            // A registered view (opaque by contract) under white vertices is a plain copy.
-            let opaque = matches!(mesh.texture_id, TextureId::User(_))
-                && mesh
-                    .vertices
-                    .iter()
-                    .all(|v| v.color == egui::Color32::WHITE);
-            match self.draws.last_mut() {
-                Some(last)
-                    if last.uncut
-                        && uncut
-                        && last.texture == mesh.texture_id
-                        && last.opaque == opaque =>
-                {
-                    last.indices.end = end;
-                    last.clip = union(last.clip, clip);
-                }
-                _ => self.draws.push(Draw {
-                    clip,
-                    indices: start..end,
-                    uncut,
-                    opaque,
-                    texture: mesh.texture_id,
-                }),
-            }
+            self.push_mesh(mesh, clip, uncut);
         }
         upload(
             device,
@@ -442,6 +416,44 @@ impl UiPainter {
             wgpu::BufferUsages::INDEX,
         );
         self.belt.finish_and_recall_on_submit(encoder);
+    }
+
+    /// Stages one mesh's vertices and indices and draws it with the scissor `clip` (px),
+    /// merged into the previous draw when both are uncut and show the same texture the same way.
+    fn push_mesh(&mut self, mesh: &egui::epaint::Mesh, clip: [u32; 4], uncut: bool) {
+        let base = self.vertex_data.len() as u32;
+        let start = self.index_data.len() as u32;
+        self.index_data
+            .extend(mesh.indices.iter().map(|&i| base + i));
+        self.vertex_data.extend_from_slice(&mesh.vertices);
+        let end = self.index_data.len() as u32;
+        // Consecutive meshes that no clip rectangle cuts and that show the same texture
+        // are drawn at once (one draw call costs lavapipe as much as a hundred widgets),
+        // with a scissor around all of them: the same pixels as one draw each.
+        // A registered view (opaque by contract) under white vertices is a plain copy.
+        let opaque = matches!(mesh.texture_id, TextureId::User(_))
+            && mesh
+                .vertices
+                .iter()
+                .all(|v| v.color == egui::Color32::WHITE);
+        match self.draws.last_mut() {
+            Some(last)
+                if last.uncut
+                    && uncut
+                    && last.texture == mesh.texture_id
+                    && last.opaque == opaque =>
+            {
+                last.indices.end = end;
+                last.clip = union(last.clip, clip);
+            }
+            _ => self.draws.push(Draw {
+                clip,
+                indices: start..end,
+                uncut,
+                opaque,
+                texture: mesh.texture_id,
+            }),
+        }
     }
 
     /// How many draw calls [`Self::paint`] makes for the prepared frame.
@@ -540,6 +552,36 @@ fn make_pipeline(
         multiview_mask: None,
         cache: None,
     })
+}
+
+/// `r` (points) in whole pixels, clamped to a `size_px` target: x0, y0, x1, y1.
+fn clip_pixels(r: egui::Rect, size_px: [u32; 2], pixels_per_point: f32) -> [f32; 4] {
+    let px = |v: f32| (v * pixels_per_point).round();
+    let [w, h] = size_px.map(|v| v as f32);
+    let (x0, y0) = (px(r.min.x).clamp(0.0, w), px(r.min.y).clamp(0.0, h));
+    let (x1, y1) = (px(r.max.x).clamp(0.0, w), px(r.max.y).clamp(0.0, h));
+    [x0, y0, x1, y1]
+}
+
+/// Whether the scissor `[x0, y0, x1, y1]` (px, from [`clip_pixels`]) cuts none of the triangles
+/// of a mesh with these vertices.
+fn uncut_by(
+    vertices: &[Vertex],
+    [x0, y0, x1, y1]: [f32; 4],
+    size_px: [u32; 2],
+    pixels_per_point: f32,
+) -> bool {
+    let [w, h] = size_px.map(|v| v as f32);
+    // Does the scissor cut this mesh? A pixel is drawn when its centre is inside a
+    // triangle, so compare the pixels whose centres lie within the mesh's bounds with
+    // the scissor's (pixels outside the target do not exist either way).
+    let bounds = mesh_bounds(vertices);
+    let first = |v: f32| (v * pixels_per_point - 0.5).ceil().max(0.0);
+    let last = |v: f32, n: f32| (v * pixels_per_point - 0.5).floor().min(n - 1.0);
+    first(bounds.min.x) >= x0
+        && first(bounds.min.y) >= y0
+        && last(bounds.max.x, w) < x1
+        && last(bounds.max.y, h) < y1
 }
 
 /// The bounding rectangle of `vertices` (points).

@@ -264,7 +264,6 @@ pub fn analyze_grid(
     } else {
         None
     };
-    let n = opts.resolution;
     let Some(tester) = tester else {
         return sampling_grid(robot, opts, frame, progress);
     };
@@ -275,7 +274,30 @@ pub fn analyze_grid(
             expected: "a spatial grid needs samples for its bounding box",
         });
     }
-    let grid = match tester.frame() {
+    let grid = closed_form_grid_spec(robot, opts, &tester)?;
+    let (masks, frac) = test_cells(&grid, &tester, progress);
+    Ok(GridAnalysis {
+        grid,
+        frame: tester.frame().copied(),
+        class_names: tester.class_names().to_vec(),
+        masks,
+        orientation_fraction: frac,
+        method: GridMethod::ClosedForm {
+            family: tester.family().into(),
+            orientations: tester.orientations(),
+        },
+    })
+}
+
+/// The closed-form method's grid: N x N in plane coordinates over the exact boundary's bounding
+/// box (planar arms), else N x N x N voxels over the samples' bounding box grown by 5 % per side.
+fn closed_form_grid_spec(
+    robot: &Robot,
+    opts: &GridOptions,
+    tester: &ReachTester,
+) -> Result<GridSpec, WorkspaceError> {
+    let n = opts.resolution;
+    Ok(match tester.frame() {
         Some(_) => {
             let b = planar_boundary(robot, &BoundaryOptions::default())?.bounds();
             let pad = 1e-6 * b.extent()[0].max(b.extent()[1]).max(1e-3);
@@ -287,10 +309,19 @@ pub fn analyze_grid(
             }
         }
         None => {
-            let b = sampled_bounds(robot, ee, opts.samples, opts.seed, None)?;
+            let b = sampled_bounds(robot, opts.end_effector, opts.samples, opts.seed, None)?;
             voxel_grid(b, n, 0.05)
         }
-    };
+    })
+}
+
+/// Tests every cell centre with the closed form, one grid row per task: the posture mask and the
+/// fraction of orientations reached, per cell.
+fn test_cells(
+    grid: &GridSpec,
+    tester: &ReachTester,
+    progress: &(dyn Fn(usize) + Sync),
+) -> (Vec<u8>, Vec<f32>) {
     let mut masks = vec![0u8; grid.len()];
     let mut frac = vec![0f32; grid.len()];
     let row = grid.n[0];
@@ -316,17 +347,7 @@ pub fn analyze_grid(
             }
             prog.add(m.len());
         });
-    Ok(GridAnalysis {
-        grid,
-        frame: tester.frame().copied(),
-        class_names: tester.class_names().to_vec(),
-        masks,
-        orientation_fraction: frac,
-        method: GridMethod::ClosedForm {
-            family: tester.family().into(),
-            orientations: tester.orientations(),
-        },
-    })
+    (masks, frac)
 }
 
 /// A voxel grid over `b` grown by `grow` of the largest extent on every side.
@@ -406,6 +427,31 @@ fn sampling_grid(
         None => voxel_grid(b, n, 1e-9),
     };
     let classifier = PostureClassifier::for_end_effector(robot, ee);
+    let (bins, masks) = bin_samples(robot, opts, &grid, frame.as_ref(), &classifier, progress)?;
+    Ok(GridAnalysis {
+        grid,
+        frame,
+        class_names: classifier.class_names().to_vec(),
+        masks,
+        orientation_fraction: bins
+            .iter()
+            .map(|b| b.count_ones() as f32 / ORIENTATION_BINS as f32)
+            .collect(),
+        method: GridMethod::Sampling { samples },
+    })
+}
+
+/// The sampling method's second pass: per cell, the orientation bins and the posture classes of
+/// the samples that fall in it (a degenerate posture marks every class).
+fn bin_samples(
+    robot: &Robot,
+    opts: &GridOptions,
+    grid: &GridSpec,
+    frame: Option<&PlanarFrame>,
+    classifier: &PostureClassifier,
+    progress: &(dyn Fn(usize) + Sync),
+) -> Result<(Vec<u64>, Vec<u8>), WorkspaceError> {
+    let (ee, samples) = (opts.end_effector, opts.samples);
     let limits = robot.sampling_ranges();
     let prog = Progress::new(progress);
     let cells = grid.len();
@@ -414,7 +460,7 @@ fn sampling_grid(
     // Few accumulators (each holds the whole grid); OR-merging makes the result independent of
     // how the chunks are split.
     let min_len = (chunks / (4 * rayon::current_num_threads())).max(1);
-    let (bins, masks) = (0..chunks)
+    (0..chunks)
         .into_par_iter()
         .with_min_len(min_len)
         .try_fold(
@@ -427,7 +473,7 @@ fn sampling_grid(
                     uniform_q(&mut rng, &limits, &mut q);
                     let t = robot.fk_ee(&q, ee)?;
                     let p = t.translation.vector;
-                    let key = match &frame {
+                    let key = match frame {
                         Some(f) => {
                             let xy = f.to_plane([p.x, p.y, p.z]);
                             [xy[0], xy[1], 0.0]
@@ -435,7 +481,7 @@ fn sampling_grid(
                         None => [p.x, p.y, p.z],
                     };
                     if let Some(i) = grid.index_of(key) {
-                        bins[i] |= 1 << orientation_bin_of(&t, frame.as_ref());
+                        bins[i] |= 1 << orientation_bin_of(&t, frame);
                         let class = classifier.classify(&q, &t);
                         // A degenerate posture borders every class.
                         masks[i] |= if class < 8 { 1 << class } else { all };
@@ -452,16 +498,5 @@ fn sampling_grid(
                 m1.iter_mut().zip(&m2).for_each(|(a, b)| *a |= b);
                 Ok((b1, m1))
             },
-        )?;
-    Ok(GridAnalysis {
-        grid,
-        frame,
-        class_names: classifier.class_names().to_vec(),
-        masks,
-        orientation_fraction: bins
-            .iter()
-            .map(|b| b.count_ones() as f32 / ORIENTATION_BINS as f32)
-            .collect(),
-        method: GridMethod::Sampling { samples },
-    })
+        )
 }

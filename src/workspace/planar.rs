@@ -446,65 +446,8 @@ pub fn planar_boundary(
     let class_names = classifier.class_names().to_vec();
     if n == 2 {
         let rect = joint_rectangle(robot)?;
-        let mut curves = Vec::new();
-        for s in &rect.segments {
-            let (a, b) = (rect.points[s.from].q, rect.points[s.to].q);
-            let moving = if a[0] == b[0] { 1 } else { 0 };
-            curves.push(BoundaryCurve {
-                label: s.label.to_uppercase(),
-                description: format!(
-                    "image of segment {}: q{} from {:.6} to {:.6} rad, q{} = {:.6} rad ({})",
-                    s.label,
-                    moving + 1,
-                    a[moving],
-                    b[moving],
-                    2 - moving,
-                    a[1 - moving],
-                    match s.kind {
-                        CurveKind::JointLimit => "joint limit",
-                        CurveKind::Singular => "aligned links, a singularity",
-                    }
-                ),
-                kind: s.kind,
-                moving_joint: moving,
-                q_start: a.to_vec(),
-                q_end: b.to_vec(),
-                points: ev.polyline(&a, &b, opts.step)?,
-            });
-        }
-        let l1 = rect.q1;
-        let q1_hi = l1[1].min(l1[0] + TAU);
-        let mut loops = Vec::new();
-        for (i, &(q2, class)) in rect.bands.iter().enumerate() {
-            let corner = |k: usize| rect.points[k].label.to_uppercase();
-            let label = format!(
-                "{}{}{}{}{}",
-                corner(2 * i),
-                corner(2 * i + 2),
-                corner(2 * i + 3),
-                corner(2 * i + 1),
-                corner(2 * i)
-            );
-            let path = [
-                [l1[0], q2[0]],
-                [l1[0], q2[1]],
-                [q1_hi, q2[1]],
-                [q1_hi, q2[0]],
-                [l1[0], q2[0]],
-            ];
-            let mut points = Vec::new();
-            for w in path.windows(2) {
-                let mut p = ev.polyline(&w[0], &w[1], opts.step)?;
-                p.pop();
-                points.extend(p);
-            }
-            loops.push(PostureLoop {
-                class,
-                label,
-                q2,
-                points,
-            });
-        }
+        let curves = rectangle_curves(&rect, &ev, opts.step)?;
+        let loops = posture_loops(&rect, &ev, opts.step)?;
         return Ok(PlanarBoundary {
             frame,
             class_names,
@@ -515,8 +458,111 @@ pub fn planar_boundary(
     }
     // Three links: each curve is (moving joint, fixed values of the other two).
     let lim = robot.sampling_ranges();
-    let name = |k: usize, v: f64, why: &str| format!("q{} = {v:.6} rad ({why})", k + 1);
-    let mut specs: Vec<(char, usize, [f64; 3], String)> = Vec::new();
+    let mut specs = edge_specs(&lim);
+    face_fold_specs(&mut ev, &lim, &mut specs);
+    interior_specs(&mut ev, &lim, &mut specs);
+    let curves = three_link_curves(specs, &lim, &ev, opts.step)?;
+    Ok(PlanarBoundary {
+        frame,
+        class_names,
+        curves,
+        loops: Vec::new(),
+        rectangle: None,
+    })
+}
+
+/// Two links: the image of every segment of the joint-space rectangle (arcs AB, BC, ... of
+/// Fig. 2.30), labelled by the segment's label in capitals.
+fn rectangle_curves(
+    rect: &JointRectangle,
+    ev: &Eval,
+    step: f64,
+) -> Result<Vec<BoundaryCurve>, WorkspaceError> {
+    let mut curves = Vec::new();
+    for s in &rect.segments {
+        let (a, b) = (rect.points[s.from].q, rect.points[s.to].q);
+        let moving = if a[0] == b[0] { 1 } else { 0 };
+        curves.push(BoundaryCurve {
+            label: s.label.to_uppercase(),
+            description: format!(
+                "image of segment {}: q{} from {:.6} to {:.6} rad, q{} = {:.6} rad ({})",
+                s.label,
+                moving + 1,
+                a[moving],
+                b[moving],
+                2 - moving,
+                a[1 - moving],
+                match s.kind {
+                    CurveKind::JointLimit => "joint limit",
+                    CurveKind::Singular => "aligned links, a singularity",
+                }
+            ),
+            kind: s.kind,
+            moving_joint: moving,
+            q_start: a.to_vec(),
+            q_end: b.to_vec(),
+            points: ev.polyline(&a, &b, step)?,
+        });
+    }
+    Ok(curves)
+}
+
+/// Two links: the closed image of the perimeter of each posture band (ABCDA, EADFE, ... of
+/// Fig. 2.30), its q1 span cut at 2 pi so that the map is one-to-one on the band.
+fn posture_loops(
+    rect: &JointRectangle,
+    ev: &Eval,
+    step: f64,
+) -> Result<Vec<PostureLoop>, WorkspaceError> {
+    let l1 = rect.q1;
+    let q1_hi = l1[1].min(l1[0] + TAU);
+    let mut loops = Vec::new();
+    for (i, &(q2, class)) in rect.bands.iter().enumerate() {
+        let corner = |k: usize| rect.points[k].label.to_uppercase();
+        let label = format!(
+            "{}{}{}{}{}",
+            corner(2 * i),
+            corner(2 * i + 2),
+            corner(2 * i + 3),
+            corner(2 * i + 1),
+            corner(2 * i)
+        );
+        let path = [
+            [l1[0], q2[0]],
+            [l1[0], q2[1]],
+            [q1_hi, q2[1]],
+            [q1_hi, q2[0]],
+            [l1[0], q2[0]],
+        ];
+        let mut points = Vec::new();
+        for w in path.windows(2) {
+            let mut p = ev.polyline(&w[0], &w[1], step)?;
+            p.pop();
+            points.extend(p);
+        }
+        loops.push(PostureLoop {
+            class,
+            label,
+            q2,
+            points,
+        });
+    }
+    Ok(loops)
+}
+
+/// A three-link boundary curve before it is traced: tag ('E' edge, 'F' face fold, 'S' interior
+/// singularity), moving joint, joint vector with the fixed values set, description of the fixed
+/// values.
+type CurveSpec = (char, usize, [f64; 3], String);
+
+/// "q{k+1} = v rad (why)": one fixed joint value of a three-link curve's description.
+fn fixed_value(k: usize, v: f64, why: &str) -> String {
+    format!("q{} = {v:.6} rad ({why})", k + 1)
+}
+
+/// Three links: the 12 edges of the joint-limit box, two fixed joints at a limit each.
+fn edge_specs(lim: &[[f64; 2]]) -> Vec<CurveSpec> {
+    let mut specs = Vec::new();
     for mv in 0..3 {
         let others: Vec<usize> = (0..3).filter(|&k| k != mv).collect();
         for &va in &lim[others[0]] {
@@ -526,13 +572,18 @@ pub fn planar_boundary(
                 q[others[1]] = vb;
                 let d = format!(
                     "{}, {}",
-                    name(others[0], va, "limit"),
-                    name(others[1], vb, "limit")
+                    fixed_value(others[0], va, "limit"),
+                    fixed_value(others[1], vb, "limit")
                 );
                 specs.push(('E', mv, q, d));
             }
         }
     }
+    specs
+}
+
+/// Three links: the fold curves of the faces of the joint-limit box, appended to `specs`.
+fn face_fold_specs(ev: &mut Eval, lim: &[[f64; 2]], specs: &mut Vec<CurveSpec>) {
     // Face folds: free joints i < j, fixed k; the rank test depends on q_j (and q_k), so its roots
     // are values of q_j and joint i moves.
     for k in 0..3 {
@@ -555,22 +606,41 @@ pub fn planar_boundary(
                 qq[j] = r;
                 let d = format!(
                     "{}, {}",
-                    name(k, vk, "limit"),
-                    name(j, r, "fold of the face")
+                    fixed_value(k, vk, "limit"),
+                    fixed_value(j, r, "fold of the face")
                 );
                 specs.push(('F', i, qq, d));
             }
         }
     }
+}
+
+/// Three links: the interior singular lines (all links aligned or folded; joint 1 moves),
+/// appended to `specs`.
+fn interior_specs(ev: &mut Eval, lim: &[[f64; 2]], specs: &mut Vec<CurveSpec>) {
     // Interior: columns 2 and 3 parallel (a value of q3), then columns 1 and 2 (a value of q2).
     let mut q = [lim[0][0], 0.0, 0.0];
     q[1] = lim[1][0];
     for r3 in roots(|x| ev.cross(&[q[0], q[1], x], 1, 2), lim[2][0], lim[2][1]) {
         for r2 in roots(|x| ev.cross(&[q[0], x, r3], 0, 1), lim[1][0], lim[1][1]) {
-            let d = format!("{}, {}", name(1, r2, "aligned"), name(2, r3, "aligned"));
+            let d = format!(
+                "{}, {}",
+                fixed_value(1, r2, "aligned"),
+                fixed_value(2, r3, "aligned")
+            );
             specs.push(('S', 0, [0.0, r2, r3], d));
         }
     }
+}
+
+/// Three links: traces each spec (its moving joint sweeping its limits), labelled by tag and a
+/// count per tag ("E1", "F1", "S1", ...).
+fn three_link_curves(
+    specs: Vec<CurveSpec>,
+    lim: &[[f64; 2]],
+    ev: &Eval,
+    step: f64,
+) -> Result<Vec<BoundaryCurve>, WorkspaceError> {
     let mut counts = [0usize; 3];
     let mut curves = Vec::new();
     for (tag, mv, q, desc) in specs {
@@ -594,14 +664,8 @@ pub fn planar_boundary(
             moving_joint: mv,
             q_start: a.to_vec(),
             q_end: b.to_vec(),
-            points: ev.polyline(&a, &b, opts.step)?,
+            points: ev.polyline(&a, &b, step)?,
         });
     }
-    Ok(PlanarBoundary {
-        frame,
-        class_names,
-        curves,
-        loops: Vec::new(),
-        rectangle: None,
-    })
+    Ok(curves)
 }

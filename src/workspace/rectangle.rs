@@ -76,7 +76,30 @@ pub fn joint_rectangle(robot: &Robot) -> Result<JointRectangle, WorkspaceError> 
     b.push(l2[1]);
     let m = b.len() - 1;
     let classifier = PostureClassifier::new(robot);
-    let bands: Vec<([f64; 2], u8)> = (0..m)
+    let bands = posture_bands(robot, &classifier, l1, &b);
+    let lower_only = m == 1 && l2[1] <= 0.0;
+    let points = rect_points(l1, &b, lower_only);
+    let segments = rect_segments(&points, &bands, lower_only);
+    Ok(JointRectangle {
+        q1: l1,
+        q2: l2,
+        singular_q2: singular,
+        points,
+        segments,
+        bands,
+        class_names: classifier.class_names().to_vec(),
+    })
+}
+
+/// The posture bands between consecutive q2 boundaries `b` (limits and singular values): each
+/// band's q2 range and the posture class at its centre (class 0 where forward kinematics fails).
+fn posture_bands(
+    robot: &Robot,
+    classifier: &PostureClassifier,
+    l1: [f64; 2],
+    b: &[f64],
+) -> Vec<([f64; 2], u8)> {
+    (0..b.len() - 1)
         .map(|i| {
             let q = [0.5 * (l1[0] + l1[1]), 0.5 * (b[i] + b[i + 1])];
             let c = robot
@@ -85,9 +108,14 @@ pub fn joint_rectangle(robot: &Robot) -> Result<JointRectangle, WorkspaceError> 
                 .unwrap_or(0);
             ([b[i], b[i + 1]], c)
         })
-        .collect();
+        .collect()
+}
+
+/// The labelled ends of every q2 line `b` on the left (q1 = q1m, even indices) and right (q1 =
+/// q1M, odd indices) edges, bottom to top. `lower_only`: one band, below q2 = 0.
+fn rect_points(l1: [f64; 2], b: &[f64], lower_only: bool) -> Vec<RectPoint> {
+    let m = b.len() - 1;
     // Labels of Fig. 2.29: left edge (q1 = q1m) e, a, b and right edge f, d, c, bottom to top.
-    let lower_only = m == 1 && l2[1] <= 0.0;
     let (left, right): (Vec<String>, Vec<String>) = match m {
         2 => (
             ["e", "a", "b"].map(String::from).to_vec(),
@@ -117,6 +145,17 @@ pub fn joint_rectangle(robot: &Robot) -> Result<JointRectangle, WorkspaceError> 
             q: [l1[1], b[i]],
         });
     }
+    points
+}
+
+/// The segments of the rectangle in the order of Example 2.6: the top band's perimeter (ab, bc,
+/// cd, da), then each lower band's (ae, ef, fd); the perimeter alone when `lower_only`.
+fn rect_segments(
+    points: &[RectPoint],
+    bands: &[([f64; 2], u8)],
+    lower_only: bool,
+) -> Vec<RectSegment> {
+    let m = bands.len();
     let (li, ri) = (|i: usize| 2 * i, |i: usize| 2 * i + 1);
     let mut segments = Vec::new();
     let mut seg = |from: usize, to: usize, kind, class| {
@@ -162,13 +201,5 @@ pub fn joint_rectangle(robot: &Robot) -> Result<JointRectangle, WorkspaceError> 
             seg(ri(i), ri(i + 1), lim_kind, c);
         }
     }
-    Ok(JointRectangle {
-        q1: l1,
-        q2: l2,
-        singular_q2: singular,
-        points,
-        segments,
-        bands,
-        class_names: classifier.class_names().to_vec(),
-    })
+    segments
 }

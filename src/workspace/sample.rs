@@ -214,6 +214,81 @@ struct Chunk<'a> {
     q: Option<&'a mut [f64]>,
 }
 
+/// Cuts the output buffers into [`SAMPLE_CHUNK`]-sample chunks (`dof` values per sample of
+/// `joints`).
+fn split_chunks<'a>(
+    positions: &'a mut [[f64; 3]],
+    classes: Option<&'a mut [u8]>,
+    manip: Option<&'a mut [f32]>,
+    joints: Option<&'a mut [f64]>,
+    dof: usize,
+) -> Vec<Chunk<'a>> {
+    let mut cls_it = classes.map(|c| c.chunks_mut(SAMPLE_CHUNK));
+    let mut man_it = manip.map(|c| c.chunks_mut(SAMPLE_CHUNK));
+    let mut q_it = joints.map(|c| c.chunks_mut(SAMPLE_CHUNK * dof.max(1)));
+    positions
+        .chunks_mut(SAMPLE_CHUNK)
+        .enumerate()
+        .map(|(index, pos)| Chunk {
+            index,
+            pos,
+            cls: cls_it.as_mut().and_then(Iterator::next),
+            man: man_it.as_mut().and_then(Iterator::next),
+            q: q_it.as_mut().and_then(Iterator::next),
+        })
+        .collect()
+}
+
+/// What every chunk of [`sample`] shares.
+struct ChunkSampler<'a> {
+    robot: &'a Robot,
+    ee: usize,
+    seed: u64,
+    classifier: &'a PostureClassifier,
+    /// The classifier needs the whole pose, not only the position.
+    needs_pose: bool,
+    task: Task,
+    limits: &'a [[f64; 2]],
+}
+
+impl ChunkSampler<'_> {
+    /// Draws chunk `c`'s joint vectors from its own stream and fills its outputs.
+    fn fill(&self, mut c: Chunk) -> Result<(), WorkspaceError> {
+        let (robot, ee) = (self.robot, self.ee);
+        let dof = robot.dof();
+        let mut rng = Xoshiro256pp::stream(self.seed, c.index as u64);
+        let mut q = vec![0.0; dof];
+        let mut frames = c
+            .man
+            .is_some()
+            .then(|| vec![Pose::identity(); robot.joints().len()]);
+        let mut jac = Matrix6xX::zeros(dof);
+        for i in 0..c.pos.len() {
+            uniform_q(&mut rng, self.limits, &mut q);
+            if let Some(cls) = c.cls.as_deref_mut().filter(|_| self.needs_pose) {
+                let t = robot.fk_ee(&q, ee)?;
+                let p = t.translation.vector;
+                c.pos[i] = [p.x, p.y, p.z];
+                cls[i] = self.classifier.classify(&q, &t);
+            } else {
+                // q is drawn inside the (finite) limits and ee was checked above.
+                c.pos[i] = robot.fk_ee_position_prechecked(&q, ee);
+                if let Some(cls) = c.cls.as_deref_mut() {
+                    cls[i] = self.classifier.classify(&q, &Pose::identity());
+                }
+            }
+            if let (Some(man), Some(frames)) = (c.man.as_deref_mut(), frames.as_mut()) {
+                robot.jacobian_into(&q, ee, frames, &mut jac)?;
+                man[i] = self.task.manipulability(&jac) as f32;
+            }
+            if let Some(qs) = c.q.as_deref_mut() {
+                qs[i * dof..(i + 1) * dof].copy_from_slice(&q);
+            }
+        }
+        Ok(())
+    }
+}
+
 /// Samples the reachable workspace: `opts.samples` joint vectors drawn uniformly in the
 /// joint-limit box and their end-effector positions (world frame, m), in parallel on rayon's
 /// current pool.
@@ -233,66 +308,35 @@ pub fn sample(
     let n = opts.samples;
     let dof = robot.dof();
     let classifier = PostureClassifier::for_end_effector(robot, ee);
-    // Only closed-form posture rules need the whole pose; otherwise the position suffices.
-    let needs_pose = classifier.needs_pose();
-    let task = Task::of(robot, ee);
     let limits = robot.sampling_ranges();
+    let sampler = ChunkSampler {
+        robot,
+        ee,
+        seed: opts.seed,
+        classifier: &classifier,
+        // Only closed-form posture rules need the whole pose; otherwise the position suffices.
+        needs_pose: classifier.needs_pose(),
+        task: Task::of(robot, ee),
+        limits: &limits,
+    };
     let mut positions = vec![[0.0; 3]; n];
     let mut classes = opts.classes.then(|| vec![0u8; n]);
     let mut manip = opts.manipulability.then(|| vec![0f32; n]);
     let mut joints = opts.keep_joints.then(|| vec![0f64; n * dof]);
-    {
-        let mut cls_it = classes.as_deref_mut().map(|c| c.chunks_mut(SAMPLE_CHUNK));
-        let mut man_it = manip.as_deref_mut().map(|c| c.chunks_mut(SAMPLE_CHUNK));
-        let mut q_it = joints
-            .as_deref_mut()
-            .map(|c| c.chunks_mut(SAMPLE_CHUNK * dof.max(1)));
-        let chunks: Vec<Chunk> = positions
-            .chunks_mut(SAMPLE_CHUNK)
-            .enumerate()
-            .map(|(index, pos)| Chunk {
-                index,
-                pos,
-                cls: cls_it.as_mut().and_then(Iterator::next),
-                man: man_it.as_mut().and_then(Iterator::next),
-                q: q_it.as_mut().and_then(Iterator::next),
-            })
-            .collect();
-        let progress = Progress::new(progress);
-        chunks.into_par_iter().try_for_each(|mut c| {
-            let mut rng = Xoshiro256pp::stream(opts.seed, c.index as u64);
-            let mut q = vec![0.0; dof];
-            let mut frames = c
-                .man
-                .is_some()
-                .then(|| vec![Pose::identity(); robot.joints().len()]);
-            let mut jac = Matrix6xX::zeros(dof);
-            for i in 0..c.pos.len() {
-                uniform_q(&mut rng, &limits, &mut q);
-                if let Some(cls) = c.cls.as_deref_mut().filter(|_| needs_pose) {
-                    let t = robot.fk_ee(&q, ee)?;
-                    let p = t.translation.vector;
-                    c.pos[i] = [p.x, p.y, p.z];
-                    cls[i] = classifier.classify(&q, &t);
-                } else {
-                    // q is drawn inside the (finite) limits and ee was checked above.
-                    c.pos[i] = robot.fk_ee_position_prechecked(&q, ee);
-                    if let Some(cls) = c.cls.as_deref_mut() {
-                        cls[i] = classifier.classify(&q, &Pose::identity());
-                    }
-                }
-                if let (Some(man), Some(frames)) = (c.man.as_deref_mut(), frames.as_mut()) {
-                    robot.jacobian_into(&q, ee, frames, &mut jac)?;
-                    man[i] = task.manipulability(&jac) as f32;
-                }
-                if let Some(qs) = c.q.as_deref_mut() {
-                    qs[i * dof..(i + 1) * dof].copy_from_slice(&q);
-                }
-            }
-            progress.add(c.pos.len());
-            Ok::<(), WorkspaceError>(())
-        })?;
-    }
+    let chunks = split_chunks(
+        &mut positions,
+        classes.as_deref_mut(),
+        manip.as_deref_mut(),
+        joints.as_deref_mut(),
+        dof,
+    );
+    let progress = Progress::new(progress);
+    chunks.into_par_iter().try_for_each(|c| {
+        let len = c.pos.len();
+        sampler.fill(c)?;
+        progress.add(len);
+        Ok::<(), WorkspaceError>(())
+    })?;
     Ok(Samples {
         positions,
         classes,

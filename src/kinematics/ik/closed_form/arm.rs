@@ -39,23 +39,41 @@ pub(super) struct ArmSol {
 #[derive(Debug, Clone, Copy)]
 enum Geom {
     /// (x1, y1) = L1 e^{i(theta2 + beta1)} + L2 e^{i(theta2 + f2 theta3 + beta2)}.
-    Anthropomorphic {
-        l1: f64,
-        beta1: f64,
-        l2: f64,
-        beta2: f64,
-        f2: f64,
-    },
+    Anthropomorphic(Anthropomorphic),
     /// (x1, y1) = Rz(theta2) (e, -s2 rho), d3 = rho - vz.
-    Spherical { e: f64, s2: f64, vz: f64 },
+    Spherical(Spherical),
     /// Horizontal point = Rz(theta1) (g + rho n), d2 = f1 (pz - d1) - zoff, d3 = rho - vz.
-    Cylindrical {
-        g: [f64; 2],
-        n: [f64; 2],
-        f1: f64,
-        zoff: f64,
-        vz: f64,
-    },
+    Cylindrical(Cylindrical),
+}
+
+/// The anthropomorphic arm's numbers: (x1, y1) = L1 e^{i(theta2 + beta1)} +
+/// L2 e^{i(theta2 + f2 theta3 + beta2)}.
+#[derive(Debug, Clone, Copy)]
+struct Anthropomorphic {
+    l1: f64,
+    beta1: f64,
+    l2: f64,
+    beta2: f64,
+    f2: f64,
+}
+
+/// The spherical arm's numbers: (x1, y1) = Rz(theta2) (e, -s2 rho), d3 = rho - vz.
+#[derive(Debug, Clone, Copy)]
+struct Spherical {
+    e: f64,
+    s2: f64,
+    vz: f64,
+}
+
+/// The cylindrical arm's numbers: horizontal point = Rz(theta1) (g + rho n),
+/// d2 = f1 (pz - d1) - zoff, d3 = rho - vz.
+#[derive(Debug, Clone, Copy)]
+struct Cylindrical {
+    g: [f64; 2],
+    n: [f64; 2],
+    f1: f64,
+    zoff: f64,
+    vz: f64,
 }
 
 /// A recognised positioning arm with the numbers its formulas need.
@@ -110,13 +128,13 @@ impl SpatialArm {
                 } else {
                     std::f64::consts::PI
                 };
-                let geom = Geom::Anthropomorphic {
+                let geom = Geom::Anthropomorphic(Anthropomorphic {
                     l1,
                     beta1,
                     l2,
                     beta2: vy.atan2(vx),
                     f2,
-                };
+                });
                 (ArmKind::Anthropomorphic, s1, r2.d + f2 * u.z, geom)
             }
             (true, true, false) => {
@@ -124,11 +142,11 @@ impl SpatialArm {
                 let s2 = r2.twist.perpendicular_sign()?;
                 let (st, ct) = r3.theta.sin_cos();
                 let (kx, ky) = (ct * (r3.a + v.x) - st * v.y, st * (r3.a + v.x) + ct * v.y);
-                let geom = Geom::Spherical {
+                let geom = Geom::Spherical(Spherical {
                     e: r2.a + kx,
                     s2,
                     vz: v.z,
-                };
+                });
                 (ArmKind::Spherical, s1, r2.d + s2 * ky, geom)
             }
             (true, false, false) => {
@@ -138,13 +156,13 @@ impl SpatialArm {
                 let (kx, ky) = (ct * (r3.a + v.x) - st * v.y, st * (r3.a + v.x) + ct * v.y);
                 let e = r2.a + kx;
                 let (s2t, c2t) = r2.theta.sin_cos();
-                let geom = Geom::Cylindrical {
+                let geom = Geom::Cylindrical(Cylindrical {
                     g: [r1.a + e * c2t, f1 * e * s2t],
                     n: [s2 * s2t, -f1 * s2 * c2t],
                     f1,
                     zoff: s2 * ky,
                     vz: v.z,
-                };
+                });
                 (ArmKind::Cylindrical, 1.0, 0.0, geom)
             }
             _ => return None,
@@ -165,7 +183,7 @@ impl SpatialArm {
     #[inline]
     pub(super) fn rotation(&self, v: &[f64; 3]) -> Matrix3<f64> {
         let [r1, r2, r3] = &self.rows;
-        if let Geom::Anthropomorphic { f2, .. } = self.geom {
+        if let Geom::Anthropomorphic(Anthropomorphic { f2, .. }) = self.geom {
             // Parallel axes 2 and 3: Rz(theta2) Rx(alpha2) Rz(theta3) Rx(alpha3)
             // = Rz(theta2 + f2 theta3) Rx(alpha2 + alpha3), since Rx(pi) Rz(t) = Rz(-t) Rx(pi).
             let mut r23 = *r3;
@@ -236,121 +254,154 @@ impl SpatialArm {
     /// no branch reaches it: the gap measured in the plane of the arm (frame 1), which is
     /// |p_W| - (a2 + a3) for the textbook arm, or the gap to the cylinder of the lateral offset.
     pub(super) fn solve(&self, p: &Vector3<f64>, out: &mut [ArmSol; 4]) -> Result<usize, f64> {
-        match self.geom {
-            Geom::Anthropomorphic {
-                l1,
-                beta1,
-                l2,
-                beta2,
-                f2,
-            } => {
-                let mut br = [Branch::default(); 2];
-                let nb = self.shoulder(p.x, p.y, &mut br)?;
-                let y1 = self.s1 * (p.z - self.d1);
-                let mut n = 0;
-                let mut gap = f64::INFINITY;
-                let mut tl = [TwoLinkSol::default(); 2];
-                for b in &br[..nb] {
-                    match two_link(b.x1, y1, l1, l2, self.len_tol, &mut tl) {
-                        Err(d) => gap = gap.min(d),
-                        Ok(k) => {
-                            for s in &tl[..k] {
-                                // theta2 from (2.103)-(2.108), theta3 from (2.98)-(2.101).
-                                let th2 = s.a - beta1;
-                                let th3 = f2 * (s.d - beta2 + beta1);
-                                let mut posture = Posture {
-                                    shoulder: b.shoulder,
-                                    elbow: Some(elbow_of(s, self.s1 * b.b)),
-                                    ..Posture::default()
-                                };
-                                if b.shoulder == Some(Shoulder::OnAxis) {
-                                    posture.free[0] = Some(FreeReason::ShoulderAxis);
-                                }
-                                if s.free_first {
-                                    posture.free[1] = Some(FreeReason::ElbowAtShoulder);
-                                }
-                                out[n] = ArmSol {
-                                    v: [b.th1, th2, th3],
-                                    posture,
-                                };
-                                n += 1;
-                            }
+        match &self.geom {
+            Geom::Anthropomorphic(g) => self.solve_anthropomorphic(g, p, out),
+            Geom::Spherical(g) => self.solve_spherical(g, p, out),
+            Geom::Cylindrical(g) => self.solve_cylindrical(g, p, out),
+        }
+    }
+
+    /// [`Self::solve`] for the anthropomorphic arm: per theta1 branch, the two-link problem of
+    /// Sect. 2.12.1 in the plane of the arm.
+    #[inline]
+    fn solve_anthropomorphic(
+        &self,
+        g: &Anthropomorphic,
+        p: &Vector3<f64>,
+        out: &mut [ArmSol; 4],
+    ) -> Result<usize, f64> {
+        let Anthropomorphic {
+            l1,
+            beta1,
+            l2,
+            beta2,
+            f2,
+        } = *g;
+        let mut br = [Branch::default(); 2];
+        let nb = self.shoulder(p.x, p.y, &mut br)?;
+        let y1 = self.s1 * (p.z - self.d1);
+        let mut n = 0;
+        let mut gap = f64::INFINITY;
+        let mut tl = [TwoLinkSol::default(); 2];
+        for b in &br[..nb] {
+            match two_link(b.x1, y1, l1, l2, self.len_tol, &mut tl) {
+                Err(d) => gap = gap.min(d),
+                Ok(k) => {
+                    for s in &tl[..k] {
+                        // theta2 from (2.103)-(2.108), theta3 from (2.98)-(2.101).
+                        let th2 = s.a - beta1;
+                        let th3 = f2 * (s.d - beta2 + beta1);
+                        let mut posture = Posture {
+                            shoulder: b.shoulder,
+                            elbow: Some(elbow_of(s, self.s1 * b.b)),
+                            ..Posture::default()
+                        };
+                        if b.shoulder == Some(Shoulder::OnAxis) {
+                            posture.free[0] = Some(FreeReason::ShoulderAxis);
                         }
-                    }
-                }
-                if n == 0 { Err(gap) } else { Ok(n) }
-            }
-            Geom::Spherical { e, s2, vz } => {
-                let mut br = [Branch::default(); 2];
-                let nb = self.shoulder(p.x, p.y, &mut br)?;
-                let y1 = self.s1 * (p.z - self.d1);
-                let mut n = 0;
-                let mut gap = f64::INFINITY;
-                for b in &br[..nb] {
-                    let mut rho = [(0.0, Extension::Forward); 2];
-                    match extension(b.x1.hypot(y1), e, self.len_tol, &mut rho) {
-                        Err(d) => gap = gap.min(d),
-                        Ok(k) => {
-                            for &(rho, ext) in &rho[..k] {
-                                // (2.94): (x1, y1) = Rz(theta2) (e, -s2 rho); theta2 as in
-                                // Sect. 2.12.3, Atan2(p_Wx c1 + p_Wy s1, p_Wz) for e = 0.
-                                let (vx, vy) = (e, -s2 * rho);
-                                let th2 = (vx * y1 - vy * b.x1).atan2(vx * b.x1 + vy * y1);
-                                let mut posture = Posture {
-                                    shoulder: b.shoulder,
-                                    extension: Some(ext),
-                                    ..Posture::default()
-                                };
-                                if b.shoulder == Some(Shoulder::OnAxis) {
-                                    posture.free[0] = Some(FreeReason::ShoulderAxis);
-                                }
-                                if ext == Extension::Zero && e.abs() <= self.len_tol {
-                                    posture.free[1] = Some(FreeReason::ExtensionZero);
-                                }
-                                out[n] = ArmSol {
-                                    v: [b.th1, th2, rho - vz],
-                                    posture,
-                                };
-                                n += 1;
-                            }
+                        if s.free_first {
+                            posture.free[1] = Some(FreeReason::ElbowAtShoulder);
                         }
+                        out[n] = ArmSol {
+                            v: [b.th1, th2, th3],
+                            posture,
+                        };
+                        n += 1;
                     }
                 }
-                if n == 0 { Err(gap) } else { Ok(n) }
-            }
-            Geom::Cylindrical {
-                g,
-                n: dir,
-                f1,
-                zoff,
-                vz,
-            } => {
-                let r = p.x.hypot(p.y);
-                let gn = g[0] * dir[0] + g[1] * dir[1];
-                let gp = g[0] * dir[1] - g[1] * dir[0];
-                // |g + rho n| = r: rho = -g.n +- sqrt(r^2 - (g x n)^2)
-                let mut rho = [(0.0, Extension::Forward); 2];
-                let k = extension(r, gp, self.len_tol, &mut rho)?;
-                let d2 = f1 * (p.z - self.d1) - zoff;
-                for (i, &(rho, ext)) in rho[..k].iter().enumerate() {
-                    let rho = rho - gn;
-                    let (vx, vy) = (g[0] + rho * dir[0], g[1] + rho * dir[1]);
-                    let th1 = (vx * p.y - vy * p.x).atan2(vx * p.x + vy * p.y);
-                    let mut posture = Posture {
-                        extension: Some(ext),
-                        ..Posture::default()
-                    };
-                    if ext == Extension::Zero && gp.abs() <= self.len_tol {
-                        posture.free[0] = Some(FreeReason::ShoulderAxis);
-                    }
-                    out[i] = ArmSol {
-                        v: [th1, d2, rho - vz],
-                        posture,
-                    };
-                }
-                Ok(k)
             }
         }
+        if n == 0 { Err(gap) } else { Ok(n) }
+    }
+
+    /// [`Self::solve`] for the spherical arm: per theta1 branch, the signed extensions rho and
+    /// theta2 of (2.94).
+    #[inline]
+    fn solve_spherical(
+        &self,
+        g: &Spherical,
+        p: &Vector3<f64>,
+        out: &mut [ArmSol; 4],
+    ) -> Result<usize, f64> {
+        let Spherical { e, s2, vz } = *g;
+        let mut br = [Branch::default(); 2];
+        let nb = self.shoulder(p.x, p.y, &mut br)?;
+        let y1 = self.s1 * (p.z - self.d1);
+        let mut n = 0;
+        let mut gap = f64::INFINITY;
+        for b in &br[..nb] {
+            let mut rho = [(0.0, Extension::Forward); 2];
+            match extension(b.x1.hypot(y1), e, self.len_tol, &mut rho) {
+                Err(d) => gap = gap.min(d),
+                Ok(k) => {
+                    for &(rho, ext) in &rho[..k] {
+                        // (2.94): (x1, y1) = Rz(theta2) (e, -s2 rho); theta2 as in
+                        // Sect. 2.12.3, Atan2(p_Wx c1 + p_Wy s1, p_Wz) for e = 0.
+                        let (vx, vy) = (e, -s2 * rho);
+                        let th2 = (vx * y1 - vy * b.x1).atan2(vx * b.x1 + vy * y1);
+                        let mut posture = Posture {
+                            shoulder: b.shoulder,
+                            extension: Some(ext),
+                            ..Posture::default()
+                        };
+                        if b.shoulder == Some(Shoulder::OnAxis) {
+                            posture.free[0] = Some(FreeReason::ShoulderAxis);
+                        }
+                        if ext == Extension::Zero && e.abs() <= self.len_tol {
+                            posture.free[1] = Some(FreeReason::ExtensionZero);
+                        }
+                        out[n] = ArmSol {
+                            v: [b.th1, th2, rho - vz],
+                            posture,
+                        };
+                        n += 1;
+                    }
+                }
+            }
+        }
+        if n == 0 { Err(gap) } else { Ok(n) }
+    }
+
+    /// [`Self::solve`] for the cylindrical arm: d2 from the height, rho from the quadratic
+    /// |g + rho n| = r, then theta1.
+    #[inline]
+    fn solve_cylindrical(
+        &self,
+        g: &Cylindrical,
+        p: &Vector3<f64>,
+        out: &mut [ArmSol; 4],
+    ) -> Result<usize, f64> {
+        let Cylindrical {
+            g,
+            n: dir,
+            f1,
+            zoff,
+            vz,
+        } = *g;
+        let r = p.x.hypot(p.y);
+        let gn = g[0] * dir[0] + g[1] * dir[1];
+        let gp = g[0] * dir[1] - g[1] * dir[0];
+        // |g + rho n| = r: rho = -g.n +- sqrt(r^2 - (g x n)^2)
+        let mut rho = [(0.0, Extension::Forward); 2];
+        let k = extension(r, gp, self.len_tol, &mut rho)?;
+        let d2 = f1 * (p.z - self.d1) - zoff;
+        for (i, &(rho, ext)) in rho[..k].iter().enumerate() {
+            let rho = rho - gn;
+            let (vx, vy) = (g[0] + rho * dir[0], g[1] + rho * dir[1]);
+            let th1 = (vx * p.y - vy * p.x).atan2(vx * p.x + vy * p.y);
+            let mut posture = Posture {
+                extension: Some(ext),
+                ..Posture::default()
+            };
+            if ext == Extension::Zero && gp.abs() <= self.len_tol {
+                posture.free[0] = Some(FreeReason::ShoulderAxis);
+            }
+            out[i] = ArmSol {
+                v: [th1, d2, rho - vz],
+                posture,
+            };
+        }
+        Ok(k)
     }
 }
 
