@@ -5,9 +5,8 @@
 use armlab::app::state::{
     AngleUnit, AppState, DhField, EntryError, Level, Quantity, Reach, StateError, TRAIL_CAPACITY,
 };
-use armlab::kinematics::models::{anthropomorphic_spherical_wrist, planar2, puma560};
 use armlab::kinematics::orientation::{angle_axis_from_rotation, wrap_angle};
-use armlab::kinematics::singularity::{Proximity, SingularityAnalyzer, SingularityKind, classify};
+use armlab::kinematics::singularity::{Proximity, SingularityKind};
 use armlab::kinematics::{JointKind, Pose, Robot};
 use nalgebra::{DMatrix, Rotation3, Translation3, Vector3};
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI};
