@@ -246,3 +246,48 @@ fn a_partial_task_gets_a_self_motion_slider() {
     let v = s.self_motion(0).unwrap();
     assert!(v.position_error < 1e-12 && v.orientation_error < 1e-12);
 }
+
+/// 10,000 slider steps sweeping back and forth over the whole slider range (past the ends of
+/// the feasible stretches, where the slider stops at the wall): the hand stays on the pose held
+/// when the self-motion started, to 1e-12 m and 1e-12 (rotation-matrix entries), measured by FK
+/// here, and the readout's errors are against that held pose too.
+#[test]
+fn ten_thousand_slider_steps_never_move_the_hand() {
+    for spec in ["dlr", "lwr4", "panda", "humanoid"] {
+        let mut s = state(spec);
+        let held = fk(&s, 0);
+        let v = s.self_motion(0).unwrap();
+        let [lo, hi] = v.range;
+        let step = (hi - lo) / 400.0;
+        let mut want = v.value;
+        let mut dir = 1.0;
+        let mut worst = (0.0f64, 0.0f64);
+        for k in 0..10_000 {
+            want += dir * step;
+            if want > hi || want < lo {
+                dir = -dir;
+                want = want.clamp(lo, hi);
+            }
+            let got = s.set_self_motion(0, want).unwrap();
+            // Where the slider stopped at a wall, the next step starts from there.
+            if (got - want).abs() > 1e-9 && k % 2 == 0 {
+                want = got;
+            }
+            let (dp, dr) = gap(&fk(&s, 0), &held);
+            worst = (worst.0.max(dp), worst.1.max(dr));
+            assert!(
+                dp < 1e-12 && dr < 1e-12,
+                "{spec}: step {k} (parameter {want:.4}): the hand moved {dp:e} m, {dr:e}"
+            );
+            assert!(s.robot().within_limits(s.q(), 1e-9), "{spec}: step {k}");
+        }
+        let now = s.self_motion(0).unwrap();
+        assert!(
+            now.position_error < 1e-12 && now.orientation_error < 1e-12,
+            "{spec}: readout {} m, {} rad",
+            now.position_error,
+            now.orientation_error
+        );
+        eprintln!("{spec}: worst over 10,000 steps {:.1e} m, {:.1e}", worst.0, worst.1);
+    }
+}

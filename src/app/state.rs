@@ -86,6 +86,9 @@ pub struct AppState {
     task: crate::kinematics::redundancy::Task,
     /// Counts model changes (loads, DH edits), so caches know when they are stale.
     generation: u64,
+    /// Counts every change of q (sliders, IK, configurations, edits): a self-motion holds its
+    /// pose only while q changed by nothing but the self-motion itself.
+    q_epoch: u64,
     self_motion: Option<self_motion::SelfMotionCache>,
 }
 
@@ -111,6 +114,7 @@ impl AppState {
             classifier: crate::workspace::PostureClassifier::new(&robot),
             task: full_task(&robot),
             generation: 0,
+            q_epoch: 0,
             self_motion: None,
             robot,
         };
@@ -191,6 +195,7 @@ impl AppState {
             .map_or_else(|| vec![0.0; n], <[f64]>::to_vec);
         clamp_into(&mut q, &self.robot.limits());
         self.q = q;
+        self.q_epoch += 1;
         self.targets = self
             .robot
             .end_effectors()
@@ -489,6 +494,7 @@ impl AppState {
     /// end-effector moved.
     fn apply_q(&mut self, q: Vec<f64>, solved: Option<usize>) {
         self.q = q;
+        self.q_epoch += 1;
         self.push_trail();
         for ee in 0..self.targets.len() {
             if Some(ee) == solved {
@@ -553,6 +559,7 @@ impl AppState {
         let mut q = self.q.clone();
         clamp_into(&mut q, &self.robot.limits());
         self.q = q;
+        self.q_epoch += 1;
         for ee in 0..self.targets.len() {
             self.sync_target(ee);
         }

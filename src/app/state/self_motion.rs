@@ -39,6 +39,8 @@ enum Kind {
 #[derive(Debug, Clone)]
 pub(super) struct SelfMotionCache {
     generation: u64,
+    /// The q epoch the self-motion last left q at: any other change of q starts a new one.
+    epoch: u64,
     ee: usize,
     task: Task,
     pose: Pose,
@@ -144,21 +146,19 @@ impl AppState {
         Redundancy::of(&self.robot, self.task)
     }
 
-    /// The pose the self-motion of `ee` holds: the end-effector's pose at q.
-    fn held_pose(&self, ee: usize) -> Option<Pose> {
-        self.robot.fk_ee(&self.q, ee).ok()
-    }
-
-    /// The self-motion cache for `ee`, rebuilt if the robot, the task or the held pose changed.
+    /// The self-motion cache for `ee`. Its held pose is the end-effector's pose when the
+    /// self-motion started, kept while q changes by the self-motion alone (never the current,
+    /// possibly drifted, pose): a new one starts when the robot, the task or the end-effector
+    /// changed, or when anything else moved q.
     fn self_motion_cache(&mut self, ee: usize) -> Option<&mut SelfMotionCache> {
-        let pose = self.held_pose(ee)?;
         let fresh = self.self_motion.as_ref().is_some_and(|c| {
             c.generation == self.generation
                 && c.ee == ee
                 && c.task == self.task
-                && pose_close(&c.pose, &pose)
+                && c.epoch == self.q_epoch
         });
         if !fresh {
+            let pose = self.robot.fk_ee(&self.q, ee).ok()?;
             let kind = self.self_motion_kind(ee, &pose);
             let samples = match &kind {
                 Kind::Exact(m) => {
@@ -168,6 +168,7 @@ impl AppState {
             };
             self.self_motion = Some(SelfMotionCache {
                 generation: self.generation,
+                epoch: self.q_epoch,
                 ee,
                 task: self.task,
                 pose,
@@ -333,7 +334,7 @@ impl AppState {
                 ),
             );
         }
-        self.apply_q(q, Some(ee));
+        self.move_along_self_motion(q, ee);
         Ok(target)
     }
 
@@ -375,7 +376,7 @@ impl AppState {
             };
             c.visited.extend(visited);
         }
-        self.apply_q(q, Some(ee));
+        self.move_along_self_motion(q, ee);
         Ok(s)
     }
 
@@ -409,8 +410,17 @@ impl AppState {
         }
         let mut q = sol.q.clone();
         self.shift_towards_q(&mut q);
-        self.apply_q(q, Some(ee));
+        self.move_along_self_motion(q, ee);
         Ok(())
+    }
+
+    /// Moves the arm to `q`, a configuration of the self-motion of `ee`: the held pose stays the
+    /// one the self-motion started with.
+    fn move_along_self_motion(&mut self, q: Vec<f64>, ee: usize) {
+        self.apply_q(q, Some(ee));
+        if let Some(c) = self.self_motion.as_mut() {
+            c.epoch = self.q_epoch;
+        }
     }
 
     /// The other branches at the current parameter, as ghosts (exact self-motion only).
@@ -433,12 +443,6 @@ impl AppState {
             })
             .collect()
     }
-}
-
-/// Whether two poses agree to 1e-9 (m, and rotation-matrix entries).
-fn pose_close(a: &Pose, b: &Pose) -> bool {
-    (a.translation.vector - b.translation.vector).norm() < 1e-9
-        && (a.rotation.matrix() - b.rotation.matrix()).abs().max() < 1e-9
 }
 
 /// Position (m) and orientation (rad) error of `q`'s end-effector `ee` from `pose`.
