@@ -9,8 +9,8 @@
 //! with mesh files, e.g. a KUKA iiwa's) the same frame is also measured for that robot, drawn
 //! with its meshes, at its "zero" configuration turned a little.
 
+use armlab::app::AppUi;
 use armlab::app::state::AppState;
-use armlab::app::ui::AppUi;
 use armlab::app::viewport::Viewport3d;
 use armlab::render::Gpu;
 use armlab::ui_render::offscreen::{FIGURE_FORMAT, Offscreen};

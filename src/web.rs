@@ -8,9 +8,9 @@
 //!   page is opened, and saving (models, calibrated models, screenshots) is a download.
 //! * [`WebHandle::status`] reports the app's state as JSON, for the page and its tests.
 
+use crate::app::AppUi;
 use crate::app::file_picker::{FileKind, FilePicker};
 use crate::app::state::{AppState, Level};
-use crate::app::ui::AppUi;
 use crate::app::{APP_ID, ArmlabApp};
 use std::cell::RefCell;
 use std::path::PathBuf;
@@ -204,13 +204,13 @@ fn open_at(state: &mut AppState, text: &str) -> Result<(), String> {
 
 fn status_json(app: &AppUi) -> serde_json::Value {
     let s = &app.state;
-    let tool = s.robot().fk_ee(s.q(), app.ee).ok();
+    let tool = s.robot().fk_ee(s.q(), app.ee()).ok();
     let position = tool.map(|t| t.translation.vector.iter().copied().collect::<Vec<_>>());
     let rpy_deg = tool.map(|t| {
         let (r, p, y) = t.rotation.euler_angles();
         [r, p, y].map(f64::to_degrees)
     });
-    let ghosts = s.ghosts(app.ee);
+    let ghosts = s.ghosts(app.ee());
     serde_json::json!({
         "started": true,
         "app": APP_ID,
@@ -222,10 +222,10 @@ fn status_json(app: &AppUi) -> serde_json::Value {
         "solutions": ghosts.len(),
         "within_limits": ghosts.iter().filter(|g| g.within_limits).count(),
         "gizmo": app.gizmo_grip().map(|p| [p.x, p.y]),
-        "workspace_progress": app.workspace.as_ref().map(|w| w.progress().unwrap_or(1.0)),
-        "workspace_figure": app.workspace.as_ref().and_then(|w| w.figure()).map(|f| [f.width(), f.height()]),
-        "workspace_dots": app.workspace.as_ref().and_then(|w| w.dots()).map(<[_]>::len),
-        "workspace_error": app.workspace.as_ref().and_then(|w| w.error()),
+        "workspace_progress": app.tabs.workspace.job.as_ref().map(|w| w.progress().unwrap_or(1.0)),
+        "workspace_figure": app.tabs.workspace.job.as_ref().and_then(|w| w.figure()).map(|f| [f.width(), f.height()]),
+        "workspace_dots": app.tabs.workspace.job.as_ref().and_then(|w| w.dots()).map(<[_]>::len),
+        "workspace_error": app.tabs.workspace.job.as_ref().and_then(|w| w.error()),
         "messages": s.messages().iter().map(|m| m.text.clone()).collect::<Vec<_>>(),
     })
 }

@@ -1,14 +1,14 @@
 //! The app's Calibration tab: its state (simulated runs, the two lessons, files, saving) and the
 //! tab driven through egui (kittest, no GPU).
 
-use armlab::app::calibration_lab::{CalibrationLab, PoseChoice};
+use armlab::app::AppUi;
 use armlab::app::state::AppState;
-use armlab::app::ui::{AppUi, Tab};
+use armlab::app::tabs::calibration::lab::{CalibrationLab, PoseChoice};
 use armlab::kinematics::models::built_in;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 
-fn lengths_off(r: &armlab::app::calibration_lab::LabResult) -> f64 {
+fn lengths_off(r: &armlab::app::tabs::calibration::lab::LabResult) -> f64 {
     r.report
         .parameters
         .iter()
@@ -116,10 +116,10 @@ fn the_tab_runs_from_its_buttons() {
     h.run();
     h.get_by_label("Calibration").click();
     h.run();
-    assert_eq!(h.state().tab, Tab::Calibration);
+    assert_eq!(h.state().tab, armlab::app::tabs::CALIBRATION);
     h.get_by_label("Run").click();
     h.run();
-    assert!(h.state().calibration.result.is_some());
+    assert!(h.state().tabs.calibration.lab.result.is_some());
     h.run();
     assert!(h.query_by_label_contains("held-out after").is_some());
 }
@@ -151,7 +151,7 @@ fn accuracy_maps_before_and_after() {
 #[test]
 fn the_map_button_computes_the_maps() {
     let mut app = AppUi::new(AppState::from_spec("puma560").unwrap());
-    app.tab = Tab::Calibration;
+    app.tab = armlab::app::tabs::CALIBRATION;
     let mut h = Harness::builder()
         .with_size(egui::vec2(1280.0, 800.0))
         .build_ui_state(|ui, app: &mut AppUi| app.show(ui, None), app);
@@ -161,7 +161,7 @@ fn the_map_button_computes_the_maps() {
     h.get_by_label("Accuracy map (before / after)").click();
     h.run();
     h.run();
-    assert!(h.state().calibration.maps.is_some());
+    assert!(h.state().tabs.calibration.lab.maps.is_some());
     assert!(
         h.query_by_label_contains("Accuracy after calibration")
             .is_some()
@@ -175,7 +175,7 @@ fn measured_poses_are_drawn_as_tool_points_and_a_few_ghosts() {
     let mut lab = CalibrationLab::default();
     lab.run_simulated(state.robot(), state.q());
     let poses = &lab.result.as_ref().unwrap().poses;
-    let mut scene = build_scene(&state, None, false);
+    let mut scene = build_scene(&state, false);
     let (dots, meshes) = (scene.dots.len(), scene.meshes.len());
     add_measured_poses(&mut scene, state.robot(), poses);
     assert_eq!(scene.dots.len() - dots, poses.len());

@@ -116,14 +116,14 @@ fn the_real_window_measures_its_frames() {
 /// The Screenshot button's path: the live app's state and camera rendered offscreen.
 #[test]
 fn screenshot_button_renders_the_current_view() {
+    use armlab::app::AppUi;
     use armlab::app::screenshot::screenshot_with;
-    use armlab::app::ui::AppUi;
     let mut app = AppUi::new(AppState::from_spec("planar3").unwrap());
     app.state.set_q(&[0.2, 0.4, -0.3]).unwrap();
     let a = screenshot_with(&app, [960, 600], &ScreenshotOptions::default()).unwrap();
-    let mut camera = app.camera;
+    let mut camera = app.tabs.view3d.camera;
     camera.set_preset(armlab::camera::Preset::Top);
-    app.set_camera(camera);
+    app.tabs.view3d.set_camera(camera);
     let b = screenshot_with(&app, [960, 600], &ScreenshotOptions::default()).unwrap();
     assert_eq!(a.dimensions(), (960, 600));
     assert!(a != b, "the camera of the live view is used");
@@ -136,7 +136,7 @@ fn dlr_self_motion_in_the_3d_view() {
     let mut state = AppState::from_spec("dlr").unwrap();
     let v = state.self_motion(0).unwrap().value;
     state.set_self_motion(0, v + 0.6).unwrap();
-    let app = armlab::app::ui::AppUi::new(state);
+    let app = armlab::app::AppUi::new(state);
     let img =
         armlab::app::screenshot::screenshot_with(&app, [1280, 800], &ScreenshotOptions::default())
             .unwrap_or_else(|e| panic!("{e}"));
@@ -147,8 +147,8 @@ fn dlr_self_motion_in_the_3d_view() {
 #[test]
 fn panda_self_motion_tab() {
     let state = AppState::from_spec("panda").unwrap();
-    let mut app = armlab::app::ui::AppUi::new(state);
-    app.tab = armlab::app::ui::Tab::SelfMotion;
+    let mut app = armlab::app::AppUi::new(state);
+    app.tab = armlab::app::tabs::SELF_MOTION;
     let img =
         armlab::app::screenshot::screenshot_with(&app, [1280, 800], &ScreenshotOptions::default())
             .unwrap_or_else(|e| panic!("{e}"));
@@ -174,11 +174,11 @@ fn construction_overlay() {
         state.display.frames = false;
         state.display.labels = false;
         state.display.ghosts = false;
-        let mut app = armlab::app::ui::AppUi::new(state);
-        app.construction = true;
-        app.construction_step = step;
+        let mut app = armlab::app::AppUi::new(state);
+        app.ik.construction.shown = true;
+        app.ik.construction.step = step;
         // Framed for the window's 3D view, as the live app frames it on its first layout.
-        app.viewport_px = [530, 720];
+        app.tabs.view3d.viewport_px = [530, 720];
         app.fit();
         let img = armlab::app::screenshot::screenshot_with(
             &app,

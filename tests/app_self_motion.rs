@@ -288,6 +288,9 @@ fn ten_thousand_slider_steps_never_move_the_hand() {
             now.position_error,
             now.orientation_error
         );
-        eprintln!("{spec}: worst over 10,000 steps {:.1e} m, {:.1e}", worst.0, worst.1);
+        eprintln!(
+            "{spec}: worst over 10,000 steps {:.1e} m, {:.1e}",
+            worst.0, worst.1
+        );
     }
 }

@@ -12,9 +12,9 @@
 //! `ARMLAB_SOAK_SEED` changes the sequence (default 1); a failure names the model, the seed
 //! and the event number, so it replays.
 
+use armlab::app::AppUi;
 use armlab::app::screenshot::{ScreenshotOptions, screenshot_with};
 use armlab::app::state::AppState;
-use armlab::app::ui::AppUi;
 use armlab::kinematics::models::BUILT_INS;
 use egui::{Event, Key, Modifiers, PointerButton, Pos2, accesskit::Role, pos2, vec2};
 use egui_kittest::Harness;
@@ -286,7 +286,7 @@ fn check(app: &AppUi) -> Result<(), String> {
             return Err("an IK target is not finite".into());
         }
     }
-    if !app.camera.eye().iter().all(|v| v.is_finite()) {
+    if !app.tabs.view3d.camera.eye().iter().all(|v| v.is_finite()) {
         return Err("the camera is not finite".into());
     }
     Ok(())

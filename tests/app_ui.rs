@@ -2,8 +2,8 @@
 //! through the accessibility tree) and clicks at pixel positions in the 3D view. No GPU: the
 //! layout and the interaction run without painting.
 
+use armlab::app::AppUi;
 use armlab::app::state::AppState;
-use armlab::app::ui::AppUi;
 use egui_kittest::Harness;
 use egui_kittest::kittest::{NodeT, Queryable};
 
@@ -48,8 +48,8 @@ fn clicking_a_ghost_arm_selects_its_posture() {
     let mut h = harness(app);
     // Where each ghost's joints project in the view (window points).
     let app = h.state();
-    let [w, hp] = app.viewport_px;
-    let rect = app.viewport_rect;
+    let [w, hp] = app.tabs.view3d.viewport_px;
+    let rect = app.tabs.view3d.viewport_rect;
     let robot = app.state.robot();
     let chain = robot.chain_to(robot.end_effectors()[0].parent).to_vec();
     let project = |q: &[f64]| -> Vec<egui::Pos2> {
@@ -58,7 +58,7 @@ fn clicking_a_ghost_arm_selects_its_posture() {
             .iter()
             .filter_map(|&j| {
                 let p = armlab::scene::point32(&frames[j].translation.vector);
-                app.camera.project(&p, w, hp)
+                app.tabs.view3d.camera.project(&p, w, hp)
             })
             .map(|px| rect.min + egui::vec2(px[0], px[1]))
             .collect()
@@ -188,14 +188,15 @@ fn the_inner_context_gets_the_input_and_hands_back_the_platform_output() {
 }
 
 /// Every cell of the DH table is wide enough for its whole entry (the grid once squeezed the
-/// Puma's "671.83" to "671." and "-160" to "-16"), and the table stays inside its panel.
+/// Puma's "671.83" to "671." and "-160" to "-16"); the table scrolls sideways inside its panel
+/// instead of widening it, so the panel ends where the 3D view starts.
 #[test]
 fn dh_cells_show_their_whole_entry() {
     let mut h = harness(AppUi::new(AppState::from_spec("puma560").unwrap()));
     h.run();
     let ctx = h.ctx.clone();
     let font = egui::TextStyle::Body.resolve(&ctx.global_style());
-    let panel = h.state().viewport_rect.min.x;
+    let panel = h.state().tabs.view3d.viewport_rect.min.x;
     let mut checked = 0;
     for j in 1..=6 {
         for field in ["a", "alpha", "d", "lower", "upper"] {
@@ -214,15 +215,16 @@ fn dh_cells_show_their_whole_entry() {
                 "q{j} {field} = {text:?}: {:.1} pt wide for {width:.1} pt of text",
                 rect.width()
             );
-            assert!(
-                rect.max.x <= panel,
-                "q{j} {field} ends at {} past {panel}",
-                rect.max.x
-            );
             checked += 1;
         }
     }
     assert_eq!(checked, 30);
+    let left = h.state().rects.left.expect("the left panel is open");
+    assert!(
+        left.max.x <= panel + 0.5,
+        "the left panel ends at {} past the 3D view's start {panel}",
+        left.max.x
+    );
 }
 
 /// The live window renders its first 3D frame before the panels are laid out, so the arm is
@@ -231,17 +233,22 @@ fn dh_cells_show_their_whole_entry() {
 #[test]
 fn the_arm_is_framed_for_the_viewport_it_is_shown_in() {
     let mut app = AppUi::new(AppState::from_spec("anthropomorphic_spherical_wrist").unwrap());
-    app.frame_if_needed(); // as the first live frame does, at the initial guess
-    let guessed = app.camera;
+    app.tabs.view3d.frame_if_needed(&app.state); // as the first live frame does, at the initial guess
+    let guessed = app.tabs.view3d.camera;
     let mut h = harness(app);
     let app = h.state_mut();
-    let [w, hp] = app.viewport_px;
+    let [w, hp] = app.tabs.view3d.viewport_px;
     assert!(w < hp, "the view is taller than wide at 1280x800: {w}x{hp}");
-    app.frame_if_needed();
-    assert_ne!(app.camera, guessed, "framed again for the real size");
+    app.tabs.view3d.frame_if_needed(&app.state);
+    assert_ne!(
+        app.tabs.view3d.camera, guessed,
+        "framed again for the real size"
+    );
     let pts = armlab::scene::arm_points(app.state.robot(), app.state.q()).unwrap();
     for p in &pts {
         let [x, y] = app
+            .tabs
+            .view3d
             .camera
             .project(p, w, hp)
             .expect("in front of the camera");
@@ -251,11 +258,11 @@ fn the_arm_is_framed_for_the_viewport_it_is_shown_in() {
         );
     }
     // Moved by the user: a new size does not reframe.
-    app.camera.orbit(0.3, 0.1);
-    let moved = app.camera;
-    app.viewport_px = [w + 100, hp];
-    app.frame_if_needed();
-    assert_eq!(app.camera, moved);
+    app.tabs.view3d.camera.orbit(0.3, 0.1);
+    let moved = app.tabs.view3d.camera;
+    app.tabs.view3d.viewport_px = [w + 100, hp];
+    app.tabs.view3d.frame_if_needed(&app.state);
+    assert_eq!(app.tabs.view3d.camera, moved);
 }
 
 /// The status bar and the IK panel say the same thing about an unreachable target, however far

@@ -4,7 +4,8 @@
 //! desktop's figure (to anti-aliased edges); the worker's answers, after the trip through a model file
 //! and JSON, equal the direct computation. Needs a graphics adapter (fails without one).
 
-use armlab::app::workspace_job::{OVERLAY_SAMPLES, WorkspaceJob};
+use armlab::app::workspace_job::{JobFigure, OVERLAY_SAMPLES, WorkspaceJob};
+use armlab::figure::workspace::WsView;
 use armlab::kinematics::models::built_in;
 use armlab::offload::{Answer, Offload, Request, answer};
 use armlab::render::Gpu;
@@ -67,9 +68,22 @@ fn the_sliced_job_with_a_worker_makes_the_desktops_figure() {
     let gpu = Gpu::new_headless().unwrap_or_else(|e| panic!("{e}"));
     for name in ["planar2", "puma560"] {
         let robot = built_in(name).unwrap();
-        let threaded = WorkspaceJob::start(robot.clone(), name.to_string());
+        let view = if name == "planar2" {
+            WsView::Plane
+        } else {
+            WsView::Top
+        };
+        let figure =
+            JobFigure::Workspace(WorkspaceJob::options_for(&robot, view, [1200, 900], None));
+        let title = robot.name.to_lowercase();
+        let threaded = WorkspaceJob::start(
+            robot.clone(),
+            name.to_string(),
+            title.clone(),
+            figure.clone(),
+        );
         threaded.wait();
-        let sliced = WorkspaceJob::start_sliced(robot, name.to_string());
+        let sliced = WorkspaceJob::start_sliced(robot, name.to_string(), title, figure);
         let mut worker = InPlace::default();
         let mut frames = 0;
         while sliced.progress().is_some() {

@@ -134,3 +134,34 @@ pub fn with_model_extension(path: PathBuf) -> PathBuf {
         path
     }
 }
+
+/// Writes `img` as `armlab-<stem>-<n>.png` (the first free n) in the working directory, or
+/// offers it as the download `armlab-<stem>.png` where files are downloads (a browser); the
+/// message names the file's full path.
+pub fn deliver_png(
+    picker: &mut dyn FilePicker,
+    img: &image::RgbaImage,
+    stem: &str,
+) -> Result<String, String> {
+    let mut png = Vec::new();
+    crate::figure::encode_png(img, &mut png).map_err(|e| e.to_string())?;
+    let name = format!("armlab-{stem}.png");
+    if picker.download(&name, "image/png", &png) {
+        return Ok(format!("downloading {name}"));
+    }
+    let path = (1..1000)
+        .map(|n| PathBuf::from(format!("armlab-{stem}-{n}.png")))
+        .find(|p| !p.exists())
+        .ok_or_else(|| "no free file name".to_string())?;
+    std::fs::write(&path, png).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+    Ok(format!("saved {}", full_path(&path).display()))
+}
+
+/// `path` made absolute (against the working directory) for messages.
+pub fn full_path(path: &std::path::Path) -> PathBuf {
+    std::fs::canonicalize(path).unwrap_or_else(|_| {
+        std::env::current_dir()
+            .map(|d| d.join(path))
+            .unwrap_or_else(|_| path.to_path_buf())
+    })
+}

@@ -1,27 +1,29 @@
-//! The interactive app (eframe/egui over wgpu). The state logic ([`state`], [`singularity`])
-//! has no GUI types and is unit-tested; [`ui`] and [`panels`] draw it; [`viewport`] renders
-//! the 3D scene with the same renderer as the headless figures; [`screenshot`] renders the
-//! whole window offscreen.
+//! The interactive app (eframe/egui over wgpu). The shared state ([`state`]) has no GUI types
+//! and is unit-tested; [`shell`] lays out the window and applies the [`action`]s that the side
+//! [`panels`] and the central [`tabs`] return (each owns its own state); [`layout`] keeps the 3D
+//! view the largest thing on screen; [`viewport`] renders the 3D scene with the same renderer as
+//! the headless figures; [`screenshot`] renders the whole window offscreen.
 
-pub mod calibration_lab;
-pub mod calibration_panel;
-pub mod construction_panel;
+pub mod action;
+pub mod file_browser;
 pub mod file_picker;
 pub mod gizmo;
 pub mod inner;
+pub mod layout;
 pub mod panels;
 pub mod probe;
-pub mod redundancy_panel;
 pub mod screenshot;
 pub mod settings;
+pub mod shell;
 pub mod state;
-pub mod ui;
+pub mod tabs;
+pub mod toolbar;
 pub mod viewport;
 pub mod workspace_job;
 
 use crate::render::Gpu;
 use crate::ui_render::painter::UiPainter;
-use ui::AppUi;
+pub use shell::AppUi;
 use viewport::Viewport3d;
 
 /// The eframe application.
@@ -104,7 +106,7 @@ impl eframe::App for ArmlabApp {
             self.save_screenshot();
         }
         self.poll_screenshot(ui.ctx());
-        if let Some(w) = &self.ui.workspace {
+        if let Some(w) = &self.ui.tabs.workspace.job {
             let worked = w.step(self.gpu.as_ref(), self.ui.offload.as_deref_mut());
             if worked {
                 ui.ctx().request_repaint();
@@ -195,7 +197,7 @@ impl ArmlabApp {
         let [w, h] = self.ui.window_points.map(|v| v.round().max(64.0) as u32);
         let stem = self.ui.state.robot().name.to_lowercase().replace(' ', "_");
         let opts = screenshot::ScreenshotOptions {
-            projector: self.ui.projector,
+            projector: self.ui.layout.projector,
             ..Default::default()
         };
         let image = match &self.gpu {

@@ -2,8 +2,8 @@
 //! renderer as the live app, written to PNG by `armlab view MODEL --screenshot FILE.png`.
 
 use super::AppError;
+use super::shell::AppUi;
 use super::state::AppState;
-use super::ui::AppUi;
 use super::viewport::Viewport3d;
 use crate::render::Gpu;
 use crate::ui_render::offscreen::Offscreen;
@@ -60,13 +60,13 @@ pub fn screenshot_deferred(
 /// A copy of the live app's view (state, camera, tab, end-effector) to render offscreen.
 fn copy_of(live: &AppUi, opts: &ScreenshotOptions) -> (AppUi, crate::camera::Camera) {
     let mut app = AppUi::new(live.state.clone());
-    app.projector = opts.projector;
+    app.layout = live.layout;
+    app.layout.projector = opts.projector;
     app.tab = live.tab;
-    app.calibration = live.calibration.clone();
-    app.ee = live.ee;
-    app.construction = live.construction;
-    app.construction_step = live.construction_step;
-    (app, live.camera)
+    app.tabs.calibration.lab = live.tabs.calibration.lab.clone();
+    app.ik.ee = live.ik.ee;
+    app.ik.construction = live.ik.construction;
+    (app, live.tabs.view3d.camera)
 }
 
 /// Renders the app for `state` at `size` pixels, after applying `opts`.
@@ -77,7 +77,7 @@ pub fn screenshot(
 ) -> Result<image::RgbaImage, AppError> {
     let input = |e: super::state::StateError| AppError::Input(e.to_string());
     let mut app = AppUi::new(state);
-    app.projector = opts.projector;
+    app.layout.projector = opts.projector;
     if let Some(q) = &opts.q {
         app.state.set_q(q).map_err(input)?;
     }
@@ -113,7 +113,7 @@ fn render_window(
     let mut vp = Viewport3d::new(gpu.clone()).map_err(crate::figure::FigureError::from)?;
     offscreen.layout(&gpu.device, size, 1.0, |ui| app.show(ui, None))?;
     match camera {
-        Some(c) => app.set_camera(c),
+        Some(c) => app.tabs.view3d.set_camera(c),
         None => app.fit(),
     }
     let texture = app.render_viewport(&mut vp, offscreen.renderer_mut(), false);

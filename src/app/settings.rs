@@ -3,8 +3,9 @@
 //! eframe itself. Stored as one JSON value in eframe's storage (`~/.local/share/armlab/app.ron`
 //! on Linux); a value that cannot be read is ignored with a message, never a crash.
 
+use super::layout::Layout;
+use super::shell::AppUi;
 use super::state::{AngleUnit, DisplayToggles, Level};
-use super::ui::AppUi;
 use serde::{Deserialize, Serialize};
 
 /// The key of armlab's settings in eframe's storage.
@@ -19,8 +20,11 @@ pub struct Settings {
     pub model: Option<String>,
     /// The view toggles.
     pub display: DisplayToggles,
-    /// Large fonts and thick lines for a projector.
+    /// Large fonts and thick lines for a projector (read from older settings files; the
+    /// layout below holds it now).
     pub projector: bool,
+    /// The window's layout: projector mode and the side panels open in each mode.
+    pub layout: Option<Layout>,
     /// Angles shown and typed in degrees (else radians).
     pub degrees: bool,
 }
@@ -31,6 +35,7 @@ impl Default for Settings {
             model: None,
             display: DisplayToggles::default(),
             projector: false,
+            layout: None,
             degrees: true,
         }
     }
@@ -55,7 +60,8 @@ impl Settings {
         Settings {
             model,
             display: app.state.display,
-            projector: app.projector,
+            projector: app.layout.projector,
+            layout: Some(app.layout),
             degrees: app.state.angle_unit() == AngleUnit::Degrees,
         }
     }
@@ -74,7 +80,12 @@ impl Settings {
     /// the command line wins); one that no longer loads leaves the current one and says why.
     pub fn apply(&self, app: &mut AppUi, keep_model: bool) {
         app.state.display = self.display;
-        app.projector = self.projector;
+        // A remembered layout can never open a broken window: it is validated (an older file's
+        // projector flag alone gives the default panels of that mode).
+        app.layout = Layout::validated(self.layout.or(Some(Layout {
+            projector: self.projector,
+            ..Layout::default()
+        })));
         app.state.set_angle_unit(if self.degrees {
             AngleUnit::Degrees
         } else {

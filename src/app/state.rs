@@ -90,6 +90,13 @@ pub struct AppState {
     /// pose only while q changed by nothing but the self-motion itself.
     q_epoch: u64,
     self_motion: Option<self_motion::SelfMotionCache>,
+    /// The robot as it was opened (what "reset to the file's values" restores).
+    opened: Robot,
+    /// Messages pushed so far (a repeated one counts again): the status bar dates the newest.
+    messages_pushed: u64,
+    /// The robots before each model edit (undo) and the ones undone (redo).
+    undo: Vec<Robot>,
+    redo: Vec<Robot>,
 }
 
 impl AppState {
@@ -116,6 +123,10 @@ impl AppState {
             generation: 0,
             q_epoch: 0,
             self_motion: None,
+            opened: robot.clone(),
+            messages_pushed: 0,
+            undo: Vec::new(),
+            redo: Vec::new(),
             robot,
         };
         me.install_q();
@@ -163,6 +174,9 @@ impl AppState {
                 self.classifier = crate::workspace::PostureClassifier::new(&robot);
                 self.dh = dh::build_cells(&robot, self.angle_unit);
                 self.task = full_task(&robot);
+                self.opened = robot.clone();
+                self.undo.clear();
+                self.redo.clear();
                 self.robot = robot;
                 self.generation += 1;
                 self.trails.clear();
@@ -276,6 +290,12 @@ impl AppState {
         &self.messages
     }
 
+    /// How many messages were pushed so far (a repeated message counts again): a new number
+    /// means a new (or repeated) newest message.
+    pub fn messages_pushed(&self) -> u64 {
+        self.messages_pushed
+    }
+
     /// The newest status message.
     pub fn last_message(&self) -> Option<&StatusMessage> {
         self.messages.back()
@@ -303,9 +323,17 @@ impl AppState {
     /// robot is left as it is either way.
     pub fn save_model(&mut self, path: &str) -> Result<String, String> {
         let path = path.trim();
+        if self.dh_has_errors() {
+            return Err(
+                "not saved: red cells of the DH table hold values that are not applied; correct \
+                 them (or Undo) first"
+                    .into(),
+            );
+        }
         let text = self.model_text(path)?;
         std::fs::write(path, text).map_err(|e| format!("cannot write {path}: {e}"))?;
-        Ok(format!("saved {path}"))
+        let full = std::fs::canonicalize(path).unwrap_or_else(|_| path.into());
+        Ok(format!("saved {}", full.display()))
     }
 
     /// The text [`Self::save_model`] writes for a file named `path`: URDF for a name ending in
@@ -331,6 +359,7 @@ impl AppState {
             level,
             text: text.into(),
         };
+        self.messages_pushed += 1;
         if self.messages.back() == Some(&m) {
             return;
         }

@@ -312,8 +312,9 @@ pub fn add_measured_poses(scene: &mut Scene, robot: &crate::kinematics::Robot, p
 }
 
 /// The app's 3D scene for the current state: the arm, ghosts of the other solutions labelled
-/// with their posture (greyed when outside the limits), the targets, trails and workspace dots.
-pub fn build_scene(state: &AppState, workspace: Option<&[Dot]>, projector: bool) -> Scene {
+/// with their posture (greyed when outside the limits), the targets and trails (the tabs add
+/// their overlays: the workspace dots, the measured poses).
+pub fn build_scene(state: &AppState, projector: bool) -> Scene {
     let robot = state.robot();
     let d = state.display;
     let style = ArmStyle {
@@ -381,11 +382,6 @@ pub fn build_scene(state: &AppState, workspace: Option<&[Dot]>, projector: bool)
                 });
             }
         }
-    }
-    if d.workspace
-        && let Some(dots) = workspace
-    {
-        scene.dots.extend_from_slice(dots);
     }
     scene
 }

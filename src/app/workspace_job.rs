@@ -1,21 +1,32 @@
 //! The workspace of the current model, computed with progress: points for the 3D overlay
-//! (coloured by posture) and the 2D figure for the workspace tab (the same figure
-//! `armlab workspace` writes). On the desktop a background thread computes it; in a browser
-//! (no threads) [`WorkspaceJob::step`] computes one slice per frame.
+//! (coloured by posture) and the Workspace tab's figure (the same figure `armlab workspace` or
+//! `armlab figure` writes). On the desktop a background thread computes it; in a browser (no
+//! threads) [`WorkspaceJob::step`] computes one slice per frame. A job is cancelled at once when
+//! the model changes ([`WorkspaceJob::cancel`]): it stops at its next check, so the next model's
+//! job never waits behind it.
 
 use crate::figure::Theme;
-use crate::figure::figures::Figures;
-use crate::figure::workspace::{ColorBy, WsFigureOptions, WsPlan, WsView, paint, plan};
+use crate::figure::figures::{Figures, PlotFrame};
+use crate::figure::workspace::{ColorBy, WsFigure, WsFigureOptions, WsPlan, WsView, paint, plan};
 use crate::kinematics::Robot;
 use crate::offload::{Answer, Offload, Request};
 use crate::render::{Gpu, PendingRead};
 use crate::scene::Dot;
-use crate::workspace::{SampleOptions, compute_figure_data, planar_frame, point_cloud, sample};
-use std::sync::atomic::{AtomicU32, Ordering};
+use crate::workspace::{SampleOptions, TrackedPoint, compute_figure_data, point_cloud, sample};
+use std::sync::atomic::{AtomicBool, AtomicU32, Ordering};
 use std::sync::{Arc, OnceLock};
 
 /// Samples drawn for the overlay.
 pub const OVERLAY_SAMPLES: usize = 100_000;
+
+/// Which figure a job makes.
+#[derive(Debug, Clone, PartialEq)]
+pub enum JobFigure {
+    /// A workspace figure with these options.
+    Workspace(WsFigureOptions),
+    /// One of the excerpt's figures that is not a workspace figure (Figs 2.31-2.33), by name.
+    Textbook(&'static str),
+}
 
 /// What the job produces.
 pub struct WorkspaceData {
@@ -23,6 +34,8 @@ pub struct WorkspaceData {
     pub dots: Vec<Dot>,
     /// The 2D figure (None if no GPU adapter could be opened for it).
     pub figure: Option<image::RgbaImage>,
+    /// Where the figure's plot data lie in its pixels (2D workspace views).
+    pub frame: Option<PlotFrame>,
     /// Why there is no figure.
     pub figure_error: Option<String>,
 }
@@ -31,6 +44,8 @@ pub struct WorkspaceData {
 pub struct WorkspaceJob {
     progress: Arc<AtomicU32>,
     done: Arc<OnceLock<Result<WorkspaceData, String>>>,
+    cancelled: Arc<AtomicBool>,
+    figure: JobFigure,
     /// The slices still to compute (browser only; `None` with a thread, or once done).
     slices: std::sync::Mutex<Option<Slices>>,
 }
@@ -38,11 +53,12 @@ pub struct WorkspaceJob {
 /// What a sliced job still has to do (the browser's way: one slice per frame).
 struct Slices {
     robot: Robot,
+    spec: String,
     title: String,
     /// Overlay samples drawn so far, and their dots.
     drawn: usize,
     dots: Vec<Dot>,
-    /// Once the overlay is drawn: the figure, made again as results come in.
+    /// Once the overlay is drawn: the figure.
     figure: Option<FigureSlices>,
 }
 
@@ -51,11 +67,11 @@ struct Slices {
 /// then painted and read back, each over as many frames as it takes.
 struct FigureSlices {
     figs: Figures,
-    plan: WsPlan,
+    plan: Option<WsPlan>,
     /// A request is with the worker.
     asked: bool,
-    /// The painted figure's pixels on their way back from the GPU.
-    readback: Option<PendingRead>,
+    /// The painted figure's pixels on their way back from the GPU, and its frame.
+    readback: Option<(PendingRead, Option<PlotFrame>)>,
 }
 
 /// Overlay samples per slice (a few milliseconds of work).
@@ -68,32 +84,76 @@ const CLASS_COLORS: [[f32; 4]; 4] = [
     [0.09, 0.46, 0.81, 1.0],
 ];
 
+/// Why a job stopped without a result.
+const CANCELLED: &str = "cancelled: the model changed";
+
 impl WorkspaceJob {
-    /// Starts computing for `robot` (named `title` in the figure) on a background thread; where
-    /// there are no threads (a browser), [`Self::step`] computes it a slice at a time.
-    pub fn start(robot: Robot, title: String) -> Self {
+    /// The options of a workspace figure of `robot` in `view` at `size` pixels, coloured by
+    /// posture; `textbook` names the excerpt's figure it is (for its caption).
+    pub fn options_for(
+        robot: &Robot,
+        view: WsView,
+        size: [u32; 2],
+        textbook: Option<&str>,
+    ) -> WsFigureOptions {
+        let _ = robot;
+        WsFigureOptions {
+            view,
+            color_by: ColorBy::Posture,
+            samples: 200_000,
+            seed: 1,
+            size,
+            theme: Theme::Light,
+            end_effector: 0,
+            point: if textbook.is_some() {
+                TrackedPoint::WristCentre
+            } else {
+                TrackedPoint::default()
+            },
+            caption: textbook.map_or_else(String::new, |name| {
+                let source = crate::construction::textbook::Subject::source(name);
+                format!(
+                    "after {source} of Siciliano et al., Robotics: Modelling, Planning and Control"
+                )
+            }),
+        }
+    }
+
+    /// Starts computing for `robot` (opened as `spec`, named `title` in the figure) on a
+    /// background thread; where there are no threads (a browser), [`Self::step`] computes it a
+    /// slice at a time.
+    pub fn start(robot: Robot, spec: String, title: String, figure: JobFigure) -> Self {
         if cfg!(target_arch = "wasm32") {
-            return Self::start_sliced(robot, title);
+            return Self::start_sliced(robot, spec, title, figure);
         }
         let progress = Arc::new(AtomicU32::new(0));
         let done = Arc::new(OnceLock::new());
-        let (p, d) = (progress.clone(), done.clone());
+        let cancelled = Arc::new(AtomicBool::new(false));
+        let (p, d, c, f) = (
+            progress.clone(),
+            done.clone(),
+            cancelled.clone(),
+            figure.clone(),
+        );
         std::thread::spawn(move || {
-            let result = compute(&robot, &title, &p);
+            let result = compute(&robot, &title, &f, &p, &c);
             let _ = d.set(result);
         });
         Self {
             progress,
             done,
+            cancelled,
+            figure,
             slices: std::sync::Mutex::new(None),
         }
     }
 
     /// The browser's way on any platform: nothing runs until [`Self::step`] is called, once a
     /// frame.
-    pub fn start_sliced(robot: Robot, title: String) -> Self {
+    pub fn start_sliced(robot: Robot, spec: String, title: String, figure: JobFigure) -> Self {
         let slices = Slices {
             robot,
+            spec,
             title,
             drawn: 0,
             dots: Vec::with_capacity(OVERLAY_SAMPLES),
@@ -102,16 +162,27 @@ impl WorkspaceJob {
         Self {
             progress: Arc::new(AtomicU32::new(0)),
             done: Arc::new(OnceLock::new()),
+            cancelled: Arc::new(AtomicBool::new(false)),
+            figure,
             slices: std::sync::Mutex::new(Some(slices)),
         }
     }
 
+    /// Stops the job: a thread stops at its next check (between samples chunks and before the
+    /// figure), a sliced job at once.
+    pub fn cancel(&self) {
+        self.cancelled.store(true, Ordering::Relaxed);
+        if let Ok(mut guard) = self.slices.lock() {
+            *guard = None;
+        }
+        let _ = self.done.set(Err(CANCELLED.into()));
+    }
+
     /// Computes the next slice of a sliced job (nothing for a threaded or finished one): a
     /// chunk of overlay samples; then the figure, drawn on `gpu` (the window's device), its
-    /// statistics and map computed by `offload` (a web worker) while frames go on, or here
-    /// when there is none.
-    /// Returns whether it worked here (then the next frame should come at once); `false` for
-    /// a threaded or finished job, or while the worker computes.
+    /// data computed by `offload` (a web worker) while frames go on, or here when there is
+    /// none. Returns whether it worked here (then the next frame should come at once); `false`
+    /// for a threaded or finished job, or while the worker computes.
     pub fn step(&self, gpu: Option<&Gpu>, offload: Option<&mut (dyn Offload + 'static)>) -> bool {
         let Ok(mut guard) = self.slices.lock() else {
             return false;
@@ -137,18 +208,19 @@ impl WorkspaceJob {
         }
         let waiting = s.figure.as_ref().is_some_and(|f| f.asked);
         let finished = match gpu {
-            Some(gpu) => s.figure_step(gpu, offload, &self.progress),
+            Some(gpu) => s.figure_step(gpu, &self.figure, offload, &self.progress),
             None => Some(Err("no graphics device for the figure".into())),
         };
         if let Some(figure) = finished {
             let dots = std::mem::take(&mut s.dots);
-            let (figure, figure_error) = match figure {
-                Ok(f) => (Some(f), None),
-                Err(e) => (None, Some(e)),
+            let (figure, frame, figure_error) = match figure {
+                Ok((f, frame)) => (Some(f), frame, None),
+                Err(e) => (None, None, Some(e)),
             };
             let data = WorkspaceData {
                 dots,
                 figure,
+                frame,
                 figure_error,
             };
             let _ = self.done.set(Ok(data));
@@ -157,7 +229,7 @@ impl WorkspaceJob {
         !waiting
     }
 
-    /// Fraction done while running; `None` once finished.
+    /// Fraction done while running; `None` once finished (or cancelled).
     pub fn progress(&self) -> Option<f32> {
         if self.done.get().is_some() {
             None
@@ -166,36 +238,50 @@ impl WorkspaceJob {
         }
     }
 
+    /// The finished data.
+    fn data(&self) -> Option<&WorkspaceData> {
+        self.done.get().and_then(|r| r.as_ref().ok())
+    }
+
     /// The overlay dots, once done.
     pub fn dots(&self) -> Option<&[Dot]> {
-        self.done
-            .get()
-            .and_then(|r| r.as_ref().ok())
-            .map(|d| d.dots.as_slice())
+        self.data().map(|d| d.dots.as_slice())
     }
 
     /// Why there is no 2D figure, once done without one.
     pub fn figure_error(&self) -> Option<&str> {
-        self.done
-            .get()
-            .and_then(|r| r.as_ref().ok())
-            .and_then(|d| d.figure_error.as_deref())
+        self.data().and_then(|d| d.figure_error.as_deref())
     }
 
     /// The 2D figure, once done.
     pub fn figure(&self) -> Option<&image::RgbaImage> {
-        self.done
-            .get()
-            .and_then(|r| r.as_ref().ok())
-            .and_then(|d| d.figure.as_ref())
+        self.data().and_then(|d| d.figure.as_ref())
     }
 
-    /// The error, if the computation failed.
+    /// Where the figure's data lie in its pixels, once done (2D workspace views).
+    pub fn frame(&self) -> Option<PlotFrame> {
+        self.data().and_then(|d| d.frame)
+    }
+
+    /// The workspace figure's view and tracked point (`None` for a drawing of the excerpt).
+    pub fn view(&self) -> Option<(WsView, TrackedPoint)> {
+        match &self.figure {
+            JobFigure::Workspace(o) => Some((o.view, o.point)),
+            JobFigure::Textbook(_) => None,
+        }
+    }
+
+    /// The error, if the computation failed (or was cancelled).
     pub fn error(&self) -> Option<&str> {
         self.done
             .get()
             .and_then(|r| r.as_ref().err())
             .map(String::as_str)
+    }
+
+    /// Whether the job was cancelled.
+    pub fn is_cancelled(&self) -> bool {
+        self.cancelled.load(Ordering::Relaxed)
     }
 
     /// Blocks until done (tests, screenshots).
@@ -210,39 +296,48 @@ impl WorkspaceJob {
     }
 }
 
+impl Drop for WorkspaceJob {
+    /// A job nobody holds any more stops computing.
+    fn drop(&mut self) {
+        self.cancelled.store(true, Ordering::Relaxed);
+    }
+}
+
+/// A finished figure: its pixels and, for the 2D workspace views, its frame.
+type Figure = (image::RgbaImage, Option<PlotFrame>);
+
 impl Slices {
     /// One slice of the figure; `Some(figure or why not)` once it is finished.
     fn figure_step(
         &mut self,
         gpu: &Gpu,
+        which: &JobFigure,
         offload: Option<&mut (dyn Offload + 'static)>,
         progress: &AtomicU32,
-    ) -> Option<Result<image::RgbaImage, String>> {
+    ) -> Option<Result<Figure, String>> {
         if self.figure.is_none() {
-            let planned = Figures::with_gpu(gpu.clone()).and_then(|mut figs| {
-                figs.defer_readback();
-                let plan = plan(
-                    &mut figs,
-                    &self.robot,
-                    &figure_title(&self.title),
-                    &options(&self.robot),
-                )?;
-                Ok(FigureSlices {
-                    figs,
-                    plan,
-                    asked: false,
-                    readback: None,
-                })
-            });
-            match planned {
+            match self.plan_figure(gpu, which) {
                 Ok(f) => self.figure = Some(f),
-                Err(e) => return Some(Err(e.to_string())),
+                Err(e) => return Some(Err(e)),
             }
         }
         let f = self.figure.as_mut()?;
-        if let Some(read) = &f.readback {
-            return read.poll(&gpu.device).map(|r| r.map_err(|e| e.to_string()));
+        if let Some((read, frame)) = &f.readback {
+            return read
+                .poll(&gpu.device)
+                .map(|r| r.map(|img| (img, *frame)).map_err(|e| e.to_string()));
         }
+        let Some(plan) = &f.plan else {
+            // A drawing of the excerpt: made here, in one slice.
+            let JobFigure::Textbook(name) = which else {
+                return Some(Err("no figure planned".into()));
+            };
+            return Some(
+                crate::headless::textbook_figure(&mut f.figs, name, [1200, 900], Theme::Light)
+                    .map(|img| (img, None))
+                    .map_err(|e| e.to_string()),
+            );
+        };
         let data = match (f.asked, offload) {
             (true, Some(offload)) => {
                 let answer = offload.poll()?;
@@ -254,7 +349,7 @@ impl Slices {
             }
             (true, None) => return Some(Err("the web worker went away".into())),
             (false, Some(offload))
-                if let Ok(r) = Request::new(&self.robot, &self.title, f.plan.request.clone()) =>
+                if let Ok(r) = Request::new(&self.robot, &self.spec, plan.request.clone()) =>
             {
                 let json = serde_json::to_string(&r).map_err(|e| e.to_string());
                 match json.map(|j| offload.submit(j)) {
@@ -267,48 +362,83 @@ impl Slices {
                 return None;
             }
             // No worker, or a robot that cannot travel: here, in one slice.
-            (false, _) => match compute_figure_data(&self.robot, &f.plan.request, &|_| {}) {
+            (false, _) => match compute_figure_data(&self.robot, &plan.request, &|_| {}) {
                 Ok(d) => d,
                 Err(e) => return Some(Err(e.to_string())),
             },
         };
-        if let Err(e) = paint(&mut f.figs, &self.robot, &f.plan, &data) {
-            return Some(Err(e.to_string()));
-        }
-        f.readback = f.figs.take_deferred();
+        let frame = match paint(&mut f.figs, &self.robot, plan, &data) {
+            Ok(w) => w.frame,
+            Err(e) => return Some(Err(e.to_string())),
+        };
+        f.readback = f.figs.take_deferred().map(|r| (r, frame));
         progress.store(950, Ordering::Relaxed);
         f.readback
             .is_none()
             .then(|| Err("the figure was not read back".to_string()))
     }
+
+    /// The figure's device and, for a workspace figure, its plan.
+    fn plan_figure(&self, gpu: &Gpu, which: &JobFigure) -> Result<FigureSlices, String> {
+        let mut figs = Figures::with_gpu(gpu.clone()).map_err(|e| e.to_string())?;
+        figs.defer_readback();
+        let plan = match which {
+            JobFigure::Workspace(o) => {
+                Some(plan(&mut figs, &self.robot, &self.title, o).map_err(|e| e.to_string())?)
+            }
+            JobFigure::Textbook(_) => None,
+        };
+        Ok(FigureSlices {
+            figs,
+            plan,
+            asked: false,
+            readback: None,
+        })
+    }
 }
 
-fn compute(robot: &Robot, title: &str, progress: &AtomicU32) -> Result<WorkspaceData, String> {
+fn compute(
+    robot: &Robot,
+    title: &str,
+    which: &JobFigure,
+    progress: &AtomicU32,
+    cancelled: &AtomicBool,
+) -> Result<WorkspaceData, String> {
     let n = OVERLAY_SAMPLES;
     let dots = overlay_dots(robot, n, 1, &|k| {
         progress.store((k as f32 / n as f32 * 500.0) as u32, Ordering::Relaxed)
     })?;
+    if cancelled.load(Ordering::Relaxed) {
+        return Err(CANCELLED.into());
+    }
     let figure = Figures::new()
         .map_err(|e| e.to_string())
         .and_then(|mut figs| {
             let on_progress = |x: f32| progress.store(500 + (x * 500.0) as u32, Ordering::Relaxed);
-            crate::headless::workspace_figure(
-                &mut figs,
-                robot,
-                &figure_title(title),
-                &options(robot),
-                &on_progress,
-            )
-            .map(|w| w.image)
-            .map_err(|e| e.to_string())
+            match which {
+                JobFigure::Workspace(o) => {
+                    crate::headless::workspace_figure(&mut figs, robot, title, o, &on_progress)
+                        .map(|WsFigure { image, frame, .. }| (image, frame))
+                        .map_err(|e| e.to_string())
+                }
+                JobFigure::Textbook(name) => {
+                    crate::headless::textbook_figure(&mut figs, name, [1200, 900], Theme::Light)
+                        .map(|img| (img, None))
+                        .map_err(|e| e.to_string())
+                }
+            }
         });
-    let (figure, figure_error) = match figure {
-        Ok(f) => (Some(f), None),
-        Err(e) => (None, Some(e)),
+    if cancelled.load(Ordering::Relaxed) {
+        return Err(CANCELLED.into());
+    }
+    let (figure, frame, figure_error) = match figure {
+        Ok((f, frame)) => (Some(f), frame, None),
+        Err(e) => (None, None, Some(e)),
     };
     Ok(WorkspaceData {
         dots,
         figure,
+        frame,
         figure_error,
     })
 }
@@ -341,30 +471,4 @@ fn overlay_dots(
             size_px: 2.0,
         })
         .collect())
-}
-
-/// The robot's name in the workspace tab's figure.
-fn figure_title(title: &str) -> String {
-    title.replace('_', " ")
-}
-
-/// The workspace tab's figure: the arm's plane (planar arms) or the top view, coloured by
-/// posture, 1200 x 900 pixels.
-fn options(robot: &Robot) -> WsFigureOptions {
-    let view = if planar_frame(robot, 0).is_some() {
-        WsView::Plane
-    } else {
-        WsView::Top
-    };
-    WsFigureOptions {
-        view,
-        color_by: ColorBy::Posture,
-        samples: 200_000,
-        seed: 1,
-        size: [1200, 900],
-        theme: Theme::Light,
-        end_effector: 0,
-        point: Default::default(),
-        caption: String::new(),
-    }
 }

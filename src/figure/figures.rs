@@ -10,12 +10,28 @@ use crate::ui_render::offscreen::Offscreen;
 use egui::Color32;
 
 /// Where a plot's data lie on the canvas ([`Figures::plot_frame`]).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct PlotFrame {
     /// `[x_min, x_max, y_min, y_max]` shown in the frame (data units).
     pub bounds: [f64; 4],
     /// The frame's size (px).
     pub px: [usize; 2],
+    /// The frame on the canvas, `[left, top, right, bottom]` (px from the top left).
+    pub rect_px: [f32; 4],
+}
+
+impl PlotFrame {
+    fn of(frame: &plot2d::PlotFrame, ppp: f32) -> Self {
+        let r = frame.rect;
+        Self {
+            bounds: frame.bounds,
+            px: [
+                ((r.width() * ppp).round() as usize).max(1),
+                ((r.height() * ppp).round() as usize).max(1),
+            ],
+            rect_px: [r.min.x * ppp, r.min.y * ppp, r.max.x * ppp, r.max.y * ppp],
+        }
+    }
 }
 
 /// Multisampling of 3D figures (4x: smooth edges; lavapipe renders it deterministically).
@@ -119,24 +135,18 @@ impl Figures {
             });
         })?;
         let frame = frame.ok_or(FigureError::NotLaidOut)?;
-        Ok(PlotFrame {
-            bounds: frame.bounds,
-            px: [
-                ((frame.rect.width() * ppp).round() as usize).max(1),
-                ((frame.rect.height() * ppp).round() as usize).max(1),
-            ],
-        })
+        Ok(PlotFrame::of(&frame, ppp))
     }
 
     /// A plot with `raster` laid under its curves over the data bounds it was made for (those of
-    /// [`Self::plot_frame`]).
+    /// [`Self::plot_frame`]), and where its frame was drawn.
     pub fn plot_at(
         &mut self,
         size: [u32; 2],
         theme: Theme,
         plot: &Plot2d,
         raster: Option<(egui::ColorImage, [f64; 4])>,
-    ) -> Result<image::RgbaImage, FigureError> {
+    ) -> Result<(image::RgbaImage, PlotFrame), FigureError> {
         apply_style(&self.offscreen.ctx, theme);
         let ppp = pixels_per_point(size[0]);
         let tex = raster.map(|(img, bounds)| {
@@ -147,13 +157,16 @@ impl Figures {
             (t, bounds)
         });
         let image = tex.as_ref().map(|(t, bounds)| (t.id(), *bounds));
-        Ok(self
+        let mut frame = None;
+        let pixels = self
             .offscreen
             .render(&self.gpu.device, &self.gpu.queue, size, ppp, |ui| {
                 egui::CentralPanel::default().show(ui, |ui| {
-                    plot2d::show_at(ui, plot, image);
+                    frame = Some(plot2d::show_at(ui, plot, image));
                 });
-            })?)
+            })?;
+        let frame = frame.ok_or(FigureError::NotLaidOut)?;
+        Ok((pixels, PlotFrame::of(&frame, ppp)))
     }
 
     /// A 3D figure: the scene rendered by the app's renderer at full size, with title, legend
@@ -194,9 +207,9 @@ impl Figures {
                 super::labels::draw_labels(
                     painter,
                     rect,
-                    [w, h],
-                    &fig.camera,
+                    ([w, h], &fig.camera),
                     &fig.scene.labels,
+                    &[],
                     &egui::FontId::proportional(13.0),
                 );
                 let text = ui.visuals().text_color();

@@ -78,6 +78,8 @@ pub struct WsFigure {
     pub image: image::RgbaImage,
     /// Area/volume, bounds, reach.
     pub stats: WorkspaceStats,
+    /// Where the plot's data lie in the image (the 2D views; `None` for the 3D one).
+    pub frame: Option<PlotFrame>,
 }
 
 /// Name of the sequential colour map of the continuous colourings.
@@ -168,12 +170,13 @@ pub fn paint(
     data: &FigureData,
 ) -> Result<WsFigure, FigureError> {
     let (title, opts, stats) = (plan.title.as_str(), &plan.opts, &data.stats);
-    let image = match (&plan.body, &data.content) {
+    let (image, frame) = match (&plan.body, &data.content) {
         (PlanBody::Cloud, Content::Cloud(cloud)) => {
-            three_d(figs, robot, title, opts, stats, cloud)?
+            (three_d(figs, robot, title, opts, stats, cloud)?, None)
         }
         (PlanBody::JointSpace, Content::JointRectangle(rect)) => {
-            joint_space(figs, title, opts, rect)?
+            let (image, frame) = joint_space(figs, title, opts, rect)?;
+            (image, Some(frame))
         }
         (PlanBody::Map { view, plot, frame }, Content::Map(map)) => {
             let mut plot = (**plot).clone();
@@ -184,7 +187,9 @@ pub fn paint(
                 add_plane_marks(&mut plot, marks);
             }
             let raster = paint_map(map, opts.color_by);
-            figs.plot_at(opts.size, opts.theme, &plot, Some((raster, frame.bounds)))?
+            let (image, frame) =
+                figs.plot_at(opts.size, opts.theme, &plot, Some((raster, frame.bounds)))?;
+            (image, Some(frame))
         }
         (body, content) => {
             return Err(FigureError::WrongData {
@@ -204,6 +209,7 @@ pub fn paint(
     Ok(WsFigure {
         image,
         stats: stats.clone(),
+        frame,
     })
 }
 
@@ -332,7 +338,7 @@ fn joint_space(
     title: &str,
     opts: &WsFigureOptions,
     rect: &workspace::JointRectangle,
-) -> Result<image::RgbaImage, FigureError> {
+) -> Result<(image::RgbaImage, PlotFrame), FigureError> {
     let text = text_color(opts.theme);
     let deg = |q: [f64; 2]| [q[0].to_degrees(), q[1].to_degrees()];
     let mut plot = Plot2d {
@@ -385,7 +391,7 @@ fn joint_space(
         plot.labels
             .push((p.label.clone(), [d[0] + m1 * 0.25, d[1] + m2 * 0.25]));
     }
-    figs.plot(opts.size, opts.theme, &plot, None)
+    figs.plot_at(opts.size, opts.theme, &plot, None)
 }
 
 /// Axis labels and the title's suffix of a map view.

@@ -156,6 +156,20 @@ impl Gizmo {
         }
     }
 
+    /// The square (pixels of a `viewport`-sized view, centre and half side) that the gizmo of
+    /// a target at `pose` covers, arrows and rings included: labels keep off it.
+    pub fn extent_px(
+        &self,
+        camera: &Camera,
+        viewport: [u32; 2],
+        pose: &Pose,
+        scale: f64,
+    ) -> Option<([f64; 2], f64)> {
+        let (_, l) = self.frame(camera, viewport, pose, scale)?;
+        // Arrows reach size_px, their names a little further.
+        Some(([l.centre_px.x, l.centre_px.y], l.size_px * 1.2 + 10.0))
+    }
+
     /// The handle being dragged, if any.
     pub fn dragging(&self) -> Option<Handle> {
         self.drag.map(|d| d.handle)

@@ -199,7 +199,10 @@ impl AppState {
             });
         }
         self.dh[joint][field.index()].text = text.to_string();
+        let before = self.robot.clone();
         if self.apply_joint_cells(joint) {
+            self.undo.push(before);
+            self.redo.clear();
             self.after_model_edit();
         }
         match &self.dh[joint][field.index()].error {
@@ -285,6 +288,63 @@ impl AppState {
                 self.dh[j][f.index()].error = Some(err.clone());
             }
         }
+    }
+
+    /// Whether an edit can be undone.
+    pub fn can_undo(&self) -> bool {
+        !self.undo.is_empty()
+    }
+
+    /// Whether an undone edit can be redone.
+    pub fn can_redo(&self) -> bool {
+        !self.redo.is_empty()
+    }
+
+    /// Whether the model differs from the one opened.
+    pub fn is_edited(&self) -> bool {
+        self.robot != self.opened
+    }
+
+    /// Undoes the last model edit (the DH table shows the restored values; cells in error
+    /// are cleared); `false` when there is nothing to undo.
+    pub fn undo_edit(&mut self) -> bool {
+        let Some(previous) = self.undo.pop() else {
+            return false;
+        };
+        let current = std::mem::replace(&mut self.robot, previous);
+        self.redo.push(current);
+        self.restore_cells();
+        true
+    }
+
+    /// Redoes the last undone edit; `false` when there is none.
+    pub fn redo_edit(&mut self) -> bool {
+        let Some(next) = self.redo.pop() else {
+            return false;
+        };
+        let current = std::mem::replace(&mut self.robot, next);
+        self.undo.push(current);
+        self.restore_cells();
+        true
+    }
+
+    /// Back to the model as it was opened (an edit that can be undone).
+    pub fn reset_edits(&mut self) {
+        if !self.is_edited() && !self.dh_has_errors() {
+            return;
+        }
+        let opened = self.opened.clone();
+        let current = std::mem::replace(&mut self.robot, opened);
+        self.undo.push(current);
+        self.redo.clear();
+        self.restore_cells();
+    }
+
+    /// After the robot was replaced by an undo, a redo or a reset: every cell formatted from it
+    /// anew, the solvers and targets brought up to date.
+    fn restore_cells(&mut self) {
+        self.dh = build_cells(&self.robot, self.angle_unit);
+        self.after_model_edit();
     }
 
     /// Re-formats every cell that holds no error (after a unit change or a model load); cells

@@ -49,6 +49,8 @@ pub struct DisplayToggles {
     pub workspace: bool,
     /// The self-motion's traced path (the elbow circle of an SRS arm).
     pub self_motion_path: bool,
+    /// Label every frame (else a robot with many frames labels only its driven chain's).
+    pub all_labels: bool,
 }
 
 impl Default for DisplayToggles {
@@ -61,6 +63,7 @@ impl Default for DisplayToggles {
             ghosts: true,
             workspace: false,
             self_motion_path: true,
+            all_labels: false,
         }
     }
 }

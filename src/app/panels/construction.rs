@@ -3,7 +3,7 @@
 //! side panel. The steps come from [`crate::construction::steps::construction`] at
 //! the current q, so the overlay follows the target while it is dragged.
 
-use super::ui::AppUi;
+use super::super::state::AppState;
 use crate::construction::steps::{Mark, Step, construction};
 use crate::scene::{Dot, Label, Line, Scene, point32};
 use egui::RichText;
@@ -14,55 +14,68 @@ const CURRENT: [f32; 4] = [0.85, 0.2, 0.05, 1.0];
 /// Colour of the earlier steps' marks.
 const EARLIER: [f32; 4] = [0.3, 0.3, 0.35, 1.0];
 
-/// The Construction section of the right panel.
-pub fn panel(app: &mut AppUi, ui: &mut egui::Ui) {
-    ui.heading("Construction");
-    ui.checkbox(&mut app.construction, "Show the construction (C)");
-    if !app.construction {
-        return;
-    }
-    let steps = match construction(app.state.robot(), app.state.q()) {
-        Ok(s) => s,
-        Err(e) => {
-            ui.label(RichText::new(format!("No construction: {e}.")).small());
+/// The construction overlay's own state: shown or not, and the step shown.
+#[derive(Debug, Default, Clone, Copy, PartialEq, Eq)]
+pub struct ConstructionPanel {
+    /// Draw the construction behind the closed-form solution (Sect. 2.12).
+    pub shown: bool,
+    /// The step shown (0-based; the steps before it stay drawn).
+    pub step: usize,
+}
+
+impl ConstructionPanel {
+    /// The Construction section of the right panel.
+    pub fn ui(&mut self, state: &AppState, ui: &mut egui::Ui) {
+        ui.heading("Construction");
+        ui.checkbox(&mut self.shown, "Show the construction (C)");
+        if !self.shown {
             return;
         }
-    };
-    app.construction_step = app.construction_step.min(steps.len().saturating_sub(1));
-    ui.horizontal(|ui| {
-        if ui.button("< Previous (B)").clicked() {
-            app.construction_step = app.construction_step.saturating_sub(1);
-        }
-        ui.label(format!(
-            "step {} of {}",
-            app.construction_step + 1,
-            steps.len()
-        ));
-        if ui.button("Next (N) >").clicked() {
-            app.construction_step = (app.construction_step + 1).min(steps.len() - 1);
-        }
-    });
-    for (k, s) in steps.iter().enumerate() {
-        let text = RichText::new(format!("{}. {} {}", k + 1, s.title, s.equation));
-        let text = if k == app.construction_step {
-            text.strong()
-        } else {
-            text.small()
+        let steps = match construction(state.robot(), state.q()) {
+            Ok(s) => s,
+            Err(e) => {
+                ui.label(RichText::new(format!("No construction: {e}.")).small());
+                return;
+            }
         };
-        if ui
-            .selectable_label(k == app.construction_step, text)
-            .clicked()
+        self.step = self.step.min(steps.len().saturating_sub(1));
+        ui.horizontal(|ui| {
+            if ui.button("< Previous (B)").clicked() {
+                self.step = self.step.saturating_sub(1);
+            }
+            ui.label(format!("step {} of {}", self.step + 1, steps.len()));
+            if ui.button("Next (N) >").clicked() {
+                self.step = (self.step + 1).min(steps.len() - 1);
+            }
+        });
+        for (k, s) in steps.iter().enumerate() {
+            let text = RichText::new(format!("{}. {} {}", k + 1, s.title, s.equation));
+            let text = if k == self.step {
+                text.strong()
+            } else {
+                text.small()
+            };
+            if ui.selectable_label(k == self.step, text).clicked() {
+                self.step = k;
+            }
+        }
+        let s = &steps[self.step];
+        ui.label(RichText::new(&s.formula).monospace().small());
+    }
+
+    /// Adds the construction of the current configuration, up to the step shown, to `scene`.
+    pub fn decorate(&self, state: &AppState, scene: &mut Scene) {
+        if self.shown
+            && let Ok(steps) = construction(state.robot(), state.q())
         {
-            app.construction_step = k;
+            add_to_scene(scene, &steps, self.step.min(steps.len().saturating_sub(1)));
         }
     }
-    let s = &steps[app.construction_step];
-    ui.label(RichText::new(&s.formula).monospace().small());
 }
 
 /// Adds the marks of steps 1..=`current` to the scene: the current step in red, the earlier ones
 /// in grey, dashed construction lines as dashes, angles as arcs with their labels.
-pub fn add_to_scene(scene: &mut Scene, steps: &[Step], current: usize) {
+fn add_to_scene(scene: &mut Scene, steps: &[Step], current: usize) {
     for (k, step) in steps.iter().enumerate().take(current + 1) {
         let color = if k == current { CURRENT } else { EARLIER };
         for m in &step.marks {

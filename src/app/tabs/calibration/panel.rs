@@ -1,8 +1,8 @@
 //! The Calibration tab's widgets: settings, the lessons, files, and the report of the last run
 //! (iterations, identifiability in words, O1-O4, the parameter table, held-out errors).
 
-use super::calibration_lab::{CalibrationLab, LabResult, PoseChoice};
-use super::file_picker::{FileKind, FilePicker};
+use super::lab::{CalibrationLab, LabResult, PoseChoice};
+use crate::app::file_picker::{FileKind, FilePicker};
 use crate::calibration::Fit;
 use crate::kinematics::Robot;
 use egui::{Color32, RichText};

@@ -1,0 +1,98 @@
+//! What a panel or a tab asks the app to do. Panels and tabs read the shared state and return
+//! actions; [`super::shell::AppUi::apply`] applies them in one place, so no panel reaches into
+//! another's state and every change of the model goes through one door.
+
+use super::state::{DhField, Level};
+use crate::camera::Preset;
+use crate::kinematics::Pose;
+use crate::kinematics::redundancy::Task;
+
+/// One thing to do.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Action {
+    /// Open a model: a built-in name or a path to a .toml or .urdf file.
+    Load(String),
+    /// "Open file...": the file dialog, or the in-app file browser where there is none.
+    OpenDialog,
+    /// "Save model as...": the file dialog, or a download in a browser.
+    SaveDialog,
+    /// Write the model to this file (.toml, or .urdf by its name).
+    SaveModel(String),
+    /// Commit the text of a DH table cell (on Enter or when the cell loses focus).
+    CommitDh {
+        /// Row (joint index in [`crate::kinematics::Robot::joints`]).
+        joint: usize,
+        /// Column.
+        field: DhField,
+        /// The text typed.
+        text: String,
+    },
+    /// Undo the last model edit.
+    Undo,
+    /// Redo the last undone model edit.
+    Redo,
+    /// Back to the model as it was opened.
+    ResetEdits,
+    /// Set joint `k` (rad or m).
+    SetJoint(usize, f64),
+    /// Move to a named configuration.
+    ResetTo(String),
+    /// Make end-effector `k` the one the readouts and the target refer to.
+    SelectEe(usize),
+    /// Lock the posture while dragging.
+    SetLock(bool),
+    /// Move IK target `ee` (world, m).
+    SetTarget(usize, Pose),
+    /// Put target `ee` on the tool.
+    TargetToTool(usize),
+    /// Take solution `index` (0-based) of target `ee`.
+    SelectSolution(usize, usize),
+    /// Show the next solution of the current target.
+    NextSolution,
+    /// The task the gizmo obeys.
+    SetTask(Task),
+    /// Move the self-motion parameter of `ee` to a value (rad).
+    SetSelfMotion(usize, f64),
+    /// Take branch `k` of the exact self-motion of `ee`.
+    SelectBranch(usize, usize),
+    /// Show the construction overlay.
+    ShowConstruction(bool),
+    /// Show construction step `k` (0-based).
+    ConstructionStep(usize),
+    /// A camera preset, then fit.
+    CameraPreset(Preset),
+    /// Fit the robot (and its ghosts and targets) in the view.
+    Fit,
+    /// Perspective / orthographic.
+    ToggleProjection,
+    /// The workspace overlay in the 3D view.
+    ToggleWorkspace,
+    /// Large fonts and thick lines, side panels collapsed to what a lesson needs.
+    ToggleProjector,
+    /// Show or hide both side panels.
+    ToggleSidePanels,
+    /// Save the window as a PNG.
+    Screenshot,
+    /// The shortcut help.
+    ToggleHelp,
+    /// Show a central tab by its index.
+    ShowTab(usize),
+    /// A message for the status bar.
+    Message(Level, String),
+}
+
+/// Collects the actions of one frame.
+#[derive(Debug, Default)]
+pub struct Actions(pub Vec<Action>);
+
+impl Actions {
+    /// Adds an action.
+    pub fn push(&mut self, a: Action) {
+        self.0.push(a);
+    }
+
+    /// Adds a message for the status bar.
+    pub fn message(&mut self, level: Level, text: impl Into<String>) {
+        self.0.push(Action::Message(level, text.into()));
+    }
+}

@@ -1,0 +1,317 @@
+//! The 3D view: the rendered scene shown at one texel per pixel, the scene's labels placed
+//! without overlap, the IK target's gizmo, navigation (orbit, pan, zoom), framing and picking a
+//! ghost arm by clicking near it.
+
+use super::super::action::{Action, Actions};
+use super::super::gizmo::Gizmo;
+use super::super::state::AppState;
+use super::super::viewport::{TextureRegistry, Viewport3d, ViewportImage};
+use super::{Tab, TabContext};
+use crate::camera::{Camera, Preset, Projection};
+use crate::scene::{Scene, arm_points, point32};
+
+/// The 3D view's own state.
+pub struct View3d {
+    /// The camera.
+    pub camera: Camera,
+    /// The IK target's gizmo.
+    pub gizmo: Gizmo,
+    /// The viewport's size in pixels at the last layout (the 3D render uses it).
+    pub viewport_px: [u32; 2],
+    /// Where the viewport was laid out last (points, window coordinates).
+    pub viewport_rect: egui::Rect,
+    /// Keep the current target in view while it is dragged off screen.
+    pub follow: bool,
+    /// Labels of the scene rendered last (drawn by egui over the image).
+    labels: Vec<crate::scene::Label>,
+    /// Where the labels were drawn last (points): never overlapping (tests check).
+    pub placed_labels: Vec<egui::Rect>,
+    fitted: bool,
+    /// Viewport size and camera right after the last framing: while the camera is untouched, a
+    /// new viewport size (the first layout, a resized window) frames the arm again.
+    framed: Option<([u32; 2], Camera)>,
+}
+
+impl Default for View3d {
+    fn default() -> Self {
+        Self {
+            camera: Camera::default(),
+            gizmo: Gizmo::default(),
+            viewport_px: [800, 600],
+            viewport_rect: egui::Rect::NOTHING,
+            follow: false,
+            labels: Vec::new(),
+            placed_labels: Vec::new(),
+            fitted: false,
+            framed: None,
+        }
+    }
+}
+
+impl View3d {
+    /// Uses `camera` as is (no automatic framing).
+    pub fn set_camera(&mut self, camera: Camera) {
+        self.camera = camera;
+        self.fitted = true;
+        self.framed = None;
+    }
+
+    /// Frames the arm again at the next render (a new model).
+    pub fn refit(&mut self) {
+        self.fitted = false;
+    }
+
+    /// Frames the arm, its targets and every ghost posture drawn in the viewport.
+    pub fn fit(&mut self, state: &AppState) {
+        if let Ok(mut pts) = arm_points(state.robot(), state.q()) {
+            // The IK targets too (an unreachable one is the point of interest).
+            pts.extend(
+                state
+                    .targets()
+                    .iter()
+                    .map(|t| point32(&t.world_from_tool.translation.vector)),
+            );
+            if state.display.ghosts {
+                for ee in 0..state.targets().len() {
+                    for g in state.ghosts(ee) {
+                        if let Ok(p) = arm_points(state.robot(), &g.q) {
+                            pts.extend(p);
+                        }
+                    }
+                }
+            }
+            let [w, h] = self.viewport_px;
+            self.camera.fit_points(&pts, w.max(16), h.max(16), 0.7);
+        }
+        self.fitted = true;
+        self.framed = Some((self.viewport_px, self.camera));
+    }
+
+    /// Frames the arm if it has not been framed yet, or if the viewport changed size since the
+    /// last framing and the user has not moved the camera since (the live window renders its
+    /// first 3D frame before the panels are laid out, at a guessed size).
+    pub fn frame_if_needed(&mut self, state: &AppState) {
+        let resized = self
+            .framed
+            .is_some_and(|(size, camera)| size != self.viewport_px && camera == self.camera);
+        if !self.fitted || resized {
+            self.fit(state);
+        }
+    }
+
+    /// A camera preset, then framing.
+    pub fn preset(&mut self, p: Preset, state: &AppState) {
+        self.camera.set_preset(p);
+        self.fit(state);
+    }
+
+    /// Perspective / orthographic, then framing.
+    pub fn toggle_projection(&mut self, state: &AppState) {
+        self.camera.projection = match self.camera.projection {
+            Projection::Perspective { .. } => Projection::Orthographic { height: 1.0 },
+            Projection::Orthographic { .. } => Projection::Perspective {
+                fov_y: 35f32.to_radians(),
+            },
+        };
+        self.fit(state);
+    }
+
+    /// Renders `scene` for the viewport at its last size; returns the image to show, or the
+    /// error for the status bar.
+    pub fn render(
+        &mut self,
+        vp: &mut Viewport3d,
+        registry: &mut dyn TextureRegistry,
+        mut scene: Scene,
+        dark: bool,
+    ) -> Result<ViewportImage, String> {
+        let rendered = vp.render(registry, &scene, &self.camera, self.viewport_px, dark);
+        self.labels = std::mem::take(&mut scene.labels);
+        rendered.map_err(|e| format!("3D view: {e}"))
+    }
+
+    /// Where a user would grab the IK target's gizmo to drag it (in points, window
+    /// coordinates): the first visible plane square (else arrow) of end-effector `ee`; `None`
+    /// before the viewport was laid out. The web page's test drags it.
+    pub fn gizmo_grip(&self, state: &AppState, ee: usize) -> Option<egui::Pos2> {
+        use super::super::gizmo::Handle;
+        let rect = self.viewport_rect;
+        let ppp = self.viewport_px[0] as f32 / rect.width();
+        if !(ppp.is_finite() && ppp > 0.0) {
+            return None;
+        }
+        let pose = state.target(ee).ok()?.world_from_tool;
+        let handles = [0, 1, 2].map(Handle::Plane).into_iter();
+        handles
+            .chain([0, 1, 2].map(Handle::Axis))
+            .find_map(|h| {
+                self.gizmo
+                    .grip_px(&self.camera, self.viewport_px, &pose, ppp as f64, h)
+            })
+            .map(|[x, y]| rect.min + egui::vec2(x as f32, y as f32) / ppp)
+    }
+
+    /// Keeps the point `p` (world, m) inside the viewport: pans the camera to it when it left
+    /// the middle 80 % of the view.
+    fn keep_in_view(&mut self, p: &nalgebra::Vector3<f64>) {
+        let [w, h] = self.viewport_px;
+        let inside = self.camera.project(&point32(p), w, h).is_some_and(|px| {
+            let (x, y) = (px[0] / w as f32, px[1] / h as f32);
+            (0.1..0.9).contains(&x) && (0.1..0.9).contains(&y)
+        });
+        if !inside {
+            self.camera.target = point32(p);
+        }
+    }
+
+    /// The viewport: the image, its labels, the gizmo and navigation.
+    fn viewport(&mut self, cx: &mut TabContext<'_>, ui: &mut egui::Ui, out: &mut Actions) {
+        let rect = ui.available_rect_before_wrap();
+        self.viewport_rect = rect;
+        let ppp = ui.ctx().pixels_per_point();
+        self.viewport_px = [
+            ((rect.width() * ppp).round() as u32).max(16),
+            ((rect.height() * ppp).round() as u32).max(16),
+        ];
+        let response = ui.allocate_rect(rect, egui::Sense::click_and_drag());
+        if let Some(im) = &cx.image {
+            // On whole pixels, the texture's size: a texel per pixel, no resampling.
+            let [w, h] = self.viewport_px;
+            let at = (rect.min.to_vec2() * ppp).round() / ppp;
+            let rect =
+                egui::Rect::from_min_size(at.to_pos2(), egui::vec2(w as f32, h as f32) / ppp);
+            ui.painter().image(
+                im.id,
+                rect,
+                egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0)),
+                egui::Color32::WHITE,
+            );
+        }
+        let ee = cx.ee;
+        let font = egui::FontId::proportional(12.5 * cx.layout.text_scale());
+        // The current target's gizmo is kept clear of labels.
+        let gizmo = cx.state.target(ee).ok().and_then(|t| {
+            let ([x, y], half) = self.gizmo.extent_px(
+                &self.camera,
+                self.viewport_px,
+                &t.world_from_tool,
+                f64::from(ppp),
+            )?;
+            let c = rect.min + egui::vec2(x as f32, y as f32) / ppp;
+            Some(egui::Rect::from_center_size(
+                c,
+                egui::Vec2::splat(2.0 * half as f32 / ppp),
+            ))
+        });
+        self.placed_labels = crate::figure::labels::draw_labels(
+            ui.painter(),
+            rect,
+            (self.viewport_px, &self.camera),
+            &self.labels,
+            gizmo.as_slice(),
+            &font,
+        );
+        let mut gizmo_active = false;
+        if let Ok(t) = cx.state.target(ee) {
+            let pose = t.world_from_tool;
+            let unreachable = !t.reach.is_reached();
+            let g = self
+                .gizmo
+                .ui(ui, &response, rect, &self.camera, &pose, unreachable);
+            gizmo_active = g.active;
+            if let Some(p) = g.new_pose {
+                out.push(Action::SetTarget(ee, p));
+                if self.follow {
+                    self.keep_in_view(&p.translation.vector);
+                }
+            }
+        }
+        self.navigate(ui, &response, rect, gizmo_active);
+        if response.double_clicked() {
+            self.fit(cx.state);
+        } else if response.clicked()
+            && !gizmo_active
+            && let Some(pos) = response.interact_pointer_pos()
+            && let Some(index) = self.pick_ghost(cx.state, ee, (pos - rect.min) * ppp)
+        {
+            out.push(Action::SelectSolution(ee, index));
+        }
+    }
+
+    /// Orbit (drag), pan (right or middle drag) and zoom (scroll, pinch).
+    fn navigate(
+        &mut self,
+        ui: &egui::Ui,
+        response: &egui::Response,
+        rect: egui::Rect,
+        gizmo_active: bool,
+    ) {
+        if !gizmo_active {
+            if response.dragged_by(egui::PointerButton::Primary) {
+                let d = response.drag_delta();
+                self.camera.orbit(-d.x * 0.008, d.y * 0.008);
+            } else if response.dragged_by(egui::PointerButton::Secondary)
+                || response.dragged_by(egui::PointerButton::Middle)
+            {
+                let d = response.drag_delta();
+                self.camera.pan(d.x / rect.height(), d.y / rect.height());
+            }
+        }
+        if response.hovered() {
+            let (scroll, zoom) = ui.input(|i| (i.smooth_scroll_delta.y, i.zoom_delta()));
+            if scroll != 0.0 {
+                self.camera.zoom((-scroll * 0.002).exp());
+            }
+            if zoom != 1.0 {
+                self.camera.zoom(1.0 / zoom);
+            }
+        }
+    }
+
+    /// The ghost arm nearest to a click (pixel position in the viewport): the solution index of
+    /// the one whose joint projects closest, within 40 px; a ghost within the limits wins over
+    /// one outside them (postures differing only at the wrist share their joint positions).
+    fn pick_ghost(&self, state: &AppState, ee: usize, at: egui::Vec2) -> Option<usize> {
+        let robot = state.robot();
+        let [w, h] = self.viewport_px;
+        let chain = robot
+            .chain_to(robot.end_effectors()[ee.min(robot.end_effectors().len() - 1)].parent)
+            .to_vec();
+        let mut best: Option<(bool, f32, usize)> = None;
+        let target = state.target(ee).ok()?;
+        let result = target.result.as_ref()?;
+        for g in state.ghosts(ee).iter().filter(|g| !g.selected) {
+            let Some(index) = result.solutions.iter().position(|s| s.q == g.q) else {
+                continue;
+            };
+            let Ok(frames) = robot.fk_frames(&g.q) else {
+                continue;
+            };
+            for &j in &chain {
+                let p = point32(&frames[j].translation.vector);
+                if let Some(px) = self.camera.project(&p, w, h) {
+                    let d = (egui::vec2(px[0], px[1]) - at).length();
+                    let key = (!g.within_limits, d);
+                    if d < 40.0 && best.is_none_or(|b| key < (b.0, b.1)) {
+                        best = Some((key.0, d, index));
+                    }
+                }
+            }
+        }
+        best.map(|(_, _, index)| index)
+    }
+}
+
+impl Tab for View3d {
+    fn title(&self) -> &'static str {
+        "3D view"
+    }
+
+    fn ui(&mut self, cx: &mut TabContext<'_>, ui: &mut egui::Ui, out: &mut Actions) {
+        self.viewport(cx, ui, out);
+    }
+
+    fn model_changed(&mut self) {
+        self.fitted = false;
+    }
+}

@@ -1,0 +1,109 @@
+//! The toolbar: the tabs, the view presets, what to show, projector mode and the side panels,
+//! screenshot and help, in one row that never reflows; the model's name is last, right-aligned
+//! and cut to the room left, so its length moves nothing.
+
+use super::action::{Action, Actions};
+use super::shell::AppUi;
+use crate::camera::{Preset, Projection};
+use egui::RichText;
+
+/// Lays the toolbar out.
+pub fn show(app: &mut AppUi, ui: &mut egui::Ui, out: &mut Actions) {
+    let projector = app.layout.projector;
+    ui.horizontal(|ui| {
+        ui.strong(RichText::new("armlab").size(if projector { 22.0 } else { 16.0 }));
+        ui.separator();
+        let titles: Vec<&'static str> = app.tabs.all().iter().map(|t| t.title()).collect();
+        for (k, title) in titles.into_iter().enumerate() {
+            if ui.selectable_label(app.tab == k, title).clicked() {
+                out.push(Action::ShowTab(k));
+            }
+        }
+        ui.separator();
+        if projector {
+            // Large text: the presets fold into a menu, so the row still fits.
+            ui.menu_button("View", |ui| view_buttons(app, ui, out));
+        } else {
+            view_buttons(app, ui, out);
+        }
+        ui.separator();
+        show_menu(app, ui, out);
+        let sides = app.layout.sides();
+        if ui
+            .selectable_label(!(sides.left || sides.right), "Panels (V)")
+            .on_hover_text("Hide or show both side panels")
+            .clicked()
+        {
+            out.push(Action::ToggleSidePanels);
+        }
+        if ui
+            .selectable_label(projector, "Projector (P)")
+            .on_hover_text("Large fonts and lines, the 3D view large; P again restores the layout")
+            .clicked()
+        {
+            out.push(Action::ToggleProjector);
+        }
+        if ui
+            .button("Screenshot")
+            .on_hover_text("Save the window as armlab-<model>-<n>.png in the current folder")
+            .clicked()
+        {
+            out.push(Action::Screenshot);
+        }
+        if ui.button("Help (H)").clicked() {
+            out.push(Action::ToggleHelp);
+        }
+        // The model's name, in the room that is left: cut, never pushing anything.
+        let name = format!(
+            "{} ({} DOF)",
+            app.state.robot().name,
+            app.state.robot().dof()
+        );
+        ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
+            ui.add(egui::Label::new(RichText::new(name).weak()).truncate());
+        });
+    });
+}
+
+/// The camera presets, Fit and the projection.
+fn view_buttons(app: &AppUi, ui: &mut egui::Ui, out: &mut Actions) {
+    for (label, p) in [
+        ("Top", Preset::Top),
+        ("Front", Preset::Front),
+        ("Side", Preset::Side),
+        ("Iso", Preset::Iso),
+    ] {
+        if ui.button(label).clicked() {
+            out.push(Action::CameraPreset(p));
+        }
+    }
+    if ui.button("Fit").clicked() {
+        out.push(Action::Fit);
+    }
+    let ortho = matches!(
+        app.tabs.view3d.camera.projection,
+        Projection::Orthographic { .. }
+    );
+    if ui.selectable_label(ortho, "Ortho").clicked() {
+        out.push(Action::ToggleProjection);
+    }
+}
+
+/// "Show": what the 3D view draws.
+fn show_menu(app: &mut AppUi, ui: &mut egui::Ui, out: &mut Actions) {
+    ui.menu_button("Show", |ui| {
+        let d = &mut app.state.display;
+        ui.checkbox(&mut d.frames, "Frames (D)");
+        ui.checkbox(&mut d.labels, "Labels");
+        ui.checkbox(&mut d.all_labels, "Labels of every frame")
+            .on_hover_text("Big robots label only the driven chain's frames unless this is on");
+        ui.checkbox(&mut d.grid, "Grid (G)");
+        ui.checkbox(&mut d.trail, "Trail (T)");
+        ui.checkbox(&mut d.ghosts, "All postures");
+        let mut ws = d.workspace;
+        if ui.checkbox(&mut ws, "Workspace (W)").changed() {
+            out.push(Action::ToggleWorkspace);
+        }
+        ui.checkbox(&mut app.tabs.view3d.follow, "Camera follows the target");
+    });
+}
