@@ -193,3 +193,34 @@ fn the_workers_answers_equal_the_direct_computation() {
         Answer::Error(e) if e.contains("bad request")
     ));
 }
+
+/// Changing the model cancels the running job at once: its thread stops within the chunk of
+/// samples it is on, so the next model's job does not share the CPU with it (the Stanford arm's
+/// figure takes over a minute when left to run).
+#[test]
+fn a_cancelled_job_stops_computing_at_once() {
+    let robot = armlab::kinematics::models::built_in("stanford").unwrap();
+    let figure = JobFigure::Workspace(WorkspaceJob::options_for(
+        &robot,
+        armlab::figure::workspace::WsView::Side,
+        [600, 450],
+        None,
+    ));
+    let job = WorkspaceJob::start(robot, "stanford".into(), "Stanford".into(), figure);
+    std::thread::sleep(std::time::Duration::from_millis(1500));
+    assert!(job.computing(), "the job should still be computing");
+    let t = std::time::Instant::now();
+    job.cancel();
+    while job.computing() {
+        assert!(
+            t.elapsed().as_secs_f64() < 5.0,
+            "the cancelled job's thread still runs after 5 s"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(10));
+    }
+    assert!(job.is_cancelled());
+    println!(
+        "stopped {:.0} ms after the cancel",
+        t.elapsed().as_secs_f64() * 1e3
+    );
+}

@@ -22,12 +22,16 @@ impl InnerUi {
         let size = outer.content_rect().size() * ppp;
         let out = self.ctx.run_ui(raw, ui);
         let egui::FullOutput {
-            platform_output,
+            mut platform_output,
             textures_delta,
             shapes,
             pixels_per_point,
             viewport_output,
         } = out;
+        // The inner context's passes are its own: counted into the outer's output, every frame
+        // looks like a discarded one to eframe's context (which then warns on screen).
+        platform_output.num_completed_passes = 0;
+        platform_output.request_discard_reasons.clear();
         outer.output_mut(|o| o.append(platform_output));
         for (id, v) in viewport_output {
             if id != egui::ViewportId::ROOT {

@@ -88,16 +88,31 @@ impl Layout {
         }
     }
 
-    /// The default widths (points) of the left and right panels in the current mode, for a
-    /// window `window_width` wide: together they leave the central area its share.
-    pub fn default_widths(&self, window_width: f32) -> (f32, f32) {
+    /// The width (points) the side panels may share: what the central area's share of a
+    /// window `window` points wide leaves of the `avail` points inside the window's margins.
+    pub fn side_room(avail: f32, window: f32) -> f32 {
+        avail - CENTRAL_SHARE * window
+    }
+
+    /// The default widths (points) of the left and right panels in the current mode, with
+    /// `avail` points inside the margins of a window `window` points wide: together they leave
+    /// the central area its share.
+    pub fn default_widths(&self, avail: f32, window: f32) -> (f32, f32) {
         let (left, right) = if self.projector {
-            (300.0, 360.0)
+            (320.0, 400.0)
         } else {
             (270.0, 300.0)
         };
-        let room = (1.0 - CENTRAL_SHARE) * window_width;
-        let scale = (room / (left + right)).min(1.0);
+        // Only the open panels share the room.
+        let sides = self.sides();
+        let open =
+            f32::from(u8::from(sides.left)) * left + f32::from(u8::from(sides.right)) * right;
+        let room = Self::side_room(avail, window);
+        let scale = if open > 0.0 {
+            (room / open).min(1.0)
+        } else {
+            1.0
+        };
         (
             (left * scale).max(MIN_PANEL),
             (right * scale).max(MIN_PANEL),
@@ -105,9 +120,10 @@ impl Layout {
     }
 
     /// The widths a side panel may be dragged to (points), with the other side panel `other`
-    /// points wide: at most what leaves the central area its share of `window_width`.
-    pub fn width_range(window_width: f32, other: f32) -> egui::Rangef {
-        let max = ((1.0 - CENTRAL_SHARE) * window_width - other).max(MIN_PANEL);
+    /// points wide: at most what leaves the central area its share of the window (`avail` and
+    /// `window` as in [`Self::default_widths`]).
+    pub fn width_range(avail: f32, window: f32, other: f32) -> egui::Rangef {
+        let max = (Self::side_room(avail, window) - other).max(MIN_PANEL);
         egui::Rangef::new(MIN_PANEL.min(max), max)
     }
 

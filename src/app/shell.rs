@@ -524,6 +524,9 @@ impl AppUi {
         let r = ui.max_rect();
         self.window_points = [r.width(), r.height()];
         layout::apply_style(&ctx, &self.layout);
+        // The window's ui was made with the previous frame's style: without this, the first
+        // frame after P lays the panels out in the other mode's fonts, and they keep the width.
+        ui.set_style(ctx.global_style());
         let mut out = Actions::default();
         self.shortcuts(&ctx, &mut out);
         let dropped: Vec<String> = ctx.input(|i| {
@@ -578,9 +581,10 @@ impl AppUi {
     /// inside them.
     fn side_panels(&mut self, ui: &mut egui::Ui, out: &mut Actions) {
         let width = ui.max_rect().width();
+        let window = ui.ctx().content_rect().width();
         let sides = self.layout.sides();
         let (left_id, right_id) = self.layout.panel_ids();
-        let (left_default, right_default) = self.layout.default_widths(width);
+        let (left_default, right_default) = self.layout.default_widths(width, window);
         let right_w = egui::PanelState::load(ui.ctx(), ui.scope_id().with(right_id))
             .map_or(right_default, |s| s.size().x);
         self.rects.left = None;
@@ -590,7 +594,7 @@ impl AppUi {
             let r = egui::Panel::left(left_id)
                 .resizable(true)
                 .default_size(left_default)
-                .size_range(Layout::width_range(width, other))
+                .size_range(Layout::width_range(width, window, other))
                 .show(ui, |ui| {
                     fit_to_panel(ui);
                     self.model.ui(&self.state, ui, self.layout.projector, out);
@@ -602,7 +606,7 @@ impl AppUi {
             let r = egui::Panel::right(right_id)
                 .resizable(true)
                 .default_size(right_default)
-                .size_range(Layout::width_range(width, other))
+                .size_range(Layout::width_range(width, window, other))
                 .show(ui, |ui| {
                     fit_to_panel(ui);
                     self.ik.ui(&mut self.state, ui, out);

@@ -45,6 +45,8 @@ pub struct WorkspaceJob {
     progress: Arc<AtomicU32>,
     done: Arc<OnceLock<Result<WorkspaceData, String>>>,
     cancelled: Arc<AtomicBool>,
+    /// Whether a thread is still computing (it stops soon after a cancel).
+    running: Arc<AtomicBool>,
     figure: JobFigure,
     /// The slices still to compute (browser only; `None` with a thread, or once done).
     slices: std::sync::Mutex<Option<Slices>>,
@@ -129,20 +131,31 @@ impl WorkspaceJob {
         let progress = Arc::new(AtomicU32::new(0));
         let done = Arc::new(OnceLock::new());
         let cancelled = Arc::new(AtomicBool::new(false));
-        let (p, d, c, f) = (
+        let running = Arc::new(AtomicBool::new(true));
+        let (p, d, c, f, r) = (
             progress.clone(),
             done.clone(),
             cancelled.clone(),
             figure.clone(),
+            running.clone(),
         );
         std::thread::spawn(move || {
-            let result = compute(&robot, &title, &f, &p, &c);
+            // A cancelled computation unwinds out of the progress callback (see
+            // [`stop_if_cancelled`]); it is caught here and reported as cancelled.
+            let run = std::panic::AssertUnwindSafe(|| compute(&robot, &title, &f, &p, &c));
+            let result = match std::panic::catch_unwind(run) {
+                Ok(r) => r,
+                Err(payload) if payload.is::<Cancelled>() => Err(CANCELLED.into()),
+                Err(payload) => std::panic::resume_unwind(payload),
+            };
             let _ = d.set(result);
+            r.store(false, Ordering::Relaxed);
         });
         Self {
             progress,
             done,
             cancelled,
+            running,
             figure,
             slices: std::sync::Mutex::new(None),
         }
@@ -163,6 +176,7 @@ impl WorkspaceJob {
             progress: Arc::new(AtomicU32::new(0)),
             done: Arc::new(OnceLock::new()),
             cancelled: Arc::new(AtomicBool::new(false)),
+            running: Arc::new(AtomicBool::new(false)),
             figure,
             slices: std::sync::Mutex::new(Some(slices)),
         }
@@ -277,6 +291,12 @@ impl WorkspaceJob {
             .get()
             .and_then(|r| r.as_ref().err())
             .map(String::as_str)
+    }
+
+    /// Whether a background thread is still computing (a cancelled one stops after the chunk
+    /// of samples it is on; a sliced job computes only in [`Self::step`]).
+    pub fn computing(&self) -> bool {
+        self.running.load(Ordering::Relaxed)
     }
 
     /// Whether the job was cancelled.
@@ -406,6 +426,7 @@ fn compute(
 ) -> Result<WorkspaceData, String> {
     let n = OVERLAY_SAMPLES;
     let dots = overlay_dots(robot, n, 1, &|k| {
+        stop_if_cancelled(cancelled);
         progress.store((k as f32 / n as f32 * 500.0) as u32, Ordering::Relaxed)
     })?;
     if cancelled.load(Ordering::Relaxed) {
@@ -414,7 +435,10 @@ fn compute(
     let figure = Figures::new()
         .map_err(|e| e.to_string())
         .and_then(|mut figs| {
-            let on_progress = |x: f32| progress.store(500 + (x * 500.0) as u32, Ordering::Relaxed);
+            let on_progress = |x: f32| {
+                stop_if_cancelled(cancelled);
+                progress.store(500 + (x * 500.0) as u32, Ordering::Relaxed)
+            };
             match which {
                 JobFigure::Workspace(o) => {
                     crate::headless::workspace_figure(&mut figs, robot, title, o, &on_progress)
@@ -441,6 +465,20 @@ fn compute(
         frame,
         figure_error,
     })
+}
+
+/// The payload a cancelled threaded job unwinds with.
+struct Cancelled;
+
+/// Stops a threaded job's computation at once when it was cancelled: called from the progress
+/// callbacks, which the compute layers call after every chunk of work (also from rayon's
+/// workers, which hand the unwinding on to the job's thread). `resume_unwind` runs no panic
+/// hook, so nothing is printed; the job's thread catches it (salsa cancels queries the same
+/// way). The compute layers stay free of any notion of cancellation.
+fn stop_if_cancelled(cancelled: &AtomicBool) {
+    if cancelled.load(Ordering::Relaxed) {
+        std::panic::resume_unwind(Box::new(Cancelled));
+    }
 }
 
 /// `n` overlay dots from samples drawn with `seed`, coloured by posture.

@@ -20,6 +20,15 @@ pub struct Offscreen {
     deferred: Option<crate::render::PendingRead>,
 }
 
+impl Drop for Offscreen {
+    /// Texture updates of a layout never rendered (a figure abandoned after it was planned:
+    /// its data failed, or its job was cancelled) go with it; epaint panics on dropping
+    /// unapplied updates.
+    fn drop(&mut self) {
+        self.pending.clear();
+    }
+}
+
 impl Offscreen {
     /// A context and a renderer set for predictable output (no dithering, texture filtering
     /// done in the shader): the same bytes on every run, for figures and golden images.
