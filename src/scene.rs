@@ -101,6 +101,9 @@ pub struct Scene {
     pub lines: Vec<Line>,
     /// Dots (unlit).
     pub dots: Vec<Dot>,
+    /// Dots drawn under everything else, whatever their depth (a workspace point cloud: it
+    /// never hides the arm).
+    pub underlay: Vec<Dot>,
     /// Labels for the overlay.
     pub labels: Vec<Label>,
 }
@@ -127,6 +130,7 @@ impl Scene {
         self.custom_meshes.extend(other.custom_meshes);
         self.lines.extend(other.lines);
         self.dots.extend(other.dots);
+        self.underlay.extend(other.underlay);
         self.labels.extend(other.labels);
     }
 
@@ -153,6 +157,7 @@ impl Scene {
                 .flat_map(|l| [Point3::from(l.a), Point3::from(l.b)]),
         );
         pts.extend(self.dots.iter().map(|d| Point3::from(d.p)));
+        pts.extend(self.underlay.iter().map(|d| Point3::from(d.p)));
         if pts.is_empty() {
             return (Point3::origin(), 1.0);
         }

@@ -175,7 +175,7 @@ fn measured_poses_are_drawn_as_tool_points_and_a_few_ghosts() {
     let mut lab = CalibrationLab::default();
     lab.run_simulated(state.robot(), state.q());
     let poses = &lab.result.as_ref().unwrap().poses;
-    let mut scene = build_scene(&state, false);
+    let mut scene = build_scene(&state, 0, false);
     let (dots, meshes) = (scene.dots.len(), scene.meshes.len());
     add_measured_poses(&mut scene, state.robot(), poses);
     assert_eq!(scene.dots.len() - dots, poses.len());

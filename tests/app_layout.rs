@@ -145,8 +145,9 @@ fn rect_of(n: &egui_kittest::Node<'_>) -> Option<Rect> {
     ))
 }
 
-/// Text cut by a side panel's edge (a matrix too wide for its panel once was): every text run
-/// whose centre is in a side panel lies inside the panel's width, except in the DH table, which
+/// Text cut by a panel's edge (a matrix too wide for its panel once was, and the Calibration
+/// tab's sentences at 1280 px): every text run whose centre is in a side panel or the central
+/// area lies inside its width, except in the DH table, which
 /// scrolls sideways (the rows between its header and its horizontal scroll bar).
 fn cut_text(h: &Harness<'static, AppUi>, regions: &[(&str, Rect)], what: &str) -> Vec<String> {
     let dh_top = h
@@ -188,7 +189,7 @@ fn cut_text(h: &Harness<'static, AppUi>, regions: &[(&str, Rect)], what: &str) -
         }
         let Some((region, area)) = regions
             .iter()
-            .filter(|(name, _)| name.ends_with("panel"))
+            .filter(|(name, _)| name.ends_with("panel") || *name == "central area")
             .find(|(_, a)| a.contains(rect.center()))
         else {
             continue;
@@ -359,5 +360,68 @@ fn a_steady_window_lays_out_once_a_frame() {
                 );
             }
         }
+    }
+}
+
+/// The Calibration tab after each lesson, with its report and the accuracy maps, at 1280x800:
+/// nothing cut (its buttons and the identifiability sentence once were), and the lesson says in
+/// one sentence what to look at.
+#[test]
+fn the_calibration_tab_after_its_lessons_fits_at_1280() {
+    for projector in [false, true] {
+        let mut app = AppUi::new(AppState::from_spec("puma560").unwrap());
+        app.layout.projector = projector;
+        app.tab = armlab::app::tabs::CALIBRATION;
+        let mut h = harness(app, SIZES[0]);
+        for lesson in [
+            "Lesson: converged is not accurate",
+            "Lesson: parallel axes",
+            "... with Hayati's beta",
+        ] {
+            h.get_by_label(lesson).click();
+            settle(&mut h);
+            let lab = &h.state().tabs.calibration.lab;
+            let sentence = lab.lesson.expect("the lesson says what to look at");
+            assert!(sentence.starts_with("Look at"), "{sentence}");
+            assert!(h.query_by_label_contains("Look at").is_some());
+            let what = format!("calibration after \"{lesson}\" (projector {projector})");
+            let bad = check(&h, SIZES[0], &what);
+            assert!(bad.is_empty(), "{}", bad.join("\n"));
+        }
+        h.state_mut().tabs.calibration.lab.compute_maps(40, 4_000);
+        settle(&mut h);
+        assert!(
+            h.query_by_label_contains("share one colour scale")
+                .is_some()
+        );
+        let bad = check(&h, SIZES[0], "calibration with its maps");
+        assert!(bad.is_empty(), "{}", bad.join("\n"));
+    }
+}
+
+/// C shows the construction and scrolls the right panel to it at 1280x800: the step buttons and
+/// the current step are in sight without touching the scroll bar (they were below the fold).
+#[test]
+fn the_construction_steps_come_into_view_when_shown() {
+    for name in ["puma560", "stanford", "planar2_fig2_30"] {
+        let mut h = harness(AppUi::new(AppState::from_spec(name).unwrap()), SIZES[0]);
+        h.key_press(egui::Key::C);
+        settle(&mut h);
+        settle(&mut h);
+        let right = h.state().rects.right.unwrap();
+        let next = h.get_by_label("Next (N) >").rect();
+        assert!(
+            right.contains_rect(next),
+            "{name}: the Next button {next:?} is out of sight in {right:?}"
+        );
+        let step = h
+            .query_all_by(|n| {
+                n.role() == egui::accesskit::Role::Button
+                    && n.label().is_some_and(|l| l.starts_with("1. "))
+            })
+            .next()
+            .expect("the first step")
+            .rect();
+        assert!(right.contains_rect(step), "{name}: step 1 {step:?} is out of sight");
     }
 }

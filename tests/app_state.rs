@@ -241,7 +241,11 @@ fn model_load_error_keeps_the_previous_model() {
     s.load_model("puma560").unwrap();
     assert_eq!(s.robot().name, "Puma 560");
     assert_eq!(s.spec(), "puma560");
-    assert_eq!(s.q(), s.robot().config("ready").unwrap());
+    // The Puma's "ready" is a wrist singularity: it opens at the regular pose near it, and the
+    // message says why.
+    let opening = armlab::kinematics::opening::opening_pose(s.robot());
+    assert_eq!(s.q(), &opening.q[..]);
+    assert!(s.last_message().unwrap().text.contains("singularity"));
     assert_eq!(s.dh_cells().len(), 6);
     assert!(AppState::from_spec("nope").is_err());
 }
@@ -502,9 +506,16 @@ fn readouts_trail_and_toggles() {
     s.set_joint(0, 0.1).unwrap();
     assert_eq!(s.trail(0).unwrap().len(), n + 1);
     assert_eq!(
-        *s.trail(0).unwrap().back().unwrap(),
+        s.trail(0).unwrap().back().unwrap().p,
         fk(&s, 0).translation.vector
     );
+    assert!(!s.trail(0).unwrap().back().unwrap().after_jump);
+    // A reset far away is a jump: the trail breaks there instead of drawing a line across.
+    s.set_q(&vec![0.0; s.robot().dof()]).unwrap();
+    s.set_joint(1, 1.5).unwrap();
+    assert!(s.trail(0).unwrap().back().unwrap().after_jump);
+    s.set_joint(1, 1.501).unwrap();
+    assert!(!s.trail(0).unwrap().back().unwrap().after_jump);
     for i in 0..(TRAIL_CAPACITY + 10) {
         s.set_joint(0, (i % 500) as f64 * 1e-3).unwrap();
     }
@@ -597,4 +608,18 @@ fn save_as_urdf_or_toml_and_load_back() {
     assert_eq!(u.q(), before.as_slice());
     assert!(u.save_model("  ").is_err());
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Messages count solutions from 1, as the list does: choosing the first solution when it is
+/// outside the limits says "IK solution 1", not "IK solution 0".
+#[test]
+fn a_solution_outside_the_limits_is_named_as_the_list_counts() {
+    let err = armlab::app::state::StateError::SolutionOutsideLimits {
+        index: 0,
+        posture: "shoulder right, elbow down".into(),
+    };
+    assert_eq!(
+        err.to_string(),
+        "IK solution 1 (\"shoulder right, elbow down\") is outside the joint limits"
+    );
 }

@@ -346,3 +346,59 @@ fn a_plot_without_extent_is_drawn() {
         }
     }
 }
+
+/// A press on a popup over the 3D view (a menu, a combo box's list, a window) belongs to the
+/// popup: the gizmo under it does not start dragging (clicks once fell through). Without the
+/// popup, the same press and drag moves the target.
+#[test]
+fn presses_on_a_popup_do_not_reach_the_gizmo_under_it() {
+    for with_popup in [false, true] {
+        let app = AppUi::new(AppState::from_spec("anthropomorphic_spherical_wrist").unwrap());
+        let grip = std::rc::Rc::new(std::cell::Cell::new(None::<egui::Pos2>));
+        let g = grip.clone();
+        let mut h = Harness::builder()
+            .with_size(egui::vec2(1280.0, 800.0))
+            .build_ui_state(
+                move |ui, app: &mut AppUi| {
+                    app.show(ui, None);
+                    if let (true, Some(p)) = (with_popup, g.get()) {
+                        egui::Area::new(egui::Id::new("popup over the view"))
+                            .order(egui::Order::Foreground)
+                            .fixed_pos(p - egui::vec2(60.0, 40.0))
+                            .show(ui.ctx(), |ui| {
+                                ui.set_min_size(egui::vec2(120.0, 80.0));
+                                let _ = ui.button("a menu entry");
+                            });
+                    }
+                },
+                app,
+            );
+        h.run();
+        let p = h.state().gizmo_grip().expect("the gizmo is shown");
+        grip.set(Some(p));
+        h.run();
+        let before = h.state().state.target(0).unwrap().world_from_tool;
+        h.drag_at(p);
+        h.step();
+        for k in 1..=5 {
+            h.hover_at(p + egui::vec2(8.0 * k as f32, 5.0 * k as f32));
+            h.step();
+        }
+        h.drop_at(p + egui::vec2(40.0, 25.0));
+        h.run();
+        let after = h.state().state.target(0).unwrap().world_from_tool;
+        let moved = (after.translation.vector - before.translation.vector).norm()
+            + (after.rotation.angle_to(&before.rotation));
+        if with_popup {
+            assert!(
+                moved < 1e-12,
+                "the press on the popup moved the target by {moved}"
+            );
+        } else {
+            assert!(
+                moved > 1e-4,
+                "the drag on the gizmo did not move the target"
+            );
+        }
+    }
+}

@@ -33,7 +33,7 @@ fn ghost_arms_draw_each_distinct_body_once() {
     state.set_target(0, tool).unwrap();
     let ghosts = state.ghosts(0);
     assert!(ghosts.len() >= 4, "{} postures", ghosts.len());
-    let scene = build_scene(&state, false);
+    let scene = build_scene(&state, 0, false);
     for (i, a) in scene.meshes.iter().enumerate() {
         for b in &scene.meshes[i + 1..] {
             assert!(!same_body(a, b), "a body is drawn twice: {a:?}");
@@ -46,7 +46,7 @@ fn ghost_arms_draw_each_distinct_body_once() {
     state.set_target(0, tool).unwrap();
     let ghosts = state.ghosts(0);
     assert_eq!(ghosts.len(), 8);
-    let scene = build_scene(&state, false);
+    let scene = build_scene(&state, 0, false);
     let style = ArmStyle::default();
     for g in &ghosts {
         for body in arm_scene(state.robot(), &g.q, &style).unwrap().meshes {
@@ -283,4 +283,55 @@ fn mesh_only_scenes_are_redrawn_when_they_move() {
     let b = meshes_only(&[0.0, 0.7]);
     assert!(render(&b).refine, "the moved meshes are a new frame");
     assert_eq!(vp.draws(), 3);
+}
+
+/// On a tree (the humanoid's two arms) only the driven chain's frames are labelled, so the
+/// labels of 17 frames do not pile up; "Labels of every frame" brings them all back.
+#[test]
+fn a_tree_labels_only_the_driven_chain_unless_asked() {
+    let mut state = AppState::from_spec("humanoid").unwrap();
+    state.display.frames = true;
+    state.display.labels = true;
+    let robot = state.robot().clone();
+    assert!(robot.end_effectors().len() > 1);
+    let frame_of = |text: &str| text.trim_start_matches(['x', 'y', 'z']).to_string();
+    let frame_labels = |scene: &armlab::scene::Scene| -> Vec<String> {
+        scene
+            .labels
+            .iter()
+            .flat_map(|l| l.text.lines())
+            .filter(|t| t.starts_with('x') || t.starts_with('z'))
+            .map(frame_of)
+            .collect()
+    };
+    for ee in 0..robot.end_effectors().len() {
+        let chain: Vec<String> = robot
+            .chain_to(robot.end_effectors()[ee].parent)
+            .iter()
+            .map(|j| (j + 1).to_string())
+            .collect();
+        let labels = frame_labels(&build_scene(&state, ee, false));
+        assert!(!labels.is_empty());
+        for f in &labels {
+            assert!(
+                f == "0" || chain.contains(f),
+                "ee {ee}: frame {f} is not on the chain"
+            );
+        }
+        for f in &chain {
+            assert!(
+                labels.contains(f),
+                "ee {ee}: frame {f} of the chain is not labelled"
+            );
+        }
+    }
+    state.display.all_labels = true;
+    let all = frame_labels(&build_scene(&state, 0, false));
+    for j in 0..robot.dof() {
+        assert!(
+            all.contains(&(j + 1).to_string()),
+            "frame {} unlabelled",
+            j + 1
+        );
+    }
 }

@@ -168,10 +168,9 @@ fn construction_angles_are_the_joints_they_name() {
                     d.min(2.0 * PI - d) < 1e-3
                 };
                 assert!(ok, "{model} {name}: drawn {angle}, q = {q:?}");
-                assert!(
-                    label.contains(&format!("{:.1}°", angle.to_degrees())),
-                    "{label}"
-                );
+                // Printed without a sign on zero ("-0.0°" is "0.0°").
+                let printed = format!("{:.1}°", angle.to_degrees()).replace("-0.0°", "0.0°");
+                assert!(label.contains(&printed), "{label}");
             }
             done += 1;
         }
@@ -301,4 +300,51 @@ fn every_family_draws_and_labels_its_joints() {
             }
         }
     }
+}
+
+/// The construction names its lengths as the DH table does, with the table's values: the Puma's
+/// forearm is sqrt(a3^2 + d4^2) (a3 = 20.3 mm, d4 = 431.8 mm), never "a3 = 0.432 m"; the
+/// textbook's arm's forearm is d4. No "-0.000" anywhere (the Puma's d6 = 0 once printed so).
+#[test]
+fn construction_lengths_carry_the_dh_tables_names_and_values() {
+    let puma = armlab::kinematics::models::built_in("puma560").unwrap();
+    let (_, rows) = puma.dh_table().unwrap();
+    let (a2, a3, d4) = (rows[1].1.a, rows[2].1.a, rows[3].1.d);
+    let q = armlab::kinematics::opening::opening_pose(&puma).q;
+    let steps = armlab::construction::steps::construction(&puma, &q).unwrap();
+    let (len, label) = segment(&steps, "sqrt(a3^2 + d4^2) = ");
+    let expected = (a3 * a3 + d4 * d4).sqrt();
+    assert!((len - expected).abs() < 1e-9, "{label}: drawn {len}");
+    assert!((label_value(&label) - expected).abs() < 5e-4, "{label}");
+    let (len2, label2) = segment(&steps, "a2 = ");
+    assert!((len2 - a2).abs() < 1e-9, "{label2}");
+    let all_text = |steps: &[armlab::construction::steps::Step]| -> String {
+        use armlab::construction::steps::Mark;
+        steps
+            .iter()
+            .flat_map(|s| {
+                let mut t = vec![s.title.clone(), s.formula.clone()];
+                t.extend(s.marks.iter().map(|m| match m {
+                    Mark::Point { label, .. }
+                    | Mark::Segment { label, .. }
+                    | Mark::Arc { label, .. } => label.clone(),
+                }));
+                t
+            })
+            .collect::<Vec<_>>()
+            .join("\n")
+    };
+    let text = all_text(&steps);
+    assert!(!text.contains("a3 = 0.43"), "{text}");
+    assert!(!text.contains("-0.000"), "{text}");
+    assert!(text.contains("with L3 = sqrt(a3^2 + d4^2)"), "{text}");
+    let arm = anthropomorphic_spherical_wrist();
+    let q = arm.config("ready").unwrap().to_vec();
+    let steps = armlab::construction::steps::construction(&arm, &q).unwrap();
+    let (len, label) = segment(&steps, "d4 = ");
+    assert!(
+        (len - 0.5).abs() < 1e-9 && label == "d4 = 0.500 m",
+        "{label}"
+    );
+    assert!(!all_text(&steps).contains("-0.000"));
 }

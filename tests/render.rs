@@ -347,3 +347,65 @@ fn translucent_meshes_blend_back_to_front_over_opaque_ones() {
         "red over green",
     );
 }
+
+/// A workspace cloud never hides the arm: dots of the underlay in front of a mesh are covered
+/// by it (they once were drawn with the depth test and a dense cloud hid the arm), while the
+/// same dot among the ordinary dots covers the mesh. Beside the mesh the underlay shows.
+#[test]
+fn underlay_dots_never_cover_a_mesh() {
+    let _serial = serial();
+    let settings = RenderSettings::unlit();
+    let mut camera = Camera {
+        target: Point3::new(0.0, 0.0, 0.0),
+        distance: 2.0,
+        ..Camera::default()
+    };
+    camera.set_preset(Preset::Iso);
+    let centre = [0.0, 0.0, 0.0];
+    // A point between the eye and the cube, on the ray through the cube's centre.
+    let eye = camera.eye();
+    let towards = [eye.x * 0.5, eye.y * 0.5, eye.z * 0.5];
+    let dot = |p: [f32; 3]| Dot {
+        p,
+        color: [0.0, 1.0, 0.0, 1.0],
+        size_px: 30.0,
+    };
+    let size = (320, 240);
+    let at = camera
+        .project(&Point3::from(centre), size.0, size.1)
+        .unwrap();
+    let red = srgb3([RED[0], RED[1], RED[2]]);
+    let green = srgb3([0.0, 1.0, 0.0]);
+    let under = Scene {
+        meshes: vec![mesh(Shape::Cube, centre, [0.3; 3], RED)],
+        underlay: vec![dot(towards)],
+        ..Default::default()
+    };
+    let img = render(&under, &camera, size, 1, &settings);
+    assert_pixel(
+        &img,
+        at,
+        red,
+        1,
+        "the cube over the underlay dot in front of it",
+    );
+    let over = Scene {
+        meshes: vec![mesh(Shape::Cube, centre, [0.3; 3], RED)],
+        dots: vec![dot(towards)],
+        ..Default::default()
+    };
+    let img = render(&over, &camera, size, 1, &settings);
+    assert_pixel(
+        &img,
+        at,
+        green,
+        1,
+        "an ordinary dot in front of the cube covers it",
+    );
+    let beside = Scene {
+        underlay: vec![dot(towards)],
+        ..Default::default()
+    };
+    let img = render(&beside, &camera, size, 1, &settings);
+    assert_pixel(&img, at, green, 1, "the underlay dot alone shows");
+}

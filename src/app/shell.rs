@@ -388,7 +388,7 @@ impl AppUi {
         dark: bool,
     ) -> Option<ViewportImage> {
         self.tabs.view3d.frame_if_needed(&self.state);
-        let mut scene = build_scene(&self.state, self.layout.projector);
+        let mut scene = build_scene(&self.state, self.ee(), self.layout.projector);
         for t in self.tabs.all() {
             t.decorate(&self.state, &mut scene);
         }

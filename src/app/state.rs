@@ -60,6 +60,18 @@ use std::collections::VecDeque;
 pub const TRAIL_CAPACITY: usize = 2000;
 /// A trail point is added only when the end-effector moved more than this (m).
 pub const TRAIL_MIN_STEP: f64 = 1e-6;
+/// A step of the tool longer than this share of the arm's reach is a jump (a reset, a typed
+/// value, another configuration): the trail breaks there instead of drawing a line across.
+pub const TRAIL_JUMP_SHARE: f64 = 0.1;
+
+/// One point of a trail.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TrailPoint {
+    /// The end-effector's position (m, world).
+    pub p: Vector3<f64>,
+    /// The arm jumped here from the previous point: no line joins them.
+    pub after_jump: bool,
+}
 /// Most status messages kept.
 pub const MESSAGE_CAPACITY: usize = 64;
 
@@ -77,7 +89,7 @@ pub struct AppState {
     angle_unit: AngleUnit,
     /// Orientation representation of the readouts (ZYZ or RPY).
     pub orientation: EulerKind,
-    trails: Vec<VecDeque<Vector3<f64>>>,
+    trails: Vec<VecDeque<TrailPoint>>,
     messages: VecDeque<StatusMessage>,
     analyzer: SingularityAnalyzer,
     /// Posture classes of the robot (the workspace figures' colours).
@@ -129,7 +141,9 @@ impl AppState {
             redo: Vec::new(),
             robot,
         };
-        me.install_q();
+        if let Some(note) = me.install_q() {
+            me.push_message(Level::Info, note);
+        }
         for w in me.robot.load_warnings.clone() {
             me.push_message(Level::Warning, w);
         }
@@ -180,8 +194,11 @@ impl AppState {
                 self.robot = robot;
                 self.generation += 1;
                 self.trails.clear();
-                self.install_q();
-                let msg = format!("loaded {} ({} DOF)", self.robot.name, self.robot.dof());
+                let note = self.install_q();
+                let mut msg = format!("loaded {} ({} DOF)", self.robot.name, self.robot.dof());
+                if let Some(note) = note {
+                    msg = format!("{msg}; {note}");
+                }
                 self.push_message(Level::Info, msg);
                 for w in self.robot.load_warnings.clone() {
                     self.push_message(Level::Warning, w);
@@ -199,14 +216,12 @@ impl AppState {
         }
     }
 
-    /// q at "ready" (or zero), targets synced, trails started.
-    fn install_q(&mut self) {
-        let n = self.robot.dof();
-        let mut q = self
-            .robot
-            .config("ready")
-            .filter(|c| c.len() == n)
-            .map_or_else(|| vec![0.0; n], <[f64]>::to_vec);
+    /// q at the model's opening pose ("ready", or a regular pose near it from which every
+    /// posture can be shown: [`crate::kinematics::opening`]), targets synced, trails started.
+    /// Returns why the pose is not "ready", if it is not.
+    fn install_q(&mut self) -> Option<String> {
+        let opening = crate::kinematics::opening::opening_pose(&self.robot);
+        let mut q = opening.q;
         clamp_into(&mut q, &self.robot.limits());
         self.q = q;
         self.q_epoch += 1;
@@ -228,6 +243,7 @@ impl AppState {
             self.sync_target(ee);
         }
         self.push_trail();
+        opening.note
     }
 
     /// The model spec (built-in name or path) the robot came from.
@@ -374,8 +390,8 @@ impl AppState {
         self.messages.clear();
     }
 
-    /// Recent positions (m, world) of end-effector `ee`, oldest first.
-    pub fn trail(&self, ee: usize) -> Option<&VecDeque<Vector3<f64>>> {
+    /// Recent positions (m, world) of end-effector `ee`, oldest first, with the jumps marked.
+    pub fn trail(&self, ee: usize) -> Option<&VecDeque<TrailPoint>> {
         self.trails.get(ee)
     }
 
@@ -387,21 +403,23 @@ impl AppState {
     }
 
     fn push_trail(&mut self) {
+        let jump = TRAIL_JUMP_SHARE * self.robot.longest_chain_length().max(1e-3);
         for (ee, trail) in self.trails.iter_mut().enumerate() {
             let Ok(t) = self.robot.fk_ee(&self.q, ee) else {
                 continue;
             };
             let p = t.translation.vector;
-            if trail
-                .back()
-                .is_some_and(|b| (b - p).norm() <= TRAIL_MIN_STEP)
-            {
+            let step = trail.back().map(|b| (b.p - p).norm());
+            if step.is_some_and(|d| d <= TRAIL_MIN_STEP) {
                 continue;
             }
             if trail.len() == TRAIL_CAPACITY {
                 trail.pop_front();
             }
-            trail.push_back(p);
+            trail.push_back(TrailPoint {
+                p,
+                after_jump: step.is_some_and(|d| d > jump),
+            });
         }
     }
 

@@ -270,11 +270,13 @@ fn fingerprint(scene: &Scene, view: &ViewUniforms, dark: bool, size: [u32; 2]) -
         h.f(&l.color);
         h.f(&[l.width_px]);
     }
-    h.u32(scene.dots.len() as u32);
-    for d in &scene.dots {
-        h.f(&d.p);
-        h.f(&d.color);
-        h.f(&[d.size_px]);
+    for dots in [&scene.dots, &scene.underlay] {
+        h.u32(dots.len() as u32);
+        for d in dots {
+            h.f(&d.p);
+            h.f(&d.color);
+            h.f(&[d.size_px]);
+        }
     }
     h.0
 }
@@ -313,8 +315,9 @@ pub fn add_measured_poses(scene: &mut Scene, robot: &crate::kinematics::Robot, p
 
 /// The app's 3D scene for the current state: the arm, ghosts of the other solutions labelled
 /// with their posture (greyed when outside the limits), the targets and trails (the tabs add
-/// their overlays: the workspace dots, the measured poses).
-pub fn build_scene(state: &AppState, projector: bool) -> Scene {
+/// their overlays: the workspace dots, the measured poses). `ee` is the end-effector the IK
+/// panel drives: on a tree, only its chain's frames are labelled unless every label is asked for.
+pub fn build_scene(state: &AppState, ee: usize, projector: bool) -> Scene {
     let robot = state.robot();
     let d = state.display;
     let style = ArmStyle {
@@ -324,6 +327,28 @@ pub fn build_scene(state: &AppState, projector: bool) -> Scene {
         ..ArmStyle::default()
     };
     let mut scene = arm_scene(robot, state.q(), &style).unwrap_or_default();
+    if !d.all_labels && robot.end_effectors().len() > 1 {
+        // A tree (a humanoid's arms): only the frames of the driven chain are labelled, unless
+        // every label is asked for; the others' triads stay, unlabelled.
+        let ee_link = robot.end_effectors()[ee.min(robot.end_effectors().len() - 1)].parent;
+        let mut names: Vec<String> = vec!["0".into()];
+        names.extend(robot.chain_to(ee_link).iter().map(|j| (j + 1).to_string()));
+        // Labels of frames at one point are merged, a line each ("z0\nx1").
+        let on_chain = |line: &str| {
+            let frame = line.trim_start_matches(['x', 'y', 'z']);
+            let is_frame = frame.len() < line.len() && frame.parse::<usize>().is_ok();
+            !is_frame || names.iter().any(|n| n == frame)
+        };
+        for l in &mut scene.labels {
+            l.text = l
+                .text
+                .lines()
+                .filter(|t| on_chain(t))
+                .collect::<Vec<_>>()
+                .join("\n");
+        }
+        scene.labels.retain(|l| !l.text.is_empty());
+    }
     if projector {
         for l in &mut scene.lines {
             l.width_px *= 1.6;
@@ -369,11 +394,12 @@ pub fn build_scene(state: &AppState, projector: bool) -> Scene {
         if d.trail
             && let Some(trail) = state.trail(ee)
         {
-            let pts: Vec<[f32; 3]> = trail
-                .iter()
-                .map(|p| [p.x as f32, p.y as f32, p.z as f32])
-                .collect();
-            for w in pts.windows(2) {
+            let pts: Vec<[f32; 3]> = trail.iter().map(|t| point32(&t.p).into()).collect();
+            // No line across a jump (a reset, a typed value).
+            for (k, w) in pts.windows(2).enumerate() {
+                if trail[k + 1].after_jump {
+                    continue;
+                }
                 scene.lines.push(Line {
                     a: w[0],
                     b: w[1],

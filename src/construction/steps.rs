@@ -8,6 +8,7 @@ mod arms;
 
 use super::{ConstructionError, TwoLinkConstruction, WristPoint};
 use crate::kinematics::Robot;
+use crate::kinematics::dh::Convention;
 use crate::kinematics::ik::closed_form::{ArmKind, ClosedForm, Family};
 use nalgebra::{Matrix3, Vector3};
 
@@ -92,6 +93,60 @@ fn signed(u: &Vector3<f64>, v: &Vector3<f64>, n: &Vector3<f64>) -> f64 {
 
 /// The construction of the closed-form solution at `q`, or why there is none.
 pub fn construction(robot: &Robot, q: &[f64]) -> Result<Vec<Step>, ConstructionError> {
+    let mut steps = family_steps(robot, q)?;
+    for step in &mut steps {
+        no_negative_zero(&mut step.title);
+        no_negative_zero(&mut step.formula);
+        for mark in &mut step.marks {
+            match mark {
+                Mark::Point { label, .. }
+                | Mark::Segment { label, .. }
+                | Mark::Arc { label, .. } => no_negative_zero(label),
+            }
+        }
+    }
+    Ok(steps)
+}
+
+/// "-0.000" (a rounded -1e-17) written as "0.000", wherever it appears in `text`.
+fn no_negative_zero(text: &mut String) {
+    let mut out = String::with_capacity(text.len());
+    let mut rest = text.as_str();
+    while let Some(pos) = rest.find("-0") {
+        out.push_str(&rest[..pos]);
+        // The number after the sign: digits and points.
+        let after = &rest[pos + 1..];
+        let end = after
+            .find(|c: char| !(c.is_ascii_digit() || c == '.'))
+            .unwrap_or(after.len());
+        let number = &after[..end];
+        // A sign, not a subtraction: nothing that ends an operand just before it.
+        let is_sign = !out
+            .chars()
+            .next_back()
+            .is_some_and(|c| c.is_alphanumeric() || c == ')' || c == ']');
+        if !(is_sign && number.chars().all(|c| c == '0' || c == '.')) {
+            out.push('-');
+        }
+        out.push_str(number);
+        rest = &after[end..];
+    }
+    out.push_str(rest);
+    *text = out;
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn negative_zero_loses_its_sign_and_nothing_else_does() {
+        let mut t = "d6 = -0.000 m, -0.0004 m, -0.5°, (-0.0, 3-0.000) x-0".to_string();
+        super::no_negative_zero(&mut t);
+        assert_eq!(t, "d6 = 0.000 m, -0.0004 m, -0.5°, (0.0, 3-0.000) x-0");
+    }
+}
+
+/// The steps of the arm's family.
+fn family_steps(robot: &Robot, q: &[f64]) -> Result<Vec<Step>, ConstructionError> {
     let cf = ClosedForm::detect(robot)?;
     match cf.family() {
         Family::Planar2 => planar(robot, q, false),
@@ -373,6 +428,9 @@ struct ArmGeometry {
     off: [f64; 3],
     /// p_W's horizontal components in the base frame.
     pw_xy: (f64, f64),
+    /// What the DH table calls the lengths |E - S| and |p_W - E| ("a2"; "a3", "d4" or
+    /// "sqrt(a3^2 + d4^2)" for an elbow offset such as the Puma's).
+    names: [String; 2],
 }
 
 impl ArmGeometry {
@@ -406,6 +464,7 @@ impl ArmGeometry {
                 (p_w - foot).dot(&(b * Vector3::x())),
                 (p_w - foot).dot(&(b * Vector3::y())),
             ),
+            names: link_names(robot, wrist),
         };
         if !at_zero {
             let zero = Self::at(robot, &vec![0.0; robot.dof()], wrist, true)?;
@@ -423,6 +482,41 @@ impl ArmGeometry {
             signed(&(self.e - self.s), &(self.p_w - self.e), &self.w3),
         ]
     }
+}
+
+/// The DH table's names for the upper arm |E - S| and the forearm |p_W - E| of an
+/// anthropomorphic arm (standard DH: a2; a3 and, with a wrist, d4); the forearm named by the
+/// parameters that make it, "sqrt(a3^2 + d4^2)" when both do. Generic names where the table is
+/// in another convention.
+fn link_names(robot: &Robot, wrist: bool) -> [String; 2] {
+    let generic = ["|E - S|".to_string(), "|p_W - E|".to_string()];
+    let Some((Convention::Standard, rows)) = robot.dh_table() else {
+        return generic;
+    };
+    let (Some(r3), r4) = (rows.get(2), rows.get(3)) else {
+        return generic;
+    };
+    let mut parts = vec![("a3", r3.1.a)];
+    if wrist && let Some(r4) = r4 {
+        parts.push(("d4", r4.1.d));
+    }
+    let named: Vec<&str> = parts
+        .iter()
+        .filter(|(_, v)| v.abs() > 1e-12)
+        .map(|(n, _)| *n)
+        .collect();
+    let forearm = match named.as_slice() {
+        [one] => (*one).to_string(),
+        [] => generic[1].clone(),
+        many => format!(
+            "sqrt({})",
+            many.iter()
+                .map(|n| format!("{n}^2"))
+                .collect::<Vec<_>>()
+                .join(" + ")
+        ),
+    };
+    ["a2".to_string(), forearm]
 }
 
 /// Sects. 2.12.2, 2.12.4, 2.12.5: the wrist point (2.93), theta1 (2.109)-(2.110), the arm plane's
@@ -599,6 +693,12 @@ fn arm_triangle(g: &ArmGeometry) -> Step {
     let e_other = s + u * (2.0 * u.dot(&(e - s))) - (e - s);
     let theta3 = signed(&(e - s), &(p_w - e), &g.w3);
     let off3 = g.off[2];
+    // The forearm by its DH name; one letter in the formula where it is a root of two.
+    let (f, with) = if g.names[1].starts_with("sqrt") {
+        ("L3", format!(" with L3 = {}", g.names[1]))
+    } else {
+        (g.names[1].as_str(), String::new())
+    };
     let seg = |a, b, label: String, dashed| Mark::Segment {
         a,
         b,
@@ -609,9 +709,9 @@ fn arm_triangle(g: &ArmGeometry) -> Step {
         title: "The triangle in the arm plane: c3, and the two elbows".into(),
         equation: "(2.99)-(2.101)".into(),
         formula: format!(
-            "c3 = (|p_W - S|^2 - a2^2 - a3^2) / (2 a2 a3) = ({d:.3}^2 - {a2:.3}^2 - {a3:.3}^2) / \
-             (2 {a2:.3} {a3:.3}) = {c3:.4}; the angle between the links +-acos(c3) = {}, so \
-             theta3 = {}{} (elbow up / down)",
+            "c3 = (|p_W - S|^2 - a2^2 - {f}^2) / (2 a2 {f}){with} = ({d:.3}^2 - {a2:.3}^2 - \
+             {a3:.3}^2) / (2 {a2:.3} {a3:.3}) = {c3:.4}; the angle between the links +-acos(c3) \
+             = {}, so theta3 = {}{} (elbow up / down)",
             deg(theta3),
             deg(theta3 - off3),
             if off3.abs() > 1e-9 {
@@ -621,8 +721,8 @@ fn arm_triangle(g: &ArmGeometry) -> Step {
             }
         ),
         marks: vec![
-            seg(s, e, format!("a2 = {a2:.3} m"), false),
-            seg(e, p_w, format!("a3 = {a3:.3} m"), false),
+            seg(s, e, format!("{} = {a2:.3} m", g.names[0]), false),
+            seg(e, p_w, format!("{} = {a3:.3} m", g.names[1]), false),
             seg(s, p_w, format!("{d:.3} m"), true),
             seg(s, e_other, "the other elbow".into(), true),
             seg(e_other, p_w, String::new(), true),

@@ -9,13 +9,21 @@ use super::{FigureError, Theme};
 use crate::calibration::AccuracyMap;
 
 /// The plot and raster of `map`, titled `title`.
-pub fn accuracy_plot(map: &AccuracyMap, title: &str) -> (Plot2d, egui::ColorImage) {
-    let top = map
-        .values
-        .iter()
-        .copied()
-        .filter(|v| v.is_finite())
-        .fold(0.0, f64::max);
+///
+/// `scale_max` (m) sets the top of the colour scale (larger values take its top colour), so that
+/// two maps compared side by side share one scale; `None` scales to this map's own largest value.
+pub fn accuracy_plot(
+    map: &AccuracyMap,
+    title: &str,
+    scale_max: Option<f64>,
+) -> (Plot2d, egui::ColorImage) {
+    let top = scale_max.unwrap_or_else(|| {
+        map.values
+            .iter()
+            .copied()
+            .filter(|v| v.is_finite())
+            .fold(0.0, f64::max)
+    });
     let max_mm = (top * 1e3).max(1e-9);
     let mut img = egui::ColorImage::new(
         [map.width, map.height],
@@ -26,7 +34,7 @@ pub fn accuracy_plot(map: &AccuracyMap, title: &str) -> (Plot2d, egui::ColorImag
             let v = map.values[j * map.width + i];
             if v.is_finite() {
                 // Image rows go down, the map's rows up.
-                let [r, g, b] = sequential((v * 1e3 / max_mm) as f32);
+                let [r, g, b] = sequential(((v * 1e3 / max_mm) as f32).min(1.0));
                 img.pixels[(map.height - 1 - j) * map.width + i] = egui::Color32::from_rgb(r, g, b);
             }
         }
@@ -63,6 +71,6 @@ pub fn accuracy_figure(
     size: [u32; 2],
     theme: Theme,
 ) -> Result<image::RgbaImage, FigureError> {
-    let (plot, img) = accuracy_plot(map, title);
+    let (plot, img) = accuracy_plot(map, title, None);
     figures.plot(size, theme, &plot, Some(img))
 }

@@ -14,6 +14,7 @@ pub mod hold;
 pub mod ik;
 pub mod jacobian;
 pub mod models;
+pub mod opening;
 pub mod orientation;
 pub mod pose;
 pub mod redundancy;

@@ -53,9 +53,11 @@ pub(crate) struct DrawLists {
     pub lines: Vec<LineGpu>,
     /// Number of opaque lines.
     pub lines_opaque: u32,
-    /// Opaque dots, then translucent ones.
+    /// The underlay's dots, then the opaque dots, then the translucent ones.
     pub dots: Vec<DotGpu>,
-    /// Number of opaque dots.
+    /// Number of underlay dots (first in `dots`).
+    pub dots_underlay: u32,
+    /// Number of opaque dots (after the underlay's).
     pub dots_opaque: u32,
 }
 
@@ -281,6 +283,20 @@ impl DrawLists {
         let dot_alpha = |d: &Dot| if d.size_px > 0.0 { d.color[3] } else { 0.0 };
         (self.lines_opaque, _) = partition(&mut self.lines, &scene.lines, line_alpha, line_gpu);
         (self.dots_opaque, _) = partition(&mut self.dots, &scene.dots, dot_alpha, dot_gpu);
+        // The underlay goes first: drawn before anything else, it is covered by all of it.
+        let under: Vec<DotGpu> = scene
+            .underlay
+            .iter()
+            .filter(|d| dot_alpha(d) > 0.0)
+            .map(dot_gpu)
+            .collect();
+        self.dots_underlay = under.len() as u32;
+        self.dots.splice(0..0, under);
+    }
+
+    /// The underlay's dots (an instance range).
+    pub(crate) fn underlay_range(&self) -> Range<u32> {
+        0..self.dots_underlay
     }
 
     /// The lines of one pass (an instance range).
@@ -294,10 +310,11 @@ impl DrawLists {
 
     /// The dots of one pass (an instance range).
     pub(crate) fn dot_range(&self, translucent: bool) -> Range<u32> {
+        let opaque_end = self.dots_underlay + self.dots_opaque;
         if translucent {
-            self.dots_opaque..self.dots.len() as u32
+            opaque_end..self.dots.len() as u32
         } else {
-            0..self.dots_opaque
+            self.dots_underlay..opaque_end
         }
     }
 

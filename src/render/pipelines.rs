@@ -25,6 +25,8 @@ pub(crate) struct Pipelines {
     pub line: [wgpu::RenderPipeline; 2],
     /// Dots, indexed by `[translucent]`.
     pub dot: [wgpu::RenderPipeline; 2],
+    /// Underlay dots: no depth test or write, drawn first (covered by everything else).
+    pub dot_underlay: wgpu::RenderPipeline,
 }
 
 const MESH_VERTEX_ATTRS: [wgpu::VertexAttribute; 2] =
@@ -75,6 +77,8 @@ struct PipelineSpec<'a> {
     cull_mode: Option<wgpu::Face>,
     blend: Option<wgpu::BlendState>,
     depth_write: bool,
+    /// `Always` for the underlay, `Less` otherwise.
+    depth_compare: wgpu::CompareFunction,
 }
 
 /// Layout of group 0: the frame uniforms, visible to vertex and fragment stages.
@@ -135,7 +139,7 @@ fn render_pipeline(
         depth_stencil: Some(wgpu::DepthStencilState {
             format: DEPTH_FORMAT,
             depth_write_enabled: Some(spec.depth_write),
-            depth_compare: Some(wgpu::CompareFunction::Less),
+            depth_compare: Some(spec.depth_compare),
             stencil: Default::default(),
             bias: Default::default(),
         }),
@@ -198,6 +202,7 @@ impl Pipelines {
                 cull_mode: Some(wgpu::Face::Back),
                 blend: blend_for(pass),
                 depth_write: pass == Pass::Opaque,
+                depth_compare: wgpu::CompareFunction::Less,
             })
         };
         let overlay = |label, module, buffers, topology, pass: Pass| {
@@ -211,8 +216,20 @@ impl Pipelines {
                 // Lines and dots blend in both passes: their anti-aliased edges need it.
                 blend: Some(wgpu::BlendState::ALPHA_BLENDING),
                 depth_write: pass == Pass::Opaque,
+                depth_compare: wgpu::CompareFunction::Less,
             })
         };
+        let dot_underlay = build(PipelineSpec {
+            label: "armlab underlay dot",
+            module: &dot_module,
+            buffers: &dot_buffers,
+            topology: wgpu::PrimitiveTopology::TriangleList,
+            front_face: wgpu::FrontFace::Ccw,
+            cull_mode: None,
+            blend: Some(wgpu::BlendState::ALPHA_BLENDING),
+            depth_write: false,
+            depth_compare: wgpu::CompareFunction::Always,
+        });
         use wgpu::FrontFace::{Ccw, Cw};
         use wgpu::PrimitiveTopology::{TriangleList, TriangleStrip};
         Self {
@@ -224,6 +241,7 @@ impl Pipelines {
                 .map(|p| overlay("armlab line", &line_module, &line_buffers, TriangleStrip, p)),
             dot: [Pass::Opaque, Pass::Translucent]
                 .map(|p| overlay("armlab dot", &dot_module, &dot_buffers, TriangleList, p)),
+            dot_underlay,
             frame_layout,
         }
     }

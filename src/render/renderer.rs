@@ -187,7 +187,8 @@ impl Renderer {
 
     /// Draws `scene` into `target` and submits the work (does not wait for it).
     ///
-    /// Order: opaque meshes; opaque lines and dots (depth written); translucent meshes
+    /// Order: the underlay's dots (no depth test or write, so everything covers them); opaque
+    /// meshes; opaque lines and dots (depth written); translucent meshes
     /// (alpha < 1) sorted back to front by the distance from the eye to their origin, blended
     /// with depth test on and depth write off; then translucent lines and dots. Items with
     /// alpha <= 0 are skipped.
@@ -268,6 +269,12 @@ impl Renderer {
             multiview_mask: None,
         });
         pass.set_bind_group(0, &self.frame_bind_group, &[]);
+        let under = self.lists.underlay_range();
+        if let (Some(buffer), false) = (self.dot_instances.buffer(), under.is_empty()) {
+            pass.set_pipeline(&self.pipelines.dot_underlay);
+            pass.set_vertex_buffer(0, buffer.slice(..));
+            pass.draw(0..3, under);
+        }
         for translucent in [false, true] {
             self.draw_meshes(&mut pass, translucent);
             self.draw_overlays(&mut pass, translucent);

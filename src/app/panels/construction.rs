@@ -21,6 +21,9 @@ pub struct ConstructionPanel {
     pub shown: bool,
     /// The step shown (0-based; the steps before it stay drawn).
     pub step: usize,
+    /// The step last scrolled into view (`None` while hidden): the panel scrolls to the steps
+    /// when they appear and when the step changes, instead of leaving them below the fold.
+    seen: Option<usize>,
 }
 
 impl ConstructionPanel {
@@ -29,6 +32,7 @@ impl ConstructionPanel {
         ui.heading("Construction");
         ui.checkbox(&mut self.shown, "Show the construction (C)");
         if !self.shown {
+            self.seen = None;
             return;
         }
         let steps = match construction(state.robot(), state.q()) {
@@ -60,7 +64,11 @@ impl ConstructionPanel {
             }
         }
         let s = &steps[self.step];
-        ui.label(RichText::new(&s.formula).monospace().small());
+        let formula = ui.label(RichText::new(&s.formula).monospace().small());
+        if self.seen != Some(self.step) {
+            formula.scroll_to_me(Some(egui::Align::Max));
+            self.seen = Some(self.step);
+        }
     }
 
     /// Adds the construction of the current configuration, up to the step shown, to `scene`.

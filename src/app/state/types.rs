@@ -260,9 +260,9 @@ pub enum StateError {
     #[error("{0}")]
     Task(String),
     /// The chosen solution violates the joint limits.
-    #[error("IK solution {index} (\"{posture}\") is outside the joint limits")]
+    #[error("IK solution {} (\"{posture}\") is outside the joint limits", index + 1)]
     SolutionOutsideLimits {
-        /// Index.
+        /// Index (0-based; the message counts from 1, as the list does).
         index: usize,
         /// Its posture.
         posture: String,

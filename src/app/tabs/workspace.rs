@@ -332,10 +332,8 @@ impl Tab for WorkspaceTab {
         if state.display.workspace
             && let Some(dots) = self.job.as_ref().and_then(|j| j.dots())
         {
-            // Behind the arm: drawn before it, small and pale.
-            let mut under: Vec<crate::scene::Dot> = dots.to_vec();
-            under.append(&mut scene.dots);
-            scene.dots = under;
+            // Under the arm: the cloud never hides it.
+            scene.underlay.extend_from_slice(dots);
         }
     }
 

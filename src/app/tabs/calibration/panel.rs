@@ -40,6 +40,16 @@ pub fn show(
         settings(lab, ui);
         actions(lab, robot, q, ui);
         files(lab, robot, picker, ui);
+        if let Some(l) = lab.lesson {
+            ui.add(
+                egui::Label::new(
+                    RichText::new(l)
+                        .strong()
+                        .color(Color32::from_rgb(0, 70, 140)),
+                )
+                .wrap(),
+            );
+        }
         if let Some(m) = &lab.message {
             let color = if m.starts_with("saved") {
                 Color32::from_rgb(0, 110, 0)
@@ -76,6 +86,9 @@ fn maps(lab: &CalibrationLab, textures: &mut MapTextures, ui: &mut egui::Ui) {
     };
     if textures.generation != lab.maps_generation || textures.textures.is_empty() {
         textures.textures.clear();
+        // One colour scale for both: the nominal's (before) largest deviation, so the after map
+        // shows how much darker it is instead of rescaling to look alike.
+        let shared = before.as_ref().map(|b| b.max);
         let list = [
             (before.as_ref(), "before calibration"),
             (Some(after), "after calibration"),
@@ -83,7 +96,7 @@ fn maps(lab: &CalibrationLab, textures: &mut MapTextures, ui: &mut egui::Ui) {
         for (m, what) in list {
             let Some(m) = m else { continue };
             let (plot, img) =
-                crate::figure::accuracy::accuracy_plot(m, &format!("Accuracy {what}"));
+                crate::figure::accuracy::accuracy_plot(m, &format!("Accuracy {what}"), shared);
             let tex = ui.ctx().load_texture(
                 format!("accuracy {what}"),
                 img,
@@ -92,6 +105,14 @@ fn maps(lab: &CalibrationLab, textures: &mut MapTextures, ui: &mut egui::Ui) {
             textures.textures.push((plot, tex));
         }
         textures.generation = lab.maps_generation;
+    }
+    if let Some(b) = before {
+        ui.label(format!(
+            "Both maps share one colour scale, 0 to {:.3} mm: the nominal model's largest \
+             deviation. After calibration the largest is {:.4} mm.",
+            b.max * 1e3,
+            after.max * 1e3
+        ));
     }
     let w = ui.available_width() / textures.textures.len().max(1) as f32;
     ui.horizontal(|ui| {
