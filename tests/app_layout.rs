@@ -422,6 +422,9 @@ fn the_construction_steps_come_into_view_when_shown() {
             .next()
             .expect("the first step")
             .rect();
-        assert!(right.contains_rect(step), "{name}: step 1 {step:?} is out of sight");
+        assert!(
+            right.contains_rect(step),
+            "{name}: step 1 {step:?} is out of sight"
+        );
     }
 }

@@ -294,3 +294,52 @@ fn ten_thousand_slider_steps_never_move_the_hand() {
         );
     }
 }
+
+/// The live window's path: the self-motion slider dragged back and forth with the mouse, four
+/// sweeps, as a teacher would (egui_kittest, the window's own layout). The hand stays where it
+/// was when the self-motion started (it once drifted by 0.3 mm and 0.4 deg a sweep while the
+/// readout said 0 and the target followed the hand), and the target stays put.
+#[test]
+fn dragging_the_slider_in_the_window_never_moves_the_hand() {
+    use egui_kittest::Harness;
+    use egui_kittest::kittest::Queryable;
+    for name in ["dlr", "lwr4", "panda"] {
+        let app = armlab::app::AppUi::new(state(name));
+        let mut h = Harness::builder()
+            .with_size(egui::vec2(1280.0, 800.0))
+            .build_ui_state(|ui, app: &mut armlab::app::AppUi| app.show(ui, None), app);
+        h.state_mut().tab = armlab::app::tabs::SELF_MOTION;
+        for _ in 0..4 {
+            h.step();
+        }
+        let held = fk(&h.state().state, 0);
+        let target = h.state().state.target(0).unwrap().world_from_tool;
+        let track = h.get_by_label("self-motion slider").rect();
+        let y = track.center().y;
+        let xs: Vec<f32> = (0..=40)
+            .map(|k| track.left() + 2.0 + (track.width() - 4.0) * k as f32 / 40.0)
+            .collect();
+        for _sweep in 0..4 {
+            h.drag_at(egui::pos2(track.center().x, y));
+            h.step();
+            for &x in xs.iter().rev().chain(xs.iter()) {
+                h.hover_at(egui::pos2(x, y));
+                h.step();
+            }
+            h.drop_at(egui::pos2(track.center().x, y));
+            h.step();
+        }
+        h.step();
+        let s = &h.state().state;
+        let (dp, dr) = gap(&fk(s, 0), &held);
+        assert!(
+            dp < 1e-12 && dr < 1e-12,
+            "{name}: the hand moved {dp} m, {dr} rad"
+        );
+        let (tp, tr) = gap(&s.target(0).unwrap().world_from_tool, &target);
+        assert!(
+            tp < 1e-12 && tr < 1e-12,
+            "{name}: the target moved {tp} m, {tr} rad"
+        );
+    }
+}

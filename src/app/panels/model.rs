@@ -305,9 +305,13 @@ fn joint_sliders(state: &AppState, ui: &mut egui::Ui, out: &mut Actions) {
             continue;
         };
         let mut value = v;
+        // Two decimals shown by the formatter only: a slider with `max_decimals` rounds the
+        // value it is handed every frame and reports a change nobody made, which moved the arm
+        // (the self-motion's hand drifted 0.05 mm a sweep, and the target followed it). For
+        // the same reason a value outside the range is not clamped until the user moves it.
         let slider = egui::Slider::new(&mut value, lo..=hi)
+            .clamping(egui::SliderClamping::Edits)
             .text(format!("{name} [{}]", quantity.symbol(unit)))
-            .max_decimals(2)
             .custom_formatter(|v, _| format_number(v, 2));
         if ui.add(slider).changed() {
             out.push(Action::SetJoint(k, quantity.from_display(value, unit)));

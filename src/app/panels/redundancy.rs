@@ -110,6 +110,10 @@ fn slider_section(
 fn track(ui: &mut egui::Ui, view: &SelfMotionView) -> Option<f64> {
     let width = ui.available_width().max(120.0);
     let (rect, response) = ui.allocate_exact_size(egui::vec2(width, 26.0), Sense::click_and_drag());
+    // A slider to assistive tools (and to tests that drive the window).
+    response.widget_info(|| {
+        egui::WidgetInfo::slider(true, view.value.to_degrees(), "self-motion slider")
+    });
     let [lo, hi] = view.range;
     let x_of = |v: f64| rect.left() + ((v - lo) / (hi - lo)) as f32 * rect.width();
     let bar = egui::Rect::from_min_max(
