@@ -362,7 +362,7 @@ fn presses_on_a_popup_do_not_reach_the_gizmo_under_it() {
                 move |ui, app: &mut AppUi| {
                     app.show(ui, None);
                     if let (true, Some(p)) = (with_popup, g.get()) {
-                        egui::Area::new(egui::Id::new("popup over the view"))
+                        egui::Area::new(egui::Id::unique("popup over the view"))
                             .order(egui::Order::Foreground)
                             .fixed_pos(p - egui::vec2(60.0, 40.0))
                             .show(ui.ctx(), |ui| {

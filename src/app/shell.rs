@@ -435,26 +435,7 @@ impl AppUi {
     /// The keyboard: the desktop's shortcuts (consumed, so Ctrl+O does not also press O), then
     /// single keys unless a text field has the keyboard.
     fn shortcuts(&mut self, ctx: &egui::Context, out: &mut Actions) {
-        let command = |k: Key, shift: bool| {
-            let mut m = egui::Modifiers::COMMAND;
-            m.shift = shift;
-            ctx.input_mut(|i| i.consume_shortcut(&egui::KeyboardShortcut::new(m, k)))
-        };
-        if command(Key::O, false) {
-            out.push(Action::OpenDialog);
-        }
-        if command(Key::S, false) {
-            out.push(Action::SaveDialog);
-        }
-        if command(Key::Z, true) {
-            out.push(Action::Redo);
-        }
-        if command(Key::Z, false) {
-            out.push(Action::Undo);
-        }
-        if command(Key::Q, false) {
-            ctx.send_viewport_cmd(egui::ViewportCommand::Close);
-        }
+        command_shortcuts(ctx, out);
         if ctx.egui_wants_keyboard_input() {
             return;
         }
@@ -658,6 +639,31 @@ impl AppUi {
                 }
             }
         });
+    }
+}
+
+/// The Ctrl (Cmd) shortcuts: open, save, undo, redo, quit; they work while a text field has
+/// the keyboard.
+fn command_shortcuts(ctx: &egui::Context, out: &mut Actions) {
+    let command = |k: Key, shift: bool| {
+        let mut m = egui::Modifiers::COMMAND;
+        m.shift = shift;
+        ctx.input_mut(|i| i.consume_shortcut(&egui::KeyboardShortcut::new(m, k)))
+    };
+    if command(Key::O, false) {
+        out.push(Action::OpenDialog);
+    }
+    if command(Key::S, false) {
+        out.push(Action::SaveDialog);
+    }
+    if command(Key::Z, true) {
+        out.push(Action::Redo);
+    }
+    if command(Key::Z, false) {
+        out.push(Action::Undo);
+    }
+    if command(Key::Q, false) {
+        ctx.send_viewport_cmd(egui::ViewportCommand::Close);
     }
 }
 

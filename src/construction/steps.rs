@@ -135,16 +135,6 @@ fn no_negative_zero(text: &mut String) {
     *text = out;
 }
 
-#[cfg(test)]
-mod tests {
-    #[test]
-    fn negative_zero_loses_its_sign_and_nothing_else_does() {
-        let mut t = "d6 = -0.000 m, -0.0004 m, -0.5°, (-0.0, 3-0.000) x-0".to_string();
-        super::no_negative_zero(&mut t);
-        assert_eq!(t, "d6 = 0.000 m, -0.0004 m, -0.5°, (0.0, 3-0.000) x-0");
-    }
-}
-
 /// The steps of the arm's family.
 fn family_steps(robot: &Robot, q: &[f64]) -> Result<Vec<Step>, ConstructionError> {
     let cf = ClosedForm::detect(robot)?;
@@ -904,4 +894,14 @@ fn wrist_arcs(
             label: format!("θ6 = {}", deg(t6)),
         },
     ]
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn negative_zero_loses_its_sign_and_nothing_else_does() {
+        let mut t = "d6 = -0.000 m, -0.0004 m, -0.5°, (-0.0, 3-0.000) x-0".to_string();
+        super::no_negative_zero(&mut t);
+        assert_eq!(t, "d6 = 0.000 m, -0.0004 m, -0.5°, (0.0, 3-0.000) x-0");
+    }
 }

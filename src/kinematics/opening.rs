@@ -39,41 +39,26 @@ struct Score {
     closeness: f64,
 }
 
-/// The pose `robot` opens at: "ready" (or zero) if it scores as well as any candidate can
-/// (regular, every posture inside the limits), else the best candidate.
-pub fn opening_pose(robot: &Robot) -> OpeningPose {
-    let n = robot.dof();
-    let limits = robot.limits();
-    let clamp = |q: &mut Vec<f64>| {
-        for (v, [lo, hi]) in q.iter_mut().zip(&limits) {
-            *v = v.clamp(*lo, *hi);
-        }
-    };
-    let mut ready = robot
-        .config("ready")
-        .filter(|c| c.len() == n)
-        .map_or_else(|| vec![0.0; n], <[f64]>::to_vec);
-    clamp(&mut ready);
-    if n == 0 || robot.end_effectors().is_empty() {
-        return OpeningPose {
-            q: ready,
-            note: None,
-        };
-    }
-    let analyzer = SingularityAnalyzer::new(robot);
-    let closed = if robot.end_effectors().len() == 1 {
-        ClosedForm::detect(robot).ok()
-    } else {
-        None
-    };
-    let score = |q: &[f64]| -> Option<(Score, usize)> {
-        let regular = analyzer.classify(robot, q, 0).ok()?.is_none();
+/// Scores poses of one robot against its "ready" pose.
+struct Scorer<'a> {
+    robot: &'a Robot,
+    analyzer: SingularityAnalyzer,
+    closed: Option<ClosedForm>,
+    ready: &'a [f64],
+}
+
+impl Scorer<'_> {
+    /// The score of `q` and the number of postures of its tool pose; `None` where it cannot be
+    /// analysed (or its pose is out of reach of the closed form).
+    fn score(&self, q: &[f64]) -> Option<(Score, usize)> {
+        let robot = self.robot;
+        let regular = self.analyzer.classify(robot, q, 0).ok()?.is_none();
         let closeness = -q
             .iter()
-            .zip(&ready)
+            .zip(self.ready)
             .map(|(a, b)| (a - b).abs())
             .sum::<f64>();
-        let (in_limits, total) = match &closed {
+        let (in_limits, total) = match &self.closed {
             Some(cf) => {
                 let pose = robot.fk_ee(q, 0).ok()?;
                 let r = cf.solve(robot, &Target::Pose(pose)).ok()?;
@@ -92,8 +77,36 @@ pub fn opening_pose(robot: &Robot) -> OpeningPose {
             closeness,
         };
         Some((s, total))
+    }
+}
+
+/// The pose `robot` opens at: "ready" (or zero) if it scores as well as any candidate can
+/// (regular, every posture inside the limits), else the best candidate.
+pub fn opening_pose(robot: &Robot) -> OpeningPose {
+    let n = robot.dof();
+    let limits = robot.limits();
+    let mut ready = robot
+        .config("ready")
+        .filter(|c| c.len() == n)
+        .map_or_else(|| vec![0.0; n], <[f64]>::to_vec);
+    clamp(&mut ready, &limits);
+    if n == 0 || robot.end_effectors().is_empty() {
+        return OpeningPose {
+            q: ready,
+            note: None,
+        };
+    }
+    let scorer = Scorer {
+        robot,
+        analyzer: SingularityAnalyzer::new(robot),
+        closed: if robot.end_effectors().len() == 1 {
+            ClosedForm::detect(robot).ok()
+        } else {
+            None
+        },
+        ready: &ready,
     };
-    let ready_score = score(&ready);
+    let ready_score = scorer.score(&ready);
     if let Some((s, _)) = ready_score
         && s.regular
         && s.all_postures
@@ -103,8 +116,33 @@ pub fn opening_pose(robot: &Robot) -> OpeningPose {
             note: None,
         };
     }
-    // The named configurations, then candidates spread over the middle of the limits.
-    let mut candidates: Vec<Vec<f64>> = robot
+    let best = candidates(robot, &ready, &limits)
+        .into_iter()
+        .filter_map(|q| scorer.score(&q).map(|(s, total)| (s, total, q)))
+        .max_by(|a, b| a.0.partial_cmp(&b.0).unwrap_or(std::cmp::Ordering::Equal));
+    let Some((best_score, total, q)) = best else {
+        return OpeningPose {
+            q: ready,
+            note: Some("no candidate pose could be scored; opened at \"ready\"".into()),
+        };
+    };
+    OpeningPose {
+        q,
+        note: Some(note(ready_score, best_score, total)),
+    }
+}
+
+/// Clamps `q` into `limits`.
+fn clamp(q: &mut [f64], limits: &[[f64; 2]]) {
+    for (v, [lo, hi]) in q.iter_mut().zip(limits) {
+        *v = v.clamp(*lo, *hi);
+    }
+}
+
+/// The named configurations, then [`CANDIDATES`] poses spread around "ready" (deterministic).
+fn candidates(robot: &Robot, ready: &[f64], limits: &[[f64; 2]]) -> Vec<Vec<f64>> {
+    let n = robot.dof();
+    let mut out: Vec<Vec<f64>> = robot
         .configurations
         .iter()
         .filter(|c| c.q.len() == n)
@@ -123,20 +161,15 @@ pub fn opening_pose(robot: &Robot) -> OpeningPose {
                 r + u * (hi - lo) / 1.5
             })
             .collect();
-        clamp(&mut q);
-        candidates.push(q);
+        clamp(&mut q, limits);
+        out.push(q);
     }
-    let best = candidates
-        .into_iter()
-        .filter_map(|q| score(&q).map(|(s, total)| (s, total, q)))
-        .max_by(|a, b| a.0.partial_cmp(&b.0).unwrap_or(std::cmp::Ordering::Equal));
-    let Some((best_score, total, q)) = best else {
-        return OpeningPose {
-            q: ready,
-            note: Some("no candidate pose could be scored; opened at \"ready\"".into()),
-        };
-    };
-    let why_not_ready = match ready_score {
+    out
+}
+
+/// Why the pose is not "ready", and what it could not achieve.
+fn note(ready: Option<(Score, usize)>, best: Score, total: usize) -> String {
+    let why_not_ready = match ready {
         Some((s, _)) if !s.regular => "\"ready\" is at or near a singularity".to_string(),
         Some((s, t)) => format!(
             "at \"ready\" only {} of the {t} postures are inside the joint limits",
@@ -145,16 +178,13 @@ pub fn opening_pose(robot: &Robot) -> OpeningPose {
         None => "\"ready\" could not be analysed".to_string(),
     };
     let mut note = format!("opened near \"ready\": {why_not_ready}");
-    if !best_score.all_postures {
+    if !best.all_postures {
         note.push_str(&format!(
             "; no pose tried has every posture inside the limits (this one has {} of {total})",
-            best_score.postures_in
+            best.postures_in
         ));
     }
-    OpeningPose {
-        q,
-        note: Some(note),
-    }
+    note
 }
 
 /// A uniform number in [0, 1) from a SplitMix64 state (deterministic candidates).

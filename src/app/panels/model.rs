@@ -192,39 +192,7 @@ impl ModelPanel {
                         }
                     });
             });
-        if state.dh_has_errors() {
-            ui.colored_label(
-                Color32::from_rgb(170, 0, 0),
-                "Red cells are not applied (hover for the reason); the arm keeps its last valid \
-                 values, and Save waits until they are corrected.",
-            );
-        }
-        ui.horizontal_wrapped(|ui| {
-            if ui
-                .add_enabled(state.can_undo(), egui::Button::new("Undo"))
-                .on_hover_text("Undo the last edit (Ctrl+Z)")
-                .clicked()
-            {
-                out.push(Action::Undo);
-            }
-            if ui
-                .add_enabled(state.can_redo(), egui::Button::new("Redo"))
-                .on_hover_text("Redo (Ctrl+Shift+Z)")
-                .clicked()
-            {
-                out.push(Action::Redo);
-            }
-            if ui
-                .add_enabled(
-                    state.is_edited() || state.dh_has_errors(),
-                    egui::Button::new("Reset"),
-                )
-                .on_hover_text("Back to the model's values as it was opened")
-                .clicked()
-            {
-                out.push(Action::ResetEdits);
-            }
-        });
+        edit_buttons(state, ui, out);
     }
 
     /// One editable cell: the committed text, or the text being typed while it has focus;
@@ -394,4 +362,41 @@ fn derived_dh_table(robot: &crate::kinematics::Robot, ui: &mut egui::Ui) {
         ))
         .small(),
     );
+}
+
+/// The red cells' warning, and Undo, Redo and Reset under the DH table.
+fn edit_buttons(state: &AppState, ui: &mut egui::Ui, out: &mut Actions) {
+    if state.dh_has_errors() {
+        ui.colored_label(
+            Color32::from_rgb(170, 0, 0),
+            "Red cells are not applied (hover for the reason); the arm keeps its last valid \
+             values, and Save waits until they are corrected.",
+        );
+    }
+    ui.horizontal_wrapped(|ui| {
+        if ui
+            .add_enabled(state.can_undo(), egui::Button::new("Undo"))
+            .on_hover_text("Undo the last edit (Ctrl+Z)")
+            .clicked()
+        {
+            out.push(Action::Undo);
+        }
+        if ui
+            .add_enabled(state.can_redo(), egui::Button::new("Redo"))
+            .on_hover_text("Redo (Ctrl+Shift+Z)")
+            .clicked()
+        {
+            out.push(Action::Redo);
+        }
+        if ui
+            .add_enabled(
+                state.is_edited() || state.dh_has_errors(),
+                egui::Button::new("Reset"),
+            )
+            .on_hover_text("Back to the model's values as it was opened")
+            .clicked()
+        {
+            out.push(Action::ResetEdits);
+        }
+    });
 }
