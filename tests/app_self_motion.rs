@@ -314,7 +314,16 @@ fn dragging_the_slider_in_the_window_never_moves_the_hand() {
         }
         let held = fk(&h.state().state, 0);
         let target = h.state().state.target(0).unwrap().world_from_tool;
-        let track = h.get_by_label("self-motion slider").rect();
+        // The tab's own slider (the Redundancy panel has the same one).
+        let sliders: Vec<egui::Rect> = h
+            .get_all_by_label("self-motion slider")
+            .map(|n| n.rect())
+            .collect();
+        assert_eq!(sliders.len(), 2, "the tab's and the panel's sliders");
+        let track = sliders
+            .into_iter()
+            .find(|r| h.state().rects.central.contains_rect(*r))
+            .expect("the tab's slider");
         let y = track.center().y;
         let xs: Vec<f32> = (0..=40)
             .map(|k| track.left() + 2.0 + (track.width() - 4.0) * k as f32 / 40.0)

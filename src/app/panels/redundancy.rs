@@ -107,7 +107,7 @@ fn slider_section(
 /// The slider track: the parameter's range, the current branch's feasible intervals green,
 /// the rest shaded, the value as a handle. Returns a new value when dragged or clicked (arrow
 /// keys step 1 deg while hovered).
-fn track(ui: &mut egui::Ui, view: &SelfMotionView) -> Option<f64> {
+pub(crate) fn track(ui: &mut egui::Ui, view: &SelfMotionView) -> Option<f64> {
     let width = ui.available_width().max(120.0);
     let (rect, response) = ui.allocate_exact_size(egui::vec2(width, 26.0), Sense::click_and_drag());
     // A slider to assistive tools (and to tests that drive the window).

@@ -20,13 +20,15 @@ impl Tab for SelfMotionTab {
         "Self-motion"
     }
 
-    fn ui(&mut self, cx: &mut TabContext<'_>, ui: &mut egui::Ui, _out: &mut Actions) {
-        plots(cx.state, ui, cx.ee);
+    fn ui(&mut self, cx: &mut TabContext<'_>, ui: &mut egui::Ui, out: &mut Actions) {
+        plots(cx.state, ui, cx.ee, out);
     }
 }
 
-/// The tab's plots: one small plot per joint, stacked, x linked.
-fn plots(state: &mut AppState, ui: &mut egui::Ui, ee: usize) {
+/// The tab's plots: one small plot per joint, stacked, x linked; above them the same slider as
+/// the Redundancy panel's, so the lesson needs no scrolling of the side panel (in projector
+/// mode it is below the fold).
+fn plots(state: &mut AppState, ui: &mut egui::Ui, ee: usize, out: &mut Actions) {
     let view = match state.self_motion(ee) {
         Ok(v) if v.exact => v,
         Ok(_) => {
@@ -47,6 +49,16 @@ fn plots(state: &mut AppState, ui: &mut egui::Ui, ee: usize) {
          the current value.",
         view.parameter, view.names[view.branch]
     ));
+    ui.horizontal(|ui| {
+        ui.label(format!(
+            "{} = {:.1} deg",
+            view.parameter,
+            view.value.to_degrees()
+        ));
+        if let Some(v) = crate::app::panels::redundancy::track(ui, &view) {
+            out.push(crate::app::action::Action::SetSelfMotion(ee, v));
+        }
+    });
     let robot = state.robot().clone();
     let limits = robot.limits();
     let n = robot.dof();
