@@ -522,7 +522,20 @@ impl AppUi {
             out.push(Action::Load(path));
         }
         let top = egui::Panel::top("top").show(ui, |ui| {
-            super::toolbar::show(self, ui, &mut out);
+            let robot = self.state.robot();
+            let (name, dof) = (robot.name.clone(), robot.dof());
+            let mut cx = super::toolbar::ToolbarContext {
+                layout: &self.layout,
+                tabs: (
+                    self.tabs.all().iter().map(|t| t.title()).collect(),
+                    self.tab,
+                ),
+                model: (&name, dof),
+                projection: self.tabs.view3d.camera.projection,
+                display: &mut self.state.display,
+                follow: &mut self.tabs.view3d.follow,
+            };
+            super::toolbar::show(&mut cx, ui, &mut out);
         });
         self.rects.top = top.response.rect;
         let bottom = egui::Panel::bottom("status").show(ui, |ui| self.status_bar(ui));

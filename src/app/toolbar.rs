@@ -3,19 +3,37 @@
 //! and cut to the room left, so its length moves nothing.
 
 use super::action::{Action, Actions};
-use super::shell::AppUi;
+use super::layout::Layout;
+use super::state::DisplayToggles;
 use crate::camera::{Preset, Projection};
 use egui::RichText;
 
+/// What the toolbar shows and changes; the shell hands it over (the toolbar knows nothing of
+/// the window's other parts).
+pub struct ToolbarContext<'a> {
+    /// Projector mode and the side panels.
+    pub layout: &'a Layout,
+    /// The tabs' titles, in order, and the one shown.
+    pub tabs: (Vec<&'static str>, usize),
+    /// The model's name and degrees of freedom.
+    pub model: (&'a str, usize),
+    /// The 3D view's projection.
+    pub projection: Projection,
+    /// What the 3D view draws.
+    pub display: &'a mut DisplayToggles,
+    /// The 3D view's camera follows the IK target.
+    pub follow: &'a mut bool,
+}
+
 /// Lays the toolbar out.
-pub fn show(app: &mut AppUi, ui: &mut egui::Ui, out: &mut Actions) {
+pub fn show(app: &mut ToolbarContext<'_>, ui: &mut egui::Ui, out: &mut Actions) {
     let projector = app.layout.projector;
     ui.horizontal(|ui| {
         ui.strong(RichText::new("armlab").size(if projector { 22.0 } else { 16.0 }));
         ui.separator();
-        let titles: Vec<&'static str> = app.tabs.all().iter().map(|t| t.title()).collect();
-        for (k, title) in titles.into_iter().enumerate() {
-            if ui.selectable_label(app.tab == k, title).clicked() {
+        let shown = app.tabs.1;
+        for (k, title) in app.tabs.0.iter().enumerate() {
+            if ui.selectable_label(shown == k, *title).clicked() {
                 out.push(Action::ShowTab(k));
             }
         }
@@ -54,11 +72,7 @@ pub fn show(app: &mut AppUi, ui: &mut egui::Ui, out: &mut Actions) {
             out.push(Action::ToggleHelp);
         }
         // The model's name, in the room that is left: cut, never pushing anything.
-        let name = format!(
-            "{} ({} DOF)",
-            app.state.robot().name,
-            app.state.robot().dof()
-        );
+        let name = format!("{} ({} DOF)", app.model.0, app.model.1);
         ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
             ui.add(egui::Label::new(RichText::new(name).weak()).truncate());
         });
@@ -66,7 +80,7 @@ pub fn show(app: &mut AppUi, ui: &mut egui::Ui, out: &mut Actions) {
 }
 
 /// The camera presets, Fit and the projection.
-fn view_buttons(app: &AppUi, ui: &mut egui::Ui, out: &mut Actions) {
+fn view_buttons(app: &ToolbarContext<'_>, ui: &mut egui::Ui, out: &mut Actions) {
     for (label, p) in [
         ("Top", Preset::Top),
         ("Front", Preset::Front),
@@ -80,19 +94,16 @@ fn view_buttons(app: &AppUi, ui: &mut egui::Ui, out: &mut Actions) {
     if ui.button("Fit").clicked() {
         out.push(Action::Fit);
     }
-    let ortho = matches!(
-        app.tabs.view3d.camera.projection,
-        Projection::Orthographic { .. }
-    );
+    let ortho = matches!(app.projection, Projection::Orthographic { .. });
     if ui.selectable_label(ortho, "Ortho").clicked() {
         out.push(Action::ToggleProjection);
     }
 }
 
 /// "Show": what the 3D view draws.
-fn show_menu(app: &mut AppUi, ui: &mut egui::Ui, out: &mut Actions) {
+fn show_menu(app: &mut ToolbarContext<'_>, ui: &mut egui::Ui, out: &mut Actions) {
     ui.menu_button("Show", |ui| {
-        let d = &mut app.state.display;
+        let d = &mut *app.display;
         ui.checkbox(&mut d.frames, "Frames (D)");
         ui.checkbox(&mut d.labels, "Labels");
         ui.checkbox(&mut d.all_labels, "Labels of every frame")
@@ -104,6 +115,6 @@ fn show_menu(app: &mut AppUi, ui: &mut egui::Ui, out: &mut Actions) {
         if ui.checkbox(&mut ws, "Workspace (W)").changed() {
             out.push(Action::ToggleWorkspace);
         }
-        ui.checkbox(&mut app.tabs.view3d.follow, "Camera follows the target");
+        ui.checkbox(app.follow, "Camera follows the target");
     });
 }

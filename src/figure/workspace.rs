@@ -86,7 +86,8 @@ pub struct WsFigure {
 pub const COLOR_MAP: &str = "viridis";
 
 /// A workspace figure planned: its frame laid out and what it needs computed
-/// ([`Self::request`]). [`paint`] draws it once that is computed ([`compute_figure_data`]).
+/// ([`Self::request`]). [`paint`] draws it once that is computed
+/// ([`crate::workspace::compute_figure_data`]).
 #[derive(Debug, Clone)]
 pub struct WsPlan {
     /// What the figure needs computed.

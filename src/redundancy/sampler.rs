@@ -64,8 +64,8 @@ impl SelfMotionSamples {
 
     /// The numerical self-motion through `start`'s configuration at `n` arc lengths covering
     /// [-pi, pi) (rad of joint-space arc), walked from s = 0 forwards and backwards in steps of at
-    /// most [`WALK_STEP`]; a sample past a singularity has no branch. The feasible stretches come
-    /// from the samples (not exact: the walk has no closed form).
+    /// most `WALK_STEP` (0.01); a sample past a singularity has no branch. The feasible
+    /// stretches come from the samples (not exact: the walk has no closed form).
     pub fn numerical(
         robot: &Robot,
         start: &NullSpaceMotion<'_>,

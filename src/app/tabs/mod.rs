@@ -1,6 +1,6 @@
 //! The central area's tabs. Each tab is a module that owns its state, lays itself out when it
 //! is shown, adds what it draws over the 3D view, and returns what it wants done as actions.
-//! Adding a tab is one file here and one line in [`tabs!`]'s list.
+//! Adding a tab is one file here and one line in the `tabs!` list below.
 
 pub mod calibration;
 pub mod self_motion;
