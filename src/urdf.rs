@@ -47,8 +47,6 @@ pub enum MimicProblem {
     NoSuchJoint,
     /// The mimicked joint is fixed or itself a mimic joint.
     NotActuated,
-    /// The mimicking joint is fixed.
-    FixedJoint,
     /// The mimicked joint lies below the mimicking one in the tree, so no order has it first.
     Descendant,
 }
@@ -60,7 +58,6 @@ impl fmt::Display for MimicProblem {
             MimicProblem::NotActuated => {
                 "the mimicked joint must be actuated (not fixed, not a mimic joint)"
             }
-            MimicProblem::FixedJoint => "a fixed joint cannot mimic another joint",
             MimicProblem::Descendant => "the mimicked joint must not lie below the mimic joint",
         })
     }
@@ -277,7 +274,8 @@ pub fn parse_urdf(text: &str, path: &Path) -> Result<Robot, UrdfError> {
     let (visuals, warnings) =
         visuals::read(&urdf, path, |link| child_of.get(link).map(|&s| new_id[s]));
     robot.visuals = visuals;
-    robot.load_warnings = warnings;
+    robot.load_warnings = quirks(uj);
+    robot.load_warnings.extend(warnings);
     let description = format!(
         "Read from the URDF file {}: {} joints, {} degrees of freedom; joint frames are the \
          URDF child-link frames.",
@@ -383,6 +381,24 @@ fn robot_name(urdf: &urdf_rs::Robot, path: &Path) -> String {
     }
 }
 
+/// What the file does that armlab reads liberally, one warning naming the element each: a
+/// `<mimic>` on a fixed joint (RViz and urdf-viz ignore it; so does armlab: the joint stays
+/// fixed).
+fn quirks(uj: &[urdf_rs::Joint]) -> Vec<String> {
+    uj.iter()
+        .filter(|j| j.joint_type == JointType::Fixed)
+        .filter_map(|j| {
+            j.mimic.as_ref().map(|m| {
+                format!(
+                    "joint \"{}\": a fixed joint with <mimic joint=\"{}\">: the mimic is ignored, \
+                     the joint stays fixed",
+                    j.name, m.joint
+                )
+            })
+        })
+        .collect()
+}
+
 /// Depth-first order from `root`, children in file order, with each mimic joint moved after
 /// the joint it mimics.
 fn joint_order(
@@ -419,7 +435,8 @@ fn joint_order(
             problem,
         };
         if uj[i].joint_type == JointType::Fixed {
-            return Err(err(MimicProblem::FixedJoint));
+            // Nothing moves it: the mimic is ignored (a warning, see `quirks`).
+            return Ok(None);
         }
         let src = uj.iter().position(|x| x.name == m.joint);
         match src {

@@ -222,6 +222,7 @@ fn status_json(app: &AppUi) -> serde_json::Value {
         "solutions": ghosts.len(),
         "within_limits": ghosts.iter().filter(|g| g.within_limits).count(),
         "gizmo": app.gizmo_grip().map(|p| [p.x, p.y]),
+        "tab": app.tab,
         "workspace_progress": app.tabs.workspace.job.as_ref().map(|w| w.progress().unwrap_or(1.0)),
         "workspace_figure": app.tabs.workspace.job.as_ref().and_then(|w| w.figure()).map(|f| [f.width(), f.height()]),
         "workspace_dots": app.tabs.workspace.job.as_ref().and_then(|w| w.dots()).map(<[_]>::len),

@@ -252,3 +252,39 @@ fn missing_urdf_file_is_reported() {
     assert!(matches!(e, UrdfError::Read { .. }));
     assert!(e.to_string().contains("no/such/robot.urdf"), "{e}");
 }
+
+/// TALOS's grippers carry `<mimic>` on fixed joints; RViz and urdf-viz load them, and armlab
+/// refused the whole file. Now the mimic is ignored with a warning naming the joint, the joint
+/// stays fixed, and the actuated joint it names still drives its own finger.
+#[test]
+fn a_mimic_on_a_fixed_joint_is_a_warning() {
+    let text = r#"<robot name="fixed_mimic">
+      <link name="base"/><link name="finger"/><link name="pad"/>
+      <joint name="gripper_joint" type="revolute">
+        <parent link="base"/><child link="finger"/><axis xyz="0 0 1"/>
+        <origin xyz="0 0 0.1"/><limit lower="0" upper="1" effort="1" velocity="1"/>
+      </joint>
+      <joint name="inner_double_joint" type="fixed">
+        <parent link="finger"/><child link="pad"/><origin xyz="0.05 0 0"/>
+        <mimic joint="gripper_joint" multiplier="-1" offset="0"/>
+      </joint>
+    </robot>"#;
+    let r = parse_urdf(text, Path::new("fixed_mimic.urdf")).expect("loads");
+    assert_eq!(r.dof(), 1);
+    let pad = joint_id(&r, "inner_double_joint");
+    assert_eq!(r.joints()[pad].kind, JointKind::Fixed);
+    let w = r
+        .load_warnings
+        .iter()
+        .find(|w| w.contains("inner_double_joint"))
+        .expect("a warning names the joint");
+    assert!(w.contains("mimic") && w.contains("gripper_joint"), "{w}");
+    // The pad rides on the finger: 0.05 m along the finger's x, turned by q.
+    let q = 0.7_f64;
+    let frames = r.fk_frames(&[q]).unwrap();
+    let p = frames[pad].translation.vector;
+    assert!(
+        (p - Vector3::new(0.05 * q.cos(), 0.05 * q.sin(), 0.1)).norm() < 1e-12,
+        "{p:?}"
+    );
+}

@@ -304,16 +304,21 @@ def check_workspace(d):
         fail(f"the workspace has no dots or no figure: {st}")
     if frames < 10:
         fail(f"only {frames} frames while the workspace was computed: the page froze")
-    # The "Workspace (2D)" tab shows the figure.
-    click(d, 515, 12)
+    # The Workspace tab shows the figure (the toolbar's one row: "Workspace" at x 159-241).
+    click(d, 200, 20)
     time.sleep(1.0)
+    if status(d).get("tab") != 1:
+        fail(f"the click on the Workspace tab did not show it (tab {status(d).get('tab')})")
     img = d.screenshot()
     keep(d, "armlab-web-workspace-tab.png")
     colours = {pixel(img, x, y) for x in range(450, 900, 6) for y in range(100, 700, 6)}
     print(f"  workspace tab: {len(colours)} colours in the figure's area")
     if len(colours) < 30:
         fail("the Workspace (2D) tab shows no figure")
-    click(d, 420, 12)
+    click(d, 120, 20)
+    time.sleep(0.5)
+    if status(d).get("tab") != 0:
+        fail("the click on the 3D view tab did not show it")
     press(d, "w")
 
 
@@ -339,7 +344,7 @@ def check_screenshot_download(d, folder):
         "cmd": "Browser.setDownloadBehavior",
         "params": {"behavior": "allow", "downloadPath": folder},
     })
-    click(d, 386, 35)
+    click(d, 1034, 20)  # "Screenshot", in the toolbar's one row (x 993-1076)
     deadline = time.time() + 30
     while True:
         done = [f for f in os.listdir(folder) if f.endswith(".png")]
