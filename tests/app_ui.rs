@@ -402,3 +402,32 @@ fn presses_on_a_popup_do_not_reach_the_gizmo_under_it() {
         }
     }
 }
+
+/// The figure computed by W (1200x900 px) stays on screen when the Workspace tab opens and
+/// recomputes it at the tab's size: the tab was blank for that time (a minute in a browser).
+#[test]
+fn the_workspace_tab_shows_the_finished_figure_while_it_resizes_it() {
+    let mut app = AppUi::new(AppState::from_spec("planar2").unwrap());
+    app.tabs.workspace.start(&app.state);
+    app.tabs.workspace.job.as_ref().unwrap().wait();
+    assert!(app.tabs.workspace.job.as_ref().unwrap().figure().is_some());
+    app.tab = armlab::app::tabs::WORKSPACE;
+    let mut h = harness(app);
+    h.step();
+    let tab = &h.state().tabs.workspace;
+    assert!(
+        tab.job.as_ref().unwrap().progress().is_some(),
+        "the tab recomputes at its own size"
+    );
+    assert!(
+        tab.showing_figure(),
+        "the finished figure stays on screen meanwhile"
+    );
+    h.state().tabs.workspace.job.as_ref().unwrap().wait();
+    h.step();
+    h.step();
+    let tab = &h.state().tabs.workspace;
+    assert!(tab.showing_figure());
+    let f = tab.job.as_ref().unwrap().figure().unwrap();
+    assert_ne!([f.width(), f.height()], [1200, 900], "the tab's own size");
+}

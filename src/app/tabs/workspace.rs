@@ -87,7 +87,12 @@ pub struct WorkspaceTab {
     pub job: Option<WorkspaceJob>,
     /// The figure shown.
     pub preset: Preset,
+    /// The finished job of the same figure at another size, shown (figure, marks, dots) while
+    /// `job` recomputes it for the tab's size: never a blank tab (a minute in a browser).
+    previous: Option<WorkspaceJob>,
     texture: Option<egui::TextureHandle>,
+    /// `texture` shows `previous`'s figure.
+    texture_is_previous: bool,
     /// The figure's pixel size the job was started for.
     size: [u32; 2],
 }
@@ -97,7 +102,9 @@ impl Default for WorkspaceTab {
         Self {
             job: None,
             preset: Preset::ThisModel,
+            previous: None,
             texture: None,
+            texture_is_previous: false,
             size: [1200, 900],
         }
     }
@@ -109,7 +116,9 @@ impl WorkspaceTab {
         if let Some(old) = self.job.take() {
             old.cancel();
         }
+        self.previous = None;
         self.texture = None;
+        self.texture_is_previous = false;
         let title = state.robot().name.to_lowercase();
         let figure = match self.preset {
             Preset::Textbook {
@@ -208,10 +217,25 @@ impl WorkspaceTab {
         [w.round() as u32, h.round() as u32]
     }
 
+    /// Whether a figure is on screen (the tab's, or the previous size's while it recomputes).
+    pub fn showing_figure(&self) -> bool {
+        self.texture.is_some()
+    }
+
+    /// The job whose figure (and dots) are shown: the previous size's while the new one
+    /// computes.
+    fn shown_job(&self) -> Option<&WorkspaceJob> {
+        if self.texture_is_previous {
+            self.previous.as_ref()
+        } else {
+            self.job.as_ref()
+        }
+    }
+
     /// Marks the tool point and the IK target on a workspace figure shown in `rect`, where
     /// the plot's data lie as the job's frame says.
     fn live_marks(&self, state: &AppState, ee: usize, ui: &egui::Ui, rect: egui::Rect) {
-        let Some(job) = &self.job else { return };
+        let Some(job) = self.shown_job() else { return };
         let (Some(frame), Some((view, point))) = (job.frame(), job.view()) else {
             return;
         };
@@ -289,11 +313,25 @@ impl Tab for WorkspaceTab {
         self.preset_row(cx, ui, out);
         let area = ui.available_size();
         let size = Self::size_for(area, ui.ctx().pixels_per_point());
-        if self.job.is_none()
-            || (size != self.size && self.job.as_ref().is_some_and(|j| j.progress().is_none()))
-        {
+        let resized = size != self.size
+            && self
+                .job
+                .as_ref()
+                .is_some_and(|j| j.progress().is_none() && j.figure().is_some());
+        if self.job.is_none() || resized {
             self.size = size;
+            let done = if resized { self.job.take() } else { None };
             self.start(cx.state);
+            // The finished figure stays on screen until the one sized to the tab is done.
+            if let Some(done) = done {
+                self.previous = Some(done);
+                self.texture_is_previous = true;
+            }
+        }
+        if self.texture_is_previous && self.job.as_ref().is_some_and(|j| j.figure().is_some()) {
+            self.texture = None;
+            self.previous = None;
+            self.texture_is_previous = false;
         }
         let Some(job) = &self.job else { return };
         if let Some(f) = job.progress() {
@@ -307,8 +345,9 @@ impl Tab for WorkspaceTab {
             let text = format!("no figure: {err}");
             ui.colored_label(egui::Color32::from_rgb(190, 0, 0), text);
         }
+        let shown = self.shown_job();
         if self.texture.is_none()
-            && let Some(img) = job.figure()
+            && let Some(img) = shown.and_then(|j| j.figure())
         {
             let color = egui::ColorImage::from_rgba_unmultiplied(
                 [img.width() as usize, img.height() as usize],
@@ -330,7 +369,8 @@ impl Tab for WorkspaceTab {
 
     fn decorate(&self, state: &AppState, scene: &mut Scene) {
         if state.display.workspace
-            && let Some(dots) = self.job.as_ref().and_then(|j| j.dots())
+            && let Some(dots) = (self.job.as_ref().and_then(|j| j.dots()))
+                .or_else(|| self.previous.as_ref().and_then(|j| j.dots()))
         {
             // Under the arm: the cloud never hides it.
             scene.underlay.extend_from_slice(dots);
@@ -341,6 +381,8 @@ impl Tab for WorkspaceTab {
         if let Some(job) = self.job.take() {
             job.cancel();
         }
+        self.previous = None;
         self.texture = None;
+        self.texture_is_previous = false;
     }
 }
