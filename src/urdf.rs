@@ -6,7 +6,7 @@
 //! robot's joint frames are the URDF *child link* frames.
 //!
 //! - `revolute` -> revolute with the `<limit>` bounds (an infinite bound, as URDF 1.2 writes an
-//!   omitted one, becomes ±2 pi);
+//!   omitted one, becomes ±2 pi, and so does a missing `<limit>`, with a warning);
 //! - `continuous` -> revolute with [`CONTINUOUS_LIMITS`] = [-2 pi, 2 pi], wide enough that a
 //!   full turn either way from zero is inside the box;
 //! - `prismatic` -> prismatic (finite `<limit>` bounds required, metres);
@@ -383,20 +383,48 @@ fn robot_name(urdf: &urdf_rs::Robot, path: &Path) -> String {
 
 /// What the file does that armlab reads liberally, one warning naming the element each: a
 /// `<mimic>` on a fixed joint (RViz and urdf-viz ignore it; so does armlab: the joint stays
-/// fixed).
+/// fixed), a revolute or prismatic joint without a `<limit>` range, a continuous joint with
+/// one, an axis that is not a unit vector (a zero axis stays an error).
 fn quirks(uj: &[urdf_rs::Joint]) -> Vec<String> {
-    uj.iter()
-        .filter(|j| j.joint_type == JointType::Fixed)
-        .filter_map(|j| {
-            j.mimic.as_ref().map(|m| {
-                format!(
-                    "joint \"{}\": a fixed joint with <mimic joint=\"{}\">: the mimic is ignored, \
-                     the joint stays fixed",
-                    j.name, m.joint
-                )
-            })
-        })
-        .collect()
+    let mut out = Vec::new();
+    for j in uj {
+        let name = &j.name;
+        let (lo, hi) = (j.limit.lower, j.limit.upper);
+        match j.joint_type {
+            JointType::Fixed => {
+                if let Some(m) = &j.mimic {
+                    out.push(format!(
+                        "joint \"{name}\": a fixed joint with <mimic joint=\"{}\">: the mimic \
+                         is ignored, the joint stays fixed",
+                        m.joint
+                    ));
+                }
+            }
+            JointType::Revolute if lo == 0.0 && hi == 0.0 => out.push(format!(
+                "joint \"{name}\": revolute without a <limit> range (lower = upper = 0): it turns \
+                 freely, [-360, 360] deg"
+            )),
+            JointType::Prismatic if lo == hi => out.push(format!(
+                "joint \"{name}\": prismatic with lower = upper = {lo} m (no <limit> range?): it \
+                 cannot move"
+            )),
+            JointType::Continuous if lo != 0.0 || hi != 0.0 => out.push(format!(
+                "joint \"{name}\": continuous with <limit lower=\"{lo}\" upper=\"{hi}\">: the \
+                 limits are ignored, it turns freely, [-360, 360] deg"
+            )),
+            _ => {}
+        }
+        let a = &j.axis.xyz;
+        let norm = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
+        if j.joint_type != JointType::Fixed && norm > 0.0 && (norm - 1.0).abs() > 1e-9 {
+            out.push(format!(
+                "joint \"{name}\": axis ({}, {}, {}) is not a unit vector (length {norm}): \
+                 normalised",
+                a[0], a[1], a[2]
+            ));
+        }
+    }
+    out
 }
 
 /// Depth-first order from `root`, children in file order, with each mimic joint moved after
@@ -548,6 +576,9 @@ fn joint_limits(j: &urdf_rs::Joint, path: &Path) -> Result<[f64; 2], UrdfError> 
     let limits = match j.joint_type {
         JointType::Continuous => CONTINUOUS_LIMITS,
         JointType::Fixed => [0.0, 0.0],
+        // No `<limit>` (read as lower = upper = 0) leaves a revolute joint free, as an omitted
+        // bound does; `quirks` warns.
+        JointType::Revolute if lo == 0.0 && hi == 0.0 => CONTINUOUS_LIMITS,
         JointType::Revolute => [
             if lo == f64::NEG_INFINITY { -TAU } else { lo },
             if hi == f64::INFINITY { TAU } else { hi },

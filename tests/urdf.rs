@@ -288,3 +288,48 @@ fn a_mimic_on_a_fixed_joint_is_a_warning() {
         "{p:?}"
     );
 }
+
+/// Quirks of real files are read liberally and each named in a warning, never silently: a
+/// revolute joint without `<limit>` turns freely (it was frozen at [0, 0]), a continuous joint's
+/// limits are ignored, an axis that is not a unit vector is normalised; a zero axis is still an
+/// error naming the joint.
+#[test]
+fn limit_and_axis_quirks_are_warnings_naming_the_joint() {
+    let urdf = |axis: &str, j1: &str, j2_type: &str, j2: &str| {
+        format!(
+            r#"<robot name="q"><link name="base"/><link name="l1"/><link name="l2"/>
+            <joint name="j1" type="revolute"><parent link="base"/><child link="l1"/>
+              <axis xyz="{axis}"/>{j1}</joint>
+            <joint name="j2" type="{j2_type}"><parent link="l1"/><child link="l2"/>
+              <origin xyz="0.1 0 0"/><axis xyz="0 0 1"/>{j2}</joint></robot>"#
+        )
+    };
+    let lim = r#"<limit lower="-1" upper="1" effort="1" velocity="1"/>"#;
+    let warn = |r: &Robot, joint: &str, what: &str| {
+        let w = r
+            .load_warnings
+            .iter()
+            .find(|w| w.contains(&format!("\"{joint}\"")));
+        let w = w.unwrap_or_else(|| panic!("no warning names {joint}: {:?}", r.load_warnings));
+        assert!(w.contains(what), "{w}");
+    };
+    // No <limit> on a revolute joint.
+    let r = parse_urdf(&urdf("0 0 1", "", "revolute", lim), Path::new("q.urdf")).unwrap();
+    assert_eq!(r.limits()[0], CONTINUOUS_LIMITS);
+    warn(&r, "j1", "without a <limit>");
+    // A continuous joint with limits.
+    let r = parse_urdf(&urdf("0 0 1", lim, "continuous", lim), Path::new("q.urdf")).unwrap();
+    assert_eq!(r.limits()[1], CONTINUOUS_LIMITS);
+    warn(&r, "j2", "the limits are ignored");
+    // An axis of length 2: normalised (the joint turns about z), with a warning.
+    let r = parse_urdf(&urdf("0 0 2", lim, "revolute", lim), Path::new("q.urdf")).unwrap();
+    warn(&r, "j1", "not a unit vector");
+    let t = r.fk(&[0.5, 0.0]).unwrap();
+    let p = t.translation.vector;
+    assert!((p - Vector3::new(0.1 * 0.5_f64.cos(), 0.1 * 0.5_f64.sin(), 0.0)).norm() < 1e-12);
+    // A well-formed file has no warnings; a zero axis is an error naming the joint.
+    let r = parse_urdf(&urdf("0 0 1", lim, "revolute", lim), Path::new("q.urdf")).unwrap();
+    assert!(r.load_warnings.is_empty(), "{:?}", r.load_warnings);
+    let e = parse_urdf(&urdf("0 0 0", lim, "revolute", lim), Path::new("q.urdf")).unwrap_err();
+    assert!(e.to_string().contains("\"j1\""), "{e}");
+}
