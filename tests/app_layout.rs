@@ -1,6 +1,7 @@
 //! The live window's layout, checked through the window's own layout code (`AppUi::show`, the
 //! same panels, widths and styles as the window; egui_kittest reads the widgets' rectangles from
-//! the accessibility tree): for every built-in model and every tab, at 1280x800 and 1920x1080,
+//! the accessibility tree): for every built-in model and every tab, at 1280x800, 1920x1080 and
+//! 1200x800 (the guide's pictures; the pose matrix was cut there),
 //! in normal and projector mode. The invariants a class relies on:
 //! - the 3D view (the central area) keeps at least 55 % of the window's width;
 //! - every panel lies inside the window, and the toolbar stays one row;
@@ -20,7 +21,7 @@ use egui::{Rect, vec2};
 use egui_kittest::Harness;
 use egui_kittest::kittest::{NodeT, Queryable};
 
-const SIZES: [[f32; 2]; 2] = [[1280.0, 800.0], [1920.0, 1080.0]];
+const SIZES: [[f32; 2]; 3] = [[1280.0, 800.0], [1920.0, 1080.0], [1200.0, 800.0]];
 
 fn harness(app: AppUi, size: [f32; 2]) -> Harness<'static, AppUi> {
     let mut h = Harness::builder()

@@ -98,25 +98,27 @@ impl Layout {
     /// `avail` points inside the margins of a window `window` points wide: together they leave
     /// the central area its share.
     pub fn default_widths(&self, avail: f32, window: f32) -> (f32, f32) {
-        let (left, right) = if self.projector {
+        let (left, right): (f32, f32) = if self.projector {
             (320.0, 400.0)
         } else {
             (270.0, 300.0)
         };
-        // Only the open panels share the room.
+        // Only the open panels share the room. Where it is short, the right panel keeps its
+        // width (its pose matrix needs it; at 1200 px it was cut) and the left one gives way,
+        // down to its minimum.
         let sides = self.sides();
-        let open =
-            f32::from(u8::from(sides.left)) * left + f32::from(u8::from(sides.right)) * right;
         let room = Self::side_room(avail, window);
-        let scale = if open > 0.0 {
-            (room / open).min(1.0)
+        let right = if sides.left {
+            right.min(room - MIN_PANEL)
         } else {
-            1.0
+            right.min(room)
         };
-        (
-            (left * scale).max(MIN_PANEL),
-            (right * scale).max(MIN_PANEL),
-        )
+        let left = if sides.right {
+            left.min(room - right)
+        } else {
+            left.min(room)
+        };
+        (left.max(MIN_PANEL), right.max(MIN_PANEL))
     }
 
     /// The widths a side panel may be dragged to (points), with the other side panel `other`
