@@ -18,8 +18,10 @@
 //!
 //! Joints are ordered depth-first from the root link, children in file order, except that a
 //! mimic joint is moved after the joint it mimics when needed; actuated joints take `q`
-//! components in that order. Every leaf link (a link that is no joint's parent) gets an
-//! end-effector named after the link, with an identity tool.
+//! components in that order. Every leaf link (a link that is no joint's parent) and every
+//! tool-like link with children (a gripper's base) gets an end-effector named after the link,
+//! with an identity tool; they are sorted as [`crate::kinematics::end_effectors::catalog`] groups
+//! them, so end-effector 0 is the tool of the longest arm.
 
 mod visuals;
 mod write;
@@ -269,7 +271,16 @@ pub fn parse_urdf(text: &str, path: &Path) -> Result<Robot, UrdfError> {
         new_id[i] = k;
     }
     let (joints, ees) = assemble(uj, &order, &new_id, &child_of, &children, path)?;
-    let mut robot = Robot::new(robot_name(&urdf, path), Pose::identity(), joints, ees)
+    let name = robot_name(&urdf, path);
+    let robot = Robot::new(name.clone(), Pose::identity(), joints.clone(), ees.clone())
+        .map_err(|source| UrdfError::Model { path: p(), source })?;
+    // The end-effectors in the catalog's order: the longest arm's tool first (the default).
+    let sorted = crate::kinematics::end_effectors::catalog(&robot)
+        .order()
+        .into_iter()
+        .map(|e| ees[e].clone())
+        .collect();
+    let mut robot = Robot::new(name, Pose::identity(), joints, sorted)
         .map_err(|source| UrdfError::Model { path: p(), source })?;
     let (visuals, warnings) =
         visuals::read(&urdf, path, |link| child_of.get(link).map(|&s| new_id[s]));
@@ -343,7 +354,8 @@ fn joint_tree<'u>(
 }
 
 /// The joints converted in `order` (`new_id` maps a URDF joint index to its place in it), with
-/// their parents, and an end-effector at every leaf link.
+/// their parents, and an end-effector at every leaf link and at every tool-like link with
+/// children (`xarm_gripper_base_link`, `panda_hand`: a tool carrying fingers).
 fn assemble(
     uj: &[urdf_rs::Joint],
     order: &[usize],
@@ -360,7 +372,11 @@ fn assemble(
         })?;
         let parent = child_of.get(uj[i].parent.link.as_str()).map(|&s| new_id[s]);
         joints.push(Joint { parent, ..j });
-        if !children.contains_key(uj[i].child.link.as_str()) {
+        let child = uj[i].child.link.as_str();
+        let leaf = !children.contains_key(child);
+        let tool_like = crate::kinematics::end_effectors::is_tool_like(child)
+            && !crate::kinematics::end_effectors::is_auxiliary_frame(child);
+        if leaf || tool_like {
             ees.push(EndEffector {
                 name: uj[i].child.link.clone(),
                 parent: joints.len() - 1,

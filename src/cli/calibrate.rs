@@ -38,6 +38,10 @@ pub enum Hayati {
 pub struct CalibrateArgs {
     /// Built-in name or path to a .toml model (a serial DH chain).
     pub model: String,
+    /// End-effector, by name or 0-based index (default: the tool of the longest arm). On a
+    /// robot with several, the command works on the chain from the root to it alone.
+    #[arg(long)]
+    pub ee: Option<String>,
     /// Measurement file: per line the joint values, then 3 (position) or 16 (4x4 pose) numbers.
     #[arg(
         long,
@@ -190,7 +194,7 @@ fn data(
 
 /// `armlab calibrate`.
 pub(super) fn run(args: &CalibrateArgs, out: &mut dyn Write) -> Result<(), CliError> {
-    let robot = super::load_model(&args.model)?;
+    let (robot, _) = super::arm_robot(super::load_model(&args.model)?, args.ee.as_deref())?;
     let mut model = ParameterModel::new(&robot).map_err(calibration_error)?;
     if args.with_base {
         model = model.with_base();

@@ -224,6 +224,10 @@ pub enum PointArg {
 pub struct WorkspaceArgs {
     /// Built-in name or path to a .toml / .urdf model.
     pub model: String,
+    /// End-effector, by name or 0-based index (default: the tool of the longest arm). On a
+    /// robot with several, the command works on the chain from the root to it alone.
+    #[arg(long)]
+    pub ee: Option<String>,
     /// Output PNG file.
     #[arg(long)]
     pub out: PathBuf,
@@ -262,7 +266,7 @@ pub(super) fn workspace(
 ) -> Result<(), CliError> {
     use crate::figure::workspace::{ColorBy, WsFigureOptions, WsView};
     use crate::headless::workspace_figure;
-    let robot = super::load_model(&args.model)?;
+    let (robot, _) = super::arm_robot(super::load_model(&args.model)?, args.ee.as_deref())?;
     if args.samples == 0 || args.samples > 100_000_000 {
         return Err(CliError::Usage("--samples must be between 1 and 100000000"));
     }

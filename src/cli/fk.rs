@@ -11,11 +11,13 @@ pub(super) fn run(
     model: &str,
     joints: &JointInput,
     frames: bool,
+    ee: Option<&str>,
     euler: Option<EulerKind>,
     format: Format,
     out: &mut dyn Write,
 ) -> Result<(), CliError> {
     let robot = super::load_model(model)?;
+    let ee = super::ik::end_effector(&robot, ee)?;
     let rows = joint_vectors(&robot, model, joints, None)?;
     let mut results = Vec::with_capacity(rows.len());
     for q in &rows {
@@ -31,7 +33,7 @@ pub(super) fn run(
         Format::Json => {
             let arr: Vec<Value> = results
                 .iter()
-                .map(|(q, all, ees)| fk_json(&robot, q, all, ees, frames, euler))
+                .map(|(q, all, ees)| fk_json(&robot, q, all, ees, ee, frames, euler))
                 .collect();
             serde_json::to_writer_pretty(&mut *out, &arr).map_err(std::io::Error::from)?;
             writeln!(out)?;
@@ -55,13 +57,14 @@ fn fk_json(
     q: &[f64],
     all: &[Pose],
     ees: &[Pose],
+    ee: usize,
     frames: bool,
     euler: Option<EulerKind>,
 ) -> Value {
     let mut o =
-        json!({ "q": q, "T": pose_to_rows(&ees[0]), "p": ees[0].translation.vector.as_slice() });
+        json!({ "q": q, "T": pose_to_rows(&ees[ee]), "p": ees[ee].translation.vector.as_slice() });
     if let Some(kind) = euler {
-        let phi = kind.from_rotation(&ees[0].rotation);
+        let phi = kind.from_rotation(&ees[ee].rotation);
         o["euler"] = json!(kind.as_str());
         o["phi"] = json!(phi.angles.as_slice());
         o["phi_singular"] = json!(phi.singular);

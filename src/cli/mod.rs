@@ -97,6 +97,10 @@ pub enum Command {
         /// Joint vector to evaluate (default: the "ready" configuration).
         #[command(flatten)]
         joints: JointInput,
+        /// Only this end-effector (a name or an index; default: every one, the model-level
+        /// lines about the tool of the longest arm).
+        #[arg(long)]
+        ee: Option<String>,
         /// Output format.
         #[arg(long, value_enum, default_value_t)]
         format: Format,
@@ -111,6 +115,10 @@ pub enum Command {
         /// Add every joint frame T_i^0.
         #[arg(long)]
         frames: bool,
+        /// The end-effector whose pose is "T" (a name or an index; default: the tool of the
+        /// longest arm, end-effector 0).
+        #[arg(long)]
+        ee: Option<String>,
         /// Add the orientation phi in this representation.
         #[arg(long, value_enum)]
         euler: Option<EulerArg>,
@@ -233,6 +241,25 @@ pub(crate) fn load_model(spec: &str) -> Result<Robot, CliError> {
     Ok(robot)
 }
 
+/// The robot a one-arm command works on: with one end-effector the robot itself and the index
+/// `spec` names; with several, the arm of end-effector `spec` (default: the tool of the longest
+/// arm, end-effector 0) as a robot of its own ([`crate::kinematics::arm`]), its joints off the
+/// chain at the "ready" configuration (or zero), and index 0.
+pub(crate) fn arm_robot(robot: Robot, spec: Option<&str>) -> Result<(Robot, usize), CliError> {
+    let ee = ik::end_effector(&robot, spec)?;
+    if robot.end_effectors().len() == 1 {
+        return Ok((robot, ee));
+    }
+    let q = robot
+        .config("ready")
+        .map_or_else(|| vec![0.0; robot.dof()], <[f64]>::to_vec);
+    let arm = crate::kinematics::arm::arm_of(&robot, ee, &q).map_err(|e| CliError::BadTarget {
+        source_name: format!("--ee {}", robot.end_effectors()[ee].name),
+        reason: e.to_string(),
+    })?;
+    Ok((arm.robot, 0))
+}
+
 /// Runs the command line; output goes to `out`.
 pub fn run(cli: Cli, out: &mut dyn std::io::Write) -> Result<(), CliError> {
     crate::urdf::set_package_paths(cli.package_path);
@@ -243,15 +270,25 @@ pub fn run(cli: Cli, out: &mut dyn std::io::Write) -> Result<(), CliError> {
         Some(Command::Info {
             model,
             joints,
+            ee,
             format,
-        }) => info::run(model.as_deref(), &joints, format, out),
+        }) => info::run(model.as_deref(), &joints, ee.as_deref(), format, out),
         Some(Command::Fk {
             model,
             joints,
             frames,
+            ee,
             euler,
             format,
-        }) => fk::run(&model, &joints, frames, euler.map(Into::into), format, out),
+        }) => fk::run(
+            &model,
+            &joints,
+            frames,
+            ee.as_deref(),
+            euler.map(Into::into),
+            format,
+            out,
+        ),
         Some(Command::Workspace(args)) => figures::workspace(&args, out),
         Some(Command::Render(args)) => figures::render(&args, out),
         Some(Command::Figure(args)) => figures::figure(&args, out),

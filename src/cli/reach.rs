@@ -9,6 +9,10 @@ use std::path::PathBuf;
 pub struct ReachArgs {
     /// Built-in name or path to a .toml / .urdf model.
     pub model: String,
+    /// End-effector, by name or 0-based index (default: the tool of the longest arm). On a
+    /// robot with several, the command works on the chain from the root to it alone.
+    #[arg(long)]
+    pub ee: Option<String>,
     /// Points, one per line: `x,y` (plane coordinates, m) for planar arms, `x,y,z` (world
     /// frame, m) otherwise; `#` comments and blank lines ignored; `-` for stdin.
     #[arg(long)]
@@ -23,7 +27,7 @@ pub struct ReachArgs {
 
 /// Runs `reach`.
 pub(super) fn run(args: &ReachArgs, out: &mut dyn std::io::Write) -> Result<(), CliError> {
-    let robot = super::load_model(&args.model)?;
+    let (robot, _) = super::arm_robot(super::load_model(&args.model)?, args.ee.as_deref())?;
     let point = match args.point {
         super::figures::PointArg::WristCentre => TrackedPoint::WristCentre,
         super::figures::PointArg::Flange => TrackedPoint::Flange,

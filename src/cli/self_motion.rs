@@ -14,7 +14,8 @@ pub struct SelfMotionArgs {
     /// position task uses its position in the arm plane.
     #[arg(long, allow_hyphen_values = true)]
     pub pose: String,
-    /// End-effector name (robots with several).
+    /// End-effector, by name or 0-based index (default: the tool of the longest arm); on a
+    /// robot with several, the self-motion of the chain from the root to it alone.
     #[arg(long)]
     pub ee: Option<String>,
     /// Samples of the parameter over [-pi, pi).
@@ -33,8 +34,7 @@ pub struct SelfMotionArgs {
 
 /// Runs `self-motion`.
 pub(super) fn run(args: &SelfMotionArgs, out: &mut dyn std::io::Write) -> Result<(), CliError> {
-    let robot = super::load_model(&args.model)?;
-    let ee = super::ik::end_effector(&robot, args.ee.as_deref())?;
+    let (robot, ee) = super::arm_robot(super::load_model(&args.model)?, args.ee.as_deref())?;
     if args.samples == 0 || args.samples > 1_000_000 {
         return Err(CliError::Usage("--samples must be between 1 and 1000000"));
     }

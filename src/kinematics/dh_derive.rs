@@ -22,6 +22,7 @@ use super::dh::{Convention, DhRow, standard_to_modified};
 use super::robot::{DhJoint, Drive, JointKind, Robot};
 use super::{KinematicsError, Pose};
 use nalgebra::{Matrix3, Rotation3, Translation3, Vector3};
+use std::f64::consts::FRAC_PI_2;
 use thiserror::Error;
 
 /// A DH table equivalent to a serial chain.
@@ -70,6 +71,15 @@ pub enum NoDhTable {
     Mismatch {
         /// The largest position error found (m).
         error: f64,
+    },
+    /// The derived table is not a valid robot (nearly parallel axes give huge lengths).
+    #[error(
+        "no DH table: the derived table is not a valid robot ({reason}); nearly parallel axes \
+         put the common normal far away"
+    )]
+    Invalid {
+        /// The kinematics layer's reason.
+        reason: String,
     },
     /// Bad robot input.
     #[error(transparent)]
@@ -124,16 +134,16 @@ fn chain_axes(robot: &Robot, ee: usize) -> Result<(Vec<usize>, Vec<Axis>), NoDhT
         .copied()
         .filter(|&j| robot.joints()[j].kind != JointKind::Fixed)
         .collect();
-    for (j, joint) in robot.joints().iter().enumerate() {
-        if joint.kind == JointKind::Fixed {
-            continue;
-        }
-        if !matches!(joint.drive, Drive::Actuated(_)) {
+    // A joint that follows others is said first: a mimic's leader off the chain is no tree.
+    for joint in robot.joints() {
+        if joint.kind != JointKind::Fixed && !matches!(joint.drive, Drive::Actuated(_)) {
             return Err(NoDhTable::Coupled {
                 joint: joint.name.clone(),
             });
         }
-        if !chain.contains(&j) {
+    }
+    for (j, joint) in robot.joints().iter().enumerate() {
+        if joint.kind != JointKind::Fixed && !chain.contains(&j) {
             return Err(NoDhTable::Tree {
                 joint: joint.name.clone(),
                 ee: e.name.clone(),
@@ -176,11 +186,11 @@ fn chain_axes(robot: &Robot, ee: usize) -> Result<(Vec<usize>, Vec<Axis>), NoDhT
 
 /// Frame i from frame i - 1 (whose z is axis i) and axis i + 1: common normal, intersection or
 /// the parallel case.
-fn next_frame(prev: &Frame, next: &Axis, tol: f64) -> Frame {
+fn next_frame(prev: &Frame, next: &Axis, tol: f64, parallel: f64) -> Frame {
     let (z0, z1) = (prev.z, next.z);
     let n = z0.cross(&z1);
     let w = next.p - prev.o;
-    if n.norm() <= 1e-12 {
+    if n.norm() <= parallel {
         // Parallel: the normal through the previous origin.
         let foot = next.p + z1 * z1.dot(&(prev.o - next.p));
         let x = normal_part(&(foot - prev.o), &z0)
@@ -255,9 +265,75 @@ fn rows_between(robot: &Robot, chain: &[usize], frames: &[Frame]) -> Vec<DhJoint
 /// Derives a DH table of `convention` for end-effector `ee`'s chain (see the module docs), or
 /// says why none exists.
 pub fn derive_dh(robot: &Robot, ee: usize, convention: Convention) -> Result<DerivedDh, NoDhTable> {
-    let (chain, axes) = chain_axes(robot, ee)?;
     let scale = robot.characteristic_length();
-    let tol = 1e-10 * scale;
+    let derived = derive_frames(robot, ee, convention, 1e-10 * scale, 1e-12)?;
+    check(robot, ee, &derived, scale, 1e-9 * scale)?;
+    Ok(derived)
+}
+
+/// How far a chain is from its ideal structure: the largest length (m) and angle (rad) of the
+/// derived table that were rounded to 0, or to a multiple of 90 degrees, and the largest
+/// pose difference between the ideal table and the chain (m; rotations times the arm's size).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Deviation {
+    /// Largest length rounded to zero (m).
+    pub length: f64,
+    /// Largest angle rounded to a multiple of 90 degrees (rad).
+    pub angle: f64,
+    /// Largest forward-kinematics difference between the ideal table and the chain (m).
+    pub pose: f64,
+}
+
+/// The DH table of the chain's *ideal* structure: axes within `angle_tol` (rad) of parallel
+/// are taken as parallel, axes whose common normal is shorter than `length_tol` (m) as meeting,
+/// and then twists within `angle_tol` of a multiple of 90 degrees and lengths below
+/// `length_tol` are rounded to it. CAD-rounded URDFs (`rpy = "1.5708"`) and calibrated models
+/// have such near-misses. The ideal table must still follow the chain to
+/// `1000 * length_tol` (or the rounding was not a near miss); the deviation is returned.
+pub fn derive_ideal_dh(
+    robot: &Robot,
+    ee: usize,
+    angle_tol: f64,
+    length_tol: f64,
+) -> Result<(DerivedDh, Deviation), NoDhTable> {
+    let scale = robot.characteristic_length();
+    let mut d = derive_frames(robot, ee, Convention::Standard, length_tol, angle_tol)?;
+    let mut dev = Deviation::default();
+    for j in &mut d.joints {
+        for v in [&mut j.row.a, &mut j.row.d] {
+            if v.abs() <= length_tol {
+                dev.length = dev.length.max(v.abs());
+                *v = 0.0;
+            }
+        }
+        // A revolute joint's theta is its variable (0 here, the offset holds the rest).
+        let mut angles = vec![&mut j.row.alpha];
+        if j.kind == JointKind::Prismatic {
+            angles.push(&mut j.row.theta);
+        }
+        for v in angles {
+            let right = (*v / FRAC_PI_2).round() * FRAC_PI_2;
+            if (*v - right).abs() <= angle_tol {
+                dev.angle = dev.angle.max((*v - right).abs());
+                *v = right;
+            }
+        }
+    }
+    dev.pose = check(robot, ee, &d, scale, 1000.0 * length_tol)?;
+    d.convention = Convention::Standard;
+    Ok((d, dev))
+}
+
+/// The frames and rows of [`derive_dh`] with the given tolerances (m for meeting axes, the sine
+/// of the angle for parallel ones), unchecked.
+fn derive_frames(
+    robot: &Robot,
+    ee: usize,
+    convention: Convention,
+    tol: f64,
+    parallel: f64,
+) -> Result<DerivedDh, NoDhTable> {
+    let (chain, axes) = chain_axes(robot, ee)?;
     let bx = robot.base.rotation * Vector3::x();
     let by = robot.base.rotation * Vector3::y();
     let a1 = axes[0];
@@ -270,7 +346,12 @@ pub fn derive_dh(robot: &Robot, ee: usize, convention: Convention) -> Result<Der
         z: a1.z,
     }];
     for axis in &axes[1..] {
-        let f = next_frame(frames.last().unwrap_or_else(|| unreachable!()), axis, tol);
+        let f = next_frame(
+            frames.last().unwrap_or_else(|| unreachable!()),
+            axis,
+            tol,
+            parallel,
+        );
         frames.push(f);
     }
     // Frame n: axis n as z, the origin nearest the flange, x along the flange's projected x.
@@ -291,9 +372,7 @@ pub fn derive_dh(robot: &Robot, ee: usize, convention: Convention) -> Result<Der
     let world_from_base = frames[0].pose();
     let world_from_n = frames.last().unwrap_or_else(|| unreachable!()).pose();
     let tool = world_from_n.inverse() * robot.fk_ee(&q0, ee)?;
-    let derived = in_convention(rows, world_from_base, tool, convention);
-    check(robot, ee, &derived, scale)?;
-    Ok(derived)
+    Ok(in_convention(rows, world_from_base, tool, convention))
 }
 
 /// The standard table as is, or regrouped into the modified convention (exact).
@@ -337,11 +416,18 @@ impl DerivedDh {
     }
 }
 
-/// The derived table's FK against the chain's at q = 0 and eight spread joint vectors.
-fn check(robot: &Robot, ee: usize, d: &DerivedDh, scale: f64) -> Result<(), NoDhTable> {
-    let dh = d
-        .robot(&robot.name)
-        .map_err(|_| NoDhTable::Mismatch { error: f64::NAN })?;
+/// The derived table's FK against the chain's at q = 0 and eight spread joint vectors: the
+/// largest difference (m; rotation differences times `scale`), an error above `limit`.
+fn check(
+    robot: &Robot,
+    ee: usize,
+    d: &DerivedDh,
+    scale: f64,
+    limit: f64,
+) -> Result<f64, NoDhTable> {
+    let dh = d.robot(&robot.name).map_err(|e| NoDhTable::Invalid {
+        reason: e.to_string(),
+    })?;
     let ranges = robot.sampling_ranges();
     let mut worst: f64 = 0.0;
     for k in 0..9 {
@@ -362,8 +448,8 @@ fn check(robot: &Robot, ee: usize, d: &DerivedDh, scale: f64) -> Result<(), NoDh
         let dr = (a.rotation.matrix() - b.rotation.matrix()).amax() * scale;
         worst = worst.max(dp).max(dr);
     }
-    if worst.is_finite() && worst <= 1e-9 * scale {
-        Ok(())
+    if worst.is_finite() && worst <= limit {
+        Ok(worst)
     } else {
         Err(NoDhTable::Mismatch { error: worst })
     }

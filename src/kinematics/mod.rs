@@ -4,9 +4,11 @@
 //! (standard or modified) or URDF-style origins, the world frame is the base's reference, and
 //! poses are named `world_from_x`. Units: metres and radians.
 
+pub mod arm;
 pub mod closure;
 pub mod dh;
 pub mod dh_derive;
+pub mod end_effectors;
 pub mod error;
 pub mod fk;
 mod frame;

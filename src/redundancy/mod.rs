@@ -12,6 +12,7 @@ mod geometry;
 pub mod motion;
 pub mod numerical;
 pub mod offset_elbow;
+pub mod report;
 pub mod sampler;
 pub mod srs;
 

@@ -163,7 +163,16 @@ pub struct ClosedForm {
     /// q index of the prismatic joint whose mirror extension is filtered by the limits.
     mirror_joint: Option<usize>,
     geometry: Geometry,
+    /// How far the robot is from the ideal structure solved (`None`: exactly on it).
+    near_miss: Option<crate::kinematics::dh_derive::Deviation>,
 }
+
+/// Angle tolerance (rad) of a near miss: axes within it of parallel or perpendicular count as
+/// such for the closed forms (then polished on the exact model).
+pub const NEAR_MISS_ANGLE: f64 = 1e-5;
+/// Length tolerance of a near miss, relative to the arm's size: axes whose common normal is
+/// shorter meet, lengths below it vanish.
+pub const NEAR_MISS_LENGTH: f64 = 1e-5;
 
 impl ClosedForm {
     /// Detects the family from the structure of the DH table (`robot.dh_table()`, joint kinds,
@@ -172,8 +181,67 @@ impl ClosedForm {
     /// When no family matches (parallelogram, DLR, humanoid, LWR, Panda, most URDF trees) the
     /// error says why in words, e.g. "axes 4-6 do not intersect in one point: a5 = 0.1 m, not 0:
     /// no spherical wrist, so position and orientation do not decouple".
+    ///
+    /// A chain that misses a family's structure only by CAD rounding or calibration (axes
+    /// parallel, perpendicular or meeting to within [`NEAR_MISS_ANGLE`] rad and
+    /// [`NEAR_MISS_LENGTH`] times the arm's size) gets the family of its ideal structure
+    /// ([`ClosedForm::near_miss`] says by how much): its branches are solved on the ideal
+    /// structure and [`crate::kinematics::ik::solver::solve`] polishes each by Newton on the
+    /// exact model, keeping only those that forward kinematics confirms to 1e-12.
     pub fn detect(robot: &Robot) -> Result<ClosedForm, NoClosedForm> {
-        Self::detect_family(robot).ok_or_else(|| why::diagnose(robot))
+        if let Some(cf) = Self::detect_family(robot) {
+            return Ok(cf);
+        }
+        let why = why::diagnose(robot);
+        let Some(ideal) = Self::ideal_robot(robot) else {
+            return Err(why);
+        };
+        match Self::detect_family(&ideal.0) {
+            Some(mut cf) => {
+                cf.near_miss = Some(ideal.1);
+                Ok(cf)
+            }
+            // An exact chain too ill-conditioned for a DH table: say what its ideal
+            // structure lacks.
+            None if matches!(why, NoClosedForm::NoDhTable(_)) => Err(why::diagnose(&ideal.0)),
+            None => Err(why),
+        }
+    }
+
+    /// The robot of `robot`'s ideal structure (a near miss rounded, see [`Self::detect`]) and
+    /// how far it is; `None` for a robot with several end-effectors or beyond the tolerance.
+    fn ideal_robot(robot: &Robot) -> Option<(Robot, crate::kinematics::dh_derive::Deviation)> {
+        if robot.end_effectors().len() != 1 {
+            return None;
+        }
+        let length_tol = NEAR_MISS_LENGTH * robot.characteristic_length();
+        let (ideal, dev) =
+            crate::kinematics::dh_derive::derive_ideal_dh(robot, 0, NEAR_MISS_ANGLE, length_tol)
+                .ok()?;
+        Some((ideal.robot(&robot.name).ok()?, dev))
+    }
+
+    /// How far the robot is from the ideal structure its family was detected on (`None` when
+    /// it has that structure exactly).
+    pub fn near_miss(&self) -> Option<&crate::kinematics::dh_derive::Deviation> {
+        self.near_miss.as_ref()
+    }
+
+    /// The family's name, and for a near miss how near, e.g. "anthropomorphic arm with
+    /// spherical wrist (ideal structure: axes meet within 3.0e-7 m, twists within 2.8e-10 rad;
+    /// solutions polished on the exact model)".
+    pub fn describe(&self) -> String {
+        match &self.near_miss {
+            None => self.name().to_string(),
+            Some(d) => format!(
+                "{} (ideal structure: axes meet within {:.1e} m, twists within {:.1e} rad, \
+                 pose within {:.1e} m; solutions polished on the exact model)",
+                self.name(),
+                d.length,
+                d.angle,
+                d.pose
+            ),
+        }
     }
 
     fn detect_family(robot: &Robot) -> Option<ClosedForm> {
@@ -247,6 +315,7 @@ impl ClosedForm {
             revolute,
             mirror_joint,
             geometry,
+            near_miss: None,
         })
     }
 

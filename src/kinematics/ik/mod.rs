@@ -137,6 +137,14 @@ pub enum IkError {
     /// Bad joint vector (seed).
     #[error(transparent)]
     Kinematics(#[from] super::error::KinematicsError),
+    /// The end-effector has no arm of its own to solve (a frame fixed to the base).
+    #[error("end-effector \"{ee}\": {reason}")]
+    Arm {
+        /// The end-effector's name.
+        ee: String,
+        /// Why.
+        reason: String,
+    },
 }
 
 /// Checks that a target has only finite numbers.

@@ -54,7 +54,10 @@ pub fn solve(
     opts: &NumericalOptions,
 ) -> Result<(IkResult, SolverUsed), IkError> {
     super::check_target(target)?;
-    let cf = if ee == 0 && robot.end_effectors().len() == 1 {
+    if robot.end_effectors().len() > 1 {
+        return solve_arm(robot, ee, target, seed_q, choice, opts);
+    }
+    let cf = if ee == 0 {
         ClosedForm::detect(robot)
     } else {
         Err(NoClosedForm::SeveralEndEffectors {
@@ -66,7 +69,11 @@ pub fn solve(
         (SolverChoice::ClosedForm, Err(why)) => Err(IkError::NoClosedForm(why)),
         (SolverChoice::Auto | SolverChoice::ClosedForm, Ok(cf)) => {
             let mut result = cf.solve(robot, target)?;
-            polish(robot, target, &mut result, opts)?;
+            if cf.near_miss().is_some() {
+                polish_near_miss(robot, target, &mut result, opts)?;
+            } else {
+                polish(robot, target, &mut result, opts)?;
+            }
             Ok((result, SolverUsed::ClosedForm(cf.name())))
         }
         (_, _) => {
@@ -115,6 +122,42 @@ pub fn solve(
     }
 }
 
+/// [`solve`] for end-effector `ee` of a robot with several: the arm to it is solved alone
+/// ([`crate::kinematics::arm`]: the joints off its chain stay at their values in `seed_q`, or
+/// in the "ready" configuration, or zero) and every solution is the whole robot's q.
+fn solve_arm(
+    robot: &Robot,
+    ee: usize,
+    target: &Target,
+    seed_q: Option<&[f64]>,
+    choice: SolverChoice,
+    opts: &NumericalOptions,
+) -> Result<(IkResult, SolverUsed), IkError> {
+    robot.end_effector(ee)?;
+    let base = match seed_q {
+        Some(q) => q.to_vec(),
+        None => robot
+            .config("ready")
+            .map_or_else(|| vec![0.0; robot.dof()], <[f64]>::to_vec),
+    };
+    let arm = crate::kinematics::arm::arm_of(robot, ee, &base).map_err(|e| IkError::Arm {
+        ee: robot.end_effectors()[ee].name.clone(),
+        reason: e.to_string(),
+    })?;
+    let seed = arm.restrict(&base);
+    let (mut result, used) = solve(&arm.robot, 0, target, Some(&seed), choice, opts)?;
+    for s in &mut result.solutions {
+        let mut full = base.clone();
+        arm.expand(&s.q, &mut full);
+        s.q = full;
+        s.within_limits = robot.within_limits(&s.q, 1e-12);
+        for f in &mut s.free_joints {
+            f.index = arm.free[f.index];
+        }
+    }
+    Ok((result, used))
+}
+
 /// Runs a few Levenberg–Marquardt iterations from every closed-form solution whose error
 /// exceeds [`POLISH_THRESHOLD`] (near singularities the formulas lose digits), keeping the
 /// polished q only if it is closer to the target and stays on the same side of the limits.
@@ -154,6 +197,58 @@ fn polish(
             s.orientation_error = oe;
         }
     }
+    Ok(())
+}
+
+/// Below this error (m or rad) a solution of a near-miss closed form counts as one of the
+/// exact model.
+pub const NEAR_MISS_CHECK: f64 = 1e-12;
+
+/// A near-miss closed form's solutions are the ideal structure's: each is polished by Newton
+/// (Levenberg-Marquardt without damping to speak of) on the exact model, whatever the target,
+/// keeping its posture label, and only those whose forward kinematics then meets the target to
+/// [`NEAR_MISS_CHECK`] are kept (a target reached only approximately, by a pose the family
+/// cannot orient, keeps its honest error unpolished).
+fn polish_near_miss(
+    robot: &Robot,
+    target: &Target,
+    result: &mut IkResult,
+    opts: &NumericalOptions,
+) -> Result<(), IkError> {
+    let local = NumericalOptions {
+        restarts: 0,
+        max_iterations: 30,
+        enforce_limits: false,
+        tolerance: NEAR_MISS_CHECK / 10.0,
+        damping: opts.damping.min(1e-6),
+        ..*opts
+    };
+    // Only where the family controls the whole target can every solution be held to the check.
+    let whole = match target {
+        Target::Pose(_) => robot.dof() >= 6,
+        Target::Position(_) => true,
+        _ => false,
+    };
+    let mut kept = Vec::with_capacity(result.solutions.len());
+    for mut s in std::mem::take(&mut result.solutions) {
+        let before = s.position_error.max(s.orientation_error);
+        if before > NEAR_MISS_CHECK && s.free_joints.is_empty() {
+            let rep = numerical::solve(robot, 0, target, &s.q, &local)?;
+            let (pe, oe) = numerical::pose_errors(robot, 0, &rep.q, target)?;
+            if pe.max(oe) < before {
+                s.within_limits = robot.within_limits(&rep.q, 1e-12);
+                s.q = rep.q;
+                s.position_error = pe;
+                s.orientation_error = oe;
+            }
+        }
+        // An unreachable target's best effort is kept as it is (its error is the distance).
+        let reached = s.position_error.max(s.orientation_error) <= NEAR_MISS_CHECK;
+        if reached || !whole || matches!(result.status, IkStatus::Unreachable { .. }) {
+            kept.push(s);
+        }
+    }
+    result.solutions = kept;
     Ok(())
 }
 

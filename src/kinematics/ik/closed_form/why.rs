@@ -133,9 +133,17 @@ fn three_or_two(chain: &Chain, tol: f64) -> String {
     format!("not planar ({planar}); not a positioning arm ({arm}); not a spherical wrist ({wrist})")
 }
 
+/// An angle in degrees; one that misses a multiple of 90 degrees by a hair says by how much
+/// (rad), so that "-90°, not ±90°" never reads as a contradiction.
 fn deg(alpha: f64) -> String {
     let v = alpha.to_degrees();
     let r = (v * 1000.0).round() / 1000.0;
+    let right = (v / 90.0).round() * 90.0;
+    let miss = alpha - right.to_radians();
+    if (v - right).abs() < 5e-4 && miss != 0.0 {
+        let right = if right == 0.0 { 0.0 } else { right };
+        return format!("{v:.9}° ({:.1e} rad from {right}°)", miss.abs());
+    }
     format!("{}°", if r == 0.0 { 0.0 } else { r })
 }
 
