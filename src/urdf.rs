@@ -354,8 +354,8 @@ fn joint_tree<'u>(
 }
 
 /// The joints converted in `order` (`new_id` maps a URDF joint index to its place in it), with
-/// their parents, and an end-effector at every leaf link and at every tool-like link with
-/// children (`xarm_gripper_base_link`, `panda_hand`: a tool carrying fingers).
+/// their parents, and an end-effector at every leaf link and at every tool-like link whose
+/// children all move (`xarm_gripper_base_link`: a tool carrying fingers).
 fn assemble(
     uj: &[urdf_rs::Joint],
     order: &[usize],
@@ -374,8 +374,11 @@ fn assemble(
         joints.push(Joint { parent, ..j });
         let child = uj[i].child.link.as_str();
         let leaf = !children.contains_key(child);
+        // A tool-like link with children is a tool carrying moving fingers only when no leaf
+        // hangs from it by fixed joints alone (else that leaf, `panda_hand_tcp`, is the tool).
         let tool_like = crate::kinematics::end_effectors::is_tool_like(child)
-            && !crate::kinematics::end_effectors::is_auxiliary_frame(child);
+            && !crate::kinematics::end_effectors::is_auxiliary_frame(child)
+            && !fixed_leaf_below(uj, children, child);
         if leaf || tool_like {
             ees.push(EndEffector {
                 name: uj[i].child.link.clone(),
@@ -385,6 +388,21 @@ fn assemble(
         }
     }
     Ok((joints, ees))
+}
+
+/// Whether a leaf link hangs from `link` through fixed joints only.
+fn fixed_leaf_below(
+    uj: &[urdf_rs::Joint],
+    children: &HashMap<&str, Vec<usize>>,
+    link: &str,
+) -> bool {
+    children.get(link).is_some_and(|kids| {
+        kids.iter().any(|&k| {
+            let c = uj[k].child.link.as_str();
+            uj[k].joint_type == JointType::Fixed
+                && (!children.contains_key(c) || fixed_leaf_below(uj, children, c))
+        })
+    })
 }
 
 /// The robot's name, or the file's stem when the URDF gives none.

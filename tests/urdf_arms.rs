@@ -9,6 +9,8 @@
 //!   here, and a brute-force numerical search finds no solution it missed. Beyond the tolerance
 //!   (a 1 mm offset) there is no closed form and the message gives the deviation.
 
+#![allow(clippy::approx_constant)] // the CAD-rounded 1.5708 is the point of these tests
+
 use armlab::kinematics::end_effectors::catalog;
 use armlab::kinematics::ik::solver::{SolverChoice, solve};
 use armlab::kinematics::ik::{ClosedForm, Target, numerical::NumericalOptions};
@@ -30,7 +32,7 @@ fn the_pandas_arm_excludes_its_fingers() {
         8,
         "the file has 7 arm joints and a finger joint"
     );
-    let reports = arm_reports(&robot, &vec![0.0; 8]);
+    let reports = arm_reports(&robot, &[0.0; 8]);
     let tcp = &reports[0];
     assert_eq!(tcp.name, "panda_hand_tcp");
     assert_eq!(tcp.dof, 7);

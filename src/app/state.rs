@@ -49,10 +49,12 @@ pub use units::{
     without_negative_zero,
 };
 
+use crate::kinematics::end_effectors::{EndEffectorCatalog, catalog};
 use crate::kinematics::orientation::angle_axis_from_rotation;
 use crate::kinematics::pose::Pose;
 use crate::kinematics::singularity::SingularityAnalyzer;
 use crate::kinematics::{EulerKind, Robot};
+use crate::redundancy::report::{ArmReport, arm_report};
 use nalgebra::{Rotation3, Translation3, Vector3};
 use std::collections::VecDeque;
 
@@ -92,6 +94,9 @@ pub struct AppState {
     trails: Vec<VecDeque<TrailPoint>>,
     messages: VecDeque<StatusMessage>,
     analyzer: SingularityAnalyzer,
+    /// Each end-effector's arm analysed (chain, closed form, n), and the end-effectors grouped
+    /// by arm: computed when the robot changes.
+    arms: ArmsOfRobot,
     /// Posture classes of the robot (the workspace figures' colours).
     classifier: crate::workspace::PostureClassifier,
     /// The task the gizmo's IK obeys.
@@ -111,12 +116,32 @@ pub struct AppState {
     redo: Vec<Robot>,
 }
 
+/// A robot's end-effectors grouped by arm, and each one's arm analysed at q = 0 (the chain's
+/// structure does not depend on q).
+#[derive(Debug, Clone, Default)]
+struct ArmsOfRobot {
+    catalog: EndEffectorCatalog,
+    reports: Vec<ArmReport>,
+}
+
+impl ArmsOfRobot {
+    fn new(robot: &Robot) -> Self {
+        let catalog = catalog(robot);
+        let q = vec![0.0; robot.dof()];
+        let reports = (0..robot.end_effectors().len())
+            .map(|ee| arm_report(robot, &catalog, ee, &q))
+            .collect();
+        Self { catalog, reports }
+    }
+}
+
 impl AppState {
     /// The state for `robot` (loaded from `spec`, a built-in name or a path): q at the "ready"
     /// configuration if the robot has one (else zero), clamped into the limits; each target at
     /// its end-effector; lock off; degrees.
     pub fn new(robot: Robot, spec: impl Into<String>) -> Self {
         let analyzer = SingularityAnalyzer::new(&robot);
+        let arms = ArmsOfRobot::new(&robot);
         let dh = dh::build_cells(&robot, AngleUnit::default());
         let mut me = Self {
             spec: spec.into(),
@@ -130,6 +155,7 @@ impl AppState {
             trails: Vec::new(),
             messages: VecDeque::new(),
             analyzer,
+            arms,
             classifier: crate::workspace::PostureClassifier::new(&robot),
             task: full_task(&robot),
             generation: 0,
@@ -185,6 +211,7 @@ impl AppState {
             Ok(robot) => {
                 self.spec = spec.to_string();
                 self.analyzer = SingularityAnalyzer::new(&robot);
+                self.arms = ArmsOfRobot::new(&robot);
                 self.classifier = crate::workspace::PostureClassifier::new(&robot);
                 self.dh = dh::build_cells(&robot, self.angle_unit);
                 self.task = full_task(&robot);
@@ -264,6 +291,16 @@ impl AppState {
     /// The singularity classifier of the current robot.
     pub fn analyzer(&self) -> &SingularityAnalyzer {
         &self.analyzer
+    }
+
+    /// The end-effectors grouped by arm (tools, their frames, other frames).
+    pub fn ee_catalog(&self) -> &EndEffectorCatalog {
+        &self.arms.catalog
+    }
+
+    /// End-effector `ee`'s arm analysed (chain, DH, closed form, n), if it exists.
+    pub fn arm_report(&self, ee: usize) -> Option<&ArmReport> {
+        self.arms.reports.get(ee)
     }
 
     /// The posture class of a closed-form label, as the workspace figures colour it (`None`:
@@ -601,6 +638,7 @@ impl AppState {
     /// targets synced.
     fn after_model_edit(&mut self) {
         self.analyzer = SingularityAnalyzer::new(&self.robot);
+        self.arms = ArmsOfRobot::new(&self.robot);
         self.classifier = crate::workspace::PostureClassifier::new(&self.robot);
         self.generation += 1;
         let mut q = self.q.clone();

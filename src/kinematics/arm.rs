@@ -81,6 +81,8 @@ impl Arm {
 /// End-effector `ee`'s arm at the whole robot's `q` (which matters only for chain joints that
 /// follow a joint off the chain). An error when `ee` does not exist, `q` is wrong, or the chain
 /// is closed through a joint off it.
+///
+/// Long (about 85 lines) because holding, pruning and renumbering share the kept-joint map.
 pub fn arm_of(robot: &Robot, ee: usize, q: &[f64]) -> Result<Arm, ArmError> {
     robot.check_q(q)?;
     let e = robot.end_effector(ee)?.clone();

@@ -122,6 +122,10 @@ pub fn is_auxiliary_frame(name: &str) -> bool {
 }
 
 /// The catalog of `robot`'s end-effectors (see the module docs).
+///
+/// Long (about 100 lines) because its four passes (group by tip, attach fingers and frames
+/// along an arm, pick each arm's tool, sort) share the groups' indices; split, they would pass
+/// the same three vectors around.
 pub fn catalog(robot: &Robot) -> EndEffectorCatalog {
     let ees = robot.end_effectors();
     let joints = robot.joints();
@@ -138,13 +142,13 @@ pub fn catalog(robot: &Robot) -> EndEffectorCatalog {
     let mut other = Vec::new();
     // Groups by tip joint: (tip, chain of moving joints, members).
     let mut groups: Vec<(usize, Vec<usize>, Vec<usize>)> = Vec::new();
-    for ee in 0..ees.len() {
+    for (ee, frame) in ees.iter().enumerate() {
         let m = moving(ee);
         let Some(&tip) = m.last() else {
             other.push(ee);
             continue;
         };
-        if is_auxiliary_frame(&ees[ee].name) {
+        if is_auxiliary_frame(&frame.name) {
             other.push(ee);
             continue;
         }

@@ -86,6 +86,9 @@ pub fn self_motion_parameter(arm: &Robot) -> Option<&'static str> {
 }
 
 /// The report of end-effector `ee` at the whole robot's `q` (see the module docs).
+///
+/// Long (about 90 lines) because it fills one report field by field, each with its reason when
+/// absent; the steps are independent and read in order.
 pub fn arm_report(robot: &Robot, cat: &EndEffectorCatalog, ee: usize, q: &[f64]) -> ArmReport {
     let name = robot
         .end_effectors()

@@ -44,18 +44,37 @@ impl IkPanel {
     }
 }
 
-/// The end-effector chooser: a combo box (a robot may have dozens of frames).
+/// The end-effector chooser: a combo box (a robot may have dozens of frames), grouped by arm
+/// (its tool first, then its other frames and fingers), then the other frames.
 fn ee_picker(state: &AppState, ui: &mut egui::Ui, current: usize, out: &mut Actions) {
     let ees = state.robot().end_effectors();
+    let cat = state.ee_catalog();
+    let mut groups: Vec<(String, Vec<usize>)> = cat
+        .arms
+        .iter()
+        .enumerate()
+        .map(|(i, a)| {
+            let mut all = vec![a.tool];
+            all.extend(&a.frames);
+            (format!("Arm {} ({} joints)", i + 1, a.dof), all)
+        })
+        .collect();
+    if !cat.other.is_empty() {
+        groups.push(("Other frames".into(), cat.other.clone()));
+    }
     ui.horizontal(|ui| {
         let label = ui.label("End-effector:");
         egui::ComboBox::from_id_salt("end-effector")
             .selected_text(ees[current].name.clone())
             .width((ui.available_width() - 8.0).max(60.0))
             .show_ui(ui, |ui| {
-                for (k, e) in ees.iter().enumerate() {
-                    if ui.selectable_label(k == current, &e.name).clicked() {
-                        out.push(Action::SelectEe(k));
+                for (title, members) in &groups {
+                    ui.label(RichText::new(title).strong());
+                    for &k in members {
+                        let text = format!("  {}", ees[k].name);
+                        if ui.selectable_label(k == current, text).clicked() {
+                            out.push(Action::SelectEe(k));
+                        }
                     }
                 }
             })
@@ -68,16 +87,35 @@ fn ee_picker(state: &AppState, ui: &mut egui::Ui, current: usize, out: &mut Acti
 fn ik_section(state: &AppState, ui: &mut egui::Ui, ee: usize, out: &mut Actions) {
     ui.heading("Inverse kinematics");
     let analyzer = state.analyzer();
-    match (analyzer.family(), analyzer.why_no_closed_form()) {
-        (Some(f), _) => ui.label(RichText::new(format!("closed form: {f}")).small()),
-        (None, why) => ui.label(
-            RichText::new(format!(
-                "numerical (Levenberg-Marquardt); no closed form: {}",
-                why.unwrap_or("-")
-            ))
-            .small(),
-        ),
-    };
+    let several = state.robot().end_effectors().len() > 1;
+    if several && let Some(r) = state.arm_report(ee) {
+        // A tree: the arm of this end-effector, alone.
+        let text = match (r.closed_form, &r.closed_form_reason) {
+            (Some(f), _) => format!(
+                "arm of {} ({} joints): closed form {f}; the app drags it numerically, \
+                 `armlab ik --ee` lists every posture",
+                r.name, r.variables
+            ),
+            (None, why) => format!(
+                "arm of {} ({} joints): numerical (Levenberg-Marquardt); no closed form: {}",
+                r.name,
+                r.variables,
+                why.as_deref().unwrap_or("-")
+            ),
+        };
+        ui.label(RichText::new(text).small());
+    } else {
+        match (analyzer.family(), analyzer.why_no_closed_form()) {
+            (Some(f), _) => ui.label(RichText::new(format!("closed form: {f}")).small()),
+            (None, why) => ui.label(
+                RichText::new(format!(
+                    "numerical (Levenberg-Marquardt); no closed form: {}",
+                    why.unwrap_or("-")
+                ))
+                .small(),
+            ),
+        };
+    }
     let mut lock = state.lock();
     if ui
         .checkbox(&mut lock, "Lock posture while dragging (L)")

@@ -15,7 +15,7 @@ const INFEASIBLE: Color32 = Color32::from_rgb(200, 200, 205);
 /// The Redundancy section of the right panel.
 pub fn panel(state: &mut AppState, ui: &mut egui::Ui, ee: usize, out: &mut Actions) {
     ui.heading("Redundancy");
-    let red = state.redundancy();
+    let red = state.redundancy_of(ee);
     ui.monospace(format!("n = {}, m = {}, r = {}", red.n, red.m, red.r));
     ui.label(RichText::new(format!("{} (degree {})", red.words(), red.degree())).strong());
     let mut task = state.task();

@@ -146,6 +146,18 @@ impl AppState {
         Redundancy::of(&self.robot, self.task)
     }
 
+    /// n, m, r of end-effector `ee`'s arm for the current task: on a tree only the chain to it
+    /// counts (not the fingers, the head or the other arm).
+    pub fn redundancy_of(&self, ee: usize) -> Redundancy {
+        let mut red = self.redundancy();
+        if self.robot.end_effectors().len() > 1
+            && let Some(r) = self.arm_report(ee)
+        {
+            red.n = r.variables;
+        }
+        red
+    }
+
     /// The self-motion cache for `ee`. Its held pose is the end-effector's pose when the
     /// self-motion started, kept while q changes by the self-motion alone (never the current,
     /// possibly drifted, pose): a new one starts when the robot, the task or the end-effector

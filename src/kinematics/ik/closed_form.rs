@@ -196,15 +196,18 @@ impl ClosedForm {
         let Some(ideal) = Self::ideal_robot(robot) else {
             return Err(why);
         };
+        // Only a chain that was rounded is a near miss (an ideal equal to the chain is the
+        // chain, and its refusal stands).
+        let rounded = ideal.1.length > 0.0 || ideal.1.angle > 0.0;
         match Self::detect_family(&ideal.0) {
-            Some(mut cf) => {
+            Some(mut cf) if rounded => {
                 cf.near_miss = Some(ideal.1);
                 Ok(cf)
             }
             // An exact chain too ill-conditioned for a DH table: say what its ideal
             // structure lacks.
             None if matches!(why, NoClosedForm::NoDhTable(_)) => Err(why::diagnose(&ideal.0)),
-            None => Err(why),
+            _ => Err(why),
         }
     }
 
