@@ -1,7 +1,8 @@
 //! Issue 26: arms in trees and near-miss geometry.
 //!
 //! - The arm of an end-effector is the chain to it alone: the Panda with its fingers is a 7-DOF
-//!   arm of degree 1 with the exact q7 self-motion; IK on a tree moves only that chain.
+//!   arm of degree 1 with the exact q7 self-motion (every sample meets the held pose by a forward
+//!   kinematics of the file written here); IK on a tree moves only that chain.
 //! - End-effectors a user would pick: UR5's default is `tool0`, its `base` frame is an "other
 //!   frame"; Baxter has two arms and its head frames are other frames.
 //! - A CAD-rounded arm (`rpy = "1.5708"`, a wrist offset of 3e-7 m) gets the closed form of its
@@ -115,17 +116,10 @@ fn rounded_arm(offset: f64) -> String {
     s
 }
 
-/// The URDF's forward kinematics, written here: origin (xyz, then R = Rz(y) Ry(p) Rx(r)) then
-/// the joint's rotation about z, for each joint, then the flange.
-fn fk_here(offset: f64, q: &[f64]) -> Matrix4<f64> {
-    let origins = [
-        ([0.0, 0.0, 0.5], [0.0, 0.0, 0.0]),
-        ([0.0, 0.0, 0.0], [1.5708, 0.0, 0.0]),
-        ([0.4, 0.0, 0.0], [0.0, 0.0, 0.0]),
-        ([0.03, 0.4, 0.0], [-1.5708, 0.0, 0.0]),
-        ([offset, 0.0, 0.0], [1.5708, 0.0, 0.0]),
-        ([0.0, 0.0, 0.0], [-1.5708, 0.0, 0.0]),
-    ];
+/// A URDF chain's forward kinematics, written here: for each joint its origin (xyz, then
+/// R = Rz(y) Ry(p) Rx(r)) then its rotation about z by q; then the fixed `tail` origins.
+type Origin = ([f64; 3], [f64; 3]);
+fn fk_chain(origins: &[Origin], q: &[f64], tail: &[Origin]) -> Matrix4<f64> {
     let rx = |a: f64| {
         let (s, c) = a.sin_cos();
         Matrix4::new(1., 0., 0., 0., 0., c, -s, 0., 0., s, c, 0., 0., 0., 0., 1.)
@@ -138,12 +132,77 @@ fn fk_here(offset: f64, q: &[f64]) -> Matrix4<f64> {
         let (s, c) = a.sin_cos();
         Matrix4::new(c, -s, 0., 0., s, c, 0., 0., 0., 0., 1., 0., 0., 0., 0., 1.)
     };
-    let tr = |v: [f64; 3]| Matrix4::new_translation(&Vector3::new(v[0], v[1], v[2]));
+    let origin = |(xyz, rpy): &Origin| {
+        Matrix4::new_translation(&Vector3::new(xyz[0], xyz[1], xyz[2]))
+            * rz(rpy[2])
+            * ry(rpy[1])
+            * rx(rpy[0])
+    };
     let mut t: Matrix4<f64> = Matrix4::identity();
-    for (k, (xyz, rpy)) in origins.iter().enumerate() {
-        t = t * tr(*xyz) * rz(rpy[2]) * ry(rpy[1]) * rx(rpy[0]) * rz(q[k]);
+    for (o, &v) in origins.iter().zip(q) {
+        t = t * origin(o) * rz(v);
     }
-    t * tr([0.0, 0.0, 0.1])
+    for o in tail {
+        t *= origin(o);
+    }
+    t
+}
+
+/// The rounded arm's forward kinematics ([`rounded_arm`]'s numbers).
+fn fk_here(offset: f64, q: &[f64]) -> Matrix4<f64> {
+    let origins = [
+        ([0.0, 0.0, 0.5], [0.0, 0.0, 0.0]),
+        ([0.0, 0.0, 0.0], [1.5708, 0.0, 0.0]),
+        ([0.4, 0.0, 0.0], [0.0, 0.0, 0.0]),
+        ([0.03, 0.4, 0.0], [-1.5708, 0.0, 0.0]),
+        ([offset, 0.0, 0.0], [1.5708, 0.0, 0.0]),
+        ([0.0, 0.0, 0.0], [-1.5708, 0.0, 0.0]),
+    ];
+    fk_chain(&origins, q, &[([0.0, 0.0, 0.1], [0.0; 3])])
+}
+
+/// `panda.urdf`'s chain to `panda_hand_tcp`, as the file writes it.
+fn fk_panda(q: &[f64]) -> Matrix4<f64> {
+    use std::f64::consts::FRAC_PI_2 as H;
+    let origins = [
+        ([0.0, 0.0, 0.333], [0.0, 0.0, 0.0]),
+        ([0.0, 0.0, 0.0], [-H, 0.0, 0.0]),
+        ([0.0, -0.316, 0.0], [H, 0.0, 0.0]),
+        ([0.0825, 0.0, 0.0], [H, 0.0, 0.0]),
+        ([-0.0825, 0.384, 0.0], [-H, 0.0, 0.0]),
+        ([0.0, 0.0, 0.0], [H, 0.0, 0.0]),
+        ([0.088, 0.0, 0.0], [H, 0.0, 0.0]),
+    ];
+    let tail = [
+        ([0.0, 0.0, 0.107], [0.0; 3]),
+        ([0.0; 3], [0.0, 0.0, -PI / 4.0]),
+        ([0.0, 0.0, 0.1034], [0.0; 3]),
+    ];
+    fk_chain(&origins, q, &tail)
+}
+
+#[test]
+fn the_urdf_pandas_self_motion_is_the_exact_q7_one() {
+    let robot = corpus("panda.urdf");
+    let arm = armlab::kinematics::arm::arm_of(&robot, 0, &[0.0; 8]).unwrap();
+    let q_true = [0.3, 0.5, 0.2, -1.4, 0.4, 1.5, 0.5];
+    let m = fk_panda(&q_true);
+    let armlab_m = arm.robot.fk(&q_true).unwrap().to_homogeneous();
+    assert!((armlab_m - m).amax() < 1e-14, "{}", (armlab_m - m).amax());
+    let pose = armlab::kinematics::pose::pose_from_matrix(&m).unwrap();
+    let motion = armlab::redundancy::sampler::sample_self_motion(&arm.robot, 0, &pose, 90).unwrap();
+    assert!(motion.exact);
+    assert_eq!(motion.parameter, "q7");
+    let mut checked = 0;
+    for (q7, sols) in &motion.samples {
+        for s in sols {
+            assert!((s.q[6] - q7).abs() < 1e-12, "q7 is the parameter");
+            let e = (fk_panda(&s.q) - m).amax();
+            assert!(e < 1e-9, "{} at q7 = {q7}: {e:e}", s.name);
+            checked += 1;
+        }
+    }
+    assert!(checked > 90, "{checked} solutions along the self-motion");
 }
 
 fn load_text(text: &str) -> armlab::kinematics::Robot {

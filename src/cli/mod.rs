@@ -250,9 +250,7 @@ pub(crate) fn arm_robot(robot: Robot, spec: Option<&str>) -> Result<(Robot, usiz
     if robot.end_effectors().len() == 1 {
         return Ok((robot, ee));
     }
-    let q = robot
-        .config("ready")
-        .map_or_else(|| vec![0.0; robot.dof()], <[f64]>::to_vec);
+    let q = robot.ready_or_zero();
     let arm = crate::kinematics::arm::arm_of(&robot, ee, &q).map_err(|e| CliError::BadTarget {
         source_name: format!("--ee {}", robot.end_effectors()[ee].name),
         reason: e.to_string(),

@@ -255,9 +255,7 @@ fn three_d(
         stats.max_reach
     );
 
-    let q = robot
-        .config("ready")
-        .map_or_else(|| vec![0.0; robot.dof()], <[f64]>::to_vec);
+    let q = robot.ready_or_zero();
     let mut scene = arm_scene(
         robot,
         &q,

@@ -81,73 +81,34 @@ impl Arm {
 /// End-effector `ee`'s arm at the whole robot's `q` (which matters only for chain joints that
 /// follow a joint off the chain). An error when `ee` does not exist, `q` is wrong, or the chain
 /// is closed through a joint off it.
-///
-/// Long (about 85 lines) because holding, pruning and renumbering share the kept-joint map.
 pub fn arm_of(robot: &Robot, ee: usize, q: &[f64]) -> Result<Arm, ArmError> {
     robot.check_q(q)?;
     let e = robot.end_effector(ee)?.clone();
-    let joints = robot.joints();
     let chain = robot.chain_to(e.parent).to_vec();
-    let mut on_chain = vec![false; joints.len()];
-    for &j in &chain {
-        on_chain[j] = true;
-    }
-    // The joints kept: the chain, and the joints off it that a chain joint follows (a mimic's
-    // leader on another branch, as a gripper's fingers follow one knuckle).
-    let mut keep = on_chain.clone();
-    for &j in &chain {
-        match &joints[j].drive {
-            Drive::Coupled(terms) => terms.iter().for_each(|&(src, _)| keep[src] = true),
-            Drive::Closure(c) => {
-                keep[c.mechanism.crank] = true;
-                keep[c.mechanism.arm] = true;
-            }
-            _ => {}
-        }
-    }
+    let keep = kept_joints(robot, &chain);
     let held: Vec<bool> = robot.actuated_joints().iter().map(|&j| !keep[j]).collect();
     let (base_robot, free) = match hold_joints(robot, q, &held) {
         Some(h) => (h.robot, h.free),
         None => (robot.clone(), (0..robot.dof()).collect()),
     };
-    let kept: Vec<JointId> = (0..joints.len()).filter(|&j| keep[j]).collect();
-    let new_id = |old: JointId| kept.iter().position(|&c| c == old);
-    let mut out: Vec<Joint> = Vec::with_capacity(kept.len());
-    for &j in &kept {
-        let mut nj = base_robot.joints()[j].clone();
-        // A leader off the chain keeps its variable; where it sits does not matter here.
-        nj.parent = nj.parent.and_then(new_id);
-        let broken = || ArmError::CoupledOffChain {
-            joint: nj.name.clone(),
-            ee: e.name.clone(),
-        };
-        match &mut nj.drive {
-            Drive::Coupled(terms) => {
-                for t in terms.iter_mut() {
-                    t.0 = new_id(t.0).ok_or_else(broken)?;
-                }
-            }
-            Drive::Closure(c) => {
-                c.mechanism.crank = new_id(c.mechanism.crank).ok_or_else(broken)?;
-                c.mechanism.arm = new_id(c.mechanism.arm).ok_or_else(broken)?;
-            }
-            _ => {}
-        }
-        out.push(nj);
+    let kept: Vec<JointId> = (0..keep.len()).filter(|&j| keep[j]).collect();
+    let out = prune(&base_robot, &kept, &e.name)?;
+    if !out.iter().any(|j| matches!(j.drive, Drive::Actuated(_))) {
+        return Err(ArmError::NoMovingJoint { ee: e.name });
     }
     let chain_names = chain
         .iter()
         .filter(|&&j| !matches!(base_robot.joints()[j].drive, Drive::None))
-        .map(|&j| joints[j].name.clone())
+        .map(|&j| robot.joints()[j].name.clone())
         .collect();
     let ees = vec![EndEffector {
         name: e.name.clone(),
-        parent: new_id(e.parent).unwrap_or(kept.len() - 1),
+        parent: kept
+            .iter()
+            .position(|&c| c == e.parent)
+            .unwrap_or(kept.len() - 1),
         tool: e.tool,
     }];
-    if !out.iter().any(|j| matches!(j.drive, Drive::Actuated(_))) {
-        return Err(ArmError::NoMovingJoint { ee: e.name });
-    }
     let mut arm = Robot::new(robot.name.clone(), robot.base, out, ees)?;
     arm.description = format!(
         "The arm of end-effector \"{}\" of {}: the chain from the root to it.",
@@ -167,4 +128,52 @@ pub fn arm_of(robot: &Robot, ee: usize, q: &[f64]) -> Result<Arm, ArmError> {
         ee,
         chain: chain_names,
     })
+}
+
+/// Which joints an arm keeps: the chain, and the joints off it that a chain joint follows (a
+/// mimic's leader on another branch, as a gripper's fingers follow one knuckle).
+fn kept_joints(robot: &Robot, chain: &[JointId]) -> Vec<bool> {
+    let mut keep = vec![false; robot.joints().len()];
+    for &j in chain {
+        keep[j] = true;
+        match &robot.joints()[j].drive {
+            Drive::Coupled(terms) => terms.iter().for_each(|&(src, _)| keep[src] = true),
+            Drive::Closure(c) => {
+                keep[c.mechanism.crank] = true;
+                keep[c.mechanism.arm] = true;
+            }
+            _ => {}
+        }
+    }
+    keep
+}
+
+/// The `kept` joints of `robot` (held joints already fixed), renumbered: parents, coupling
+/// terms and loop joints point into the kept list.
+fn prune(robot: &Robot, kept: &[JointId], ee: &str) -> Result<Vec<Joint>, ArmError> {
+    let new_id = |old: JointId| kept.iter().position(|&c| c == old);
+    let mut out: Vec<Joint> = Vec::with_capacity(kept.len());
+    for &j in kept {
+        let mut nj = robot.joints()[j].clone();
+        // A leader off the chain keeps its variable; where it sits does not matter here.
+        nj.parent = nj.parent.and_then(new_id);
+        let broken = || ArmError::CoupledOffChain {
+            joint: nj.name.clone(),
+            ee: ee.to_string(),
+        };
+        match &mut nj.drive {
+            Drive::Coupled(terms) => {
+                for t in terms.iter_mut() {
+                    t.0 = new_id(t.0).ok_or_else(broken)?;
+                }
+            }
+            Drive::Closure(c) => {
+                c.mechanism.crank = new_id(c.mechanism.crank).ok_or_else(broken)?;
+                c.mechanism.arm = new_id(c.mechanism.arm).ok_or_else(broken)?;
+            }
+            _ => {}
+        }
+        out.push(nj);
+    }
+    Ok(out)
 }

@@ -121,109 +121,125 @@ pub fn is_auxiliary_frame(name: &str) -> bool {
     .any(|w| n.contains(w))
 }
 
+/// Frames whose chains end at one moving joint.
+struct Group {
+    /// The moving joints of the chain, root to tip.
+    chain: Vec<usize>,
+    /// The end-effector indices, in file order.
+    members: Vec<usize>,
+    /// Whether one of them has a tool-like name.
+    tool_like: bool,
+}
+
 /// The catalog of `robot`'s end-effectors (see the module docs).
-///
-/// Long (about 100 lines) because its four passes (group by tip, attach fingers and frames
-/// along an arm, pick each arm's tool, sort) share the groups' indices; split, they would pass
-/// the same three vectors around.
 pub fn catalog(robot: &Robot) -> EndEffectorCatalog {
-    let ees = robot.end_effectors();
+    let (groups, mut other) = group_by_tip(robot);
+    let host = hosts(&groups);
+    let root = |mut i: usize| {
+        while let Some(p) = host[i] {
+            i = p;
+        }
+        i
+    };
+    // Each arm: its root group and every group that joined it.
+    let mut members: Vec<(usize, Vec<usize>)> = Vec::new();
+    for (i, g) in groups.iter().enumerate() {
+        let r = root(i);
+        match members.iter_mut().find(|m| m.0 == r) {
+            Some(m) => m.1.extend(&g.members),
+            None => members.push((r, g.members.clone())),
+        }
+    }
+    let mut arms: Vec<ArmGroup> = members
+        .into_iter()
+        .map(|(r, mut all)| {
+            let tool = pick_tool(robot, &groups[r].members);
+            all.sort_unstable();
+            all.retain(|&e| e != tool);
+            ArmGroup {
+                tool,
+                frames: all,
+                dof: groups[r].chain.len(),
+            }
+        })
+        .collect();
+    arms.sort_by_key(|a| (usize::MAX - a.dof, a.tool));
+    other.sort_unstable();
+    EndEffectorCatalog { arms, other }
+}
+
+/// The frames grouped by the last moving joint of their chain, and the other frames (no moving
+/// joint, or an auxiliary name).
+fn group_by_tip(robot: &Robot) -> (Vec<Group>, Vec<usize>) {
     let joints = robot.joints();
-    let moving = |ee: usize| -> Vec<usize> {
-        robot
-            .chain_to(ees[ee].parent)
+    let mut other = Vec::new();
+    let mut groups: Vec<Group> = Vec::new();
+    for (ee, frame) in robot.end_effectors().iter().enumerate() {
+        let chain: Vec<usize> = robot
+            .chain_to(frame.parent)
             .iter()
             .copied()
             .filter(|&j| {
                 joints[j].kind != JointKind::Fixed && !matches!(joints[j].drive, Drive::None)
             })
-            .collect()
-    };
-    let mut other = Vec::new();
-    // Groups by tip joint: (tip, chain of moving joints, members).
-    let mut groups: Vec<(usize, Vec<usize>, Vec<usize>)> = Vec::new();
-    for (ee, frame) in ees.iter().enumerate() {
-        let m = moving(ee);
-        let Some(&tip) = m.last() else {
-            other.push(ee);
-            continue;
-        };
-        if is_auxiliary_frame(&frame.name) {
+            .collect();
+        if chain.is_empty() || is_auxiliary_frame(&frame.name) {
             other.push(ee);
             continue;
         }
-        match groups.iter_mut().find(|g| g.0 == tip) {
-            Some(g) => g.2.push(ee),
-            None => groups.push((tip, m, vec![ee])),
+        let tool_like = is_tool_like(&frame.name);
+        match groups.iter_mut().find(|g| g.chain.last() == chain.last()) {
+            Some(g) => {
+                g.members.push(ee);
+                g.tool_like |= tool_like;
+            }
+            None => groups.push(Group {
+                chain,
+                members: vec![ee],
+                tool_like,
+            }),
         }
     }
-    // Fingers: a group whose chain runs through another group's tip, when that group has a
-    // tool-like frame, joins it.
-    let mut parent_of: Vec<Option<usize>> = vec![None; groups.len()];
-    for (i, g) in groups.iter().enumerate() {
-        let host = groups
-            .iter()
-            .enumerate()
-            .filter(|(k, h)| {
-                *k != i
-                    && g.1.len() > h.1.len()
-                    && g.1.starts_with(&h.1)
-                    && h.2.iter().any(|&e| is_tool_like(&ees[e].name))
-            })
-            .max_by_key(|(_, h)| h.1.len());
-        // Frames part way along an arm (no tool-like name, the chain a prefix of a longer
-        // one's) belong to that arm.
-        let along = || {
-            groups
-                .iter()
-                .enumerate()
-                .filter(|(k, h)| {
-                    *k != i
-                        && h.1.len() > g.1.len()
-                        && h.1.starts_with(&g.1)
-                        && !g.2.iter().any(|&e| is_tool_like(&ees[e].name))
-                })
-                .min_by_key(|(_, h)| h.1.len())
-        };
-        parent_of[i] = host.or_else(along).map(|(k, _)| k);
-    }
-    let root = |mut i: usize| {
-        while let Some(p) = parent_of[i] {
-            i = p;
-        }
-        i
+    (groups, other)
+}
+
+/// The group each group joins, if any: fingers (a chain running past a group with a tool-like
+/// frame) join the nearest such group; frames part way along an arm (no tool-like name, the
+/// chain a prefix of a longer one's) join the nearest longer group.
+fn hosts(groups: &[Group]) -> Vec<Option<usize>> {
+    let extends = |long: &Group, short: &Group| {
+        long.chain.len() > short.chain.len() && long.chain.starts_with(&short.chain)
     };
+    groups
+        .iter()
+        .enumerate()
+        .map(|(i, g)| {
+            let others = || groups.iter().enumerate().filter(move |(k, _)| *k != i);
+            let finger_of = others()
+                .filter(|(_, h)| h.tool_like && extends(g, h))
+                .max_by_key(|(_, h)| h.chain.len());
+            let along = || {
+                others()
+                    .filter(|(_, h)| !g.tool_like && extends(h, g))
+                    .min_by_key(|(_, h)| h.chain.len())
+            };
+            finger_of.or_else(along).map(|(k, _)| k)
+        })
+        .collect()
+}
+
+/// The most tool-like of `own` (end-effector indices): by [`tool_rank`], among hands, grippers
+/// and unnamed tips the farthest out, among equal names the plainest (`iiwa_link_ee` before
+/// `iiwa_link_ee_kuka`).
+fn pick_tool(robot: &Robot, own: &[usize]) -> usize {
+    let ees = robot.end_effectors();
     let depth = |ee: usize| robot.chain_to(ees[ee].parent).len();
-    let mut arms: Vec<ArmGroup> = Vec::new();
-    let mut members: Vec<(usize, Vec<usize>)> = Vec::new();
-    for (i, g) in groups.iter().enumerate() {
-        let r = root(i);
-        match members.iter_mut().find(|m| m.0 == r) {
-            Some(m) => m.1.extend(&g.2),
-            None => members.push((r, g.2.clone())),
-        }
-    }
-    for (r, mut all) in members {
-        let own = &groups[r].2;
-        let tool = *own
-            .iter()
-            .min_by_key(|&&e| {
-                let rank = tool_rank(&ees[e].name);
-                // Among hands and grippers (and unnamed tips) the farthest out.
-                let out = if rank >= 6 { usize::MAX - depth(e) } else { 0 };
-                // Among equal tool names the plainest (`iiwa_link_ee` before `iiwa_link_ee_kuka`).
-                (rank, out, ees[e].name.len(), e)
-            })
-            .unwrap_or(&own[0]);
-        all.sort_unstable();
-        all.retain(|&e| e != tool);
-        arms.push(ArmGroup {
-            tool,
-            frames: all,
-            dof: groups[r].1.len(),
-        });
-    }
-    arms.sort_by_key(|a| (usize::MAX - a.dof, a.tool));
-    other.sort_unstable();
-    EndEffectorCatalog { arms, other }
+    own.iter()
+        .copied()
+        .min_by_key(|&e| {
+            let rank = tool_rank(&ees[e].name);
+            let out = if rank >= 6 { usize::MAX - depth(e) } else { 0 };
+            (rank, out, ees[e].name.len(), e)
+        })
+        .unwrap_or(own[0])
 }

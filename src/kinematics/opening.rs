@@ -85,10 +85,7 @@ impl Scorer<'_> {
 pub fn opening_pose(robot: &Robot) -> OpeningPose {
     let n = robot.dof();
     let limits = robot.limits();
-    let mut ready = robot
-        .config("ready")
-        .filter(|c| c.len() == n)
-        .map_or_else(|| vec![0.0; n], <[f64]>::to_vec);
+    let mut ready = robot.ready_or_zero();
     clamp(&mut ready, &limits);
     if n == 0 || robot.end_effectors().is_empty() {
         return OpeningPose {

@@ -547,6 +547,14 @@ impl Robot {
             })
     }
 
+    /// The "ready" configuration, or zero when the robot has none (rad or m): where tools
+    /// start, seeds come from, and joints off an arm's chain stay.
+    pub fn ready_or_zero(&self) -> Vec<f64> {
+        self.config("ready")
+            .filter(|c| c.len() == self.dof())
+            .map_or_else(|| vec![0.0; self.dof()], <[f64]>::to_vec)
+    }
+
     /// A named configuration, if the robot has one by that name.
     pub fn config(&self, name: &str) -> Option<&[f64]> {
         self.configurations

@@ -85,10 +85,41 @@ pub fn self_motion_parameter(arm: &Robot) -> Option<&'static str> {
     }
 }
 
+/// The full task of a robot: (x, y, phi) for a planar arm with one end-effector ((x, y) for a
+/// two-link one), the whole pose otherwise.
+pub fn full_task(robot: &Robot) -> Task {
+    let planar =
+        robot.end_effectors().len() == 1 && crate::workspace::planar_frame(robot, 0).is_some();
+    match (planar, robot.dof()) {
+        (true, 3..) => Task::PlanarPhi,
+        (true, _) => Task::Planar,
+        (false, _) => Task::Pose,
+    }
+}
+
+/// A serial arm's DH table (standard convention), or for a CAD-rounded chain whose exact table
+/// is ill-conditioned the table of its ideal structure with the deviation; else why none.
+fn dh_of(arm: &Robot) -> (Option<DerivedDh>, Option<String>) {
+    let e = match derive_dh(arm, 0, Convention::Standard) {
+        Ok(d) => return (Some(d), None),
+        Err(e) => e,
+    };
+    let tol = NEAR_MISS_LENGTH * arm.characteristic_length();
+    match derive_ideal_dh(arm, 0, NEAR_MISS_ANGLE, tol) {
+        Ok((d, dev)) => (
+            Some(d),
+            Some(format!(
+                "the table of the ideal structure (axes rounded to parallel, perpendicular or \
+                 meeting within {:.1e} rad and {:.1e} m; it follows the chain to {:.1e} m); the \
+                 exact chain has {e}",
+                dev.angle, dev.length, dev.pose
+            )),
+        ),
+        Err(_) => (None, Some(e.to_string())),
+    }
+}
+
 /// The report of end-effector `ee` at the whole robot's `q` (see the module docs).
-///
-/// Long (about 90 lines) because it fills one report field by field, each with its reason when
-/// absent; the steps are independent and read in order.
 pub fn arm_report(robot: &Robot, cat: &EndEffectorCatalog, ee: usize, q: &[f64]) -> ArmReport {
     let name = robot
         .end_effectors()
@@ -131,25 +162,7 @@ pub fn arm_report(robot: &Robot, cat: &EndEffectorCatalog, ee: usize, q: &[f64])
     r.chain = arm.chain_names();
     r.dof = r.chain.len();
     r.variables = arm.robot.dof();
-    match derive_dh(&arm.robot, 0, Convention::Standard) {
-        Ok(d) => r.dh = Some(d),
-        Err(e) => {
-            // A CAD-rounded chain whose exact table is ill-conditioned gets its ideal one.
-            let tol = NEAR_MISS_LENGTH * arm.robot.characteristic_length();
-            match derive_ideal_dh(&arm.robot, 0, NEAR_MISS_ANGLE, tol) {
-                Ok((d, dev)) => {
-                    r.dh = Some(d);
-                    r.dh_reason = Some(format!(
-                        "the table of the ideal structure (axes rounded to parallel, \
-                         perpendicular or meeting within {:.1e} rad and {:.1e} m; it follows \
-                         the chain to {:.1e} m); the exact chain has {e}",
-                        dev.angle, dev.length, dev.pose
-                    ));
-                }
-                Err(_) => r.dh_reason = Some(e.to_string()),
-            }
-        }
-    }
+    (r.dh, r.dh_reason) = dh_of(&arm.robot);
     match ClosedForm::detect(&arm.robot) {
         Ok(cf) => {
             r.closed_form = Some(cf.name());
@@ -157,27 +170,27 @@ pub fn arm_report(robot: &Robot, cat: &EndEffectorCatalog, ee: usize, q: &[f64])
         }
         Err(e) => r.closed_form_reason = Some(e.to_string()),
     }
-    // The full task: the whole pose in space, (x, y, phi) in the plane of a planar arm.
-    let task = match crate::workspace::planar_frame(&arm.robot, 0) {
-        Some(_) if arm.robot.dof() >= 3 => Task::PlanarPhi,
-        Some(_) => Task::Planar,
-        None => Task::Pose,
-    };
-    let red = Redundancy::of(&arm.robot, task);
+    let red = Redundancy::of(&arm.robot, full_task(&arm.robot));
     r.redundancy_degree = red.degree().max(0) as usize;
     r.redundancy = red.to_string();
-    if r.redundancy_degree == 0 {
-        r.self_motion_reason = Some(format!("not redundant for its full task ({red})"));
+    (r.self_motion, r.self_motion_reason) = if r.redundancy_degree == 0 {
+        (
+            None,
+            Some(format!("not redundant for its full task ({red})")),
+        )
     } else {
-        r.self_motion = self_motion_parameter(&arm.robot);
-        if r.self_motion.is_none() {
-            r.self_motion_reason = Some(
-                "no exact parameter for this structure: the self-motion is the numerical \
-                 null-space walk, parametrised by arc length"
-                    .into(),
-            );
+        match self_motion_parameter(&arm.robot) {
+            Some(p) => (Some(p), None),
+            None => (
+                None,
+                Some(
+                    "no exact parameter for this structure: the self-motion is the numerical \
+                     null-space walk, parametrised by arc length"
+                        .into(),
+                ),
+            ),
         }
-    }
+    };
     r
 }
 

@@ -182,9 +182,7 @@ pub fn sample_self_motion(
             redundancy: red.to_string(),
         });
     }
-    let seed = robot
-        .config("ready")
-        .map_or_else(|| vec![0.0; robot.dof()], <[f64]>::to_vec);
+    let seed = robot.ready_or_zero();
     let rep = solve(
         robot,
         ee,

@@ -105,10 +105,7 @@ pub fn tasks_for(robot: &crate::kinematics::Robot) -> Vec<Task> {
 /// The full task of a robot: position and phi for a planar arm of three or more joints,
 /// position for a two-link one, the whole pose otherwise.
 pub fn full_task(robot: &crate::kinematics::Robot) -> Task {
-    match tasks_for(robot)[0] {
-        Task::Planar if robot.dof() >= 3 => Task::PlanarPhi,
-        t => t,
-    }
+    crate::redundancy::report::full_task(robot)
 }
 
 impl AppState {

@@ -77,9 +77,7 @@ pub fn solve(
             Ok((result, SolverUsed::ClosedForm(cf.name())))
         }
         (_, _) => {
-            let default_seed = robot
-                .config("ready")
-                .map_or_else(|| vec![0.0; robot.dof()], <[f64]>::to_vec);
+            let default_seed = robot.ready_or_zero();
             let seed = seed_q.unwrap_or(&default_seed);
             let rep = numerical::solve(robot, ee, target, seed, opts)?;
             let within_limits = robot.within_limits(&rep.q, 1e-12);
@@ -136,9 +134,7 @@ fn solve_arm(
     robot.end_effector(ee)?;
     let base = match seed_q {
         Some(q) => q.to_vec(),
-        None => robot
-            .config("ready")
-            .map_or_else(|| vec![0.0; robot.dof()], <[f64]>::to_vec),
+        None => robot.ready_or_zero(),
     };
     let arm = crate::kinematics::arm::arm_of(robot, ee, &base).map_err(|e| IkError::Arm {
         ee: robot.end_effectors()[ee].name.clone(),
