@@ -92,6 +92,17 @@ pub enum LoadError {
         /// The built-in names, comma-separated.
         built_ins: String,
     },
+    /// A `.xacro` file: macros that must be expanded into URDF first.
+    #[error(
+        "{name}: a xacro file (URDF with macros, properties and includes): expand it into URDF \
+         first, e.g. `xacro {name} > robot.urdf` (ROS 2: `ros2 run xacro xacro {name} > \
+         robot.urdf`; ROS 1: `rosrun xacro xacro {name} > robot.urdf`; without ROS: `pip install \
+         xacro`), then open robot.urdf"
+    )]
+    Xacro {
+        /// The file's name.
+        name: String,
+    },
     /// A file handed over by name and text whose name does not end in .toml or .urdf.
     #[error("{name}: not a model file (the name of a model file ends in .toml or .urdf)")]
     NotAModelFile {
@@ -112,6 +123,9 @@ pub fn parse_model_text(name: &str, text: &str) -> Result<Robot, LoadError> {
     match ext.as_deref() {
         Some("toml") => Ok(parse_model(text, path)?),
         Some("urdf") => Ok(crate::urdf::parse_urdf(text, path)?),
+        Some("xacro") => Err(LoadError::Xacro {
+            name: name.to_string(),
+        }),
         _ => Err(LoadError::NotAModelFile {
             name: name.to_string(),
         }),
@@ -128,6 +142,9 @@ pub fn load_model(spec: &str) -> Result<Robot, LoadError> {
     match ext.as_deref() {
         Some("toml") => Ok(load_model_file(Path::new(spec))?),
         Some("urdf") => Ok(load_urdf(Path::new(spec))?),
+        Some("xacro") => Err(LoadError::Xacro {
+            name: spec.to_string(),
+        }),
         _ => built_in(spec).ok_or_else(|| LoadError::Unknown {
             name: spec.to_string(),
             built_ins: BUILT_INS

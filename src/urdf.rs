@@ -197,6 +197,17 @@ pub enum UrdfError {
         /// Which element (`origin xyz`, `origin rpy`, `axis`, `mimic`).
         field: &'static str,
     },
+    /// xacro markup in a `.urdf` file: it must be expanded first.
+    #[error(
+        "{}: the file holds xacro markup (<xacro:...>): expand it into URDF first, e.g. `xacro \
+         {} > robot.urdf` (ROS 2: `ros2 run xacro xacro`; without ROS: `pip install xacro`)",
+        path.display(),
+        path.display()
+    )]
+    Xacro {
+        /// The file.
+        path: PathBuf,
+    },
     /// A moving joint whose axis is the zero vector.
     #[error("joint \"{joint}\": axis has zero length ({})", path.display())]
     ZeroAxis {
@@ -250,6 +261,9 @@ fn unique_names(urdf: &urdf_rs::Robot, path: &Path) -> Result<(), UrdfError> {
 /// Reads URDF text into a [`Robot`]; `path` is only used in messages and the description.
 pub fn parse_urdf(text: &str, path: &Path) -> Result<Robot, UrdfError> {
     let p = || path.to_path_buf();
+    if text.contains("<xacro:") {
+        return Err(UrdfError::Xacro { path: p() });
+    }
     let urdf =
         urdf_rs::read_from_string(text).map_err(|source| UrdfError::Parse { path: p(), source })?;
     let uj = &urdf.joints;

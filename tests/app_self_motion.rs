@@ -352,3 +352,59 @@ fn dragging_the_slider_in_the_window_never_moves_the_hand() {
         );
     }
 }
+
+/// On a tree the slider moves the chosen arm alone, by that arm's exact parameter: the URDF
+/// Panda with its fingers (issue 26) gets the q7 slider of the built-in Panda; the finger never
+/// moves, and Baxter's numerical self-motion of one arm leaves the other arm and the head still.
+#[test]
+fn on_a_tree_the_slider_moves_the_chosen_arm_alone() {
+    let mut s = state("tests/data/urdf_corpus/panda.urdf");
+    assert_eq!(s.robot().dof(), 8);
+    let red = s.redundancy_of(0);
+    assert_eq!((red.n, red.degree()), (7, 1));
+    let view = s.self_motion(0).expect("a self-motion");
+    assert!(view.exact, "exact, not the numerical walk");
+    assert_eq!(view.parameter, "q7");
+    let held = fk(&s, 0);
+    let finger = s.q()[7];
+    let target = view.value + 0.05;
+    let reached = s.set_self_motion(0, target).unwrap();
+    assert!((reached - view.value).abs() > 1e-3, "the slider moved");
+    let (dp, dr) = gap(&held, &fk(&s, 0));
+    assert!(
+        dp < 1e-9 && dr < 1e-9,
+        "the hand is held: {dp:e} m, {dr:e} rad"
+    );
+    assert_eq!(s.q()[7], finger, "the finger is off the arm");
+
+    let mut b = state("tests/data/urdf_corpus/baxter.urdf");
+    let ee = 0;
+    let chain: Vec<usize> = b
+        .robot()
+        .chain_to(b.robot().end_effectors()[ee].parent)
+        .to_vec();
+    let on_arm: Vec<bool> = b
+        .robot()
+        .actuated_joints()
+        .iter()
+        .map(|j| chain.contains(j))
+        .collect();
+    let before = b.q().to_vec();
+    let held = fk(&b, ee);
+    let view = b.self_motion(ee).expect("a numerical self-motion");
+    assert!(!view.exact);
+    b.set_self_motion(ee, 0.2).unwrap();
+    let moved = b
+        .q()
+        .iter()
+        .zip(&before)
+        .zip(&on_arm)
+        .filter(|((a, c), _)| a != c);
+    assert!(moved.clone().count() > 0, "the arm moved");
+    assert!(
+        moved.clone().all(|(_, &arm)| arm),
+        "only the chosen arm moved"
+    );
+    let (dp, _) = gap(&held, &fk(&b, ee));
+    assert!(dp < 1e-6, "the hand is held: {dp:e} m");
+}

@@ -247,3 +247,86 @@ fn a_mesh_that_is_a_device_is_refused() {
         r.load_warnings
     );
 }
+
+/// The file quirks of issue 26, each a warning naming the element, never a refusal: upper-case
+/// mesh extensions (`.DAE`, `.STL`) load; COLLADA `<unit meter="0.001">` scales millimetres to
+/// metres; an `<up_axis>` other than Z_UP is ignored as RViz does, with a warning naming the
+/// link and the file (once per file); a material defined twice with two colours is a warning
+/// and the first colour is used; a xacro file gets a message saying how to expand it.
+#[test]
+fn file_quirks_are_warnings_naming_the_element() {
+    let dir = std::env::temp_dir().join(format!("armlab_quirks_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let dae = std::fs::read_to_string(data().join("armlab_test/meshes/tetra.dae"))
+        .unwrap()
+        .replace(
+            r#"<unit name="meter" meter="1"/>"#,
+            r#"<unit name="millimeter" meter="0.001"/>"#,
+        )
+        .replace("<up_axis>Z_UP</up_axis>", "<up_axis>Y_UP</up_axis>")
+        .replace(
+            "0 0 0 0.1 0 0 0 0.1 0 0 0 0.1",
+            "0 0 0 100 0 0 0 100 0 0 0 100",
+        );
+    std::fs::write(dir.join("TETRA_MM.DAE"), dae).unwrap();
+    std::fs::copy(
+        data().join("armlab_test/meshes/column.stl"),
+        dir.join("COLUMN.STL"),
+    )
+    .unwrap();
+    let text = r#"<robot name="q">
+      <material name="grey"><color rgba="0.5 0.5 0.5 1"/></material>
+      <material name="grey"><color rgba="1 0 0 1"/></material>
+      <link name="a"><visual><geometry><mesh filename="COLUMN.STL"/></geometry>
+        <material name="grey"/></visual></link>
+      <link name="b"><visual><geometry><mesh filename="TETRA_MM.DAE"/></geometry></visual></link>
+      <link name="c"><visual><geometry><mesh filename="TETRA_MM.DAE"/></geometry></visual></link>
+      <joint name="j1" type="revolute"><parent link="a"/><child link="b"/>
+        <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+      <joint name="j2" type="fixed"><parent link="b"/><child link="c"/></joint>
+    </robot>"#;
+    let r = armlab::urdf::parse_urdf(text, &dir.join("q.urdf")).unwrap();
+    let w = &r.load_warnings;
+    assert_eq!(mesh_triangles(&r).len(), 3, "all three meshes drawn: {w:?}");
+    let tetra = r
+        .visuals
+        .iter()
+        .find_map(|v| match &v.geometry {
+            VisualGeometry::Mesh { mesh, .. } if mesh.triangles.len() == 4 => Some(mesh.clone()),
+            _ => None,
+        })
+        .unwrap();
+    let far = tetra
+        .positions
+        .iter()
+        .map(|p| p.iter().fold(0.0f32, |m, v| m.max(v.abs())))
+        .fold(0.0, f32::max);
+    assert!((far - 0.1).abs() < 1e-6, "100 mm read as {far} m");
+    let up: Vec<&String> = w.iter().filter(|m| m.contains("up_axis")).collect();
+    assert_eq!(up.len(), 1, "once per file: {w:?}");
+    assert!(
+        up[0].contains("link \"b\"") && up[0].contains("TETRA_MM.DAE"),
+        "{up:?}"
+    );
+    let grey: Vec<&String> = w
+        .iter()
+        .filter(|m| m.contains("material \"grey\""))
+        .collect();
+    assert_eq!(grey.len(), 1, "{w:?}");
+    let col = r.visuals[0].color.unwrap();
+    assert_eq!(col, [0.5, 0.5, 0.5, 1.0], "the first definition is used");
+    assert_eq!(w.len(), 2, "{w:?}");
+    // xacro: by its extension, and by its markup in a .urdf file.
+    let e = armlab::model_file::load_model("robot.urdf.xacro")
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("xacro robot.urdf.xacro > robot.urdf"), "{e}");
+    let e = armlab::urdf::parse_urdf(
+        r#"<robot name="x" xmlns:xacro="http://ros.org/wiki/xacro"><xacro:property name="l" value="1"/></robot>"#,
+        Path::new("x.urdf"),
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("expand it into URDF first"), "{e}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

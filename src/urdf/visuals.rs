@@ -81,10 +81,29 @@ fn read_capped(path: &Path) -> std::io::Result<Vec<u8>> {
     crate::input::read_bytes(path, MAX_MESH_BYTES, "a mesh")
 }
 
-/// One mesh file as a single triangle mesh (every sub-mesh merged), decimated if large.
-fn read_mesh(path: &Path) -> Result<TriMesh, String> {
+/// A mesh file read once: the triangles, and what to say about the file (its COLLADA up axis).
+type LoadedMesh = Result<(Arc<TriMesh>, Option<String>), String>;
+
+/// One mesh file as a single triangle mesh (every sub-mesh merged), decimated if large, with a
+/// note when it is COLLADA with an `<up_axis>` other than Z_UP.
+fn read_mesh(path: &Path) -> LoadedMesh {
     let bytes = read_capped(path).map_err(|e| e.to_string())?;
-    parse_mesh(&bytes, path)
+    let mesh = parse_mesh(&bytes, path)?;
+    Ok((Arc::new(mesh), collada_up_axis_note(&bytes)))
+}
+
+/// A COLLADA file's `<up_axis>` when it is not Z_UP, as a warning: armlab ignores it, as RViz
+/// does (ros-visualization/rviz#1045), since robot meshes are drawn in their link frames
+/// whatever their exporter wrote; `<unit meter="...">` is applied (mesh-loader scales the scene).
+fn collada_up_axis_note(bytes: &[u8]) -> Option<String> {
+    let head = &bytes[..bytes.len().min(64 * 1024)];
+    let text = std::str::from_utf8(head).ok()?;
+    let start = text.find("<up_axis>")? + "<up_axis>".len();
+    let end = start + text[start..].find("</up_axis>")?;
+    let axis = text[start..end].trim();
+    (axis != "Z_UP").then(|| {
+        format!("<up_axis>{axis}</up_axis> is ignored (as RViz does): the mesh is drawn as its vertices are, Z up")
+    })
 }
 
 /// A mesh file's bytes (STL, OBJ or COLLADA, told by `path`'s extension or the bytes) as one
@@ -128,7 +147,7 @@ fn origin(o: &urdf_rs::Pose) -> Option<Pose> {
 }
 
 /// The colour of a visual's material: its own `<color>`, or the named top-level material's.
-fn color(m: Option<&urdf_rs::Material>, named: &HashMap<&str, [f32; 4]>) -> Option<[f32; 4]> {
+fn color(m: Option<&urdf_rs::Material>, named: &HashMap<String, [f32; 4]>) -> Option<[f32; 4]> {
     let m = m?;
     let c = match &m.color {
         Some(c) => Some(c.rgba.0.map(|v| v.clamp(0.0, 1.0) as f32)),
@@ -142,17 +161,38 @@ fn mesh_geometry(
     filename: &str,
     scale: Option<&urdf_rs::Vec3>,
     urdf_path: &Path,
-    cache: &mut HashMap<PathBuf, Result<Arc<TriMesh>, String>>,
-) -> Result<VisualGeometry, String> {
+    cache: &mut HashMap<PathBuf, LoadedMesh>,
+) -> Result<(VisualGeometry, Option<String>), String> {
     let path = resolve(filename, urdf_path)?;
-    let mesh = cache
+    let (mesh, note) = cache
         .entry(path.clone())
-        .or_insert_with(|| read_mesh(&path).map(Arc::new))
+        .or_insert_with(|| read_mesh(&path))
         .clone()
         .map_err(|e| format!("{}: {e}", path.display()))?;
     let mesh = scaled(&mesh, scale.map_or([1.0; 3], |s| s.0));
     let coarse = Arc::new(mesh.decimated(COARSE_TRIANGLES));
-    Ok(VisualGeometry::Mesh { mesh, coarse })
+    Ok((VisualGeometry::Mesh { mesh, coarse }, note))
+}
+
+/// The top-level materials by name; a name defined twice with different colours is a warning
+/// naming it, and the first definition is used (as the URDF parser of ROS does).
+fn named_materials(urdf: &urdf_rs::Robot, warnings: &mut Vec<String>) -> HashMap<String, [f32; 4]> {
+    let mut named: HashMap<String, [f32; 4]> = HashMap::new();
+    for m in &urdf.materials {
+        let Some(c) = &m.color else { continue };
+        let rgba = c.rgba.0.map(|v| v as f32);
+        match named.get(&m.name) {
+            Some(first) if *first != rgba => warnings.push(format!(
+                "material \"{}\" is defined twice (rgba {first:?}, then {rgba:?}): the first is used",
+                m.name
+            )),
+            Some(_) => {}
+            None => {
+                named.insert(m.name.clone(), rgba);
+            }
+        }
+    }
+    named
 }
 
 /// Reads every link's visuals; `joint_of` maps a link to the joint whose child it is (`None`
@@ -162,13 +202,12 @@ pub(super) fn read(
     urdf_path: &Path,
     joint_of: impl Fn(&str) -> Option<usize>,
 ) -> (Vec<Visual>, Vec<String>) {
-    let named: HashMap<&str, [f32; 4]> = urdf
-        .materials
-        .iter()
-        .filter_map(|m| Some((m.name.as_str(), m.color.as_ref()?.rgba.0.map(|v| v as f32))))
-        .collect();
-    let mut cache: HashMap<PathBuf, Result<Arc<TriMesh>, String>> = HashMap::new();
-    let (mut visuals, mut warnings) = (Vec::new(), Vec::new());
+    let mut warnings = Vec::new();
+    let named = named_materials(urdf, &mut warnings);
+    let mut cache: HashMap<PathBuf, LoadedMesh> = HashMap::new();
+    let mut noted: Vec<PathBuf> = Vec::new();
+    let mut missing: Vec<MissingMesh> = Vec::new();
+    let mut visuals = Vec::new();
     for link in &urdf.links {
         let joint = joint_of(&link.name);
         for v in &link.visual {
@@ -189,27 +228,32 @@ pub(super) fn read(
                 urdf_rs::Geometry::Sphere { radius } => VisualGeometry::Sphere(*radius),
                 urdf_rs::Geometry::Mesh { filename, scale } => {
                     match mesh_geometry(filename, scale.as_ref(), urdf_path, &mut cache) {
-                        Ok(g) => g,
+                        Ok((g, note)) => {
+                            // Said once per file, naming the first link that uses it.
+                            let path = resolve(filename, urdf_path).unwrap_or_default();
+                            if let Some(note) = note
+                                && !noted.contains(&path)
+                            {
+                                warnings.push(format!(
+                                    "link \"{}\": mesh \"{filename}\": {note}",
+                                    link.name
+                                ));
+                                noted.push(path);
+                            }
+                            g
+                        }
                         Err(e) => {
-                            warnings.push(format!(
-                                "link \"{}\": mesh \"{filename}\" not drawn ({e}); the link is drawn \
-                                 with its joint's body",
-                                link.name
-                            ));
+                            missing.push(MissingMesh {
+                                link: link.name.clone(),
+                                filename: filename.clone(),
+                                why: e,
+                            });
                             continue;
                         }
                     }
                 }
             };
-            let sizes_ok = match &geometry {
-                VisualGeometry::Box(s) => s.iter().all(|v| v.is_finite() && *v >= 0.0),
-                VisualGeometry::Cylinder { radius, length } => {
-                    radius.is_finite() && length.is_finite() && *radius >= 0.0 && *length >= 0.0
-                }
-                VisualGeometry::Sphere(r) => r.is_finite() && *r >= 0.0,
-                VisualGeometry::Mesh { .. } => true,
-            };
-            if !sizes_ok {
+            if !sizes_ok(&geometry) {
                 warnings.push(format!(
                     "link \"{}\": a visual has a bad size; skipped",
                     link.name
@@ -224,7 +268,81 @@ pub(super) fn read(
             });
         }
     }
+    warnings.extend(missing_mesh_warnings(missing));
     (visuals, warnings)
+}
+
+/// Whether a primitive's sizes are finite and not negative (meshes always are).
+fn sizes_ok(geometry: &VisualGeometry) -> bool {
+    match geometry {
+        VisualGeometry::Box(s) => s.iter().all(|v| v.is_finite() && *v >= 0.0),
+        VisualGeometry::Cylinder { radius, length } => {
+            radius.is_finite() && length.is_finite() && *radius >= 0.0 && *length >= 0.0
+        }
+        VisualGeometry::Sphere(r) => r.is_finite() && *r >= 0.0,
+        VisualGeometry::Mesh { .. } => true,
+    }
+}
+
+/// A mesh that was not drawn: its link, its file name and why.
+struct MissingMesh {
+    link: String,
+    filename: String,
+    why: String,
+}
+
+/// One warning per missing mesh, except that the meshes of one package that is not found at
+/// all (a description without its meshes, dozens of files) are said in one warning naming the
+/// links.
+fn missing_mesh_warnings(missing: Vec<MissingMesh>) -> Vec<String> {
+    let package_of = |m: &MissingMesh| {
+        m.why
+            .strip_prefix("package \"")
+            .and_then(|r| r.split_once('"'))
+            .map(|(p, _)| p.to_string())
+    };
+    let mut out = Vec::new();
+    let mut grouped: Vec<(String, Vec<MissingMesh>)> = Vec::new();
+    for m in missing {
+        match package_of(&m) {
+            Some(p) => match grouped.iter_mut().find(|g| g.0 == p) {
+                Some(g) => g.1.push(m),
+                None => grouped.push((p, vec![m])),
+            },
+            None => out.push(one_missing(&m)),
+        }
+    }
+    for (pkg, ms) in grouped {
+        if ms.len() == 1 {
+            out.push(one_missing(&ms[0]));
+            continue;
+        }
+        let mut links: Vec<&str> = ms.iter().map(|m| m.link.as_str()).collect();
+        links.dedup();
+        let shown: Vec<String> = links.iter().take(6).map(|l| format!("\"{l}\"")).collect();
+        let more = links.len().saturating_sub(6);
+        let more = if more > 0 {
+            format!(" and {more} more")
+        } else {
+            String::new()
+        };
+        out.push(format!(
+            "package \"{pkg}\" not found: {} meshes not drawn, on links {}{more} (drawn with \
+             their joints' bodies); add the package's parent folder with --package-path or \
+             ROS_PACKAGE_PATH",
+            ms.len(),
+            shown.join(", ")
+        ));
+    }
+    out
+}
+
+/// The warning for one mesh not drawn.
+fn one_missing(m: &MissingMesh) -> String {
+    format!(
+        "link \"{}\": mesh \"{}\" not drawn ({}); the link is drawn with its joint's body",
+        m.link, m.filename, m.why
+    )
 }
 
 /// The mesh with the URDF's `scale` applied (shared unchanged when the scale is 1).

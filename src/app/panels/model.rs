@@ -57,7 +57,7 @@ impl ModelPanel {
                 } else {
                     egui::CollapsingHeader::new("DH table (derived from the URDF's axes)")
                         .default_open(!projector)
-                        .show(ui, |ui| derived_dh_table(state.robot(), ui));
+                        .show(ui, |ui| derived_dh_table(state, ui));
                 }
                 self.save_row(state, ui, out);
             });
@@ -300,16 +300,28 @@ fn configurations(state: &AppState, ui: &mut egui::Ui, out: &mut Actions) {
 }
 
 /// The DH table derived from a URDF chain's joint axes (read-only; millimetres and degrees),
-/// its base and tool, or why there is none.
-fn derived_dh_table(robot: &crate::kinematics::Robot, ui: &mut egui::Ui) {
-    use crate::kinematics::Convention;
-    use crate::kinematics::dh_derive::derive_dh;
-    let d = match derive_dh(robot, 0, Convention::Standard) {
-        Ok(d) => d,
-        Err(e) => {
-            ui.label(RichText::new(format!("{e}.")).small());
-            return;
-        }
+/// its base and tool, or why there is none: on a tree, the table of the default end-effector's
+/// arm (computed when the robot was loaded, [`AppState::arm_report`]).
+fn derived_dh_table(state: &AppState, ui: &mut egui::Ui) {
+    let Some(report) = state.arm_report(0) else {
+        return;
+    };
+    if state.robot().end_effectors().len() > 1 {
+        ui.label(
+            RichText::new(format!(
+                "The arm of \"{}\" ({} joints): {}",
+                report.name,
+                report.variables,
+                report.chain.join(", ")
+            ))
+            .small(),
+        );
+    }
+    if let Some(why) = &report.dh_reason {
+        ui.label(RichText::new(format!("{why}.")).small());
+    }
+    let Some(d) = &report.dh else {
+        return;
     };
     egui::ScrollArea::horizontal()
         .id_salt("derived dh scroll")
@@ -355,9 +367,9 @@ fn derived_dh_table(robot: &crate::kinematics::Robot, ui: &mut egui::Ui) {
             n(tool.y),
             n(tool.z),
             d.joints.len(),
-            match crate::kinematics::ik::ClosedForm::detect(robot) {
-                Ok(cf) => format!("closed form: {}", cf.name()),
-                Err(_) => "no closed form".into(),
+            match report.closed_form {
+                Some(f) => format!("closed form: {f}"),
+                None => "no closed form".into(),
             }
         ))
         .small(),

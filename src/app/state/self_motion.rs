@@ -9,8 +9,9 @@
 //! the direction never flips between drags.
 
 use super::{AppState, Ghost, Level, StateError};
-use crate::kinematics::Pose;
+use crate::kinematics::arm::{Arm, arm_of};
 use crate::kinematics::redundancy::{Redundancy, Task};
+use crate::kinematics::{Pose, Robot};
 use crate::redundancy::BranchSolution;
 use crate::redundancy::motion::ExactSelfMotion;
 use crate::redundancy::numerical::NullSpaceMotion;
@@ -35,6 +36,52 @@ enum Kind {
     None(String),
 }
 
+/// The robot a self-motion runs on: the whole robot when it has one end-effector, else the arm
+/// of the end-effector alone ([`crate::kinematics::arm`]), so that fingers, a head or the other
+/// arm never move and the exact parameter of the arm (the URDF Panda's q7) is found.
+#[derive(Debug, Clone)]
+struct Solo {
+    arm: Option<Arm>,
+}
+
+impl Solo {
+    fn new(robot: &Robot, ee: usize, q: &[f64]) -> Option<Self> {
+        if robot.end_effectors().len() < 2 {
+            return Some(Self { arm: None });
+        }
+        arm_of(robot, ee, q).ok().map(|a| Self { arm: Some(a) })
+    }
+
+    /// The robot the self-motion is computed on.
+    fn robot<'a>(&'a self, whole: &'a Robot) -> &'a Robot {
+        self.arm.as_ref().map_or(whole, |a| &a.robot)
+    }
+
+    /// The end-effector's index in [`Self::robot`].
+    fn ee(&self, ee: usize) -> usize {
+        if self.arm.is_some() { 0 } else { ee }
+    }
+
+    /// The self-motion robot's q from the whole robot's.
+    fn local(&self, q: &[f64]) -> Vec<f64> {
+        self.arm
+            .as_ref()
+            .map_or_else(|| q.to_vec(), |a| a.restrict(q))
+    }
+
+    /// The whole robot's q: `base` with the self-motion robot's `q` put in.
+    fn whole(&self, q: &[f64], base: &[f64]) -> Vec<f64> {
+        match &self.arm {
+            None => q.to_vec(),
+            Some(a) => {
+                let mut full = base.to_vec();
+                a.expand(q, &mut full);
+                full
+            }
+        }
+    }
+}
+
 /// The cached self-motion of one end-effector's held pose.
 #[derive(Debug, Clone)]
 pub(super) struct SelfMotionCache {
@@ -44,6 +91,8 @@ pub(super) struct SelfMotionCache {
     ee: usize,
     task: Task,
     pose: Pose,
+    /// The robot it runs on (the arm alone on a tree).
+    solo: Solo,
     kind: Kind,
     /// Per sample of [`SELF_MOTION_SAMPLES`]: the parameter and every branch there.
     samples: Vec<(f64, Vec<BranchSolution>)>,
@@ -168,10 +217,18 @@ impl AppState {
         });
         if !fresh {
             let pose = self.robot.fk_ee(&self.q, ee).ok()?;
-            let kind = self.self_motion_kind(ee, &pose);
+            let solo = Solo::new(&self.robot, ee, &self.q)?;
+            let kind = self.self_motion_kind(ee, &solo, &pose);
             let samples = match &kind {
                 Kind::Exact(m) => {
-                    SelfMotionSamples::exact(&self.robot, m, SELF_MOTION_SAMPLES).samples
+                    let mut samples =
+                        SelfMotionSamples::exact(solo.robot(&self.robot), m, SELF_MOTION_SAMPLES)
+                            .samples;
+                    // The tab plots the whole robot's joints.
+                    for b in samples.iter_mut().flat_map(|(_, s)| s.iter_mut()) {
+                        b.q = solo.whole(&b.q, &self.q);
+                    }
+                    samples
                 }
                 _ => Vec::new(),
             };
@@ -181,6 +238,7 @@ impl AppState {
                 ee,
                 task: self.task,
                 pose,
+                solo,
                 kind,
                 samples,
                 visited: Vec::new(),
@@ -190,22 +248,23 @@ impl AppState {
         self.self_motion.as_mut()
     }
 
-    /// Which self-motion the robot has for the task at `pose`.
-    fn self_motion_kind(&self, ee: usize, pose: &Pose) -> Kind {
-        let red = self.redundancy();
+    /// Which self-motion the robot (the arm of `ee` on a tree) has for the task at `pose`.
+    fn self_motion_kind(&self, ee: usize, solo: &Solo, pose: &Pose) -> Kind {
+        let red = self.redundancy_of(ee);
+        let robot = solo.robot(&self.robot);
         if red.degree() <= 0 {
             return Kind::None(format!(
                 "no self-motion for this task (degree n - r = {})",
                 red.degree()
             ));
         }
-        if let Ok(m) = ExactSelfMotion::new(&self.robot, pose) {
+        if let Ok(m) = ExactSelfMotion::new(robot, pose) {
             let task = match m.parameter() {
-                "phi" if self.robot.dof() == 3 => Task::Planar,
+                "phi" if robot.dof() == 3 => Task::Planar,
                 "phi" => Task::PlanarPhi,
                 _ => Task::Pose,
             };
-            if task == self.task && ee == 0 {
+            if task == self.task && solo.ee(ee) == 0 {
                 return Kind::Exact(Box::new(m));
             }
         }
@@ -225,8 +284,10 @@ impl AppState {
             .self_motion_cache(ee)
             .ok_or_else(|| "no end-effector pose".to_string())?;
         let (pe, oe) = errors(&robot, (ee, cache.task), &q, &cache.pose);
+        let local_q = cache.solo.local(&q);
+        let solo_robot = cache.solo.robot(&robot).clone();
         if let Kind::Exact(m) = &cache.kind
-            && let Some((branch, _)) = m.locate(&robot, &q)
+            && let Some((branch, _)) = m.locate(&solo_robot, &local_q)
         {
             cache.paths.resize(m.names().len(), None);
             if cache.paths[branch].is_none() {
@@ -236,7 +297,10 @@ impl AppState {
                         .samples
                         .iter()
                         .map(|(_, s)| match s.iter().find(|b| &b.name == name) {
-                            Some(b) => (m.traced_point(&robot, &b.q), b.within_limits),
+                            Some(b) => (
+                                m.traced_point(&solo_robot, &cache.solo.local(&b.q)),
+                                b.within_limits,
+                            ),
                             None => (None, false),
                         })
                         .collect(),
@@ -247,7 +311,7 @@ impl AppState {
             Kind::None(why) => Err(why.clone()),
             Kind::Exact(m) => {
                 let (branch, value) = m
-                    .locate(&robot, &q)
+                    .locate(&solo_robot, &local_q)
                     .ok_or_else(|| "the arm is not on its self-motion (moved?)".to_string())?;
                 let path = cache.paths[branch].clone().unwrap_or_default();
                 Ok(SelfMotionView {
@@ -327,11 +391,12 @@ impl AppState {
             None => view.value,
         };
         let name = &view.names[view.branch];
-        let sols = m.solutions(&self.robot, target);
+        let solo = self.solo()?;
+        let sols = m.solutions(solo.robot(&self.robot), target);
         let Some(sol) = sols.iter().find(|s| &s.name == name && s.within_limits) else {
             return Ok(view.value);
         };
-        let mut q = sol.q.clone();
+        let mut q = solo.whole(&sol.q, &self.q);
         self.shift_towards_q(&mut q);
         if (target - value).abs() > 1e-9 {
             self.push_message(
@@ -355,7 +420,10 @@ impl AppState {
             return Err(StateError::Task("no numerical self-motion".into()));
         };
         let mask = crate::kinematics::ik::numerical::TaskMask::of_task(self.task);
-        let mut m = NullSpaceMotion::for_task(&self.robot, ee, &self.q, tangent.as_deref(), mask)
+        let solo = cache.solo.clone();
+        let (robot, local_ee) = (solo.robot(&self.robot), solo.ee(ee));
+        let local_q = solo.local(&self.q);
+        let mut m = NullSpaceMotion::for_task(robot, local_ee, &local_q, tangent.as_deref(), mask)
             .map_err(|e| StateError::Task(e.to_string()))?;
         m.hold(cache.pose);
         let mut s = arc;
@@ -363,21 +431,20 @@ impl AppState {
         while (value - s).abs() > 1e-12 {
             let ds = (value - s).clamp(-ARC_STEP, ARC_STEP);
             let before = m.clone();
-            if m.step(ds).is_err() || !self.robot.within_limits(m.q(), 1e-12) {
+            if m.step(ds).is_err() || !robot.within_limits(m.q(), 1e-12) {
                 m = before;
                 break;
             }
             s += ds;
-            if let Some(p) = self
-                .robot
-                .fk_ee(m.q(), ee)
+            if let Some(p) = robot
+                .fk_ee(m.q(), local_ee)
                 .ok()
                 .map(|t| t.translation.vector)
             {
                 visited.push(p);
             }
         }
-        let (q, t) = (m.q().to_vec(), m.tangent().to_vec());
+        let (q, t) = (solo.whole(m.q(), &self.q), m.tangent().to_vec());
         if let Some(c) = self.self_motion.as_mut() {
             c.kind = Kind::Numerical {
                 arc: s,
@@ -403,7 +470,8 @@ impl AppState {
             index: k,
             count: view.names.len(),
         })?;
-        let sols = m.solutions(&self.robot, view.value);
+        let solo = self.solo()?;
+        let sols = m.solutions(solo.robot(&self.robot), view.value);
         let Some(sol) = sols.iter().find(|s| &s.name == name) else {
             return Err(StateError::Task(format!(
                 "no branch \"{name}\" at {} = {:.2} deg",
@@ -417,10 +485,18 @@ impl AppState {
                 posture: name.clone(),
             });
         }
-        let mut q = sol.q.clone();
+        let mut q = solo.whole(&sol.q, &self.q);
         self.shift_towards_q(&mut q);
         self.move_along_self_motion(q, ee);
         Ok(())
+    }
+
+    /// The robot the cached self-motion runs on.
+    fn solo(&self) -> Result<Solo, StateError> {
+        self.self_motion
+            .as_ref()
+            .map(|c| c.solo.clone())
+            .ok_or_else(|| StateError::Task("no self-motion".into()))
     }
 
     /// Moves the arm to `q`, a configuration of the self-motion of `ee`: the held pose stays the
@@ -440,11 +516,14 @@ impl AppState {
         let Some(Kind::Exact(m)) = self.self_motion.as_ref().map(|c| &c.kind) else {
             return Vec::new();
         };
-        m.solutions(&self.robot, view.value)
+        let Ok(solo) = self.solo() else {
+            return Vec::new();
+        };
+        m.solutions(solo.robot(&self.robot), view.value)
             .into_iter()
             .filter(|s| s.name != view.names[view.branch])
             .map(|s| Ghost {
-                q: s.q,
+                q: solo.whole(&s.q, &self.q),
                 posture: s.name,
                 within_limits: s.within_limits,
                 selected: false,
