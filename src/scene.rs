@@ -314,6 +314,31 @@ pub fn arm_scene(robot: &Robot, q: &[f64], style: &ArmStyle) -> Result<Scene, Ki
     Ok(p.s)
 }
 
+/// On a tree (a humanoid's arms) only the frames of the chain to end-effector `ee` keep their
+/// labels; the others' triads stay, unlabelled.
+pub fn label_driven_chain_only(scene: &mut Scene, robot: &Robot, ee: usize) {
+    // A tree (a humanoid's arms): only the frames of the driven chain are labelled, unless
+    // every label is asked for; the others' triads stay, unlabelled.
+    let ee_link = robot.end_effectors()[ee.min(robot.end_effectors().len() - 1)].parent;
+    let mut names: Vec<String> = vec!["0".into()];
+    names.extend(robot.chain_to(ee_link).iter().map(|j| (j + 1).to_string()));
+    // Labels of frames at one point are merged, a line each ("z0\nx1").
+    let on_chain = |line: &str| {
+        let frame = line.trim_start_matches(['x', 'y', 'z']);
+        let is_frame = frame.len() < line.len() && frame.parse::<usize>().is_ok();
+        !is_frame || names.iter().any(|n| n == frame)
+    };
+    for l in &mut scene.labels {
+        l.text = l
+            .text
+            .lines()
+            .filter(|t| on_chain(t))
+            .collect::<Vec<_>>()
+            .join("\n");
+    }
+    scene.labels.retain(|l| !l.text.is_empty());
+}
+
 /// Draws the parts of one arm into a scene, with the sizes and the fade they share.
 struct ArmPainter<'a> {
     s: Scene,

@@ -1186,3 +1186,158 @@ fn a_closed_output_pipe_is_not_an_error() {
         String::from_utf8_lossy(&o.stderr)
     );
 }
+
+/// Issue 26's interface, run as the issue writes it: `armlab info FILE --format json` has
+/// `end_effectors` with name, chain, dof, dh, dh_reason, closed_form, closed_form_reason,
+/// redundancy_degree and self_motion, the first the default (the tool of the longest arm).
+#[test]
+fn info_json_describes_each_arm_of_a_tree() {
+    let v = json(&armlab(&[
+        "info",
+        "tests/data/urdf_corpus/panda.urdf",
+        "--format",
+        "json",
+    ]));
+    let ees = v["end_effectors"].as_array().unwrap();
+    for e in ees {
+        for key in [
+            "name",
+            "chain",
+            "dof",
+            "dh",
+            "dh_reason",
+            "closed_form",
+            "closed_form_reason",
+            "redundancy_degree",
+            "self_motion",
+        ] {
+            assert!(e.get(key).is_some(), "{key} missing in {e}");
+        }
+    }
+    let tcp = &ees[0];
+    assert_eq!(v["default_end_effector"], "panda_hand_tcp");
+    assert_eq!(tcp["name"], "panda_hand_tcp");
+    assert_eq!(tcp["dof"], 7);
+    assert_eq!(tcp["chain"].as_array().unwrap().len(), 7);
+    assert_eq!(tcp["dh"]["rows"].as_array().unwrap().len(), 7);
+    assert!(tcp["dh_reason"].is_null());
+    assert!(tcp["closed_form"].is_null());
+    assert!(
+        tcp["closed_form_reason"]
+            .as_str()
+            .unwrap()
+            .contains("redundant")
+    );
+    assert_eq!(tcp["redundancy_degree"], 1);
+    assert_eq!(tcp["self_motion"], "q7");
+    // The Jaco 2: a near miss, in closed form.
+    let v = json(&armlab(&[
+        "info",
+        "tests/data/urdf_corpus/kinova_j2s6s200.urdf",
+        "--format",
+        "json",
+    ]));
+    let e = &v["end_effectors"][0];
+    assert_eq!(e["closed_form"], "anthropomorphic arm with spherical wrist");
+    assert!(
+        e["closed_form_near_miss"]
+            .as_str()
+            .unwrap()
+            .contains("within")
+    );
+}
+
+/// `--ee NAME` in every command; an unknown name lists the ones there are.
+#[test]
+fn ee_works_in_every_command() {
+    let urdf = "tests/data/urdf_corpus/baxter.urdf";
+    let v = json(&armlab(&[
+        "info",
+        urdf,
+        "--ee",
+        "left_gripper",
+        "--format",
+        "json",
+    ]));
+    assert_eq!(v["end_effectors"].as_array().unwrap().len(), 1);
+    assert_eq!(v["end_effectors"][0]["chain"][0], "left_s0");
+    let q = "0,0.1,0.2,0.3,0.4,0.5,0.6,0.7,0.8,0,0.1,0.2,0.3,0.4,0.5,0.6,0.7";
+    let fk = json(&armlab(&[
+        "fk",
+        urdf,
+        "--q",
+        q,
+        "--ee",
+        "left_gripper",
+        "--format",
+        "json",
+    ]));
+    let t: Vec<f64> = fk[0]["T"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .flat_map(|r| r.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()))
+        .collect();
+    let pose: Vec<String> = t.iter().map(|x| format!("{x}")).collect();
+    let ik = json(&armlab(&[
+        "ik",
+        urdf,
+        "--pose",
+        &pose.join(","),
+        "--ee",
+        "left_gripper",
+        "--seed-q",
+        q,
+        "--format",
+        "json",
+    ]));
+    let s = &ik[0]["solutions"][0];
+    assert!(s["position_error"].as_f64().unwrap() < 1e-9, "{s}");
+    assert_eq!(s["q"].as_array().unwrap().len(), 17, "the whole robot's q");
+    let dir = std::env::temp_dir().join(format!("armlab_ee_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let toml = dir.join("left.toml");
+    let o = armlab(&[
+        "export",
+        urdf,
+        "--ee",
+        "left_gripper",
+        "--toml",
+        toml.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let arm_fk = json(&armlab(&[
+        "fk",
+        toml.to_str().unwrap(),
+        // Baxter's q: head_pan, the right arm (7), its finger, the left arm (7), its finger.
+        "--q",
+        "0,0.1,0.2,0.3,0.4,0.5,0.6",
+        "--format",
+        "json",
+    ]));
+    for k in 0..3 {
+        let a = arm_fk[0]["p"][k].as_f64().unwrap();
+        let b = fk[0]["p"][k].as_f64().unwrap();
+        assert!(
+            (a - b).abs() < 1e-9,
+            "the exported arm's DH table: {a} vs {b}"
+        );
+    }
+    let png = dir.join("left.png");
+    let o = armlab(&[
+        "workspace",
+        urdf,
+        "--ee",
+        "left_gripper",
+        "--samples",
+        "2000",
+        "--out",
+        png.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = armlab(&["fk", urdf, "--q", q, "--ee", "no_such_frame"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("no end-effector \"no_such_frame\"") && err.contains("left_gripper"));
+    let _ = std::fs::remove_dir_all(&dir);
+}

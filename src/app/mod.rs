@@ -271,6 +271,8 @@ pub struct RunOptions {
     /// The model was named on the command line: it wins over the one remembered from the last
     /// run (the other remembered settings still apply).
     pub model_given: bool,
+    /// The end-effector the right panel starts on.
+    pub ee: usize,
 }
 
 /// The name eframe stores the settings under (`~/.local/share/armlab/app.ron` on Linux).
@@ -291,11 +293,12 @@ pub fn run_with(spec: &str, opts: &RunOptions) -> Result<Option<probe::FrameRepo
         state.set_q(q).map_err(input)?;
         let tool = state
             .robot()
-            .fk_ee(state.q(), 0)
+            .fk_ee(state.q(), opts.ee)
             .map_err(|e| AppError::Input(e.to_string()))?;
-        state.set_target(0, tool).map_err(input)?;
+        state.set_target(opts.ee, tool).map_err(input)?;
         state.clear_trails();
     }
+    let ee = opts.ee;
     let mut options = eframe::NativeOptions {
         renderer: eframe::Renderer::Wgpu,
         viewport: egui::ViewportBuilder::default()
@@ -320,6 +323,7 @@ pub fn run_with(spec: &str, opts: &RunOptions) -> Result<Option<probe::FrameRepo
         options,
         Box::new(move |cc| {
             let mut ui = AppUi::new(state);
+            ui.ik.ee = ee;
             ui.file_picker = Box::new(file_picker::NativeDialogs);
             Ok(Box::new(ArmlabApp::new(
                 cc,

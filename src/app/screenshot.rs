@@ -19,6 +19,8 @@ pub struct ScreenshotOptions {
     pub target_position: Option<[f64; 3]>,
     /// Projector mode.
     pub projector: bool,
+    /// The end-effector the right panel, the gizmo and the target are on.
+    pub ee: usize,
 }
 
 /// Renders the live app's current view (state, camera, tab, end-effector) at `size` pixels:
@@ -78,6 +80,7 @@ pub fn screenshot(
     let input = |e: super::state::StateError| AppError::Input(e.to_string());
     let mut app = AppUi::new(state);
     app.layout.projector = opts.projector;
+    app.ik.ee = opts.ee;
     if let Some(q) = &opts.q {
         app.state.set_q(q).map_err(input)?;
     }
@@ -85,12 +88,12 @@ pub fn screenshot(
         let mut t = app
             .state
             .robot()
-            .fk_ee(app.state.q(), 0)
+            .fk_ee(app.state.q(), opts.ee)
             .map_err(|e| AppError::Input(e.to_string()))?;
         if let Some(p) = opts.target_position {
             t.translation.vector = nalgebra::Vector3::from(p);
         }
-        app.state.set_target(0, t).map_err(input)?;
+        app.state.set_target(opts.ee, t).map_err(input)?;
         app.state.display.ghosts = true;
     }
     app.state.clear_trails();

@@ -17,6 +17,11 @@ pub struct ExportArgs {
     /// Write the model as a TOML model file here (a serial DH table).
     #[arg(long)]
     pub toml: Option<PathBuf>,
+    /// Export only the arm of this end-effector (a name or an index): the chain from the root
+    /// to it; as TOML, a chain given by URDF origins is written as the DH table derived from
+    /// its axes (same forward kinematics).
+    #[arg(long)]
+    pub ee: Option<String>,
 }
 
 /// Runs `armlab export`.
@@ -26,7 +31,21 @@ pub(super) fn run(args: &ExportArgs, out: &mut dyn Write) -> Result<(), CliError
             "say what to write: --urdf OUT.urdf and/or --toml OUT.toml",
         ));
     }
-    let robot = super::load_model(&args.model)?;
+    let mut robot = super::load_model(&args.model)?;
+    if args.ee.is_some() {
+        robot = super::arm_robot(robot, args.ee.as_deref())?.0;
+        if args.toml.is_some()
+            && crate::model_file::to_toml(&robot).is_none()
+            && let Ok(d) = crate::kinematics::dh_derive::derive_dh(
+                &robot,
+                0,
+                crate::kinematics::Convention::Standard,
+            )
+            && let Ok(dh) = d.robot(&robot.name)
+        {
+            robot = dh;
+        }
+    }
     // Every text first, so that a model one format cannot say writes nothing.
     let urdf = match &args.urdf {
         Some(path) => Some((

@@ -92,6 +92,10 @@ impl From<ViewpointArg> for Preset {
 pub struct RenderArgs {
     /// Built-in name or path to a .toml / .urdf model.
     pub model: String,
+    /// End-effector, by name or 0-based index (default: the tool of the longest arm): on a
+    /// robot with several, only the frames of the chain to it are labelled (with --frames).
+    #[arg(long)]
+    pub ee: Option<String>,
     /// Joint vector (default: the "ready" configuration).
     #[command(flatten)]
     pub joints: JointInput,
@@ -147,7 +151,11 @@ pub(super) fn render(args: &RenderArgs, out: &mut dyn std::io::Write) -> Result<
         frame_labels: args.frames,
         ..ArmStyle::default()
     };
-    let scene = arm_scene(&robot, &q, &style)?;
+    let mut scene = arm_scene(&robot, &q, &style)?;
+    let ee = super::ik::end_effector(&robot, args.ee.as_deref())?;
+    if robot.end_effectors().len() > 1 {
+        crate::scene::label_driven_chain_only(&mut scene, &robot, ee);
+    }
     let camera = framing_camera(
         args.view.into(),
         &crate::scene::arm_points(&robot, &q)?,

@@ -33,6 +33,10 @@ pub struct ViewArgs {
     /// Projector mode (large fonts, high contrast).
     #[arg(long)]
     pub projector: bool,
+    /// The end-effector the right panel, the gizmo and the readouts start on (a name or an
+    /// index; default: the tool of the longest arm).
+    #[arg(long)]
+    pub ee: Option<String>,
     /// Open the window, drag the IK target for N frames, print the frame times and exit
     /// (vsync off; under `xvfb-run` on a machine without a display).
     #[arg(long, value_name = "N", conflicts_with = "screenshot", value_parser = super::count)]
@@ -45,6 +49,7 @@ pub(super) fn run(args: &ViewArgs, out: &mut dyn std::io::Write) -> Result<(), C
     let state = AppState::from_spec(spec)
         .map_err(|e| CliError::App(crate::app::AppError::Model(e.to_string())))?;
     let dof = state.robot().dof();
+    let ee = super::ik::end_effector(state.robot(), args.ee.as_deref())?;
     let q = match &args.q {
         Some(t) => Some(parse_row(t, "--q", dof, "joint values")?),
         None => None,
@@ -59,6 +64,7 @@ pub(super) fn run(args: &ViewArgs, out: &mut dyn std::io::Write) -> Result<(), C
             measure_frames: args.measure_frames,
             q,
             model_given: args.model.is_some(),
+            ee,
         };
         if let Some(report) = crate::app::run_with(spec, &opts).map_err(CliError::App)? {
             writeln!(out, "{report}")?;
@@ -81,6 +87,7 @@ pub(super) fn run(args: &ViewArgs, out: &mut dyn std::io::Write) -> Result<(), C
         all_postures: args.all_postures,
         target_position,
         projector: args.projector,
+        ee,
     };
     let img = screenshot(state, args.size.0, &opts).map_err(CliError::App)?;
     crate::headless::write_png(&img, path)?;
