@@ -261,7 +261,7 @@ fn unique_names(urdf: &urdf_rs::Robot, path: &Path) -> Result<(), UrdfError> {
 /// Reads URDF text into a [`Robot`]; `path` is only used in messages and the description.
 pub fn parse_urdf(text: &str, path: &Path) -> Result<Robot, UrdfError> {
     let p = || path.to_path_buf();
-    if text.contains("<xacro:") {
+    if has_xacro_markup(text) {
         return Err(UrdfError::Xacro { path: p() });
     }
     let urdf =
@@ -388,8 +388,9 @@ fn assemble(
         joints.push(Joint { parent, ..j });
         let child = uj[i].child.link.as_str();
         let leaf = !children.contains_key(child);
-        // A tool-like link with children is a tool carrying moving fingers only when no leaf
-        // hangs from it by fixed joints alone (else that leaf, `panda_hand_tcp`, is the tool).
+        // A tool-like link with children is a tool carrying moving fingers only when no
+        // tool-like leaf hangs from it by fixed joints alone (else that leaf, `panda_hand_tcp`,
+        // is the tool).
         let tool_like = crate::kinematics::end_effectors::is_tool_like(child)
             && !crate::kinematics::end_effectors::is_auxiliary_frame(child)
             && !fixed_leaf_below(uj, children, child);
@@ -404,7 +405,27 @@ fn assemble(
     Ok((joints, ees))
 }
 
-/// Whether a leaf link hangs from `link` through fixed joints only.
+/// Whether the text has a `<xacro:...>` element outside comments (an expanded URDF often keeps
+/// commented-out xacro calls, as TALOS's does).
+fn has_xacro_markup(text: &str) -> bool {
+    let mut rest = text;
+    while let Some(i) = rest.find('<') {
+        rest = &rest[i..];
+        if let Some(after) = rest.strip_prefix("<!--") {
+            match after.find("-->") {
+                Some(end) => rest = &after[end + 3..],
+                None => return false,
+            }
+        } else if rest.starts_with("<xacro:") {
+            return true;
+        } else {
+            rest = &rest[1..];
+        }
+    }
+    false
+}
+
+/// Whether a tool-like leaf link hangs from `link` through fixed joints only.
 fn fixed_leaf_below(
     uj: &[urdf_rs::Joint],
     children: &HashMap<&str, Vec<usize>>,
@@ -413,8 +434,10 @@ fn fixed_leaf_below(
     children.get(link).is_some_and(|kids| {
         kids.iter().any(|&k| {
             let c = uj[k].child.link.as_str();
+            let tool_leaf =
+                !children.contains_key(c) && crate::kinematics::end_effectors::is_tool_like(c);
             uj[k].joint_type == JointType::Fixed
-                && (!children.contains_key(c) || fixed_leaf_below(uj, children, c))
+                && (tool_leaf || fixed_leaf_below(uj, children, c))
         })
     })
 }

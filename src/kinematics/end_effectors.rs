@@ -65,12 +65,17 @@ impl EndEffectorCatalog {
 
 /// How tool-like a frame's name is, best first: 0 `tool0`, 1 `*_tcp`, 2 `flange`, 3 `ee_link`
 /// (or an `ee`/`eef` word), 4 `end_effector`, 5 another `tool`, 6 `hand` or `gripper` (where the
-/// farthest frame out is taken), 7 anything else.
+/// farthest frame out is taken), 7 anything else, the parts of a gripper's mechanism included
+/// (fingers, knuckles, motors: `gripper_left_fingertip_1_link`, `l_gripper_l_finger_tip`).
 pub fn tool_rank(name: &str) -> u8 {
     let n = name.to_ascii_lowercase();
     let words: Vec<&str> = n.split(|c: char| !c.is_ascii_alphanumeric()).collect();
     let has = |w: &str| words.contains(&w);
-    if has("tool0") {
+    // The parts of a gripper's mechanism are not its tool.
+    let part = ["finger", "knuckle", "thumb", "motor", "inner", "outer"];
+    if part.iter().any(|w| n.contains(w)) {
+        7
+    } else if has("tool0") {
         0
     } else if n.contains("tcp") {
         1
