@@ -436,8 +436,7 @@ fn fixed_leaf_below(
             let c = uj[k].child.link.as_str();
             let tool_leaf =
                 !children.contains_key(c) && crate::kinematics::end_effectors::is_tool_like(c);
-            uj[k].joint_type == JointType::Fixed
-                && (tool_leaf || fixed_leaf_below(uj, children, c))
+            uj[k].joint_type == JointType::Fixed && (tool_leaf || fixed_leaf_below(uj, children, c))
         })
     })
 }

@@ -273,3 +273,38 @@ fn beyond_the_tolerance_there_is_no_closed_form_and_the_message_gives_the_deviat
     let why = ClosedForm::detect(&robot).unwrap_err().to_string();
     assert!(why.contains("0.001"), "{why}");
 }
+
+/// TALOS-like: a wrist F/T sensor's `*_tool_link` carrying a gripper whose finger parts hang by
+/// fixed joints (their mimics ignored) or move; the tool is the `tool` link, never a fingertip or
+/// the gripper's motor link, and the file's xacro calls left in comments are no obstacle.
+#[test]
+fn the_tool_is_not_a_part_of_the_gripper() {
+    let text = r#"<robot name="wristy">
+      <!-- <xacro:gripper_virtual_transmission name="g"/> -->
+      <link name="base"/><link name="l1"/><link name="l2"/><link name="wrist_ft_tool_link"/>
+      <link name="gripper_base_link"/><link name="gripper_motor_link"/>
+      <link name="gripper_fingertip_1_link"/><link name="gripper_fingertip_2_link"/>
+      <joint name="j1" type="revolute"><parent link="base"/><child link="l1"/>
+        <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+      <joint name="j2" type="revolute"><parent link="l1"/><child link="l2"/>
+        <origin xyz="0.3 0 0"/><axis xyz="0 0 1"/>
+        <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+      <joint name="ft" type="fixed"><parent link="l2"/><child link="wrist_ft_tool_link"/>
+        <origin xyz="0.2 0 0"/></joint>
+      <joint name="gb" type="fixed"><parent link="wrist_ft_tool_link"/>
+        <child link="gripper_base_link"/><origin xyz="0.05 0 0"/></joint>
+      <joint name="gm" type="revolute"><parent link="gripper_base_link"/>
+        <child link="gripper_motor_link"/><axis xyz="1 0 0"/>
+        <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+      <joint name="f1" type="fixed"><parent link="gripper_base_link"/>
+        <child link="gripper_fingertip_1_link"/><mimic joint="gm"/></joint>
+      <joint name="f2" type="fixed"><parent link="gripper_motor_link"/>
+        <child link="gripper_fingertip_2_link"/></joint>
+    </robot>"#;
+    let robot = load_text(text);
+    let cat = catalog(&robot);
+    let name = |e: usize| robot.end_effectors()[e].name.as_str();
+    assert_eq!(name(cat.default_ee()), "wrist_ft_tool_link");
+    assert_eq!(cat.arms.len(), 1, "the fingers join the arm");
+    assert_eq!(cat.arms[0].dof, 2);
+}

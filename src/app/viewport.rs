@@ -336,7 +336,16 @@ pub fn build_scene(state: &AppState, ee: usize, projector: bool) -> Scene {
         }
     }
     let scale = robot.longest_chain_length() as f32;
-    for (ee, target) in state.targets().iter().enumerate() {
+    // One IK target per arm (its tool), and the chosen end-effector's: not one on each of the
+    // dozens of frames a robot description names.
+    let tools = state.ee_catalog().tools();
+    let shown = |k: usize| k == ee || tools.is_empty() || tools.contains(&k);
+    for (ee, target) in state
+        .targets()
+        .iter()
+        .enumerate()
+        .filter(|(k, _)| shown(*k))
+    {
         if d.ghosts {
             for g in state.ghosts(ee) {
                 if !g.selected {
