@@ -354,33 +354,7 @@ pub fn build_scene(state: &AppState, ee: usize, projector: bool) -> Scene {
             }
         }
         merge_close_labels(&mut scene.labels, scale * 0.02);
-        // The target: a small triad and a dot, red when unreachable.
-        let t = &target.world_from_tool;
-        let o = t.translation.vector;
-        let o32 = [o.x as f32, o.y as f32, o.z as f32];
-        let color = if target.reach.is_reached() {
-            [0.1, 0.1, 0.12, 1.0]
-        } else {
-            [0.9, 0.1, 0.1, 1.0]
-        };
-        scene.dots.push(Dot {
-            p: o32,
-            color,
-            size_px: if projector { 16.0 } else { 11.0 },
-        });
-        for k in 0..3 {
-            let a = t.rotation * nalgebra::Vector3::ith(k, 1.0) * (scale as f64 * 0.08);
-            scene.lines.push(Line {
-                a: o32,
-                b: [
-                    o32[0] + a.x as f32,
-                    o32[1] + a.y as f32,
-                    o32[2] + a.z as f32,
-                ],
-                color: crate::scene::AXIS_COLORS[k],
-                width_px: 2.0,
-            });
-        }
+        add_target(&mut scene, target, scale, projector);
         if d.trail
             && let Some(trail) = state.trail(ee)
         {
@@ -400,6 +374,36 @@ pub fn build_scene(state: &AppState, ee: usize, projector: bool) -> Scene {
         }
     }
     scene
+}
+
+/// The IK target: a small triad and a dot, red when unreachable.
+fn add_target(scene: &mut Scene, target: &super::state::EeTarget, scale: f32, projector: bool) {
+    let t = &target.world_from_tool;
+    let o = t.translation.vector;
+    let o32 = [o.x as f32, o.y as f32, o.z as f32];
+    let color = if target.reach.is_reached() {
+        [0.1, 0.1, 0.12, 1.0]
+    } else {
+        [0.9, 0.1, 0.1, 1.0]
+    };
+    scene.dots.push(Dot {
+        p: o32,
+        color,
+        size_px: if projector { 16.0 } else { 11.0 },
+    });
+    for k in 0..3 {
+        let a = t.rotation * nalgebra::Vector3::ith(k, 1.0) * (scale as f64 * 0.08);
+        scene.lines.push(Line {
+            a: o32,
+            b: [
+                o32[0] + a.x as f32,
+                o32[1] + a.y as f32,
+                o32[2] + a.z as f32,
+            ],
+            color: crate::scene::AXIS_COLORS[k],
+            width_px: 2.0,
+        });
+    }
 }
 
 /// A translucent ghost arm at `g.q` (grey when outside the limits) labelled with its posture at
