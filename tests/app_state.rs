@@ -623,3 +623,40 @@ fn a_solution_outside_the_limits_is_named_as_the_list_counts() {
         "IK solution 1 (\"shoulder right, elbow down\") is outside the joint limits"
     );
 }
+
+/// Issue 26: a tree whose arm has a closed form is dragged in closed form: the Jaco 2 with its
+/// finger frames (CAD-rounded) lists every posture of the arm and follows the target exactly;
+/// the xArm6 with its gripper (no closed form) keeps its gripper joints still while dragged.
+#[test]
+fn a_tree_whose_arm_has_a_closed_form_is_dragged_in_closed_form() {
+    let mut s = state("tests/data/urdf_corpus/kinova_j2s6s200.urdf");
+    assert!(s.robot().end_effectors().len() > 1, "a tree");
+    let ee = 0;
+    assert_eq!(s.robot().end_effectors()[ee].name, "j2s6s200_end_effector");
+    let start = s.robot().fk_ee(s.q(), ee).unwrap();
+    let moved = Translation3::new(0.0, 0.03, -0.02) * start;
+    s.set_target(ee, moved).unwrap();
+    let t = &s.targets()[ee];
+    let result = t.result.as_ref().expect("the closed-form solutions");
+    assert!(
+        result.solutions.len() >= 4,
+        "every posture listed, not one numerical answer: {}",
+        result.solutions.len()
+    );
+    let now = s.robot().fk_ee(s.q(), ee).unwrap();
+    let dp = (now.translation.vector - moved.translation.vector).norm();
+    assert!(dp < 1e-10, "the arm follows exactly: {dp:e} m");
+
+    let mut x = state("tests/data/urdf_corpus/xarm6_with_gripper.urdf");
+    assert_eq!(x.robot().dof(), 7, "6 arm joints and the gripper's drive");
+    let gripper = x.q()[6];
+    let start = x.robot().fk_ee(x.q(), 0).unwrap();
+    x.set_target(0, Translation3::new(0.0, 0.02, 0.0) * start)
+        .unwrap();
+    let now = x.robot().fk_ee(x.q(), 0).unwrap();
+    assert!(
+        (now.translation.vector - start.translation.vector).norm() > 0.01,
+        "it moved"
+    );
+    assert_eq!(x.q()[6], gripper, "the gripper stays");
+}

@@ -603,7 +603,7 @@ impl AppState {
             return;
         };
         let result = if self.uses_closed_form(ee) {
-            self.closed_form_solutions(&fk).ok()
+            self.closed_form_solutions(ee, &fk).ok()
         } else {
             None
         };

@@ -56,6 +56,8 @@ pub struct ArmReport {
     pub dh_reason: Option<String>,
     /// The closed-form family's name.
     pub closed_form: Option<&'static str>,
+    /// The closed-form family.
+    pub family: Option<crate::kinematics::ik::Family>,
     /// Why there is no closed form.
     pub closed_form_reason: Option<String>,
     /// For a closed form found on the ideal structure of a near miss, how near, in words.
@@ -142,6 +144,7 @@ pub fn arm_report(robot: &Robot, cat: &EndEffectorCatalog, ee: usize, q: &[f64])
         dh: None,
         dh_reason: None,
         closed_form: None,
+        family: None,
         closed_form_reason: None,
         closed_form_near_miss: None,
         redundancy_degree: 0,
@@ -166,6 +169,7 @@ pub fn arm_report(robot: &Robot, cat: &EndEffectorCatalog, ee: usize, q: &[f64])
     match ClosedForm::detect(&arm.robot) {
         Ok(cf) => {
             r.closed_form = Some(cf.name());
+            r.family = Some(*cf.family());
             r.closed_form_near_miss = cf.near_miss().map(|_| cf.describe());
         }
         Err(e) => r.closed_form_reason = Some(e.to_string()),

@@ -92,8 +92,7 @@ fn ik_section(state: &AppState, ui: &mut egui::Ui, ee: usize, out: &mut Actions)
         // A tree: the arm of this end-effector, alone.
         let text = match (r.closed_form, &r.closed_form_reason) {
             (Some(f), _) => format!(
-                "arm of {} ({} joints): closed form {f}; the app drags it numerically, \
-                 `armlab ik --ee` lists every posture",
+                "arm of {} ({} joints): closed form {f}",
                 r.name, r.variables
             ),
             (None, why) => format!(

@@ -1,7 +1,7 @@
 //! Solving IK for a moved target every frame, and the posture lock.
 //!
-//! Arms with a closed form (a single end-effector and a family of
-//! [`crate::kinematics::ik::closed_form`]) get every solution; one is chosen:
+//! Arms with a closed form (a family of [`crate::kinematics::ik::closed_form`], on a tree the
+//! arm of the dragged end-effector alone) get every solution; one is chosen:
 //!
 //! - **unlocked**: the within-limits solution closest in joint space to the current q
 //!   ([`joint_distance`]: revolute differences wrapped into (-pi, pi]);
@@ -95,30 +95,41 @@ fn solves_frame(family: Option<Family>) -> bool {
 }
 
 impl AppState {
+    /// The closed-form family of end-effector `ee`'s arm: the robot's own for a single chain,
+    /// the arm's alone on a tree (a Jaco's fingers do not take its closed form away).
+    pub(super) fn family_of(&self, ee: usize) -> Option<Family> {
+        if self.robot.end_effectors().len() == 1 {
+            self.analyzer.family().filter(|_| ee == 0)
+        } else {
+            self.arm_report(ee).and_then(|r| r.family)
+        }
+    }
+
     /// Whether the closed-form path applies to end-effector `ee`.
     pub(super) fn uses_closed_form(&self, ee: usize) -> bool {
-        ee == 0
-            && self.robot.end_effectors().len() == 1
-            && self.analyzer.family().is_some()
-            && self.task == super::full_task(&self.robot)
+        self.family_of(ee).is_some() && self.task == super::full_task(&self.robot)
     }
 
     /// Solves IK for target `ee` and moves the arm (or freezes it).
     pub(super) fn solve_target(&mut self, ee: usize) {
         if self.uses_closed_form(ee) {
-            self.track_closed_form();
+            self.track_closed_form(ee);
         } else {
             self.track_numerical(ee);
         }
     }
 
-    /// Every closed-form solution for `world_from_tool`, degenerate ones aligned with the current
-    /// q and angles shifted towards it.
-    pub(super) fn closed_form_solutions(&self, world_from_tool: &Pose) -> Result<IkResult, String> {
+    /// Every closed-form solution of end-effector `ee` for `world_from_tool` (on a tree its arm
+    /// alone moves), degenerate ones aligned with the current q and angles shifted towards it.
+    pub(super) fn closed_form_solutions(
+        &self,
+        ee: usize,
+        world_from_tool: &Pose,
+    ) -> Result<IkResult, String> {
         let target = Target::Pose(*world_from_tool);
         let (mut result, _) = solver::solve(
             &self.robot,
-            0,
+            ee,
             &target,
             Some(&self.q),
             SolverChoice::ClosedForm,
@@ -127,29 +138,29 @@ impl AppState {
         .map_err(|e| e.to_string())?;
         for s in &mut result.solutions {
             if !s.free_joints.is_empty() {
-                self.align(s, world_from_tool);
+                self.align(s, world_from_tool, ee);
             }
             self.shift_towards_q(&mut s.q);
         }
         Ok(result)
     }
 
-    fn track_closed_form(&mut self) {
-        let t = self.targets[0].world_from_tool;
-        let result = match self.closed_form_solutions(&t) {
+    fn track_closed_form(&mut self, ee: usize) {
+        let t = self.targets[ee].world_from_tool;
+        let result = match self.closed_form_solutions(ee, &t) {
             Ok(r) => r,
-            Err(reason) => return self.freeze(0, None, Reach::Invalid { reason }),
+            Err(reason) => return self.freeze(ee, None, Reach::Invalid { reason }),
         };
         if let IkStatus::Unreachable { distance } = result.status {
-            return self.freeze(0, Some(result), Reach::Unreachable { distance });
+            return self.freeze(ee, Some(result), Reach::Unreachable { distance });
         }
         let degenerate = result
             .solutions
             .iter()
             .any(|s| !s.free_joints.is_empty() || is_degenerate_label(&s.posture));
-        match self.choose(0, &result.solutions, degenerate) {
-            Choice::Pick { index, follow } => self.adopt(0, result, index, follow),
-            Choice::Freeze(reach) => self.freeze(0, Some(result), reach),
+        match self.choose(ee, &result.solutions, degenerate) {
+            Choice::Pick { index, follow } => self.adopt(ee, result, index, follow),
+            Choice::Freeze(reach) => self.freeze(ee, Some(result), reach),
         }
     }
 
@@ -265,8 +276,8 @@ impl AppState {
     /// Moves the free joints of a degenerate solution to their current values and re-solves the
     /// other joints (free ones held) by a short Levenberg–Marquardt run; kept only if it still
     /// reaches the target.
-    fn align(&self, s: &mut IkSolution, world_from_tool: &Pose) {
-        let frame = solves_frame(self.analyzer.family());
+    fn align(&self, s: &mut IkSolution, world_from_tool: &Pose, ee: usize) {
+        let frame = solves_frame(self.family_of(ee));
         let target = if frame {
             Target::Pose(*world_from_tool)
         } else {
@@ -293,7 +304,7 @@ impl AppState {
             enforce_limits: false,
             ..NumericalOptions::default()
         };
-        let Ok(rep) = numerical::solve(&reduced, 0, &target, &seed, &opts) else {
+        let Ok(rep) = numerical::solve(&reduced, ee, &target, &seed, &opts) else {
             return;
         };
         let mut q = start;
@@ -400,7 +411,7 @@ impl AppState {
     /// by construction).
     pub(super) fn constrain_target(&self, ee: usize, pose: Pose) -> Pose {
         let family = if self.uses_closed_form(ee) {
-            self.analyzer.family()
+            self.family_of(ee)
         } else {
             None
         };
