@@ -35,6 +35,12 @@ pub enum ConstructionError {
         /// What fails, in words.
         why: &'static str,
     },
+    /// A family whose construction is not drawn yet.
+    #[error("{family}: the construction of this family is not drawn yet")]
+    NotDrawn {
+        /// The family's name.
+        family: &'static str,
+    },
     /// Bad robot input.
     #[error(transparent)]
     Kinematics(#[from] KinematicsError),

@@ -328,10 +328,10 @@ fn solution_list(
         }
     }
     if !result.solutions.is_empty() && state.posture_class(&result.solutions[0].posture).is_some() {
-        ui.label(
-            RichText::new(crate::kinematics::ik::closed_form::SHORT_LEGEND)
-                .small()
-                .weak(),
-        );
+        use crate::kinematics::ik::closed_form::{SHORT_LEGEND, SHORT_LEGEND_UR};
+        let ur = result.solutions[0].posture.contains("wrist up")
+            || result.solutions[0].posture.contains("wrist down");
+        let legend = if ur { SHORT_LEGEND_UR } else { SHORT_LEGEND };
+        ui.label(RichText::new(legend).small().weak());
     }
 }

@@ -17,6 +17,7 @@
 //! | [`Family::Cylindrical`] | R-P-P, alpha1 = 0 or pi, alpha2 = +-pi/2 | 1 (d3 >= 0) |
 //! | [`Family::SphericalWrist`] | R-R-R, a1 = a2 = d2 = 0, alpha1, alpha2 = +-pi/2 | 2 (wrist no flip/flip) |
 //! | [`Family::Decoupled6`] | one of the three arms + a spherical wrist | arm count x 2 (8 for the Puma 560) |
+//! | [`Family::ThreeParallel`] | R x 6, axes 2, 3, 4 parallel, a1 = a4 = a5 = a6 = 0, alpha1, alpha4, alpha5 = +-pi/2 (Universal Robots) | 8 (shoulder right/left x elbow up/down x wrist up/down) |
 //!
 //! The spherical and cylindrical arms also have the mirror solution with the opposite extension
 //! of the prismatic joint (d3 < 0 for the textbook arm); [`ClosedForm::solve`] returns it only when
@@ -32,6 +33,7 @@
 mod arm;
 mod chain;
 mod family;
+mod parallel3;
 mod planar;
 mod posture;
 mod solutions;
@@ -40,7 +42,8 @@ mod wrist;
 
 pub use family::{ArmKind, Family};
 pub use posture::{
-    Elbow, Extension, FreeReason, Posture, SHORT_LEGEND, Shoulder, WristFlip, short_label,
+    Elbow, Extension, FreeReason, Posture, SHORT_LEGEND, SHORT_LEGEND_UR, Shoulder, WristFlip,
+    short_label,
 };
 pub use solutions::{Solution, SolutionErrors, Solutions, Verify};
 pub use why::NoClosedForm;
@@ -137,6 +140,7 @@ impl World {
 #[derive(Debug, Clone)]
 enum Geometry {
     Parallel(ParallelArm),
+    Parallel3(parallel3::Parallel3),
     Arm(SpatialArm),
     Wrist(Wrist),
     Decoupled {
@@ -279,16 +283,20 @@ impl ClosedForm {
                 }
             }
             6 => {
-                let wrist = Wrist::detect(&rows[3..], tol)?;
-                // Wrist centre W = origin of frame 4 = (0, 0, d4) in frame 3 (a4 = 0).
-                let w3 = Vector3::new(0.0, 0.0, rows[3].d);
-                let arm = SpatialArm::detect(&rows[..3], &w3, tol)?;
-                let r6 = rows[5];
-                let w6 = Vector3::new(-r6.a, -r6.sa * r6.d, -r6.ca * r6.d);
-                (
-                    Family::Decoupled6 { arm: arm.kind },
-                    Geometry::Decoupled { arm, wrist, w6 },
-                )
+                if let Some(g) = parallel3::Parallel3::detect(rows, tol) {
+                    (Family::ThreeParallel, Geometry::Parallel3(g))
+                } else {
+                    let wrist = Wrist::detect(&rows[3..], tol)?;
+                    // Wrist centre W = origin of frame 4 = (0, 0, d4) in frame 3 (a4 = 0).
+                    let w3 = Vector3::new(0.0, 0.0, rows[3].d);
+                    let arm = SpatialArm::detect(&rows[..3], &w3, tol)?;
+                    let r6 = rows[5];
+                    let w6 = Vector3::new(-r6.a, -r6.sa * r6.d, -r6.ca * r6.d);
+                    (
+                        Family::Decoupled6 { arm: arm.kind },
+                        Geometry::Decoupled { arm, wrist, w6 },
+                    )
+                }
             }
             _ => return None,
         };
@@ -654,6 +662,7 @@ impl ClosedForm {
                 }
                 out.len = n;
             }
+            (Geometry::Parallel3(g), Goal::Frame(t)) => g.solve_raw(t, out),
             (Geometry::Decoupled { arm, wrist, w6 }, Goal::Frame(t)) => {
                 let r6 = t.rotation.matrix();
                 // p_W = p_e - d6 a_e (2.93), generalised to a6, alpha6.

@@ -173,6 +173,7 @@ fn polish(
         restarts: 0,
         max_iterations: 20,
         enforce_limits: false,
+        tolerance: POLISH_THRESHOLD / 10.0,
         ..*opts
     };
     for s in &mut result.solutions {

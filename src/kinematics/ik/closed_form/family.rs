@@ -33,6 +33,8 @@ pub enum Family {
         /// The positioning arm.
         arm: ArmKind,
     },
+    /// Six revolute joints, axes 2, 3, 4 parallel, no spherical wrist (Universal Robots).
+    ThreeParallel,
 }
 
 impl Family {
@@ -55,6 +57,7 @@ impl Family {
             Family::Decoupled6 {
                 arm: ArmKind::Cylindrical,
             } => "cylindrical arm with spherical wrist",
+            Family::ThreeParallel => "three parallel axes (Universal Robots type)",
         }
     }
 
@@ -72,6 +75,7 @@ impl Family {
                 ArmKind::Spherical => 4,
                 ArmKind::Cylindrical => 2,
             },
+            Family::ThreeParallel => 8,
         }
     }
 
@@ -80,7 +84,11 @@ impl Family {
     pub(super) fn uses_frame(&self) -> bool {
         matches!(
             self,
-            Family::Planar3 | Family::Scara | Family::SphericalWrist | Family::Decoupled6 { .. }
+            Family::Planar3
+                | Family::Scara
+                | Family::SphericalWrist
+                | Family::Decoupled6 { .. }
+                | Family::ThreeParallel
         )
     }
 }

@@ -61,6 +61,11 @@ pub enum WristFlip {
     Flip,
     /// sin(theta5) = 0: only theta4 + theta6 (or theta4 - theta6) is determined.
     Singular,
+    /// Three parallel axes (the UR family): theta5 in (0, pi), as UR and MoveIt users say "wrist
+    /// up".
+    Up,
+    /// Three parallel axes: theta5 in (-pi, 0), "wrist down".
+    Down,
 }
 
 /// Why a joint is free (infinitely many solutions).
@@ -149,6 +154,8 @@ impl Posture {
             WristFlip::NoFlip => "wrist no flip",
             WristFlip::Flip => "wrist flip",
             WristFlip::Singular => "wrist singular",
+            WristFlip::Up => "wrist up",
+            WristFlip::Down => "wrist down",
         });
         [shoulder, elbow, extension, wrist].into_iter().flatten()
     }
@@ -192,7 +199,7 @@ impl std::fmt::Display for Posture {
 
 /// Abbreviations of the posture words, for labels that must stay short (ghost arms): "shoulder
 /// right, elbow up, wrist no flip" is "R U N". [`SHORT_LEGEND`] spells them out.
-const SHORT: [(&str, &str); 13] = [
+const SHORT: [(&str, &str); 15] = [
     ("shoulder right", "R"),
     ("shoulder left", "L"),
     ("shoulder on axis", "A"),
@@ -206,11 +213,17 @@ const SHORT: [(&str, &str); 13] = [
     ("extension zero", "0"),
     ("wrist no flip", "N"),
     ("wrist flip", "F"),
+    ("wrist up", "W+"),
+    ("wrist down", "W-"),
 ];
 
 /// What the short labels mean.
 pub const SHORT_LEGEND: &str = "R/L shoulder right/left, U/D elbow up/down, N/F wrist no flip/flip \
 (A shoulder on axis, S/Fo elbow stretched/folded, +/- extension, ! wrist singular)";
+
+/// What the short labels of the three-parallel-axes family (UR) mean.
+pub const SHORT_LEGEND_UR: &str =
+    "R/L shoulder right/left, U/D elbow up/down, W+/W- wrist up/down (! wrist singular)";
 
 /// The short form of a posture label ("shoulder right, elbow up, wrist no flip" -> "R U N");
 /// a part without an abbreviation ("wrist singular") becomes "!", other text is kept.
