@@ -215,11 +215,8 @@ impl Parallel3 {
         let mut n = 0;
         let base3 = c3.clamp(-1.0, 1.0).acos();
         let stretched = (c3.abs() - 1.0).abs() < 1e-12;
-        for th3 in if stretched {
-            vec![base3]
-        } else {
-            vec![base3, -base3]
-        } {
+        let count = if stretched { 1 } else { 2 };
+        for th3 in [base3, -base3].into_iter().take(count) {
             let th2 = y.atan2(x) - (self.a3 * th3.sin()).atan2(self.a2 + self.a3 * th3.cos());
             let th4 = th234 - th2 - th3;
             let mut posture = Posture {
