@@ -14,7 +14,11 @@ use std::hint::black_box;
 use std::time::Instant;
 
 fn targets(name: &str, n: usize) -> Vec<Target> {
-    let robot = built_in(name).expect("built-in");
+    targets_of(&built_in(name).expect("built-in"), n)
+}
+
+/// `n` poses of `robot` at random joint vectors inside its limits (seeded).
+fn targets_of(robot: &armlab::kinematics::Robot, n: usize) -> Vec<Target> {
     let mut rng = ChaCha8Rng::seed_from_u64(42);
     (0..n)
         .map(|_| {
@@ -92,10 +96,19 @@ criterion_main!(benches);
 fn closed_form(c: &mut Criterion) {
     use armlab::kinematics::ik::ClosedForm;
     use armlab::kinematics::ik::closed_form::{RawSolutions, Solutions, Verify};
-    for name in ["puma560", "anthropomorphic_spherical_wrist"] {
-        let robot = built_in(name).expect("built-in");
+    // The UR5 as its URDF (the corpus copy) gives, Universal Robots' family (issue 27).
+    let ur5 = armlab::model_file::load_model("tests/data/urdf_corpus/ur5_robot.urdf").expect("UR5");
+    let robots = [
+        ("puma560", built_in("puma560").expect("built-in")),
+        (
+            "anthropomorphic_spherical_wrist",
+            built_in("anthropomorphic_spherical_wrist").expect("built-in"),
+        ),
+        ("ur5_urdf", ur5),
+    ];
+    for (name, robot) in robots {
         let cf = ClosedForm::detect(&robot).expect("closed form");
-        let poses: Vec<_> = targets(name, 2000)
+        let poses: Vec<_> = targets_of(&robot, 2000)
             .into_iter()
             .map(|t| match t {
                 Target::Pose(p) => p,

@@ -138,7 +138,7 @@ impl Parallel3 {
     ) -> Result<usize, f64> {
         // M = A1^-1 T: the flange in frame 1.
         let a1 = dh(th1, self.d1, 0.0, self.s1);
-        let m1 = a1.try_inverse().unwrap_or_else(Matrix4::identity) * m;
+        let m1 = rigid_inverse(&a1) * m;
         // Third row of R_6^1 = s4 (sin t5 cos t6, -sin t5 sin t6, -s5 cos t5):
         // cos theta5 = -s4 s5 m22.
         let c5 = (-self.s4 * self.s5 * m1[(2, 2)]).clamp(-1.0, 1.0);
@@ -156,7 +156,7 @@ impl Parallel3 {
             };
             // Frame 4 in frame 1: M (A5 A6)^-1 = A2 A3 A4.
             let a56 = dh(th5, self.d5, 0.0, self.s5) * dh(th6, self.d6, 0.0, 0.0);
-            let q = m1 * a56.try_inverse().unwrap_or_else(Matrix4::identity);
+            let q = m1 * rigid_inverse(&a56);
             let th234 = q[(1, 0)].atan2(q[(0, 0)]);
             let (x, y) = (q[(0, 3)], q[(1, 3)]);
             let c3 =
@@ -258,6 +258,16 @@ impl Parallel3 {
         let along = e[0] * u[0] + e[1] * u[1];
         (e[1] - along * u[1]) * self.s1 > 0.0
     }
+}
+
+/// The inverse of a rigid transform `[R p; 0 1]`: `[R^T, -R^T p; 0 1]`.
+fn rigid_inverse(t: &Matrix4<f64>) -> Matrix4<f64> {
+    let r = t.fixed_view::<3, 3>(0, 0).transpose();
+    let p = -(r * t.fixed_view::<3, 1>(0, 3));
+    let mut out = Matrix4::identity();
+    out.fixed_view_mut::<3, 3>(0, 0).copy_from(&r);
+    out.fixed_view_mut::<3, 1>(0, 3).copy_from(&p);
+    out
 }
 
 /// `Rz(theta) Tz(d) Tx(a) Rx(alpha)` with sin(alpha) = `sa` in {-1, 0, 1} (cos alpha = 1 - |sa|):
