@@ -13,10 +13,6 @@ use rand_chacha::ChaCha8Rng;
 use std::hint::black_box;
 use std::time::Instant;
 
-fn targets(name: &str, n: usize) -> Vec<Target> {
-    targets_of(&built_in(name).expect("built-in"), n)
-}
-
 /// `n` poses of `robot` at random joint vectors inside its limits (seeded).
 fn targets_of(robot: &armlab::kinematics::Robot, n: usize) -> Vec<Target> {
     let mut rng = ChaCha8Rng::seed_from_u64(42);
