@@ -57,30 +57,7 @@ fn robot(name: &str, p: &[f64; 6]) -> Robot {
 
 /// The forward kinematics written here: the product of (2.52) `Rz(q) Tz(d) Tx(a) Rx(alpha)`.
 fn fk(p: &[f64; 6], q: &[f64]) -> Matrix4<f64> {
-    let mut t = Matrix4::identity();
-    for (&(a, alpha, d), &th) in rows(p).iter().zip(q) {
-        let (st, ct) = th.sin_cos();
-        let (sa, ca) = alpha.sin_cos();
-        t *= Matrix4::new(
-            ct,
-            -st * ca,
-            st * sa,
-            a * ct,
-            st,
-            ct * ca,
-            -ct * sa,
-            a * st,
-            0.0,
-            sa,
-            ca,
-            d,
-            0.0,
-            0.0,
-            0.0,
-            1.0,
-        );
-    }
-    t
+    fk_prefix(p, q, 6)
 }
 
 fn wrap(a: f64) -> f64 {
@@ -244,4 +221,79 @@ fn the_ur5_urdf_and_the_vendors_table_give_the_same_solutions() {
             );
         }
     }
+}
+
+/// The elbow labels against the geometry, computed here: "elbow up" when the elbow (origin of
+/// DH frame 2, on axis 3) lies above the line from the shoulder (frame 1) to the wrist (frame 3,
+/// on axis 4) along the base z axis; shoulder right/left and wrist up/down come in pairs.
+#[test]
+fn the_labels_say_what_the_geometry_shows() {
+    let r = robot("UR5", &UR5);
+    let mut rng = Lcg(5);
+    let origin = |q: &[f64], k: usize| {
+        let m = fk_prefix(&UR5, q, k);
+        nalgebra::Vector3::new(m[(0, 3)], m[(1, 3)], m[(2, 3)])
+    };
+    for _ in 0..100 {
+        let t = fk(&UR5, &rng.angles());
+        let pose = armlab::kinematics::pose::pose_from_matrix(&t).unwrap();
+        let cf = ClosedForm::detect(&r).unwrap();
+        let res = cf.solve(&r, &Target::Pose(pose)).unwrap();
+        for s in &res.solutions {
+            let (o1, o2, o3) = (origin(&s.q, 1), origin(&s.q, 2), origin(&s.q, 3));
+            let u = (o3 - o1).normalize();
+            let foot = o1 + u * u.dot(&(o2 - o1));
+            let above = o2.z > foot.z;
+            if s.posture.contains("elbow up") {
+                assert!(above, "{}: the elbow is below", s.posture);
+            } else if s.posture.contains("elbow down") {
+                assert!(!above, "{}: the elbow is above", s.posture);
+            }
+        }
+        let count = |w: &str| {
+            res.solutions
+                .iter()
+                .filter(|s| s.posture.contains(w))
+                .count()
+        };
+        if res.solutions.len() == 8 {
+            for w in [
+                "shoulder right",
+                "shoulder left",
+                "wrist up",
+                "wrist down",
+                "elbow up",
+            ] {
+                assert_eq!(count(w), 4, "{w}");
+            }
+        }
+    }
+}
+
+/// Frame k in frame 0: the product of the first `k` rows (2.52).
+fn fk_prefix(p: &[f64; 6], q: &[f64], k: usize) -> Matrix4<f64> {
+    let mut t = Matrix4::identity();
+    for (&(a, alpha, d), &th) in rows(p).iter().zip(q).take(k) {
+        let (st, ct) = th.sin_cos();
+        let (sa, ca) = alpha.sin_cos();
+        t *= Matrix4::new(
+            ct,
+            -st * ca,
+            st * sa,
+            a * ct,
+            st,
+            ct * ca,
+            -ct * sa,
+            a * st,
+            0.0,
+            sa,
+            ca,
+            d,
+            0.0,
+            0.0,
+            0.0,
+            1.0,
+        );
+    }
+    t
 }
