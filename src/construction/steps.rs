@@ -158,7 +158,9 @@ fn family_steps(robot: &Robot, q: &[f64]) -> Result<Vec<Step>, ConstructionError
         } => arms::cylindrical(robot, q, Some(WristPoint::of(robot, q)?)),
         Family::Scara => arms::scara(robot, q),
         Family::SphericalWrist => arms::wrist_alone(robot, q),
-        Family::ThreeParallel => Err(ConstructionError::NotDrawn { family: cf.name() }),
+        Family::ThreeParallel | Family::General6 => {
+            Err(ConstructionError::NotDrawn { family: cf.name() })
+        }
     }
 }
 

@@ -263,7 +263,7 @@ impl SingularityAnalyzer {
                 &[0, 1, 2]
             }
             Some(Family::SphericalWrist) => &[3, 4, 5],
-            Some(Family::Decoupled6 { .. } | Family::ThreeParallel) | None => &[0, 1, 2, 3, 4, 5],
+            Some(Family::Decoupled6 { .. } | Family::ThreeParallel | Family::General6) | None => &[0, 1, 2, 3, 4, 5],
         }
     }
 
@@ -403,7 +403,7 @@ impl SingularityAnalyzer {
             Family::SphericalWrist => (Some((0, 2)), None, None),
             Family::Anthropomorphic => (None, Some(*pe), Some(ArmKind::Anthropomorphic)),
             Family::SphericalArm => (None, Some(*pe), Some(ArmKind::Spherical)),
-            Family::Cylindrical | Family::ThreeParallel => (None, None, None),
+            Family::Cylindrical | Family::ThreeParallel | Family::General6 => (None, None, None),
             Family::Planar2 | Family::Planar3 | Family::Scara => {
                 out.extend(planar_elbow(family, pe, ax));
                 return out;

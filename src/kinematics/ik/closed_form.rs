@@ -33,6 +33,7 @@
 mod arm;
 mod chain;
 mod family;
+mod general6;
 mod parallel3;
 mod planar;
 mod posture;
@@ -72,8 +73,8 @@ pub const LIMIT_TOL: f64 = 1e-12;
 pub const DUPLICATE_TOL: f64 = 1e-9;
 /// Largest number of joints of a closed-form family.
 pub const MAX_DOF: usize = 6;
-/// Largest number of raw solutions (6-DOF arm with spherical wrist: 4 arm x 2 wrist).
-pub const MAX_SOLUTIONS: usize = 8;
+/// Largest number of raw solutions (a general six-revolute arm: 16).
+pub const MAX_SOLUTIONS: usize = 16;
 
 /// Solutions of the allocation-free core ([`ClosedForm::solve_raw`]).
 ///
@@ -141,6 +142,7 @@ impl World {
 enum Geometry {
     Parallel(ParallelArm),
     Parallel3(parallel3::Parallel3),
+    General(Box<general6::General6>),
     Arm(SpatialArm),
     Wrist(Wrist),
     Decoupled {
@@ -192,10 +194,22 @@ impl ClosedForm {
     /// ([`ClosedForm::near_miss`] says by how much): its branches are solved on the ideal
     /// structure and [`crate::kinematics::ik::solver::solve`] polishes each by Newton on the
     /// exact model, keeping only those that forward kinematics confirms to 1e-12.
+    ///
+    /// Any other six-revolute chain gets [`Family::General6`]: every real solution by
+    /// elimination.
     pub fn detect(robot: &Robot) -> Result<ClosedForm, NoClosedForm> {
-        if let Some(cf) = Self::detect_family(robot) {
+        if let Some(cf) = Self::detect_family(robot, false) {
             return Ok(cf);
         }
+        match Self::detect_near_miss(robot) {
+            Ok(cf) => Ok(cf),
+            Err(why) => Self::detect_family(robot, true).ok_or(why),
+        }
+    }
+
+    /// The family of the robot's ideal structure, for a chain that misses it by rounding; the
+    /// reason it has none otherwise.
+    fn detect_near_miss(robot: &Robot) -> Result<ClosedForm, NoClosedForm> {
         let why = why::diagnose(robot);
         let Some(ideal) = Self::ideal_robot(robot) else {
             return Err(why);
@@ -203,7 +217,7 @@ impl ClosedForm {
         // Only a chain that was rounded is a near miss (an ideal equal to the chain is the
         // chain, and its refusal stands).
         let rounded = ideal.1.length > 0.0 || ideal.1.angle > 0.0;
-        match Self::detect_family(&ideal.0) {
+        match Self::detect_family(&ideal.0, false) {
             Some(mut cf) if rounded => {
                 cf.near_miss = Some(ideal.1);
                 Ok(cf)
@@ -251,7 +265,8 @@ impl ClosedForm {
         }
     }
 
-    fn detect_family(robot: &Robot) -> Option<ClosedForm> {
+    /// The family of the exact chain; the general six-revolute elimination only if `general`.
+    fn detect_family(robot: &Robot, general: bool) -> Option<ClosedForm> {
         let chain = chain::normalize(robot)?;
         let rows = &chain.rows;
         let n = rows.len();
@@ -285,17 +300,13 @@ impl ClosedForm {
             6 => {
                 if let Some(g) = parallel3::Parallel3::detect(rows, tol) {
                     (Family::ThreeParallel, Geometry::Parallel3(g))
+                } else if let Some(d) = Self::decoupled(rows, tol) {
+                    d
+                } else if general {
+                    let g = general6::General6::detect(rows)?;
+                    (Family::General6, Geometry::General(Box::new(g)))
                 } else {
-                    let wrist = Wrist::detect(&rows[3..], tol)?;
-                    // Wrist centre W = origin of frame 4 = (0, 0, d4) in frame 3 (a4 = 0).
-                    let w3 = Vector3::new(0.0, 0.0, rows[3].d);
-                    let arm = SpatialArm::detect(&rows[..3], &w3, tol)?;
-                    let r6 = rows[5];
-                    let w6 = Vector3::new(-r6.a, -r6.sa * r6.d, -r6.ca * r6.d);
-                    (
-                        Family::Decoupled6 { arm: arm.kind },
-                        Geometry::Decoupled { arm, wrist, w6 },
-                    )
+                    return None;
                 }
             }
             _ => return None,
@@ -328,6 +339,20 @@ impl ClosedForm {
             geometry,
             near_miss: None,
         })
+    }
+
+    /// A six-DOF arm with a spherical wrist (Sect. 2.12.2).
+    fn decoupled(rows: &[chain::Row], tol: f64) -> Option<(Family, Geometry)> {
+        let wrist = Wrist::detect(&rows[3..], tol)?;
+        // Wrist centre W = origin of frame 4 = (0, 0, d4) in frame 3 (a4 = 0).
+        let w3 = Vector3::new(0.0, 0.0, rows[3].d);
+        let arm = SpatialArm::detect(&rows[..3], &w3, tol)?;
+        let r6 = rows[5];
+        let w6 = Vector3::new(-r6.a, -r6.sa * r6.d, -r6.ca * r6.d);
+        Some((
+            Family::Decoupled6 { arm: arm.kind },
+            Geometry::Decoupled { arm, wrist, w6 },
+        ))
     }
 
     /// The family.
@@ -663,6 +688,24 @@ impl ClosedForm {
                 out.len = n;
             }
             (Geometry::Parallel3(g), Goal::Frame(t)) => g.solve_raw(t, out),
+            (Geometry::General(g), Goal::Frame(t)) => {
+                let mut sols = [[0.0; 6]; general6::MAX_BRANCHES];
+                match g.solve(t, &mut sols) {
+                    Ok(0) => out.unreachable = Some(f64::NAN),
+                    Ok(n) => {
+                        for (k, q) in sols[..n].iter().enumerate() {
+                            out.q[k] = *q;
+                            out.postures[k] = general6::branch_posture(k);
+                        }
+                        out.len = n;
+                    }
+                    Err(why) => {
+                        return Err(IkError::Degenerate {
+                            reason: why.text(),
+                        });
+                    }
+                }
+            }
             (Geometry::Decoupled { arm, wrist, w6 }, Goal::Frame(t)) => {
                 let r6 = t.rotation.matrix();
                 // p_W = p_e - d6 a_e (2.93), generalised to a6, alpha6.

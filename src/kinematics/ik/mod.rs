@@ -137,6 +137,13 @@ pub enum IkError {
     /// Bad joint vector (seed).
     #[error(transparent)]
     Kinematics(#[from] super::error::KinematicsError),
+    /// The general six-revolute elimination cannot solve this arm or pose (a special structure
+    /// it does not cover); no partial set is returned.
+    #[error("the elimination for general six-revolute arms cannot solve this: {reason}")]
+    Degenerate {
+        /// Why, in words.
+        reason: &'static str,
+    },
     /// The end-effector has no arm of its own to solve (a frame fixed to the base).
     #[error("end-effector \"{ee}\": {reason}")]
     Arm {

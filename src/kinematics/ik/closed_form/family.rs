@@ -35,6 +35,9 @@ pub enum Family {
     },
     /// Six revolute joints, axes 2, 3, 4 parallel, no spherical wrist (Universal Robots).
     ThreeParallel,
+    /// Any other six revolute joints: every real solution (at most 16) by Raghavan and Roth's
+    /// elimination, labelled "branch k".
+    General6,
 }
 
 impl Family {
@@ -58,6 +61,7 @@ impl Family {
                 arm: ArmKind::Cylindrical,
             } => "cylindrical arm with spherical wrist",
             Family::ThreeParallel => "three parallel axes (Universal Robots type)",
+            Family::General6 => "general six-revolute arm (all real solutions, by elimination)",
         }
     }
 
@@ -76,6 +80,8 @@ impl Family {
                 ArmKind::Cylindrical => 2,
             },
             Family::ThreeParallel => 8,
+            // At most; how many are real depends on the arm and the target.
+            Family::General6 => 16,
         }
     }
 
@@ -89,6 +95,7 @@ impl Family {
                 | Family::SphericalWrist
                 | Family::Decoupled6 { .. }
                 | Family::ThreeParallel
+                | Family::General6
         )
     }
 }

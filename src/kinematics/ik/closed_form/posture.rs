@@ -122,7 +122,16 @@ pub struct Posture {
     pub wrist: Option<WristFlip>,
     /// `free[i]` says why `q[i]` is free, if it is.
     pub free: [Option<FreeReason>; 6],
+    /// Branch number (1-based) of a general six-revolute arm, whose postures have no names.
+    pub branch: Option<u8>,
 }
+
+/// The labels "branch 1" to "branch 16" of a general six-revolute arm's solutions.
+const BRANCHES: [&str; 16] = [
+    "branch 1", "branch 2", "branch 3", "branch 4", "branch 5", "branch 6", "branch 7",
+    "branch 8", "branch 9", "branch 10", "branch 11", "branch 12", "branch 13", "branch 14",
+    "branch 15", "branch 16",
+];
 
 impl Posture {
     /// Human-readable label, e.g. "shoulder right, elbow up, wrist no flip" (the `Display`
@@ -157,7 +166,12 @@ impl Posture {
             WristFlip::Up => "wrist up",
             WristFlip::Down => "wrist down",
         });
-        [shoulder, elbow, extension, wrist].into_iter().flatten()
+        let branch = self
+            .branch
+            .and_then(|b| BRANCHES.get(usize::from(b).wrapping_sub(1)).copied());
+        [shoulder, elbow, extension, wrist, branch]
+            .into_iter()
+            .flatten()
     }
 
     /// True on a degenerate solution: a free joint or a merged pair of postures.
