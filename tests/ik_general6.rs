@@ -240,11 +240,19 @@ fn a_general_arm_is_detected_and_its_solutions_are_valid_distinct_and_complete()
 fn an_arm_with_fourteen_real_solutions_gets_all_fourteen() {
     let arm: Arm = [
         (-0.16783737474333676, 1.0052561698243567, 0.2659782754010333),
-        (-0.20021619228968035, -2.0083552205516653, 0.5956370685537575),
+        (
+            -0.20021619228968035,
+            -2.0083552205516653,
+            0.5956370685537575,
+        ),
         (0.2936438967887273, -1.0416631758468398, 0.5822396042478765),
         (-0.5561143422303767, 3.1085585463184633, 0.2553345078792291),
         (0.30384208036121435, -0.9355901363914724, 0.5776510034128405),
-        (0.00958484907078212, 1.9354200442639786, -0.13873531864068797),
+        (
+            0.00958484907078212,
+            1.9354200442639786,
+            -0.13873531864068797,
+        ),
     ];
     let q0 = [
         2.84191420612094,
@@ -270,4 +278,110 @@ fn an_arm_with_fourteen_real_solutions_gets_all_fourteen() {
     // The search itself finds most of them (a weak search would prove nothing).
     assert!(found.len() >= 10, "Newton found only {} of 14", found.len());
     eprintln!("Newton's 20000 starts found {} of the 14", found.len());
+}
+
+/// Newton's method with a finite-difference Jacobian of the library's forward kinematics (a code
+/// path apart from the solver's own link products), from `q`.
+fn newton_fd(r: &Robot, t: &Pose, mut q: Vec<f64>) -> Option<Vec<f64>> {
+    let resid = |q: &[f64]| -> Vector6<f64> {
+        let p = r.fk(q).unwrap();
+        let dp = t.translation.vector - p.translation.vector;
+        let dr = (t.rotation * p.rotation.inverse()).scaled_axis();
+        Vector6::new(dp.x, dp.y, dp.z, dr.x, dr.y, dr.z)
+    };
+    for _ in 0..60 {
+        let e = resid(&q);
+        if e.norm() < 1e-13 {
+            return Some(q);
+        }
+        let mut j = Matrix6::zeros();
+        for k in 0..6 {
+            let mut qk = q.clone();
+            qk[k] += 1e-7;
+            let col = (e - resid(&qk)) / 1e-7;
+            j.set_column(k, &col);
+        }
+        let dq = j.lu().solve(&e)?;
+        if !dq.iter().all(|v| v.is_finite()) {
+            return None;
+        }
+        let scale = (0.4 / dq.amax()).min(1.0);
+        for k in 0..6 {
+            q[k] += dq[k] * scale;
+        }
+    }
+    None
+}
+
+/// Special six-revolute arms outside the named families (axes that meet or are parallel, but
+/// not as a named family needs): the Unitree Z1 and the xArm 6 as their makers publish them,
+/// and a Puma whose wrist axes miss by a5 = 0.1 m. Their solutions meet the target, the joint
+/// vector that made it is among them, and a brute-force search (300 starts per pose) finds no
+/// other.
+#[test]
+fn special_arms_outside_the_named_families_get_all_their_solutions() {
+    let mut arms: Vec<(String, Robot)> = Vec::new();
+    for file in ["unitree_z1.urdf", "xarm6_with_gripper.urdf"] {
+        let robot =
+            armlab::model_file::load_model(&format!("tests/data/urdf_corpus/{file}")).unwrap();
+        let q = robot.ready_or_zero();
+        let arm = armlab::kinematics::arm::arm_of(&robot, 0, &q).unwrap();
+        arms.push((file.to_string(), arm.robot));
+    }
+    let puma = armlab::kinematics::models::built_in("puma560").unwrap();
+    let (conv, table) = puma.dh_table().unwrap();
+    let joints: Vec<DhJoint> = table
+        .iter()
+        .enumerate()
+        .map(|(i, &(kind, mut row, offset))| {
+            if i == 4 {
+                row.a = 0.1;
+            }
+            DhJoint::new(kind, row).offset(offset)
+        })
+        .collect();
+    let edited = Robot::from_dh("puma a5", conv, &joints, Pose::identity(), Pose::identity());
+    arms.push(("puma with a5 = 0.1 m".into(), edited.unwrap()));
+    for (name, r) in &arms {
+        let cf = ClosedForm::detect(r).unwrap();
+        assert_eq!(*cf.family(), Family::General6, "{name}");
+        let mut rng = Lcg(17);
+        let mut found = 0;
+        for pose in 0..20 {
+            let q0: Vec<f64> = rng.angles().iter().map(|a| a * 0.9).collect();
+            let t = r.fk(&q0).unwrap();
+            let (res, _) = solve(
+                r,
+                0,
+                &Target::Pose(t),
+                None,
+                SolverChoice::ClosedForm,
+                &NumericalOptions::default(),
+            )
+            .unwrap();
+            let sols: Vec<Vec<f64>> = res.solutions.iter().map(|s| s.q.clone()).collect();
+            for s in &res.solutions {
+                assert!(
+                    s.position_error < 1e-12 && s.orientation_error < 1e-12,
+                    "{name}: {s:?}"
+                );
+            }
+            assert!(
+                sols.iter().any(|q| same(q, &q0, 1e-7)),
+                "{name}, pose {pose}: {q0:?} not among {sols:?}"
+            );
+            for _ in 0..300 {
+                if let Some(q) = newton_fd(r, &t, rng.angles().to_vec()) {
+                    // Near a singular pose two valid answers of the same branch may differ by
+                    // 1e-6 in joint space (a Jacobian conditioned 1e7 turns 1e-13 into that).
+                    assert!(
+                        sols.iter().any(|s| same(s, &q, 1e-4)),
+                        "{name}, pose {pose}: Newton found {q:?}, not among {sols:?}"
+                    );
+                    found += 1;
+                }
+            }
+        }
+        assert!(found > 300, "{name}: only {found} starts converged");
+    }
 }

@@ -268,9 +268,12 @@ fn a_cad_rounded_arm_is_solved_in_closed_form_and_polished_to_1e_12() {
 }
 
 #[test]
-fn beyond_the_tolerance_there_is_no_closed_form_and_the_message_gives_the_deviation() {
+fn beyond_the_tolerance_there_is_no_named_family_and_the_message_gives_the_deviation() {
     let robot = load_text(&rounded_arm(1e-3));
-    let why = ClosedForm::detect(&robot).unwrap_err().to_string();
+    // No named family (the general six-revolute elimination solves it), and it says why.
+    let cf = ClosedForm::detect(&robot).unwrap();
+    assert!(cf.near_miss().is_none());
+    let why = cf.not_named().unwrap();
     assert!(why.contains("0.001"), "{why}");
 }
 

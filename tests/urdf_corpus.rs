@@ -151,6 +151,14 @@ fn the_default_end_effector_is_the_tool_of_an_arm_and_its_analysis_holds() {
                 }
             }
             (want, Some(got)) if want == got => {
+                let why = r.closed_form_reason.clone().unwrap_or_default();
+                if !why.contains(&e.closed_form_reason_contains) {
+                    bad.push(format!(
+                        "{}: {got}, but the reason no named family applies (\"{why}\") does \
+                         not say \"{}\"",
+                        e.file, e.closed_form_reason_contains
+                    ));
+                }
                 if got.contains("spherical wrist") {
                     let gap = wrist_gap(&robot, r.ee);
                     if gap > 1e-5 {

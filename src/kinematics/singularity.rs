@@ -263,7 +263,9 @@ impl SingularityAnalyzer {
                 &[0, 1, 2]
             }
             Some(Family::SphericalWrist) => &[3, 4, 5],
-            Some(Family::Decoupled6 { .. } | Family::ThreeParallel | Family::General6) | None => &[0, 1, 2, 3, 4, 5],
+            Some(Family::Decoupled6 { .. } | Family::ThreeParallel | Family::General6) | None => {
+                &[0, 1, 2, 3, 4, 5]
+            }
         }
     }
 

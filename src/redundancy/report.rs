@@ -58,7 +58,8 @@ pub struct ArmReport {
     pub closed_form: Option<&'static str>,
     /// The closed-form family.
     pub family: Option<crate::kinematics::ik::Family>,
-    /// Why there is no closed form.
+    /// Why there is no closed form; for a general six-revolute arm (solved by elimination),
+    /// why none of the named families applies.
     pub closed_form_reason: Option<String>,
     /// For a closed form found on the ideal structure of a near miss, how near, in words.
     pub closed_form_near_miss: Option<String>,
@@ -171,6 +172,7 @@ pub fn arm_report(robot: &Robot, cat: &EndEffectorCatalog, ee: usize, q: &[f64])
             r.closed_form = Some(cf.name());
             r.family = Some(*cf.family());
             r.closed_form_near_miss = cf.near_miss().map(|_| cf.describe());
+            r.closed_form_reason = cf.not_named().map(str::to_string);
         }
         Err(e) => r.closed_form_reason = Some(e.to_string()),
     }

@@ -171,6 +171,8 @@ pub struct ClosedForm {
     geometry: Geometry,
     /// How far the robot is from the ideal structure solved (`None`: exactly on it).
     near_miss: Option<crate::kinematics::dh_derive::Deviation>,
+    /// For [`Family::General6`], why no named family applies.
+    not_named: Option<String>,
 }
 
 /// Angle tolerance (rad) of a near miss: axes within it of parallel or perpendicular count as
@@ -203,7 +205,13 @@ impl ClosedForm {
         }
         match Self::detect_near_miss(robot) {
             Ok(cf) => Ok(cf),
-            Err(why) => Self::detect_family(robot, true).ok_or(why),
+            Err(why) => match Self::detect_family(robot, true) {
+                Some(mut cf) => {
+                    cf.not_named = Some(why.to_string());
+                    Ok(cf)
+                }
+                None => Err(why),
+            },
         }
     }
 
@@ -246,6 +254,12 @@ impl ClosedForm {
     /// it has that structure exactly).
     pub fn near_miss(&self) -> Option<&crate::kinematics::dh_derive::Deviation> {
         self.near_miss.as_ref()
+    }
+
+    /// For a general six-revolute arm, why none of the named families applies, e.g. "axes 4-6
+    /// do not intersect in one point: a5 = 0.1 m, ...".
+    pub fn not_named(&self) -> Option<&str> {
+        self.not_named.as_deref()
     }
 
     /// The family's name, and for a near miss how near, e.g. "anthropomorphic arm with
@@ -338,6 +352,7 @@ impl ClosedForm {
             mirror_joint,
             geometry,
             near_miss: None,
+            not_named: None,
         })
     }
 
@@ -700,9 +715,7 @@ impl ClosedForm {
                         out.len = n;
                     }
                     Err(why) => {
-                        return Err(IkError::Degenerate {
-                            reason: why.text(),
-                        });
+                        return Err(IkError::Degenerate { reason: why.text() });
                     }
                 }
             }

@@ -151,7 +151,14 @@ impl Problem {
     fn rotated(&self) -> Problem {
         let l = &self.links;
         Problem {
-            links: [l[1], l[2], l[3], l[4], l[5].then(&self.goal.inverse()), Link::IDENTITY],
+            links: [
+                l[1],
+                l[2],
+                l[3],
+                l[4],
+                l[5].then(&self.goal.inverse()),
+                Link::IDENTITY,
+            ],
             goal: l[0].inverse(),
             perm: [
                 self.perm[1],
@@ -245,7 +252,9 @@ impl General6 {
             if let Some(n) = self.solve_order(&p, &goal, out) {
                 out[..n].sort_by(|a, b| {
                     let key = |q: &Theta6| q.map(crate::kinematics::orientation::wrap_angle);
-                    key(a).partial_cmp(&key(b)).unwrap_or(std::cmp::Ordering::Equal)
+                    key(a)
+                        .partial_cmp(&key(b))
+                        .unwrap_or(std::cmp::Ordering::Equal)
                 });
                 return Ok(n);
             }
@@ -307,8 +316,7 @@ impl General6 {
             }
         }
         let (e, _) = self.error_and_jacobian(&q, goal);
-        (e.fixed_rows::<3>(0).norm() <= tol && e.fixed_rows::<3>(3).norm() <= FK_CHECK)
-            .then_some(q)
+        (e.fixed_rows::<3>(0).norm() <= tol && e.fixed_rows::<3>(3).norm() <= FK_CHECK).then_some(q)
     }
 
     /// The pose error (position, then orientation as in (3.84): half the sum of the cross
@@ -519,7 +527,10 @@ fn roots(aug: &[[f64; COLS]; NEQ], shift: f64) -> Option<[Option<f64>; 24]> {
     if c.iter().any(|v| !v.is_finite()) {
         return None;
     }
-    let eig = c.complex_eigenvalues();
+    balance(&mut c);
+    // nalgebra's uncapped iteration can cycle on a special arm's companion matrix: cap it, and
+    // a failure sends the solver to the next shift or order.
+    let eig = nalgebra::Schur::try_new(c, f64::EPSILON, 40 * 24)?.complex_eigenvalues();
     let mut roots = [None; 24];
     for (r, e) in roots.iter_mut().zip(eig.iter()) {
         // Loose: a near-double root may come out as a complex pair; Newton decides.
@@ -528,6 +539,47 @@ fn roots(aug: &[[f64; COLS]; NEQ], shift: f64) -> Option<[Option<f64>; 24]> {
         }
     }
     Some(roots)
+}
+
+/// Parlett and Reinsch's balancing (powers of 2, so exact): a similarity that makes each row
+/// and column of similar size, for accurate eigenvalues of a badly scaled companion matrix.
+fn balance(c: &mut SMatrix<f64, 24, 24>) {
+    for _ in 0..20 {
+        let mut done = true;
+        for i in 0..24 {
+            let (mut col, mut row) = (0.0, 0.0);
+            for j in 0..24 {
+                if j != i {
+                    col += c[(j, i)].abs();
+                    row += c[(i, j)].abs();
+                }
+            }
+            if col == 0.0 || row == 0.0 {
+                continue;
+            }
+            // Column i times f, row i over f: the new sum is col f + row / f.
+            let s = col + row;
+            let (mut f, mut cc) = (1.0, col);
+            while cc < row / 2.0 {
+                f *= 2.0;
+                cc *= 4.0;
+            }
+            while cc > row * 2.0 {
+                f /= 2.0;
+                cc /= 4.0;
+            }
+            if (cc + row) / f < 0.95 * s {
+                done = false;
+                for j in 0..24 {
+                    c[(i, j)] /= f;
+                    c[(j, i)] *= f;
+                }
+            }
+        }
+        if done {
+            return;
+        }
+    }
 }
 
 /// `[M0, M1, M2]` of `M(x) = M2 x^2 + M1 x + M0` for t3 = 2 atan(x) + shift: the six equations

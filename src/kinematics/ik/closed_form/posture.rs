@@ -128,9 +128,22 @@ pub struct Posture {
 
 /// The labels "branch 1" to "branch 16" of a general six-revolute arm's solutions.
 const BRANCHES: [&str; 16] = [
-    "branch 1", "branch 2", "branch 3", "branch 4", "branch 5", "branch 6", "branch 7",
-    "branch 8", "branch 9", "branch 10", "branch 11", "branch 12", "branch 13", "branch 14",
-    "branch 15", "branch 16",
+    "branch 1",
+    "branch 2",
+    "branch 3",
+    "branch 4",
+    "branch 5",
+    "branch 6",
+    "branch 7",
+    "branch 8",
+    "branch 9",
+    "branch 10",
+    "branch 11",
+    "branch 12",
+    "branch 13",
+    "branch 14",
+    "branch 15",
+    "branch 16",
 ];
 
 impl Posture {
