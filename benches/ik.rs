@@ -86,8 +86,84 @@ fn numerical(c: &mut Criterion) {
     }
 }
 
-criterion_group!(benches, closed_form, numerical);
+criterion_group!(benches, closed_form, locked7, numerical);
 criterion_main!(benches);
+
+/// The general arm of `tests/ik_general6.rs` with 14 real solutions at one pose.
+fn general6() -> armlab::kinematics::Robot {
+    use armlab::kinematics::{Convention, DhJoint, DhRow, Pose, Robot};
+    let arm = [
+        (-0.16783737474333676, 1.0052561698243567, 0.2659782754010333),
+        (
+            -0.20021619228968035,
+            -2.0083552205516653,
+            0.5956370685537575,
+        ),
+        (0.2936438967887273, -1.0416631758468398, 0.5822396042478765),
+        (-0.5561143422303767, 3.1085585463184633, 0.2553345078792291),
+        (0.30384208036121435, -0.9355901363914724, 0.5776510034128405),
+        (
+            0.00958484907078212,
+            1.9354200442639786,
+            -0.13873531864068797,
+        ),
+    ];
+    let joints: Vec<DhJoint> = arm
+        .iter()
+        .map(|&(a, alpha, d)| {
+            let row = DhRow {
+                a,
+                alpha,
+                d,
+                theta: 0.0,
+            };
+            DhJoint::revolute(row).limits(-std::f64::consts::PI, std::f64::consts::PI)
+        })
+        .collect();
+    Robot::from_dh(
+        "general6",
+        Convention::Standard,
+        &joints,
+        Pose::identity(),
+        Pose::identity(),
+    )
+    .expect("general arm")
+}
+
+/// The Kinova Gen3 (7 joints) with q3 locked: every solution at one value of q3, the work of one
+/// step of the exact self-motion (issue 27).
+fn locked7(c: &mut Criterion) {
+    use armlab::kinematics::ik::closed_form::{LockedArm, MAX_LOCKED_SOLUTIONS};
+    let full = armlab::model_file::load_model("tests/data/urdf_corpus/kinova_gen3_7dof.urdf")
+        .expect("Gen3");
+    let robot = armlab::kinematics::arm::arm_of(&full, 0, &full.ready_or_zero())
+        .expect("arm")
+        .robot;
+    let locked = LockedArm::new(&robot, 2).expect("7R arm");
+    // Poses at random joint vectors (continuous joints within one turn), q3 = 0.3 as locked.
+    let mut rng = ChaCha8Rng::seed_from_u64(42);
+    let poses: Vec<_> = (0..500)
+        .map(|_| {
+            let mut q: Vec<f64> = robot
+                .limits()
+                .iter()
+                .map(|l| rng.random_range(l[0].max(-3.1)..=l[1].min(3.1)))
+                .collect();
+            q[2] = 0.3;
+            robot.fk(&q).expect("fk")
+        })
+        .collect();
+    let mut out = [[0.0; 7]; MAX_LOCKED_SOLUTIONS];
+    let mut i = 0;
+    c.bench_function("ik/locked_q3/kinova_gen3_7dof", |b| {
+        b.iter(|| {
+            i = (i + 1) % poses.len();
+            locked
+                .solve(black_box(&poses[i]), 0.3, &mut out)
+                .unwrap_or(0)
+        })
+    });
+}
 
 fn closed_form(c: &mut Criterion) {
     use armlab::kinematics::ik::ClosedForm;
@@ -101,6 +177,9 @@ fn closed_form(c: &mut Criterion) {
             built_in("anthropomorphic_spherical_wrist").expect("built-in"),
         ),
         ("ur5_urdf", ur5),
+        // A general six-revolute arm (no two axes parallel or meeting): every real solution by
+        // elimination (issue 27); this arm has up to 14.
+        ("general6", general6()),
     ];
     for (name, robot) in robots {
         let cf = ClosedForm::detect(&robot).expect("closed form");

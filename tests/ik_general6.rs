@@ -286,8 +286,17 @@ fn newton_fd(r: &Robot, t: &Pose, mut q: Vec<f64>) -> Option<Vec<f64>> {
     let resid = |q: &[f64]| -> Vector6<f64> {
         let p = r.fk(q).unwrap();
         let dp = t.translation.vector - p.translation.vector;
-        let dr = (t.rotation * p.rotation.inverse()).scaled_axis();
-        Vector6::new(dp.x, dp.y, dp.z, dr.x, dr.y, dr.z)
+        // sin(angle) times the axis, from the skew part: `scaled_axis` goes through acos and
+        // cannot see below 3e-8 rad.
+        let d = (t.rotation * p.rotation.inverse()).into_inner();
+        let dr = Vector3::new(
+            d[(2, 1)] - d[(1, 2)],
+            d[(0, 2)] - d[(2, 0)],
+            d[(1, 0)] - d[(0, 1)],
+        ) * 0.5;
+        // The skew part also vanishes at a half turn: the trace tells that apart.
+        let flip = if d.trace() < 0.0 { 1.0 } else { 0.0 };
+        Vector6::new(dp.x, dp.y, dp.z, dr.x + flip, dr.y + flip, dr.z + flip)
     };
     for _ in 0..60 {
         let e = resid(&q);

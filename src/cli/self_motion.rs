@@ -2,7 +2,7 @@
 
 use super::{CliError, Format};
 use crate::kinematics::{Pose, Robot};
-use crate::redundancy::sampler::{SelfMotionSamples, sample_self_motion};
+use crate::redundancy::sampler::{SelfMotionSamples, sample_self_motion_locked};
 use std::path::PathBuf;
 
 /// Arguments of `armlab self-motion`.
@@ -24,6 +24,11 @@ pub struct SelfMotionArgs {
     /// Only this branch (e.g. "elbow up").
     #[arg(long)]
     pub branch: Option<String>,
+    /// Lock this joint (1-based) of a seven-joint arm and use its angle as the parameter,
+    /// instead of the one armlab picks (q3 for most arms; the arm angle of an SRS arm, q7 of the
+    /// Panda).
+    #[arg(long, value_parser = clap::value_parser!(u8).range(1..=7))]
+    pub lock: Option<u8>,
     /// Output format.
     #[arg(long, value_enum, default_value_t)]
     pub format: Format,
@@ -49,8 +54,14 @@ pub(super) fn run(args: &SelfMotionArgs, out: &mut dyn std::io::Write) -> Result
         source_name: args.model.clone(),
         reason,
     };
-    let mut motion =
-        sample_self_motion(&robot, ee, &pose, args.samples).map_err(|e| bad(e.to_string()))?;
+    if args.lock.is_some() && robot.dof() != 7 {
+        return Err(CliError::Usage(
+            "--lock needs an arm of seven joints (a joint of it is locked)",
+        ));
+    }
+    let locked = args.lock.map(|k| usize::from(k) - 1);
+    let mut motion = sample_self_motion_locked(&robot, ee, &pose, args.samples, locked)
+        .map_err(|e| bad(e.to_string()))?;
     if let Some(b) = &args.branch {
         motion.keep_branch(b).map_err(|e| bad(e.to_string()))?;
     }
@@ -71,6 +82,7 @@ fn write_json(m: &SelfMotionSamples, out: &mut dyn std::io::Write) -> Result<(),
     }
     let v = serde_json::json!({
         "parameter": m.parameter,
+        "parameter_meaning": m.meaning,
         "samples": m.samples.iter().map(|(value, s)| serde_json::json!({
             "value": value,
             "branches": s.iter().map(|b| serde_json::json!({

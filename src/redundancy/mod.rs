@@ -9,6 +9,7 @@
 
 pub mod four_link;
 mod geometry;
+pub mod locked;
 pub mod motion;
 pub mod numerical;
 pub mod offset_elbow;
@@ -57,6 +58,12 @@ pub enum RedundancyError {
     /// No value of q7 reaches the pose (offset-elbow arm).
     #[error("the pose is out of reach for every q7")]
     OutOfReachForEveryQ7,
+    /// A seven-joint arm with a locked joint: no value of it reaches the pose.
+    #[error("the pose is out of reach for every value of {parameter}")]
+    OutOfReachForEveryValue {
+        /// The parameter, e.g. "q3 (locked)".
+        parameter: &'static str,
+    },
     /// The null space of the Jacobian is empty at the start of a numerical self-motion.
     #[error(
         "{robot} has no self-motion at this configuration for this task (the null space of its \
@@ -132,6 +139,7 @@ impl RedundancyError {
                 | Self::NoPlanarSelfMotion { .. }
                 | Self::WristOutOfReach
                 | Self::OutOfReachForEveryQ7
+                | Self::OutOfReachForEveryValue { .. }
                 | Self::EmptyNullSpace { .. }
                 | Self::NullSpaceChanged
                 | Self::DirectionLength { .. }

@@ -4,6 +4,7 @@
 //! CLI and the app's slider do not care which it is.
 
 use super::four_link::FourLinkSelfMotion;
+use super::locked::LockedSelfMotion;
 use super::offset_elbow::OffsetElbowArm;
 use super::srs::SrsArm;
 use super::{BranchSolution, PlanarSelfMotion, RedundancyError};
@@ -18,6 +19,7 @@ enum Solver {
     OffsetElbow(OffsetElbowArm),
     Planar(PlanarSelfMotion),
     FourLink(FourLinkSelfMotion),
+    Locked(Box<LockedSelfMotion>),
 }
 
 /// The exact self-motion of a redundant arm holding its hand at one pose.
@@ -35,9 +37,25 @@ impl ExactSelfMotion {
     /// The exact self-motion of `robot` holding its (only) end-effector at `target`: SRS 7R
     /// arms by the arm angle, offset-elbow 7R arms (the Panda) by q7, three-link planar arms
     /// with a position task by phi, four-link planar arms with a position-and-phi task by phi_3.
-    /// Other arms are [`RedundancyError::NoExactSelfMotion`] (they have the numerical
-    /// self-motion).
+    /// Any other seven-revolute arm locks one joint ([`LockedSelfMotion`]). Other arms are
+    /// [`RedundancyError::NoExactSelfMotion`] (they have the numerical self-motion).
     pub fn new(robot: &Robot, target: &Pose) -> Result<Self, RedundancyError> {
+        Self::with_lock(robot, target, None)
+    }
+
+    /// [`Self::new`], or with `locked = Some(k)` the self-motion of a seven-revolute arm with
+    /// joint k (0-based) locked as the parameter, whatever its structure (an SRS arm too).
+    pub fn with_lock(
+        robot: &Robot,
+        target: &Pose,
+        locked: Option<usize>,
+    ) -> Result<Self, RedundancyError> {
+        if locked.is_some() {
+            return Ok(Self::locked(
+                LockedSelfMotion::new(robot, target, locked)?,
+                target,
+            ));
+        }
         let (solver, names, feasible, manifolds, singular) =
             if let Some(arm) = SrsArm::detect(robot) {
                 if arm.solve(target, 0.0).is_empty() && !arm.singular(target) {
@@ -69,6 +87,11 @@ impl ExactSelfMotion {
                     k,
                     false,
                 )
+            } else if robot.dof() == 7 && LockedSelfMotion::pick(robot).is_some() {
+                return Ok(Self::locked(
+                    LockedSelfMotion::new(robot, target, None)?,
+                    target,
+                ));
             } else {
                 let frame = crate::workspace::planar_frame(robot, 0).ok_or_else(|| {
                     RedundancyError::NoExactSelfMotion {
@@ -97,18 +120,40 @@ impl ExactSelfMotion {
         })
     }
 
-    /// The parameter's name: "arm angle", "q7" or "phi".
+    fn locked(m: LockedSelfMotion, target: &Pose) -> Self {
+        Self {
+            names: m.names().to_vec(),
+            feasible: m.feasible().to_vec(),
+            manifolds: m.manifolds(),
+            singular: false,
+            solver: Solver::Locked(Box::new(m)),
+            target: *target,
+        }
+    }
+
+    /// The parameter's name: "arm angle", "q7", "phi", or for a locked joint e.g. "q3
+    /// (locked)".
     pub fn parameter(&self) -> &'static str {
         match &self.solver {
             Solver::Srs(_) => "arm angle",
             Solver::OffsetElbow(_) => "q7",
             Solver::Planar(_) | Solver::FourLink(_) => "phi",
+            Solver::Locked(m) => m.parameter(),
         }
     }
 
-    /// The parameter in words (what it measures).
-    pub fn parameter_meaning(&self) -> &'static str {
+    /// The locked joint (0-based) of a seven-joint arm's self-motion by locking.
+    pub fn locked_joint(&self) -> Option<usize> {
         match &self.solver {
+            Solver::Locked(m) => Some(m.locked()),
+            _ => None,
+        }
+    }
+
+    /// The parameter in words (what it measures; for a locked joint, which and why).
+    pub fn parameter_meaning(&self) -> String {
+        let text = match &self.solver {
+            Solver::Locked(m) => return m.why().to_string(),
             Solver::Srs(_) => {
                 "arm angle psi: the elbow's rotation about the shoulder-wrist axis from the plane \
                  it spans with joint 3 at zero"
@@ -118,7 +163,8 @@ impl ExactSelfMotion {
             Solver::FourLink(_) => {
                 "phi_3: the third link's orientation in the plane (the hand's own phi is held)"
             }
-        }
+        };
+        text.to_string()
     }
 
     /// The hand pose held (world, m).
@@ -154,6 +200,7 @@ impl ExactSelfMotion {
             Solver::OffsetElbow(a) => a.branch_solutions(robot, &self.target, value),
             Solver::Planar(m) => m.solutions(robot, value),
             Solver::FourLink(m) => m.solutions(robot, value),
+            Solver::Locked(m) => m.solutions(robot, value),
         }
     }
 
@@ -165,6 +212,7 @@ impl ExactSelfMotion {
             Solver::OffsetElbow(_) => q[6],
             Solver::Planar(m) => m.phi_of(robot, q)?,
             Solver::FourLink(m) => m.phi3_of(q)?,
+            Solver::Locked(m) => q[m.locked()],
         };
         let value = super::wrap(value);
         let sols = self.solutions(robot, value);
@@ -194,6 +242,8 @@ impl ExactSelfMotion {
             Solver::Srs(a) => elbow(a.shoulder()),
             Solver::OffsetElbow(a) => elbow(a.shoulder()),
             Solver::Planar(_) | Solver::FourLink(_) => axis(2).map(|(o, _)| o),
+            // The origin of the axis of joint 4 (the elbow of a seven-joint arm).
+            Solver::Locked(_) => axis(3).map(|(o, _)| o),
         }
     }
 }

@@ -83,6 +83,8 @@ pub fn self_motion_parameter(arm: &Robot) -> Option<&'static str> {
         Some("q7")
     } else if crate::workspace::planar_frame(arm, 0).is_some() && arm.dof() == 4 {
         Some("phi_3")
+    } else if arm.dof() == 7 {
+        super::locked::LockedSelfMotion::pick(arm).map(|(k, _)| super::locked::parameter_name(k))
     } else {
         None
     }

@@ -168,6 +168,22 @@ pub fn sample_self_motion(
     pose: &Pose,
     n: usize,
 ) -> Result<SelfMotionSamples, RedundancyError> {
+    sample_self_motion_locked(robot, ee, pose, n, None)
+}
+
+/// [`sample_self_motion`] with joint `locked` (0-based) of a seven-revolute arm as the
+/// parameter ([`ExactSelfMotion::with_lock`]); `None` as [`sample_self_motion`].
+pub fn sample_self_motion_locked(
+    robot: &Robot,
+    ee: usize,
+    pose: &Pose,
+    n: usize,
+    locked: Option<usize>,
+) -> Result<SelfMotionSamples, RedundancyError> {
+    if locked.is_some() {
+        let m = ExactSelfMotion::with_lock(robot, pose, locked)?;
+        return Ok(SelfMotionSamples::exact(robot, &m, n));
+    }
     if ee == 0 {
         match ExactSelfMotion::new(robot, pose) {
             Ok(m) => return Ok(SelfMotionSamples::exact(robot, &m, n)),

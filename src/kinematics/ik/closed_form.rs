@@ -34,6 +34,7 @@ mod arm;
 mod chain;
 mod family;
 mod general6;
+mod locked;
 mod parallel3;
 mod planar;
 mod posture;
@@ -42,6 +43,7 @@ mod why;
 mod wrist;
 
 pub use family::{ArmKind, Family};
+pub use locked::{EXACT_CHECK, LockedArm, MAX_LOCKED_SOLUTIONS};
 pub use posture::{
     Elbow, Extension, FreeReason, Posture, SHORT_LEGEND, SHORT_LEGEND_UR, Shoulder, WristFlip,
     short_label,

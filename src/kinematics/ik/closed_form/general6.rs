@@ -73,19 +73,29 @@ impl Link {
         }
     }
 
+    /// `Rz(theta)` for (cos, sin) of theta.
+    pub(crate) fn rz(c: f64, s: f64) -> Self {
+        Link {
+            r: Matrix3::new(c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0),
+            t: Vector3::zeros(),
+        }
+    }
+
     const IDENTITY: Link = Link {
         r: Matrix3::new(1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0),
         t: Vector3::new(0.0, 0.0, 0.0),
     };
 
-    fn inverse(&self) -> Link {
+    /// The inverse transform.
+    pub(crate) fn inverse(&self) -> Link {
         Link {
             r: self.r.transpose(),
             t: -self.r.tr_mul(&self.t),
         }
     }
 
-    fn then(&self, other: &Link) -> Link {
+    /// `self * other`.
+    pub(crate) fn then(&self, other: &Link) -> Link {
         Link {
             r: self.r * other.r,
             t: self.t + self.r * other.t,
@@ -247,52 +257,88 @@ impl General6 {
             r: *t.rotation.matrix(),
             t: t.translation.vector,
         };
-        let mut p = self.problem(&goal);
+        self.solve_goal(&goal, out)
+    }
+
+    /// [`Self::solve`] for the goal `A1 ... A6 = goal` given as a link.
+    pub(super) fn solve_goal(
+        &self,
+        goal: &Link,
+        out: &mut [Theta6; MAX_BRANCHES],
+    ) -> Result<usize, Degenerate> {
+        let mut p = self.problem(goal);
+        let (mut n, mut solved) = (0, false);
+        // A sound order has every solution; where the eliminant is not sound (a special arm),
+        // the solutions of every order that solves are joined.
         for _ in 0..6 {
-            if let Some(n) = self.solve_order(&p, &goal, out) {
-                out[..n].sort_by(|a, b| {
-                    let key = |q: &Theta6| q.map(crate::kinematics::orientation::wrap_angle);
-                    key(a)
-                        .partial_cmp(&key(b))
-                        .unwrap_or(std::cmp::Ordering::Equal)
-                });
-                return Ok(n);
+            match self.solve_order(&p, goal, out, &mut n) {
+                Some(true) => {
+                    solved = true;
+                    break;
+                }
+                Some(false) => solved = true,
+                None => {}
             }
             p = p.rotated();
         }
-        Err(Degenerate::Special)
+        if !solved {
+            return Err(Degenerate::Special);
+        }
+        out[..n].sort_by(|a, b| {
+            let key = |q: &Theta6| q.map(crate::kinematics::orientation::wrap_angle);
+            key(a)
+                .partial_cmp(&key(b))
+                .unwrap_or(std::cmp::Ordering::Equal)
+        });
+        Ok(n)
     }
 
-    /// The solutions in one order of the loop; `None` where this order is degenerate.
+    /// The solutions in one order of the loop, added to `out[..n]` (duplicates skipped); whether
+    /// the eliminant was sound, or `None` where this order is degenerate.
     fn solve_order(
         &self,
         p: &Problem,
         goal: &Link,
         out: &mut [Theta6; MAX_BRANCHES],
-    ) -> Option<usize> {
+        n: &mut usize,
+    ) -> Option<bool> {
         let lhs = fit_left(p);
         let aug = eliminate(p, &lhs)?;
         for &shift in &SHIFTS {
-            let Some(roots) = roots(&aug, shift) else {
+            let Some((roots, healthy)) = roots(&aug, shift) else {
                 continue;
             };
-            let mut n = 0;
-            for &x in roots.iter().flatten() {
+            let mut found = [[0.0; 6]; MAX_BRANCHES];
+            let (mut m, mut sound) = (0, healthy);
+            for &(x, clear) in roots.iter().flatten() {
                 let t3 = 2.0 * x.atan() + shift;
-                let c = candidate(p, &aug, t3)?;
-                let mut q = [0.0; 6];
-                for (i, j) in p.perm.iter().enumerate() {
-                    q[*j] = c[i];
-                }
-                if let Some(q) = self.polish(q, goal)
-                    && !out[..n].iter().any(|o| same(o, &q))
-                    && n < MAX_BRANCHES
-                {
-                    out[n] = q;
-                    n += 1;
+                let polished = candidate(p, &aug, t3).and_then(|c| {
+                    let mut q = [0.0; 6];
+                    for (i, j) in p.perm.iter().enumerate() {
+                        q[*j] = c[i];
+                    }
+                    self.polish(q, goal)
+                });
+                match polished {
+                    Some(q) if !found[..m].iter().any(|o| same(o, &q)) => {
+                        if m < MAX_BRANCHES {
+                            found[m] = q;
+                            m += 1;
+                        }
+                    }
+                    // A clearly real root that gives no new solution: this order cannot be
+                    // trusted to have them all (an ill-conditioned eliminant).
+                    _ if clear => sound = false,
+                    _ => {}
                 }
             }
-            return Some(n);
+            for q in &found[..m] {
+                if !out[..*n].iter().any(|o| same(o, q)) && *n < MAX_BRANCHES {
+                    out[*n] = *q;
+                    *n += 1;
+                }
+            }
+            return Some(sound);
         }
         None
     }
@@ -301,27 +347,31 @@ impl General6 {
     /// close); the polished q if forward kinematics then meets `goal` to [`FK_CHECK`].
     fn polish(&self, mut q: Theta6, goal: &Link) -> Option<Theta6> {
         let tol = FK_CHECK * self.scale.max(1.0);
-        for _ in 0..12 {
-            let (e, j) = self.error_and_jacobian(&q, goal);
-            if e.fixed_rows::<3>(0).norm() <= tol * 0.1 && e.fixed_rows::<3>(3).norm() <= 1e-13 {
+        for _ in 0..20 {
+            let (e, j, aligned) = self.error_and_jacobian(&q, goal);
+            if e.fixed_rows::<3>(0).norm() <= tol * 0.1
+                && e.fixed_rows::<3>(3).norm() <= 1e-13
+                && aligned
+            {
                 return Some(q);
             }
             let step = j.lu().solve(&e)?;
+            // A candidate from an ill-conditioned root may start far: steps are clamped.
+            let k = (0.5 / step.amax()).min(1.0);
             for (v, d) in q.iter_mut().zip(step.iter()) {
-                *v += d;
-            }
-            if step.norm() > 1.0 {
-                // Far from a solution: a spurious root.
-                return None;
+                *v += d * k;
             }
         }
-        let (e, _) = self.error_and_jacobian(&q, goal);
-        (e.fixed_rows::<3>(0).norm() <= tol && e.fixed_rows::<3>(3).norm() <= FK_CHECK).then_some(q)
+        let (e, _, aligned) = self.error_and_jacobian(&q, goal);
+        (e.fixed_rows::<3>(0).norm() <= tol && e.fixed_rows::<3>(3).norm() <= FK_CHECK && aligned)
+            .then_some(q)
     }
 
     /// The pose error (position, then orientation as in (3.84): half the sum of the cross
-    /// products of the axes) and the geometric Jacobian (3.30) in frame 0, lengths in m.
-    fn error_and_jacobian(&self, q: &Theta6, goal: &Link) -> (Vector6<f64>, Matrix6<f64>) {
+    /// products of the axes), the geometric Jacobian (3.30) in frame 0, lengths in m, and whether
+    /// the axes point within 90 degrees of the goal's (the orientation error also vanishes at a
+    /// half turn).
+    fn error_and_jacobian(&self, q: &Theta6, goal: &Link) -> (Vector6<f64>, Matrix6<f64>, bool) {
         let mut r = Matrix3::identity();
         let mut p = Vector3::zeros();
         let mut z = [Vector3::zeros(); 6];
@@ -342,13 +392,15 @@ impl General6 {
         }
         let ep = goal.t - p;
         let mut eo = Vector3::zeros();
+        let mut aligned = true;
         for c in 0..3 {
             eo += r.column(c).cross(&goal.r.column(c));
+            aligned &= r.column(c).dot(&goal.r.column(c)) > 0.0;
         }
         let mut e = Vector6::zeros();
         e.fixed_rows_mut::<3>(0).copy_from(&ep);
         e.fixed_rows_mut::<3>(3).copy_from(&(eo * 0.5));
-        (e, j)
+        (e, j, aligned)
     }
 }
 
@@ -460,6 +512,8 @@ fn fit_right(p: &Problem) -> [[f64; 9]; NEQ] {
 /// The augmented matrix `[Q | P0 Pc Ps]` after the Householder QR of Q: rows 0..8 hold R and
 /// the top of `H P`, rows 8..14 the six equations free of t1 and t2; `None` if Q's columns are
 /// dependent.
+// The Householder steps index rows and columns of one fixed-size array: plain ranges read best.
+#[allow(clippy::needless_range_loop)]
 fn eliminate(p: &Problem, lhs: &Lhs) -> Option<[[f64; COLS]; NEQ]> {
     let g = fit_right(p);
     let mut m = [[0.0; COLS]; NEQ];
@@ -498,9 +552,13 @@ fn m_col(m: &[[f64; COLS]; NEQ], j: usize) -> [f64; NEQ] {
     std::array::from_fn(|i| m[i][j])
 }
 
-/// The real roots x of `det M(x) = 0` for t3 = 2 atan(x) + shift; `None` when the leading
-/// matrix is singular for this shift.
-fn roots(aug: &[[f64; COLS]; NEQ], shift: f64) -> Option<[Option<f64>; 24]> {
+/// The real roots x of `det M(x) = 0` for t3 = 2 atan(x) + shift, and whether the eliminant is
+/// sound (its 8 roots at +-i are there); `None` when the leading matrix is singular for this
+/// shift.
+/// A root's real part and whether it is clearly real.
+type Root = Option<(f64, bool)>;
+
+fn roots(aug: &[[f64; COLS]; NEQ], shift: f64) -> Option<([Root; 24], bool)> {
     let [mm0, mm1, mm2] = pencil(aug, shift);
     let lu = mm2.lu();
     let u = lu.u();
@@ -531,14 +589,24 @@ fn roots(aug: &[[f64; COLS]; NEQ], shift: f64) -> Option<[Option<f64>; 24]> {
     // nalgebra's uncapped iteration can cycle on a special arm's companion matrix: cap it, and
     // a failure sends the solver to the next shift or order.
     let eig = nalgebra::Schur::try_new(c, f64::EPSILON, 40 * 24)?.complex_eigenvalues();
+    // Health check: the determinant of a sound eliminant has the factor (1 + x^2)^4 (the
+    // half-angle of t3), so 8 eigenvalues at +-i. A special arm's eliminant may lose them (and
+    // real roots with them): then the other orders of the loop are solved too.
+    let at_i = eig
+        .iter()
+        .filter(|e| e.re.abs() < 1e-3 && (e.im.abs() - 1.0).abs() < 1e-3)
+        .count();
+    let healthy = at_i == 8;
     let mut roots = [None; 24];
     for (r, e) in roots.iter_mut().zip(eig.iter()) {
-        // Loose: a near-double root may come out as a complex pair; Newton decides.
-        if e.im.abs() <= 1e-4 * (1.0 + e.re.abs()) {
-            *r = Some(e.re);
+        // Loose: a near-double root, or a root of an ill-conditioned eliminant (a nearly special
+        // arm), may come out as a complex pair; Newton and the FK check decide.
+        let spurious = e.re.abs() < 1e-3 && (e.im.abs() - 1.0).abs() < 1e-3;
+        if !spurious && e.im.abs() <= 0.1 * (1.0 + e.re.abs()) {
+            *r = Some((e.re, e.im.abs() <= 1e-7 * (1.0 + e.re.abs())));
         }
     }
-    Some(roots)
+    Some((roots, healthy))
 }
 
 /// Parlett and Reinsch's balancing (powers of 2, so exact): a similarity that makes each row
