@@ -274,11 +274,11 @@ impl LockedSelfMotion {
                     continue;
                 }
                 let mut arc = Arc::default();
-                if i > 0 {
-                    if let Some((v0, q0)) = self.refine_start(q, prev, v) {
-                        arc.values.push(v0);
-                        arc.qs.push(q0);
-                    }
+                if i > 0
+                    && let Some((v0, q0)) = self.refine_start(q, prev, v)
+                {
+                    arc.values.push(v0);
+                    arc.qs.push(q0);
                 }
                 arc.values.push(v);
                 arc.qs.push(*q);

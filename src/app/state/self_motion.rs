@@ -316,7 +316,7 @@ impl AppState {
                 let path = cache.paths[branch].clone().unwrap_or_default();
                 Ok(SelfMotionView {
                     parameter: m.parameter(),
-                    meaning: m.parameter_meaning().into(),
+                    meaning: m.parameter_meaning(),
                     exact: true,
                     value,
                     range: [-PI, PI],

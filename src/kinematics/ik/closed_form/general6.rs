@@ -320,11 +320,9 @@ impl General6 {
                     self.polish(q, goal)
                 });
                 match polished {
-                    Some(q) if !found[..m].iter().any(|o| same(o, &q)) => {
-                        if m < MAX_BRANCHES {
-                            found[m] = q;
-                            m += 1;
-                        }
+                    Some(q) if !found[..m].iter().any(|o| same(o, &q)) && m < MAX_BRANCHES => {
+                        found[m] = q;
+                        m += 1;
                     }
                     // A clearly real root that gives no new solution: this order cannot be
                     // trusted to have them all (an ill-conditioned eliminant).

@@ -169,19 +169,15 @@ impl LockedArm {
                 return false;
             };
             let mut j = Matrix6::zeros();
-            let mut c = 0;
-            for i in (0..7).filter(|&i| i != self.locked) {
+            for (c, i) in (0..7).filter(|&i| i != self.locked).enumerate() {
                 j.set_column(c, &jac.column(i));
-                c += 1;
             }
             let e = Vector6::new(dp.x, dp.y, dp.z, dr.x, dr.y, dr.z);
             let Some(step) = j.lu().solve(&e) else {
                 return false;
             };
-            let mut c = 0;
-            for i in (0..7).filter(|&i| i != self.locked) {
+            for (c, i) in (0..7).filter(|&i| i != self.locked).enumerate() {
                 q[i] += step[c];
-                c += 1;
             }
         }
         false
