@@ -355,7 +355,7 @@ fn dragging_the_slider_in_the_window_never_moves_the_hand() {
 
 /// On a tree the slider moves the chosen arm alone, by that arm's exact parameter: the URDF
 /// Panda with its fingers (issue 26) gets the q7 slider of the built-in Panda; the finger never
-/// moves, and Baxter's numerical self-motion of one arm leaves the other arm and the head still.
+/// moves, and Baxter's exact self-motion of one arm (q3 locked) leaves the other arm and the head still.
 #[test]
 fn on_a_tree_the_slider_moves_the_chosen_arm_alone() {
     let mut s = state("tests/data/urdf_corpus/panda.urdf");
@@ -391,9 +391,12 @@ fn on_a_tree_the_slider_moves_the_chosen_arm_alone() {
         .collect();
     let before = b.q().to_vec();
     let held = fk(&b, ee);
-    let view = b.self_motion(ee).expect("a numerical self-motion");
-    assert!(!view.exact);
-    b.set_self_motion(ee, 0.2).unwrap();
+    // Baxter's arm is a 7R arm neither SRS nor offset-elbow: its exact self-motion locks q3
+    // (issue 27).
+    let view = b.self_motion(ee).expect("an exact self-motion");
+    assert!(view.exact);
+    assert_eq!(view.parameter, "q3 (locked)");
+    b.set_self_motion(ee, view.value + 0.05).unwrap();
     let moved = b
         .q()
         .iter()
@@ -405,6 +408,9 @@ fn on_a_tree_the_slider_moves_the_chosen_arm_alone() {
         moved.clone().all(|(_, &arm)| arm),
         "only the chosen arm moved"
     );
-    let (dp, _) = gap(&held, &fk(&b, ee));
-    assert!(dp < 1e-6, "the hand is held: {dp:e} m");
+    let (dp, dr) = gap(&held, &fk(&b, ee));
+    assert!(
+        dp < 1e-9 && dr < 1e-9,
+        "the hand is held: {dp:e} m, {dr:e} rad"
+    );
 }
