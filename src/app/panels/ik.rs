@@ -290,7 +290,13 @@ fn solution_list(
     for (i, s) in result.solutions.iter().enumerate() {
         let selected = target.selected == Some(i);
         let short = crate::kinematics::ik::closed_form::short_label(&s.posture);
-        let mut text = RichText::new(format!("{}. {} ({short})", i + 1, s.posture));
+        // A label with no short form ("branch 3" of a general arm) is not repeated.
+        let label = if short == s.posture {
+            format!("{}. {}", i + 1, s.posture)
+        } else {
+            format!("{}. {} ({short})", i + 1, s.posture)
+        };
+        let mut text = RichText::new(label);
         if !s.within_limits {
             text = text.color(Color32::GRAY).italics();
         }
