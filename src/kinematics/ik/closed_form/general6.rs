@@ -305,14 +305,13 @@ impl General6 {
         let lhs = fit_left(p);
         let aug = eliminate(p, &lhs)?;
         for &shift in &SHIFTS {
-            let Some((roots, healthy)) = roots(&aug, shift) else {
+            let Some((roots, healthy, pen)) = roots(&aug, shift) else {
                 continue;
             };
             let mut found = [[0.0; 6]; MAX_BRANCHES];
             let (mut m, mut sound) = (0, healthy);
             for &(x, clear) in roots.iter().flatten() {
-                let t3 = 2.0 * x.atan() + shift;
-                let polished = candidate(p, &aug, t3).and_then(|c| {
+                let polished = candidate(p, &aug, &pen, x, shift).and_then(|c| {
                     let mut q = [0.0; 6];
                     for (i, j) in p.perm.iter().enumerate() {
                         q[*j] = c[i];
@@ -550,13 +549,13 @@ fn m_col(m: &[[f64; COLS]; NEQ], j: usize) -> [f64; NEQ] {
     std::array::from_fn(|i| m[i][j])
 }
 
-/// The real roots x of `det M(x) = 0` for t3 = 2 atan(x) + shift, and whether the eliminant is
+/// The real roots x of `det M(x) = 0` for t3 = 2 atan(x) + shift, the pencil, and whether the eliminant is
 /// sound (its 8 roots at +-i are there); `None` when the leading matrix is singular for this
 /// shift.
 /// A root's real part and whether it is clearly real.
 type Root = Option<(f64, bool)>;
 
-fn roots(aug: &[[f64; COLS]; NEQ], shift: f64) -> Option<([Root; 24], bool)> {
+fn roots(aug: &[[f64; COLS]; NEQ], shift: f64) -> Option<([Root; 24], bool, Pencil)> {
     let [mm0, mm1, mm2] = pencil(aug, shift);
     let lu = mm2.lu();
     let u = lu.u();
@@ -604,7 +603,7 @@ fn roots(aug: &[[f64; COLS]; NEQ], shift: f64) -> Option<([Root; 24], bool)> {
             *r = Some((e.re, e.im.abs() <= 1e-7 * (1.0 + e.re.abs())));
         }
     }
-    Some((roots, healthy))
+    Some((roots, healthy, [mm0, mm1, mm2]))
 }
 
 /// Parlett and Reinsch's balancing (powers of 2, so exact): a similarity that makes each row
@@ -647,6 +646,9 @@ fn balance(c: &mut SMatrix<f64, 24, 24>) {
         }
     }
 }
+
+/// The pencil `[M0, M1, M2]`.
+type Pencil = [SMatrix<f64, 12, 12>; 3];
 
 /// `[M0, M1, M2]` of `M(x) = M2 x^2 + M1 x + M0` for t3 = 2 atan(x) + shift: the six equations
 /// and the six multiplied by x4, in the monomials `x4^i x5^j` (column 3 i + j, i < 4, j < 3).
@@ -691,10 +693,21 @@ fn pencil(aug: &[[f64; COLS]; NEQ], shift: f64) -> [SMatrix<f64, 12, 12>; 3] {
 /// The solution in this order for one root t3: t4, t5 from the null vector of M, t1, t2 from
 /// the top of the QR, t6 from the rest of the loop; `None` if the null vector is not unique
 /// (then this order of the loop cannot tell the branches apart).
-fn candidate(p: &Problem, aug: &[[f64; COLS]; NEQ], t3: f64) -> Option<Theta6> {
-    // At psi = 0 (x = 0) the pencil is M0 for the shift t3.
-    let [mm0, _, _] = pencil(aug, t3);
-    let v = null_vector(mm0)?;
+fn candidate(
+    p: &Problem,
+    aug: &[[f64; COLS]; NEQ],
+    [mm0, mm1, mm2]: &Pencil,
+    x: f64,
+    shift: f64,
+) -> Option<Theta6> {
+    let t3 = 2.0 * x.atan() + shift;
+    // M(x), scaled by 1 / x^2 for a large root (the null vector does not care).
+    let m = if x.abs() <= 1.0 {
+        mm2 * (x * x) + mm1 * x + mm0
+    } else {
+        mm2 + mm1 * (1.0 / x) + mm0 * (1.0 / (x * x))
+    };
+    let v = null_vector(m)?;
     let at = |i: usize, j: usize| v[3 * i + j];
     let mut best = (0.0, 0, 0);
     for i in 0..3 {
