@@ -688,39 +688,9 @@ impl ClosedForm {
                     Err(d) => out.unreachable = Some(d),
                 }
             }
-            (Geometry::Wrist(w), Goal::Frame(t)) => {
-                let mut ws = [[0.0; 3]; 2];
-                let (n, singular) = w.solve(t.rotation.matrix(), &mut ws);
-                for (k, v) in ws[..n].iter().enumerate() {
-                    out.q[k] = [v[0], v[1], v[2], 0.0, 0.0, 0.0];
-                    let mut posture = Posture {
-                        wrist: Some(wrist_posture(singular, k)),
-                        ..Posture::default()
-                    };
-                    if singular {
-                        posture.free[0] = Some(FreeReason::WristAligned);
-                    }
-                    out.postures[k] = posture;
-                }
-                out.len = n;
-            }
+            (Geometry::Wrist(w), Goal::Frame(t)) => wrist_raw(w, t, out),
             (Geometry::Parallel3(g), Goal::Frame(t)) => g.solve_raw(t, out),
-            (Geometry::General(g), Goal::Frame(t)) => {
-                let mut sols = [[0.0; 6]; general6::MAX_BRANCHES];
-                match g.solve(t, &mut sols) {
-                    Ok(0) => out.unreachable = Some(f64::NAN),
-                    Ok(n) => {
-                        for (k, q) in sols[..n].iter().enumerate() {
-                            out.q[k] = *q;
-                            out.postures[k] = general6::branch_posture(k);
-                        }
-                        out.len = n;
-                    }
-                    Err(why) => {
-                        return Err(IkError::Degenerate { reason: why.text() });
-                    }
-                }
-            }
+            (Geometry::General(g), Goal::Frame(t)) => general_raw(g, t, out)?,
             (Geometry::Decoupled { arm, wrist, w6 }, Goal::Frame(t)) => {
                 let r6 = t.rotation.matrix();
                 // p_W = p_e - d6 a_e (2.93), generalised to a6, alpha6.
@@ -766,6 +736,44 @@ impl ClosedForm {
         }
         Ok(())
     }
+}
+
+/// The spherical wrist alone (Sect. 2.12.5) into the raw solutions.
+fn wrist_raw(w: &Wrist, t: &Pose, out: &mut RawSolutions) {
+    let mut ws = [[0.0; 3]; 2];
+    let (n, singular) = w.solve(t.rotation.matrix(), &mut ws);
+    for (k, v) in ws[..n].iter().enumerate() {
+        out.q[k] = [v[0], v[1], v[2], 0.0, 0.0, 0.0];
+        let mut posture = Posture {
+            wrist: Some(wrist_posture(singular, k)),
+            ..Posture::default()
+        };
+        if singular {
+            posture.free[0] = Some(FreeReason::WristAligned);
+        }
+        out.postures[k] = posture;
+    }
+    out.len = n;
+}
+
+/// The general six-revolute elimination into the raw solutions ("branch k" in its order); an
+/// unreachable pose has no distance to report (NaN).
+fn general_raw(g: &general6::General6, t: &Pose, out: &mut RawSolutions) -> Result<(), IkError> {
+    let mut sols = [[0.0; 6]; general6::MAX_BRANCHES];
+    match g.solve(t, &mut sols) {
+        Ok(0) => out.unreachable = Some(f64::NAN),
+        Ok(n) => {
+            for (k, q) in sols[..n].iter().enumerate() {
+                out.q[k] = *q;
+                out.postures[k] = general6::branch_posture(k);
+            }
+            out.len = n;
+        }
+        Err(why) => {
+            return Err(IkError::Degenerate { reason: why.text() });
+        }
+    }
+    Ok(())
 }
 
 fn wrist_posture(singular: bool, k: usize) -> WristFlip {
