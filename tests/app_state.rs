@@ -660,3 +660,36 @@ fn a_tree_whose_arm_has_a_closed_form_is_dragged_in_closed_form() {
     );
     assert_eq!(x.q()[6], gripper, "the gripper stays");
 }
+
+/// Issue 27: a general six-revolute arm (the Unitree Z1, no named family) is dragged with every
+/// solution; under the posture lock its branch is the one that continues from the current q,
+/// whatever number the sorted list gives it, and the hand follows the target exactly.
+#[test]
+fn a_general_arm_under_the_posture_lock_keeps_its_branch_by_continuity() {
+    let mut s = state("tests/data/urdf_corpus/unitree_z1.urdf");
+    let ee = 0;
+    s.set_q(&[0.3, 1.0, -0.8, 0.4, 0.6, 0.2, 0.0]).unwrap();
+    s.set_lock(true);
+    let start = s.robot().fk_ee(s.q(), ee).unwrap();
+    let mut prev = s.q().to_vec();
+    for k in 1..=20 {
+        let moved =
+            Translation3::new(0.004 * k as f64, -0.003 * k as f64, 0.002 * k as f64) * start;
+        s.set_target(ee, moved).unwrap();
+        let result = s.targets()[ee]
+            .result
+            .as_ref()
+            .expect("the general solutions");
+        assert!(result.solutions.len() >= 2, "every branch listed");
+        assert!(result.solutions[0].posture.starts_with("branch "));
+        let now = s.robot().fk_ee(s.q(), ee).unwrap();
+        let dp = (now.translation.vector - moved.translation.vector).norm();
+        assert!(dp < 1e-10, "step {k}: the hand follows exactly: {dp:e} m");
+        let step = max_step(s.robot(), s.q(), &prev);
+        assert!(
+            step < 0.1,
+            "step {k}: the branch continues (largest joint step {step} rad)"
+        );
+        prev = s.q().to_vec();
+    }
+}

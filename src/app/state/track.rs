@@ -5,7 +5,9 @@
 //!
 //! - **unlocked**: the within-limits solution closest in joint space to the current q
 //!   ([`joint_distance`]: revolute differences wrapped into (-pi, pi]);
-//! - **locked**: the solution with the locked posture label. Labels change meaning only at
+//! - **locked**: the solution with the locked posture label (for a general six-revolute arm,
+//!   whose "branch k" is only a place in a sorted list, the solution that continues from the
+//!   current q, the label following it). Labels change meaning only at
 //!   singularities (the wrist passing through sin(theta5) = 0 continues as the "flip" branch, for
 //!   instance), so when the previous q is near a singularity (a singularity measure below
 //!   [`BRANCH_SWITCH_MEASURE`], the conditioning ratio below [`NEAR_RATIO`], or a degenerate
@@ -90,7 +92,14 @@ enum Choice {
 fn solves_frame(family: Option<Family>) -> bool {
     matches!(
         family,
-        Some(Family::Planar3 | Family::Scara | Family::SphericalWrist | Family::Decoupled6 { .. })
+        Some(
+            Family::Planar3
+                | Family::Scara
+                | Family::SphericalWrist
+                | Family::Decoupled6 { .. }
+                | Family::ThreeParallel
+                | Family::General6
+        )
     )
 }
 
@@ -189,6 +198,16 @@ impl AppState {
         let Some(label) = locked else {
             return closest_in.map_or_else(|| outside(None), pick);
         };
+        // A general arm's "branch k" is a place in a sorted list, not a geometric posture: its
+        // branch is the one that continues from the current q (the label follows it).
+        if self.family_of(ee) == Some(Family::General6) {
+            let closest =
+                (0..sols.len()).min_by(|&a, &b| dist(&sols[a]).total_cmp(&dist(&sols[b])));
+            return match closest {
+                Some(c) if sols[c].within_limits => pick(c),
+                _ => outside(Some(label)),
+            };
+        }
         let same =
             by_posture(sols, label).and_then(|s| sols.iter().position(|x| std::ptr::eq(x, s)));
         let Some(i) = same else {
