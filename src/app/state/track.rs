@@ -90,17 +90,7 @@ enum Choice {
 
 /// Whether the closed-form family solves a full pose of the last frame (else a point).
 fn solves_frame(family: Option<Family>) -> bool {
-    matches!(
-        family,
-        Some(
-            Family::Planar3
-                | Family::Scara
-                | Family::SphericalWrist
-                | Family::Decoupled6 { .. }
-                | Family::ThreeParallel
-                | Family::General6
-        )
-    )
+    family.is_some_and(|f| f.uses_frame())
 }
 
 impl AppState {

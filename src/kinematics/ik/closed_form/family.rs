@@ -87,7 +87,7 @@ impl Family {
 
     /// Whether the family solves a full pose of frame n (otherwise the position of the tool
     /// point).
-    pub(super) fn uses_frame(&self) -> bool {
+    pub fn uses_frame(&self) -> bool {
         matches!(
             self,
             Family::Planar3
