@@ -3,7 +3,7 @@
 
 use armlab::calibration::{
     CalibrationError, CalibrationOptions, Measurement, Observability, ParameterModel,
-    SimulationOptions, calibrate, fit, identifiability, simulate,
+    SimulationOptions, Unidentifiable, calibrate, fit, identifiability, simulate,
 };
 use armlab::kinematics::models::built_in;
 use armlab::kinematics::orientation::angle_axis_from_rotation;
@@ -143,7 +143,13 @@ fn noise_free_data_recovers_the_robot_and_names_the_parallel_axes() {
         },
     )
     .unwrap();
-    let report = calibrate(&model, &sim.measurements, &CalibrationOptions::default()).unwrap();
+    // Minimum-norm steps: plain DH estimates d2 and d3 (only their sum is seen at the nominal
+    // point); the default keeps d2 nominal (tests/calibration_setups.rs).
+    let opts = CalibrationOptions {
+        unidentifiable: Unidentifiable::MinimumNorm,
+        ..CalibrationOptions::default()
+    };
+    let report = calibrate(&model, &sim.measurements, &opts).unwrap();
     assert!(report.converged, "{:?}", report.reason);
     let v = fit(&model, &report.estimate, &sim.validation).unwrap();
     assert!(
@@ -188,7 +194,8 @@ fn noise_free_data_recovers_the_robot_and_names_the_parallel_axes() {
 #[test]
 fn noisy_estimates_lie_within_four_sigma_and_validation_reaches_the_noise_floor() {
     let puma = built_in("puma560").unwrap();
-    let model = ParameterModel::new(&puma).unwrap();
+    // With Hayati's beta on the parallel axes 2-3 (the default): every parameter identifiable.
+    let model = ParameterModel::new(&puma).unwrap().with_hayati().unwrap();
     let (noise_mm, noise_mrad) = (0.02, 0.05);
     let sim = simulate(
         &model,
@@ -512,7 +519,12 @@ fn hayati_beta_removes_the_parallel_axis_trap() {
             .map(|(p, v)| (v - p.nominal).abs())
             .fold(0.0, f64::max)
     };
-    let a = calibrate(&plain, &sim.measurements, &opts).unwrap();
+    // The lesson: plain DH with minimum-norm steps (by default d2 would be kept nominal).
+    let lesson = CalibrationOptions {
+        unidentifiable: Unidentifiable::MinimumNorm,
+        ..opts
+    };
+    let a = calibrate(&plain, &sim.measurements, &lesson).unwrap();
     let b = calibrate(&hayati, &sim.measurements, &opts).unwrap();
     assert_eq!(
         b.nominal.rank, b.nominal.parameter_count,

@@ -376,6 +376,26 @@ fn ik_bad_input_exits_2() {
     );
 }
 
+/// Each parameter's `identifiable` agrees with `unidentifiable` (the analysis at the estimate):
+/// estimated and not listed, or fixed / listed.
+fn flags_agree_with_the_list(v: &serde_json::Value) {
+    let listed: Vec<&str> = v["unidentifiable"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|n| n.as_str().unwrap())
+        .collect();
+    for p in v["parameters"].as_array().unwrap() {
+        let name = p["name"].as_str().unwrap();
+        let estimated = p["fixed"] == false;
+        assert_eq!(
+            p["identifiable"].as_bool().unwrap(),
+            estimated && !listed.contains(&name),
+            "{name}"
+        );
+    }
+}
+
 #[test]
 fn calibrate_simulated_json_has_the_documented_keys() {
     let o = armlab(&[
@@ -407,9 +427,52 @@ fn calibrate_simulated_json_has_the_documented_keys() {
     ] {
         assert!(v.get(key).is_some(), "missing {key}");
     }
+    // The default: Hayati's beta2 instead of d2 on the parallel axes 2-3, every parameter
+    // identifiable, the flags and the list reported at the estimate.
+    assert_eq!(v["hayati_rows"], serde_json::json!([2]));
+    assert_eq!(v["identifiability_at"], "estimate");
     assert_eq!(v["parameter_count"], 24);
-    assert_eq!(v["rank"], 23, "axes 2 and 3 of the Puma are parallel");
-    assert_eq!(v["unidentifiable"], serde_json::json!(["d2", "d3"]));
+    assert_eq!(v["rank"], 24);
+    assert_eq!(v["unidentifiable"], serde_json::json!([]));
+    assert_eq!(v["setup"], "pose");
+    flags_agree_with_the_list(&v);
+    // Plain DH (the lesson): at the nominal point only d2 + d3 is seen; d2 is kept nominal, and
+    // the flags say so.
+    let o = armlab(&[
+        "calibrate",
+        "puma560",
+        "--simulate",
+        "--poses",
+        "30",
+        "--seed",
+        "5",
+        "--noise-mm",
+        "0.02",
+        "--hayati",
+        "off",
+        "--format",
+        "json",
+    ]);
+    let plain = json(&o);
+    assert_eq!(
+        plain["nominal_identifiability"]["rank"], 23,
+        "axes 2 and 3 of the Puma are parallel"
+    );
+    assert_eq!(
+        plain["nominal_identifiability"]["unidentifiable"],
+        serde_json::json!(["d2", "d3"])
+    );
+    assert_eq!(plain["fixed_unidentifiable"][0]["name"], "d2");
+    assert_eq!(plain["parameters"][13]["name"], "d2");
+    assert_eq!(plain["parameters"][13]["identifiable"], false);
+    assert_eq!(plain["parameters"][13]["estimate"], 0.0);
+    assert!(
+        plain["parameters"][13]["fixed_because"]
+            .as_str()
+            .unwrap()
+            .contains("d2 + d3")
+    );
+    flags_agree_with_the_list(&plain);
     let p = &v["parameters"][0];
     for key in [
         "name",
@@ -580,7 +643,7 @@ fn calibrate_from_a_measurement_file_and_write_the_model() {
         "--format",
         "json",
     ]));
-    assert_eq!(v["parameter_count"], 36);
+    assert_eq!(v["nominal_identifiability"]["parameter_count"], 36);
     let names: Vec<&str> = v["parameters"]
         .as_array()
         .unwrap()
@@ -588,7 +651,20 @@ fn calibrate_from_a_measurement_file_and_write_the_model() {
         .map(|p| p["name"].as_str().unwrap())
         .collect();
     assert!(names.contains(&"base_rz") && names.contains(&"tool_x"));
-    assert!(v["rank"].as_u64().unwrap() < 36);
+    assert!(v["nominal_identifiability"]["rank"].as_u64().unwrap() < 36);
+    // The lumped ones keep one side nominal (d1 + base_z: d1), the rest is estimated.
+    let fixed: Vec<&str> = v["fixed_unidentifiable"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|f| f["name"].as_str().unwrap())
+        .collect();
+    assert!(
+        fixed.contains(&"d1") && fixed.contains(&"theta6"),
+        "{fixed:?}"
+    );
+    assert_eq!(v["rank"], v["parameter_count"]);
+    flags_agree_with_the_list(&v);
     // Hayati's beta for the parallel axes 2 and 3: every parameter identifiable.
     let v = json(&armlab(&[
         "calibrate",

@@ -157,8 +157,10 @@ pub fn rows(data: &[u8]) {
     }
 }
 
-/// A measurement file for a robot of 1 to 8 joints (the first byte).
+/// A measurement file for a robot of 1 to 8 joints and one of the setups (the first byte),
+/// plain or headered.
 pub fn measurements(data: &[u8]) {
+    use armlab::calibration::{JointColumns, Measurement, Setup, parse_setup};
     let Some((&first, rest)) = data.split_first() else {
         return;
     };
@@ -166,24 +168,31 @@ pub fn measurements(data: &[u8]) {
         return;
     };
     let dof = 1 + usize::from(first % 8);
-    match armlab::calibration::parse_measurements(text, "fuzz.txt", dof) {
-        Ok(ms) => {
+    let setup = Setup::ALL[usize::from(first / 8) % Setup::ALL.len()];
+    let joints = JointColumns::numbered(dof);
+    match parse_setup(text, "fuzz.txt", &joints, setup, Some(0.02)) {
+        Ok(file) => {
+            let ms = &file.measurements;
             assert!(!ms.is_empty(), "an empty file parsed");
-            for m in &ms {
-                assert_eq!(m.q().len(), dof);
-                assert!(m.q().iter().all(|v| v.is_finite()));
+            for m in ms {
+                for q in m.joint_vectors() {
+                    assert_eq!(q.len(), dof);
+                    assert!(q.iter().all(|v| v.is_finite()));
+                }
                 let finite = match m {
-                    armlab::calibration::Measurement::Pose {
+                    Measurement::Pose {
                         world_from_tool, ..
                     } => world_from_tool
                         .to_homogeneous()
                         .iter()
                         .all(|v| v.is_finite()),
-                    armlab::calibration::Measurement::Position { p, .. } => {
-                        p.iter().all(|v| v.is_finite())
-                    }
+                    Measurement::Position { p, .. } => p.iter().all(|v| v.is_finite()),
+                    Measurement::Distance { distance: v, .. }
+                    | Measurement::Sphere { radius: v, .. } => v.is_finite() && *v > 0.0,
+                    Measurement::Pivot { .. } | Measurement::Plane { .. } => true,
                 };
                 assert!(finite, "a measurement with a non-finite value");
+                assert_eq!(m.kind(), ms[0].kind(), "mixed kinds parsed");
             }
         }
         Err(e) => {

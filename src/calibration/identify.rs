@@ -3,6 +3,7 @@
 
 use super::CalibrationError;
 use super::model::{Kind, Measurement, ParameterModel};
+use super::setup::Unknowns;
 use super::solve::{CalibrationOptions, check, column_scale, stacked};
 use nalgebra::DMatrix;
 
@@ -42,7 +43,7 @@ impl Observability {
 #[derive(Debug, Clone, PartialEq)]
 #[must_use]
 pub struct Identifiability {
-    /// Free parameters (columns of the system).
+    /// Free parameters (columns of the system), the setup's unknowns included.
     pub parameter_count: usize,
     /// Numerical rank of the column-scaled, weighted Phi.
     pub rank: usize,
@@ -50,8 +51,14 @@ pub struct Identifiability {
     pub rank_threshold: f64,
     /// Per parameter of zeta: free and identifiable on its own.
     pub identifiable: Vec<bool>,
-    /// Names of the free parameters that are not identifiable on their own.
+    /// Per unknown of the setup (pivot points, planes, spheres): identifiable on its own.
+    pub unknown_identifiable: Vec<bool>,
+    /// Names of the free parameters (and unknowns) that are not identifiable on their own.
     pub unidentifiable: Vec<String>,
+    /// Per entry of `combinations`: the index in zeta of the parameter that keeping at its
+    /// value removes that unidentifiable direction (the first of the combination in the order
+    /// of zeta), or None when the direction lies among the setup's unknowns alone.
+    pub dependent: Vec<Option<usize>>,
     /// What can and cannot be identified, in words: "d2 and d3 only as d2 + d3 (axes 2 and 3 are
     /// parallel)", "theta6 cannot be identified: it does not change the measurements".
     pub combinations: Vec<String>,
@@ -61,7 +68,8 @@ pub struct Identifiability {
     pub observability: Observability,
 }
 
-/// The identifiability of `model`'s free parameters at `zeta` for the measurements `ms`.
+/// The identifiability of `model`'s free parameters at `zeta` for the measurements `ms` (with
+/// the setup's unknowns started from the model's tool points).
 pub fn identifiability(
     model: &ParameterModel,
     zeta: &[f64],
@@ -69,23 +77,25 @@ pub fn identifiability(
     opts: &CalibrationOptions,
 ) -> Result<Identifiability, CalibrationError> {
     check(model, ms)?;
-    identifiability_of(model, zeta, ms, opts)
+    let s = Unknowns::initial(model, zeta, ms)?;
+    identifiability_of(model, zeta, &s, ms, opts)
 }
 
 pub(super) fn identifiability_of(
     model: &ParameterModel,
     zeta: &[f64],
+    s: &Unknowns,
     ms: &[Measurement],
     opts: &CalibrationOptions,
 ) -> Result<Identifiability, CalibrationError> {
     let free = model.free();
-    let (phi, _) = stacked(model, zeta, ms, &free, opts)?;
+    let (phi, _) = stacked(model, zeta, s, ms, &free, opts)?;
     let scale = column_scale(&phi);
     let mut scaled = phi;
     for (j, mut c) in scaled.column_iter_mut().enumerate() {
         c /= scale[j];
     }
-    let p = free.len();
+    let p = free.len() + s.len();
     // A tall matrix gives all p right singular vectors; pad a short one with zero rows.
     if scaled.nrows() < p {
         scaled = scaled.resize_vertically(p, 0.0);
@@ -106,27 +116,36 @@ pub(super) fn identifiability_of(
         .map(|&k| vt.row(k).iter().copied().collect())
         .collect();
     let names = model.parameters();
+    let columns = Columns::new(model, &free, s);
     let mut identifiable = vec![false; names.len()];
+    let mut unknown_identifiable = vec![false; s.len()];
     let mut unidentifiable = Vec::new();
-    for (c, &j) in free.iter().enumerate() {
+    for c in 0..p {
         let weight: f64 = null.iter().map(|v| v[c] * v[c]).sum();
-        identifiable[j] = weight.sqrt() < 1e-6;
-        if !identifiable[j] {
-            unidentifiable.push(names[j].name.clone());
+        let seen = weight.sqrt() < 1e-6;
+        match free.get(c) {
+            Some(&j) => identifiable[j] = seen,
+            None => unknown_identifiable[c - free.len()] = seen,
+        }
+        if !seen {
+            unidentifiable.push(columns.names[c].clone());
         }
     }
-    let combinations = describe(
+    let (combinations, pivots) = describe(
         model,
-        &free,
+        &columns,
         &null,
         &scale.iter().copied().collect::<Vec<_>>(),
     );
+    let dependent = pivots.iter().map(|&c| free.get(c).copied()).collect();
     Ok(Identifiability {
         parameter_count: p,
         rank,
         rank_threshold: opts.rank_tolerance,
         identifiable,
+        unknown_identifiable,
         unidentifiable,
+        dependent,
         combinations,
         observability: Observability::from_singular_values(
             &sv[..rank.max(1).min(sv.len())],
@@ -136,54 +155,80 @@ pub(super) fn identifiability_of(
     })
 }
 
+/// The columns of the stacked system: the free parameters, then the setup's unknowns.
+struct Columns {
+    names: Vec<String>,
+    /// (kind, 1-based joint) of a parameter column; None for an unknown.
+    params: Vec<Option<(Kind, usize)>>,
+}
+
+impl Columns {
+    fn new(model: &ParameterModel, free: &[usize], s: &Unknowns) -> Self {
+        let ps = model.parameters();
+        let mut names: Vec<String> = free.iter().map(|&j| ps[j].name.clone()).collect();
+        let mut params: Vec<_> = free
+            .iter()
+            .map(|&j| Some((ps[j].kind, ps[j].joint)))
+            .collect();
+        names.extend(s.names());
+        params.resize(names.len(), None);
+        Self { names, params }
+    }
+}
+
 /// The null directions in reduced row echelon form (each one a dependence among few parameters),
-/// in parameter units, said in words.
+/// in parameter units, said in words; with the pivot column of each (the first column of its
+/// combination).
 fn describe(
     model: &ParameterModel,
-    free: &[usize],
+    columns: &Columns,
     null: &[Vec<f64>],
     scale: &[f64],
-) -> Vec<String> {
+) -> (Vec<String>, Vec<usize>) {
     if null.is_empty() {
-        return Vec::new();
+        return (Vec::new(), Vec::new());
     }
-    let p = free.len();
+    let p = columns.names.len();
     // Unscaled: a change dz = D^-1 y of the parameters along a null direction y.
     let mut m = DMatrix::from_fn(null.len(), p, |r, c| null[r][c] / scale[c]);
     rref(&mut m);
-    let names = model.parameters();
-    let mut out = Vec::new();
+    let names = &columns.names;
+    let (mut out, mut pivots) = (Vec::new(), Vec::new());
     for r in 0..m.nrows() {
         let terms: Vec<(usize, f64)> = (0..p)
             .filter(|&c| m[(r, c)].abs() > 1e-6)
             .map(|c| (c, m[(r, c)]))
             .collect();
+        let Some(&(first, _)) = terms.first() else {
+            continue;
+        };
+        pivots.push(first);
         match terms.as_slice() {
             [] => {}
             [(c, _)] => out.push(format!(
                 "{} cannot be identified: it does not change the measurements",
-                names[free[*c]].name
+                names[*c]
             )),
             [(a, va), (b, vb)] => {
                 // Changes along (va, vb) are invisible; va X + ... : the combination orthogonal
                 // to it, vb X_a - va X_b, is what the data see.
-                let (x, y) = (&names[free[*a]], &names[free[*b]]);
+                let (x, y) = (&names[*a], &names[*b]);
                 let k = -va / vb;
                 let combo = if (k - 1.0).abs() < 1e-6 {
-                    format!("{} + {}", x.name, y.name)
+                    format!("{x} + {y}")
                 } else if (k + 1.0).abs() < 1e-6 {
-                    format!("{} - {}", x.name, y.name)
+                    format!("{x} - {y}")
                 } else {
-                    format!("{} {:+.6} * {}", x.name, k, y.name)
+                    format!("{x} {k:+.6} * {y}")
                 };
-                let why = parallel_reason(model, x.kind, x.joint, y.kind, y.joint);
-                out.push(format!("{} and {} only as {combo}{why}", x.name, y.name));
+                let why = match (columns.params[*a], columns.params[*b]) {
+                    (Some((ka, ja)), Some((kb, jb))) => parallel_reason(model, ka, ja, kb, jb),
+                    _ => String::new(),
+                };
+                out.push(format!("{x} and {y} only as {combo}{why}"));
             }
             many => {
-                let list: Vec<&str> = many
-                    .iter()
-                    .map(|(c, _)| names[free[*c]].name.as_str())
-                    .collect();
+                let list: Vec<&str> = many.iter().map(|(c, _)| names[*c].as_str()).collect();
                 out.push(format!(
                     "{} only in one combination (one direction of these changes leaves every \
                      measurement unchanged)",
@@ -192,7 +237,7 @@ fn describe(
             }
         }
     }
-    out
+    (out, pivots)
 }
 
 /// "(axes i and i+1 are parallel)" for the d parameters of a pair of rows whose axes are

@@ -12,8 +12,9 @@
 //! - [`calibrate`]: (2.88)-(2.89) iterated, with a rank-revealing SVD of the column-scaled,
 //!   noise-weighted Phi, a record per iteration, the identifiability report and the uncertainty
 //!   of the estimate.
-//! - [`select_poses`]: l poses out of candidates maximising O1 or O4 (DETMAX-style exchange);
-//!   [`parse_measurements`] / [`write_measurements`]: the measurement file format.
+//! - [`Setup`]: measurements without a tracker (distances, pivot points, planes, spheres, a
+//!   tracker of unknown pose), each with the unknowns it estimates with the robot
+//!   ([`Unknowns`]) and what it cannot see.
 //! - [`select_poses`]: l poses out of candidates maximising O1 or O4 (DETMAX-style exchange);
 //!   [`parse_measurements`] / [`write_measurements`]: the measurement file format.
 //! - [`accuracy_map`]: the position deviation between two models over the top view of the
@@ -29,16 +30,23 @@ mod file;
 mod identify;
 mod model;
 mod select;
+mod setup;
 mod simulate;
 mod solve;
 
 pub use accuracy::{AccuracyMap, accuracy_map};
-pub use file::{MeasurementFileError, parse_measurements, write_measurements};
+pub use file::{
+    JointColumns, MeasurementFileError, ParsedFile, parse_measurements, parse_setup, template,
+    write_measurements,
+};
 pub use identify::{Identifiability, Observability, identifiability};
 pub use model::{Kind, Measurement, Parameter, ParameterModel};
 pub use select::{Criterion, select_poses};
-pub use simulate::{Simulated, SimulationOptions, simulate};
-pub use solve::{CalibrationOptions, CalibrationReport, Fit, Iteration, calibrate, fit};
+pub use setup::{Linearised, PlaneUnknown, Setup, Unknowns, linearise, register_tracker};
+pub use simulate::{SetupScene, Simulated, SimulationOptions, simulate, simulate_setup};
+pub use solve::{
+    CalibrationOptions, CalibrationReport, Fit, Iteration, Unidentifiable, calibrate, fit,
+};
 
 use thiserror::Error;
 

@@ -91,29 +91,86 @@ pub enum Measurement {
         /// Measured tool point, world frame (m).
         p: Vector3<f64>,
     },
+    /// Two joint vectors whose tool points are a known distance apart (a rigid artefact with
+    /// two sockets, a ball bar): one equation, `|p(qa) - p(qb)| = distance`.
+    Distance {
+        /// Joint values at the first socket (rad or m).
+        qa: Vec<f64>,
+        /// Joint values at the second socket.
+        qb: Vec<f64>,
+        /// The known distance (m).
+        distance: f64,
+    },
+    /// The tool point held on a fixed, unknown point (pivoting): three equations,
+    /// `p(q) = c_point`, with the point estimated too.
+    Pivot {
+        /// Joint values (rad or m).
+        q: Vec<f64>,
+        /// Which point (0-based group).
+        point: usize,
+    },
+    /// The tool point touching a plane of unknown pose: one equation, `n . p(q) = h`, with the
+    /// plane estimated too.
+    Plane {
+        /// Joint values (rad or m).
+        q: Vec<f64>,
+        /// Which plane (0-based group).
+        plane: usize,
+    },
+    /// The tool point (a probe ball's centre) touching a sphere of known radius and unknown
+    /// centre: one equation, `|p(q) - c_sphere| = radius`, with the centre estimated too.
+    Sphere {
+        /// Joint values (rad or m).
+        q: Vec<f64>,
+        /// Which sphere (0-based group).
+        sphere: usize,
+        /// Distance from the sphere's centre to the tool point at contact (m): the sphere's
+        /// radius plus the probe ball's.
+        radius: f64,
+    },
 }
 
 impl Measurement {
-    /// The joint values.
+    /// The joint values (the first joint vector of a distance).
     pub fn q(&self) -> &[f64] {
         match self {
-            Measurement::Pose { q, .. } | Measurement::Position { q, .. } => q,
+            Measurement::Pose { q, .. }
+            | Measurement::Position { q, .. }
+            | Measurement::Pivot { q, .. }
+            | Measurement::Plane { q, .. }
+            | Measurement::Sphere { q, .. } => q,
+            Measurement::Distance { qa, .. } => qa,
         }
     }
 
-    /// Rows this measurement adds to the stacked system: 6 or 3.
+    /// Every joint vector of the measurement (two for a distance).
+    pub fn joint_vectors(&self) -> Vec<&[f64]> {
+        match self {
+            Measurement::Distance { qa, qb, .. } => vec![qa, qb],
+            _ => vec![self.q()],
+        }
+    }
+
+    /// Rows this measurement adds to the stacked system: 6 (pose), 3 (position, pivot) or 1.
     pub fn rows(&self) -> usize {
         match self {
             Measurement::Pose { .. } => 6,
-            Measurement::Position { .. } => 3,
+            Measurement::Position { .. } | Measurement::Pivot { .. } => 3,
+            Measurement::Distance { .. }
+            | Measurement::Plane { .. }
+            | Measurement::Sphere { .. } => 1,
         }
     }
 
-    /// "pose" or "position".
+    /// "pose", "position", "distance", "pivot", "plane" or "sphere".
     pub fn kind(&self) -> &'static str {
         match self {
             Measurement::Pose { .. } => "pose",
             Measurement::Position { .. } => "position",
+            Measurement::Distance { .. } => "distance",
+            Measurement::Pivot { .. } => "pivot",
+            Measurement::Plane { .. } => "plane",
+            Measurement::Sphere { .. } => "sphere",
         }
     }
 }
@@ -271,6 +328,11 @@ impl ParameterModel {
             });
         }
         Ok(self)
+    }
+
+    /// The DH convention of the table.
+    pub fn convention(&self) -> Convention {
+        self.convention
     }
 
     /// The rows (1-based) that use Hayati's beta.
@@ -449,7 +511,8 @@ impl ParameterModel {
     }
 
     /// The error `[p_measured - p_model; delta phi]` (6 rows, or 3 for a position) of one
-    /// measurement against the model with `zeta`, written into `out`.
+    /// pose or position measurement against the model with `zeta`, written into `out` (the
+    /// other kinds are an error here: their residual needs the setup's unknowns).
     pub fn residual(
         &self,
         zeta: &[f64],
@@ -470,6 +533,12 @@ impl ParameterModel {
             }
             Measurement::Position { p, .. } => {
                 out[..3].copy_from_slice((p - t.translation.vector).as_slice());
+            }
+            _ => {
+                return Err(CalibrationError::InvalidOption(format!(
+                    "a {} measurement's residual needs the setup's unknowns",
+                    m.kind()
+                )));
             }
         }
         Ok(())
@@ -512,9 +581,15 @@ impl ParameterModel {
             let this = &frames[i + 1];
             let axis = |p: &Pose, c: usize| p.rotation.matrix().column(c).into_owned();
             let origin = |p: &Pose| p.translation.vector;
+            // With Hayati's beta, frame i ends with Ry(beta): a and alpha act along the x axis
+            // before it (Ry turns x), through the same origin.
+            let x_before_beta = match self.beta_of(zeta, i) {
+                Some(beta) => this.rotation.matrix() * Vector3::new(beta.cos(), 0.0, beta.sin()),
+                None => axis(this, 0),
+            };
             let (a_axis, a_point, t_axis, t_point) = match self.convention {
                 // a, alpha along x_i through o_i; theta, d along z_{i-1} through o_{i-1}.
-                Convention::Standard => (axis(this, 0), origin(this), axis(prev, 2), origin(prev)),
+                Convention::Standard => (x_before_beta, origin(this), axis(prev, 2), origin(prev)),
                 // a, alpha along x_{i-1} through o_{i-1}; theta, d along z_i through o_i.
                 Convention::Modified => (axis(prev, 0), origin(prev), axis(this, 2), origin(this)),
             };

@@ -5,6 +5,7 @@
 use super::CalibrationError;
 use super::identify::Observability;
 use super::model::{Measurement, ParameterModel};
+use super::setup::Unknowns;
 use super::solve::{CalibrationOptions, stacked};
 use nalgebra::DMatrix;
 
@@ -73,7 +74,17 @@ pub fn select_poses(
     let free = model.free();
     let blocks: Vec<DMatrix<f64>> = candidates
         .iter()
-        .map(|m| stacked(model, &zeta, std::slice::from_ref(m), &free, opts).map(|(phi, _)| phi))
+        .map(|m| {
+            stacked(
+                model,
+                &zeta,
+                &Unknowns::default(),
+                std::slice::from_ref(m),
+                &free,
+                opts,
+            )
+            .map(|(phi, _)| phi)
+        })
         .collect::<Result<_, _>>()?;
     let mut set: Vec<usize> = (0..count).collect();
     let mut best = index(&blocks, &set, criterion, opts.rank_tolerance);

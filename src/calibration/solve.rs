@@ -3,7 +3,23 @@
 use super::CalibrationError;
 use super::identify::{Identifiability, identifiability_of};
 use super::model::{Measurement, Parameter, ParameterModel};
+use super::setup::{Unknowns, linearise};
 use nalgebra::{DMatrix, DVector};
+
+/// What [`calibrate`] does with parameters the measurements cannot identify (found by the rank
+/// analysis at the nominal parameters, before any iteration).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Unidentifiable {
+    /// Keep one parameter of each unidentifiable combination at its nominal value (the first of
+    /// the combination in the order of zeta) and estimate the rest: the written model stays
+    /// physically sensible. The default.
+    #[default]
+    Nominal,
+    /// Estimate every free parameter; each step is the minimum-norm solution over the numerical
+    /// rank, but from the second iteration on, a direction that was exactly invisible at the
+    /// nominal point may be weakly visible and drift (the lesson of plain DH on parallel axes).
+    MinimumNorm,
+}
 
 /// Options of [`calibrate`]; every field with its unit and trade-off.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -24,11 +40,13 @@ pub struct CalibrationOptions {
     /// Levenberg–Marquardt damping of the scaled step (0 = plain (2.88)); damps the directions
     /// with singular values below about its square root.
     pub damping: f64,
+    /// What happens to parameters the measurements cannot identify.
+    pub unidentifiable: Unidentifiable,
 }
 
 impl Default for CalibrationOptions {
     /// 50 iterations, steps below 1e-12, rank tolerance 1e-9, 0.1 mm and 1 mrad noise, no
-    /// damping.
+    /// damping, unidentifiable parameters kept at their nominal values.
     fn default() -> Self {
         Self {
             max_iterations: 50,
@@ -37,13 +55,15 @@ impl Default for CalibrationOptions {
             position_sigma: 1e-4,
             orientation_sigma: 1e-3,
             damping: 0.0,
+            unidentifiable: Unidentifiable::Nominal,
         }
     }
 }
 
 /// Errors of a model against a set of measurements: position_rms = sqrt(mean |dp|^2), the
 /// largest |dp|, and the same for the rotation angle of `R_measured R_model^T` (`None` for
-/// position-only data).
+/// position-only data). For the setups without a tracker, dp is the setup's residual in metres:
+/// the distance error, the pivot point's offset, the distance to the plane or to the sphere.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[must_use]
 pub struct Fit {
@@ -76,15 +96,25 @@ pub struct Iteration {
 #[derive(Debug, Clone, PartialEq)]
 #[must_use]
 pub struct CalibrationReport {
-    /// Every parameter (nominal value, fixed or not), in the order of zeta.
+    /// Every parameter (nominal value, fixed or not, the automatically fixed ones marked
+    /// fixed), in the order of zeta.
     pub parameters: Vec<Parameter>,
+    /// Parameters kept at their nominal values because the measurements cannot identify them
+    /// (with [`Unidentifiable::Nominal`]): the name and the combination it belongs to.
+    pub auto_fixed: Vec<(String, String)>,
+    /// The setup's estimated unknowns (pivot points, planes, sphere centres).
+    pub unknowns: Unknowns,
+    /// Standard deviation of each unknown, in the order of [`Unknowns::values`].
+    pub unknown_std: Vec<Option<f64>>,
     /// The estimate of zeta.
     pub estimate: Vec<f64>,
     /// Standard deviation of each estimated, identifiable parameter (m or rad).
     pub std: Vec<Option<f64>>,
-    /// Identifiability at the nominal parameters.
+    /// Identifiability at the nominal parameters, of every parameter free before the
+    /// unidentifiable ones were fixed: where they were chosen.
     pub nominal: Identifiability,
-    /// Identifiability at the estimate.
+    /// Identifiability at the estimate, of the parameters estimated: where the flags, the
+    /// standard deviations and the correlations are computed.
     pub at_estimate: Identifiability,
     /// The iterations.
     pub iterations: Vec<Iteration>,
@@ -103,17 +133,67 @@ pub struct CalibrationReport {
     pub after: Fit,
 }
 
-/// The errors of the model with `zeta` on `ms`.
+/// The errors of the model with `zeta` on `ms`. The setup's unknowns (pivot points, planes,
+/// spheres) are estimated first with the robot held at `zeta`, so that held-out data are judged
+/// on the robot alone.
 pub fn fit(
     model: &ParameterModel,
     zeta: &[f64],
     ms: &[Measurement],
 ) -> Result<Fit, CalibrationError> {
-    let mut r = [0.0; 6];
+    let mut s = Unknowns::initial(model, zeta, ms)?;
+    solve_unknowns(model, zeta, ms, &mut s)?;
+    fit_with(model, zeta, &s, ms)
+}
+
+/// Gauss-Newton on the setup's unknowns alone, the robot held at `zeta` (at most 20 steps).
+pub(super) fn solve_unknowns(
+    model: &ParameterModel,
+    zeta: &[f64],
+    ms: &[Measurement],
+    s: &mut Unknowns,
+) -> Result<(), CalibrationError> {
+    if s.is_empty() {
+        return Ok(());
+    }
+    let rows: usize = ms.iter().map(Measurement::rows).sum();
+    for _ in 0..20 {
+        let mut a = DMatrix::zeros(rows, s.len());
+        let mut b = DVector::zeros(rows);
+        let mut at = 0;
+        for m in ms {
+            let l = linearise(model, zeta, s, m)?;
+            for i in 0..m.rows() {
+                b[at + i] = l.residual[i];
+                for c in 0..s.len() {
+                    a[(at + i, c)] = l.unknowns[(i, c)];
+                }
+            }
+            at += m.rows();
+        }
+        let dx = a
+            .svd(true, true)
+            .solve(&b, 1e-12)
+            .map_err(|e| CalibrationError::InvalidOption(e.into()))?;
+        s.apply(dx.as_slice());
+        if dx.amax() < 1e-13 {
+            break;
+        }
+    }
+    Ok(())
+}
+
+/// The errors of the model with `zeta` and the setup's unknowns `s` on `ms`.
+pub(super) fn fit_with(
+    model: &ParameterModel,
+    zeta: &[f64],
+    s: &Unknowns,
+    ms: &[Measurement],
+) -> Result<Fit, CalibrationError> {
     let (mut p2, mut pmax, mut o2, mut omax) = (0.0, 0.0f64, 0.0, 0.0f64);
     let pose = ms.first().is_some_and(|m| m.rows() == 6);
     for m in ms {
-        model.residual(zeta, m, &mut r)?;
+        let r = residual_of(model, zeta, s, m)?;
         let dp = (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt();
         p2 += dp * dp;
         pmax = pmax.max(dp);
@@ -132,19 +212,42 @@ pub fn fit(
     })
 }
 
-/// Checks the measurements: joint counts, finite numbers, one kind.
+/// The residual `y - f` of one measurement (its rows; the rest zero).
+fn residual_of(
+    model: &ParameterModel,
+    zeta: &[f64],
+    s: &Unknowns,
+    m: &Measurement,
+) -> Result<[f64; 6], CalibrationError> {
+    let mut r = [0.0; 6];
+    match m {
+        Measurement::Pose { .. } | Measurement::Position { .. } => {
+            model.residual(zeta, m, &mut r)?
+        }
+        _ => r = linearise(model, zeta, s, m)?.residual,
+    }
+    Ok(r)
+}
+
+/// Checks the measurements: joint counts, finite numbers, one kind, positive distances and
+/// radii.
 pub(super) fn check(model: &ParameterModel, ms: &[Measurement]) -> Result<(), CalibrationError> {
     let dof = model.nominal_robot().dof();
     let first = ms.first().map_or("pose", Measurement::kind);
     for (index, m) in ms.iter().enumerate() {
-        if m.q().len() != dof {
-            return Err(CalibrationError::JointCount {
-                index,
-                expected: dof,
-                got: m.q().len(),
-            });
+        for q in m.joint_vectors() {
+            if q.len() != dof {
+                return Err(CalibrationError::JointCount {
+                    index,
+                    expected: dof,
+                    got: q.len(),
+                });
+            }
         }
-        let finite = m.q().iter().all(|v| v.is_finite())
+        let finite = m
+            .joint_vectors()
+            .iter()
+            .all(|q| q.iter().all(|v| v.is_finite()))
             && match m {
                 Measurement::Pose {
                     world_from_tool, ..
@@ -153,6 +256,9 @@ pub(super) fn check(model: &ParameterModel, ms: &[Measurement]) -> Result<(), Ca
                     .iter()
                     .all(|v| v.is_finite()),
                 Measurement::Position { p, .. } => p.iter().all(|v| v.is_finite()),
+                Measurement::Distance { distance: v, .. }
+                | Measurement::Sphere { radius: v, .. } => v.is_finite() && *v > 0.0,
+                Measurement::Pivot { .. } | Measurement::Plane { .. } => true,
             };
         if !finite {
             return Err(CalibrationError::NonFinite { index });
@@ -168,33 +274,37 @@ pub(super) fn check(model: &ParameterModel, ms: &[Measurement]) -> Result<(), Ca
     Ok(())
 }
 
-/// The weighted stacked system (2.87) over the free parameters: Phi (rows x free) and the
-/// residual.
+/// The weighted stacked system (2.87) over the free parameters and the setup's unknowns: Phi
+/// (rows x (free + unknowns)) and the residual. Position-like rows (positions, distances,
+/// plane and sphere contacts) are divided by the position noise, orientation rows by the
+/// orientation noise.
 pub(super) fn stacked(
     model: &ParameterModel,
     zeta: &[f64],
+    s: &Unknowns,
     ms: &[Measurement],
     free: &[usize],
     opts: &CalibrationOptions,
 ) -> Result<(DMatrix<f64>, DVector<f64>), CalibrationError> {
     let rows: usize = ms.iter().map(Measurement::rows).sum();
-    let mut phi = DMatrix::zeros(rows, free.len());
+    let mut phi = DMatrix::zeros(rows, free.len() + s.len());
     let mut res = DVector::zeros(rows);
-    let mut r = [0.0; 6];
     let mut at = 0;
     for m in ms {
         let k = m.rows();
-        let full = model.calibration_matrix(zeta, m.q(), k == 3)?;
-        model.residual(zeta, m, &mut r)?;
+        let l = linearise(model, zeta, s, m)?;
         for i in 0..k {
             let w = if i < 3 {
                 1.0 / opts.position_sigma
             } else {
                 1.0 / opts.orientation_sigma
             };
-            res[at + i] = r[i] * w;
+            res[at + i] = l.residual[i] * w;
             for (c, &j) in free.iter().enumerate() {
-                phi[(at + i, c)] = full[(i, j)] * w;
+                phi[(at + i, c)] = l.robot[(i, j)] * w;
+            }
+            for c in 0..s.len() {
+                phi[(at + i, free.len() + c)] = l.unknowns[(i, c)] * w;
             }
         }
         at += k;
@@ -284,8 +394,12 @@ fn step(
 
 /// Estimates the free parameters of `model` from the measurements by (2.88)-(2.89) iterated:
 /// each step solves the weighted, column-scaled stacked system (2.87) by SVD over its numerical
-/// rank (unidentifiable directions are left at their nominal values), until no parameter moves
-/// more than `opts.step_tolerance`.
+/// rank, until no parameter moves more than `opts.step_tolerance`. The setup's unknowns (pivot
+/// points, planes, spheres) are estimated with the robot.
+///
+/// First, the rank analysis at the nominal parameters finds what the measurements cannot
+/// identify; with [`Unidentifiable::Nominal`] (the default) one parameter of each such
+/// combination is kept at its nominal value (reported in `auto_fixed`).
 pub fn calibrate(
     model: &ParameterModel,
     ms: &[Measurement],
@@ -293,39 +407,138 @@ pub fn calibrate(
 ) -> Result<CalibrationReport, CalibrationError> {
     validate(opts)?;
     check(model, ms)?;
-    let free = model.free();
-    let equations: usize = ms.iter().map(Measurement::rows).sum();
-    if equations < free.len() {
-        let per = ms.first().map_or(6, Measurement::rows);
-        return Err(CalibrationError::TooFewEquations {
-            equations,
-            poses: ms.len(),
-            parameters: free.len(),
-            needed: free.len().div_ceil(per),
-        });
-    }
     let nominal = model.nominal();
+    let mut s = Unknowns::initial(model, &nominal, ms)?;
+    enough_equations(ms, model.free().len() + s.len())?;
+    solve_unknowns(model, &nominal, ms, &mut s)?;
+    let at_nominal = identifiability_of(model, &nominal, &s, ms, opts)?;
+    let user_fixed: Vec<usize> = (0..model.parameters().len())
+        .filter(|&k| model.parameters()[k].fixed)
+        .collect();
+    let mut model = model.clone();
+    let mut auto_fixed = Vec::new();
+    if opts.unidentifiable == Unidentifiable::Nominal {
+        for (dep, why) in at_nominal.dependent.iter().zip(&at_nominal.combinations) {
+            if let Some(j) = *dep {
+                let name = model.parameters()[j].name.clone();
+                model.fix(&[name.as_str()])?;
+                auto_fixed.push((name, why.clone()));
+            }
+        }
+    }
+    auto_fixed.extend(fix_gauges(&mut model, &user_fixed, ms)?);
+    let free = model.free();
     let mut zeta = nominal.clone();
-    let before = fit(model, &zeta, ms)?;
-    let (iterations, converged, reason) = iterate(model, ms, &free, opts, &mut zeta)?;
-    let after = fit(model, &zeta, ms)?;
-    let at_nominal = identifiability_of(model, &nominal, ms, opts)?;
-    let at_estimate = identifiability_of(model, &zeta, ms, opts)?;
-    let (std, sigma2, correlations) = uncertainty(model, &zeta, ms, &free, opts, &at_estimate)?;
+    let before = fit_with(&model, &zeta, &s, ms)?;
+    let (iterations, converged, reason) = iterate(&model, ms, &free, opts, &mut zeta, &mut s)?;
+    let after = fit_with(&model, &zeta, &s, ms)?;
+    let at_estimate = identifiability_of(&model, &zeta, &s, ms, opts)?;
+    let u = uncertainty(&model, &zeta, &s, ms, &free, opts, &at_estimate)?;
     Ok(CalibrationReport {
         parameters: model.parameters().to_vec(),
+        auto_fixed,
+        unknowns: s,
+        unknown_std: u.unknown_std,
         estimate: zeta,
-        std,
+        std: u.std,
         nominal: at_nominal,
         at_estimate,
         iterations,
         converged,
         reason,
-        sigma2,
-        correlations,
+        sigma2: u.sigma2,
+        correlations: u.correlations,
         before,
         after,
     })
+}
+
+/// Directions that are invisible only at the solution, where the residuals are noise, so that
+/// the rank analysis at the nominal point (with millimetre residuals) cannot find them:
+/// - pivot points and planes see the arm's shape, not its size: scaling every length of the
+///   arm and of the scene together scales every residual, and the least squares would shrink
+///   the arm. The longest free length keeps its nominal value and sets the scale (unless the
+///   caller keeps a length over 1 mm fixed already).
+/// - pivot points turn with the arm: turning the whole arm and the points about the first
+///   joint's axis turns every offset `p - c` without changing its length. The first joint's
+///   offset (theta1 of a revolute joint) and the base's rotations keep their values.
+fn fix_gauges(
+    model: &mut ParameterModel,
+    user_fixed: &[usize],
+    ms: &[Measurement],
+) -> Result<Vec<(String, String)>, CalibrationError> {
+    use super::model::Kind;
+    let mut out = Vec::new();
+    let Some(first) = ms.first() else {
+        return Ok(out);
+    };
+    let pivot = matches!(first, Measurement::Pivot { .. });
+    if pivot {
+        let turning: Vec<String> = model
+            .parameters()
+            .iter()
+            .filter(|p| {
+                !p.fixed
+                    && ((p.kind == Kind::Theta && p.joint == 1)
+                        || matches!(p.kind, Kind::BaseRotation(_)))
+            })
+            .map(|p| p.name.clone())
+            .collect();
+        for name in turning {
+            model.fix(&[name.as_str()])?;
+            let why = format!(
+                "pivot points turn with the arm: turning both changes no offset's length, and the \
+                 offsets are noise at the solution; {name} keeps its value"
+            );
+            out.push((name, why));
+        }
+    }
+    // A length the caller keeps at a non-zero value already sets the scale; d1 does not (it
+    // shifts the whole arm along the first axis, which the scene absorbs).
+    let scaled = user_fixed.iter().any(|&k| {
+        let p = &model.parameters()[k];
+        matches!(p.kind, Kind::A | Kind::D)
+            && p.nominal.abs() > 1e-3
+            && !(p.kind == Kind::D && p.joint == 1)
+    });
+    if (pivot || matches!(first, Measurement::Plane { .. })) && !scaled {
+        // The longest free length (the first of equal ones).
+        let longest = model
+            .parameters()
+            .iter()
+            .filter(|p| !p.fixed && matches!(p.kind, Kind::A | Kind::D))
+            .fold(None::<&super::model::Parameter>, |best, p| match best {
+                Some(b) if b.nominal.abs() >= p.nominal.abs() => Some(b),
+                _ => Some(p),
+            })
+            .map(|p| p.name.clone());
+        if let Some(name) = longest {
+            model.fix(&[name.as_str()])?;
+            let why = format!(
+                "{} measurements see the arm's shape, not its size (scaling every length and the \
+                 scene together leaves them unchanged at the solution); {name}, the longest free \
+                 length, sets the scale (add distance or sphere measurements to measure it)",
+                first.kind()
+            );
+            out.push((name, why));
+        }
+    }
+    Ok(out)
+}
+
+/// At least as many equations as unknowns (the free parameters and the setup's unknowns).
+fn enough_equations(ms: &[Measurement], unknowns: usize) -> Result<(), CalibrationError> {
+    let equations: usize = ms.iter().map(Measurement::rows).sum();
+    if equations < unknowns {
+        let per = ms.first().map_or(6, Measurement::rows);
+        return Err(CalibrationError::TooFewEquations {
+            equations,
+            poses: ms.len(),
+            parameters: unknowns,
+            needed: unknowns.div_ceil(per),
+        });
+    }
+    Ok(())
 }
 
 /// RMS of the position and orientation rows of a weighted residual, in m and rad.
@@ -353,11 +566,12 @@ fn iterate(
     free: &[usize],
     opts: &CalibrationOptions,
     zeta: &mut [f64],
+    s: &mut Unknowns,
 ) -> Result<(Vec<Iteration>, bool, Option<String>), CalibrationError> {
     let mut iterations = Vec::new();
     let mut last_cost = f64::INFINITY;
     for _ in 0..opts.max_iterations {
-        let (phi, res) = stacked(model, zeta, ms, free, opts)?;
+        let (phi, res) = stacked(model, zeta, s, ms, free, opts)?;
         // The weighted residual no longer changes (to 1e-10 relative): the least-squares fixed
         // point is reached even where an ill-conditioned direction keeps the step above the
         // tolerance with rounding noise.
@@ -368,7 +582,12 @@ fn iterate(
         last_cost = cost;
         let (dz, rank, condition) = step(&phi, &res, opts);
         let (position_rms, orientation_rms) = residual_rms(&res, ms, opts);
-        let step_norm = dz.amax();
+        // The largest change of a robot parameter (the unknowns are lengths of the scene).
+        let step_norm = dz.rows(0, free.len()).amax().max(if s.is_empty() {
+            0.0
+        } else {
+            dz.rows(free.len(), s.len()).amax()
+        });
         iterations.push(Iteration {
             position_rms,
             orientation_rms,
@@ -383,6 +602,7 @@ fn iterate(
         for (c, &j) in free.iter().enumerate() {
             zeta[j] += dz[c];
         }
+        s.apply(&dz.as_slice()[free.len()..]);
         if step_norm <= opts.step_tolerance {
             return Ok((iterations, true, None));
         }
@@ -394,35 +614,45 @@ fn iterate(
     Ok((iterations, false, Some(why)))
 }
 
-type Uncertainty = (Vec<Option<f64>>, f64, Vec<(String, String, f64)>);
+/// The uncertainty of an estimate.
+struct Uncertainty {
+    std: Vec<Option<f64>>,
+    unknown_std: Vec<Option<f64>>,
+    sigma2: f64,
+    correlations: Vec<(String, String, f64)>,
+}
 
 /// sigma^2 = |r|^2 / (rows - rank), the covariance `sigma^2 (Phi^T Phi)^+` over the identifiable
 /// subspace (in parameter units), the standard deviations and the correlations above 0.9.
 fn uncertainty(
     model: &ParameterModel,
     zeta: &[f64],
+    s: &Unknowns,
     ms: &[Measurement],
     free: &[usize],
     opts: &CalibrationOptions,
     ident: &Identifiability,
 ) -> Result<Uncertainty, CalibrationError> {
-    let (phi, res) = stacked(model, zeta, ms, free, opts)?;
+    let (phi, res) = stacked(model, zeta, s, ms, free, opts)?;
     let scale = column_scale(&phi);
     let mut scaled = phi.clone();
     for (j, mut c) in scaled.column_iter_mut().enumerate() {
         c /= scale[j];
     }
+    let p = free.len() + s.len();
+    if scaled.nrows() < p {
+        scaled = scaled.resize_vertically(p, 0.0);
+    }
     let svd = scaled.svd(false, true);
     let vt = svd.v_t.as_ref().expect("v_t requested");
     let smax = svd.singular_values.max();
-    let p = free.len();
     let mut cov = DMatrix::zeros(p, p);
     let mut rank = 0;
-    for (k, &s) in svd.singular_values.iter().enumerate() {
-        if s > opts.rank_tolerance * smax && s > 0.0 {
+    for (k, &sv) in svd.singular_values.iter().enumerate() {
+        if sv > opts.rank_tolerance * smax && sv > 0.0 {
             rank += 1;
             let v = vt.row(k).transpose();
-            cov += &v * v.transpose() / (s * s);
+            cov += &v * v.transpose() / (sv * sv);
         }
     }
     let dof = res.len().saturating_sub(rank).max(1);
@@ -438,6 +668,12 @@ fn uncertainty(
             std[j] = Some(cov[(c, c)].max(0.0).sqrt());
         }
     }
+    let unknown_std = (0..s.len())
+        .map(|k| {
+            let c = free.len() + k;
+            ident.unknown_identifiable[k].then(|| cov[(c, c)].max(0.0).sqrt())
+        })
+        .collect();
     let mut correlations = Vec::new();
     for (a, &ja) in free.iter().enumerate() {
         for (b, &jb) in free.iter().enumerate().skip(a + 1) {
@@ -453,5 +689,10 @@ fn uncertainty(
             }
         }
     }
-    Ok((std, sigma2, correlations))
+    Ok(Uncertainty {
+        std,
+        unknown_std,
+        sigma2,
+        correlations,
+    })
 }

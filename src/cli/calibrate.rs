@@ -3,10 +3,12 @@
 
 use super::{CliError, Format};
 use crate::calibration::{
-    CalibrationOptions, CalibrationReport, Criterion, Fit, Identifiability, Measurement,
-    ParameterModel, SimulationOptions, calibrate, fit, parse_measurements, select_poses, simulate,
+    CalibrationOptions, CalibrationReport, Criterion, Fit, Identifiability, JointColumns,
+    Measurement, ParameterModel, ParsedFile, Setup, SetupScene, SimulationOptions, Unidentifiable,
+    calibrate, fit, parse_setup, register_tracker, select_poses, simulate_setup, template,
     write_measurements,
 };
+use crate::kinematics::pose::Pose;
 use serde_json::{Value, json};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -26,11 +28,54 @@ pub enum Select {
 /// `--hayati`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum, Default)]
 pub enum Hayati {
-    /// Plain DH parameters.
-    #[default]
+    /// Plain DH parameters (the lesson: d of parallel axes is ill-defined).
     Off,
-    /// Hayati's beta for nearly parallel consecutive axes.
+    /// Hayati's beta for parallel consecutive axes (the default).
+    #[default]
     Auto,
+}
+
+/// `--setup`: how the measurements were taken.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum SetupArg {
+    /// Full tool poses in the robot's world frame.
+    Pose,
+    /// Tool points in the robot's world frame.
+    Position,
+    /// Tool points in a tracker's frame of unknown pose (estimated).
+    Tracker,
+    /// Pairs of joint vectors a known distance apart: `qa.., qb.., distance_m`.
+    Distance,
+    /// The tool held on fixed unknown points: `q..` in groups `# point K`.
+    Pivot,
+    /// A probe touching planes of unknown pose: `q..` (groups `# plane K`).
+    Plane,
+    /// A probe touching spheres of known radius: `q..` (groups `# sphere K`).
+    Sphere,
+}
+
+impl SetupArg {
+    fn setup(self) -> Setup {
+        match self {
+            SetupArg::Pose => Setup::Pose,
+            SetupArg::Position => Setup::Position,
+            SetupArg::Tracker => Setup::Tracker,
+            SetupArg::Distance => Setup::Distance,
+            SetupArg::Pivot => Setup::Pivot,
+            SetupArg::Plane => Setup::Plane,
+            SetupArg::Sphere => Setup::Sphere,
+        }
+    }
+}
+
+/// `--unidentifiable`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum, Default)]
+pub enum UnidentifiableArg {
+    /// Keep one parameter of each unidentifiable combination at its nominal value.
+    #[default]
+    Nominal,
+    /// Estimate them all by minimum-norm steps (they may drift to absurd values).
+    MinimumNorm,
 }
 
 /// Arguments of `armlab calibrate`.
@@ -42,13 +87,33 @@ pub struct CalibrateArgs {
     /// robot with several, the command works on the chain from the root to it alone.
     #[arg(long)]
     pub ee: Option<String>,
-    /// Measurement file: per line the joint values, then 3 (position) or 16 (4x4 pose) numbers.
+    /// Measurement file, plain (SI units, see `--setup`) or a headered CSV (joint names and
+    /// units in the header).
     #[arg(
         long,
-        required_unless_present = "simulate",
+        required_unless_present_any = ["simulate", "template"],
         conflicts_with = "simulate"
     )]
     pub measurements: Option<PathBuf>,
+    /// How the measurements were taken (default: full poses or positions, as the file says).
+    #[arg(long, value_enum)]
+    pub setup: Option<SetupArg>,
+    /// Write an annotated template of a measurement file for the setup (headered CSV, degrees
+    /// and millimetres, example rows from the nominal model) and exit.
+    #[arg(long, conflicts_with_all = ["measurements", "simulate"])]
+    pub template: Option<PathBuf>,
+    /// The sphere setup's contact radius: the sphere's radius plus the probe ball's (mm).
+    #[arg(long)]
+    pub sphere_radius_mm: Option<f64>,
+    /// The simulated distance setup's artefact length (mm).
+    #[arg(long, default_value_t = 300.0)]
+    pub distance_mm: f64,
+    /// Simulated pivot points, planes or spheres.
+    #[arg(long, default_value_t = 3, value_parser = super::count)]
+    pub groups: usize,
+    /// What happens to parameters the measurements cannot identify.
+    #[arg(long, value_enum, default_value_t)]
+    pub unidentifiable: UnidentifiableArg,
     /// Held-out measurements, same format: errors before and after on poses not fitted.
     #[arg(long)]
     pub validate: Option<PathBuf>,
@@ -61,12 +126,15 @@ pub struct CalibrateArgs {
     /// Also estimate the tool transform (6 parameters).
     #[arg(long)]
     pub with_tool: bool,
-    /// Hayati's parameter for nearly parallel axes.
+    /// Hayati's parameter for parallel consecutive axes (auto: on every such pair).
     #[arg(long, value_enum, default_value_t)]
     pub hayati: Hayati,
-    /// Write the calibrated robot as a model file.
+    /// Write the calibrated robot: a TOML model file, or URDF when the name ends in `.urdf`.
     #[arg(long)]
     pub write_model: Option<PathBuf>,
+    /// Write the calibrated robot as URDF (joint origins updated; FK equal to the TOML's).
+    #[arg(long)]
+    pub write_urdf: Option<PathBuf>,
     /// Calibrate a simulated robot (the model plus seeded deviations) instead.
     #[arg(long)]
     pub simulate: bool,
@@ -113,14 +181,21 @@ pub struct CalibrateArgs {
     pub format: Format,
 }
 
-fn read(path: &Path, dof: usize) -> Result<Vec<Measurement>, CliError> {
+fn read(
+    path: &Path,
+    joints: &JointColumns,
+    setup: Setup,
+    radius: Option<f64>,
+) -> Result<ParsedFile, CliError> {
     let text = crate::input::read_data_text(path).map_err(|e| CliError::BadTarget {
         source_name: path.display().to_string(),
         reason: e.to_string(),
     })?;
-    parse_measurements(&text, &path.display().to_string(), dof).map_err(|e| CliError::BadTarget {
-        source_name: e.source_name.clone(),
-        reason: format!("line {}: {}", e.line, e.problem),
+    parse_setup(&text, &path.display().to_string(), joints, setup, radius).map_err(|e| {
+        CliError::BadTarget {
+            source_name: e.source_name.clone(),
+            reason: format!("line {}: {}", e.line, e.problem),
+        }
     })
 }
 
@@ -131,49 +206,121 @@ fn calibration_error(e: crate::calibration::CalibrationError) -> CliError {
     }
 }
 
-/// The data of a run: fit measurements, held-out ones, the truth when simulated.
-type Data = (Vec<Measurement>, Option<Vec<Measurement>>, Option<Vec<f64>>);
+/// The data of a run.
+struct Data {
+    /// Measurements for the fit.
+    ms: Vec<Measurement>,
+    /// Held-out measurements.
+    validation: Option<Vec<Measurement>>,
+    /// The true zeta when simulated.
+    truth: Option<Vec<f64>>,
+    /// Quirks of the files accepted with a warning.
+    warnings: Vec<String>,
+}
+
+/// The setup of a run: `--setup`, or full poses / positions as the file says.
+fn setup_of(args: &CalibrateArgs) -> Setup {
+    args.setup.map_or(Setup::Pose, SetupArg::setup)
+}
 
 fn data(
     args: &CalibrateArgs,
     model: &ParameterModel,
     opts: &CalibrationOptions,
 ) -> Result<Data, CliError> {
-    let dof = model.nominal_robot().dof();
+    let setup = setup_of(args);
+    let radius = args.sphere_radius_mm.map(|r| r * 1e-3);
+    if radius.is_some_and(|r| !(r > 0.0 && r.is_finite())) {
+        return Err(CliError::Usage("--sphere-radius-mm must be positive"));
+    }
     if !args.simulate {
+        return measured(args, model, setup, radius);
+    }
+    simulated(args, model, setup, radius, opts)
+}
+
+/// The data of a run from `--measurements` (and `--validate`).
+fn measured(
+    args: &CalibrateArgs,
+    model: &ParameterModel,
+    setup: Setup,
+    radius: Option<f64>,
+) -> Result<Data, CliError> {
+    let joints = JointColumns::of(model.nominal_robot());
+    {
         let path = args
             .measurements
             .as_ref()
             .ok_or(CliError::Usage("give --measurements FILE, or --simulate"))?;
-        let ms = read(path, dof)?;
-        let val = args.validate.as_ref().map(|p| read(p, dof)).transpose()?;
-        return Ok((ms, val, None));
+        let fit = read(path, &joints, setup, radius)?;
+        let mut warnings: Vec<String> = fit
+            .warnings
+            .iter()
+            .map(|w| format!("{}: {w}", path.display()))
+            .collect();
+        let validation = match &args.validate {
+            Some(p) => {
+                let v = read(p, &joints, setup, radius)?;
+                warnings.extend(v.warnings.iter().map(|w| format!("{}: {w}", p.display())));
+                Some(v.measurements)
+            }
+            None => None,
+        };
+        Ok(Data {
+            ms: fit.measurements,
+            validation,
+            truth: None,
+            warnings,
+        })
     }
+}
+
+/// The data of a `--simulate` run: a "real" arm, its measurements and held-out ones.
+fn simulated(
+    args: &CalibrateArgs,
+    model: &ParameterModel,
+    setup: Setup,
+    radius: Option<f64>,
+    opts: &CalibrationOptions,
+) -> Result<Data, CliError> {
     if args.poses == 0 || args.poses > 100_000 {
         return Err(CliError::Usage("--poses must be between 1 and 100000"));
     }
-    let candidates = match args.select {
+    let select = if matches!(setup, Setup::Pose | Setup::Position) {
+        args.select
+    } else {
+        Select::Random
+    };
+    let candidates = match select {
         Select::Random => args.poses,
         _ => 10 * args.poses,
     };
-    let sim = simulate(
-        model,
-        &SimulationOptions {
-            poses: candidates,
-            validation_poses: args.poses,
-            tolerance_mm: args.tolerance_mm,
-            tolerance_deg: args.tolerance_deg,
-            noise_mm: args.noise_mm,
-            noise_mrad: args.noise_mrad,
-            position_only: args.position_only,
-            seed: args.seed,
+    let sim_opts = SimulationOptions {
+        poses: candidates,
+        validation_poses: args.poses,
+        tolerance_mm: args.tolerance_mm,
+        tolerance_deg: args.tolerance_deg,
+        noise_mm: args.noise_mm,
+        noise_mrad: args.noise_mrad,
+        position_only: args.position_only || setup == Setup::Position,
+        seed: args.seed,
+    };
+    let scene = SetupScene {
+        setup: if args.position_only && setup == Setup::Pose {
+            Setup::Position
+        } else {
+            setup
         },
-    )
-    .map_err(calibration_error)?;
-    let ms = match args.select {
+        groups: args.groups,
+        distance: args.distance_mm * 1e-3,
+        radius: radius.unwrap_or(0.025),
+        ..SetupScene::default()
+    };
+    let sim = simulate_setup(model, &scene, &sim_opts).map_err(calibration_error)?;
+    let ms = match select {
         Select::Random => sim.measurements,
         Select::O1 | Select::O4 => {
-            let c = if args.select == Select::O1 {
+            let c = if select == Select::O1 {
                 Criterion::O1
             } else {
                 Criterion::O4
@@ -189,21 +336,34 @@ fn data(
     if let Some(path) = &args.write_measurements {
         std::fs::write(path, write_measurements(&ms))?;
     }
-    Ok((ms, Some(sim.validation), Some(sim.truth)))
+    Ok(Data {
+        ms,
+        validation: Some(sim.validation),
+        truth: Some(sim.truth),
+        warnings: Vec::new(),
+    })
 }
 
-/// `armlab calibrate`.
-pub(super) fn run(args: &CalibrateArgs, out: &mut dyn Write) -> Result<(), CliError> {
-    let (robot, _) = super::arm_robot(super::load_model(&args.model)?, args.ee.as_deref())?;
-    let mut model = ParameterModel::new(&robot).map_err(calibration_error)?;
-    if args.with_base {
+/// The calibration model of `robot` with the run's options (the base estimated last, so that a
+/// tracker's six parameters follow the others).
+fn build_model(
+    args: &CalibrateArgs,
+    robot: &crate::kinematics::Robot,
+    with_base: bool,
+) -> Result<ParameterModel, CliError> {
+    let mut model = ParameterModel::new(robot).map_err(calibration_error)?;
+    if args.with_base && !with_base {
         model = model.with_base();
     }
     if args.with_tool {
         model = model.with_tool();
     }
-    if args.hayati == Hayati::Auto {
+    if args.hayati == Hayati::Auto && model.convention() == crate::kinematics::Convention::Standard
+    {
         model = model.with_hayati().map_err(calibration_error)?;
+    }
+    if with_base {
+        model = model.with_base();
     }
     if let Some(list) = &args.fix {
         let names: Vec<&str> = list
@@ -213,55 +373,177 @@ pub(super) fn run(args: &CalibrateArgs, out: &mut dyn Write) -> Result<(), CliEr
             .collect();
         model.fix(&names).map_err(calibration_error)?;
     }
-    let opts = CalibrationOptions {
+    Ok(model)
+}
+
+/// The tracker setup: the model whose base starts at the registered tracker pose (its six base
+/// parameters estimated), the truth extended by the true corrections when simulated, and the
+/// registered `tracker_from_world`.
+fn tracker_model(
+    args: &CalibrateArgs,
+    robot: &crate::kinematics::Robot,
+    model: &ParameterModel,
+    data: &mut Data,
+) -> Result<(ParameterModel, Pose), CliError> {
+    let registered =
+        register_tracker(model, &model.nominal(), &data.ms).map_err(calibration_error)?;
+    let mut moved = robot.clone();
+    moved.base = registered * robot.base;
+    let tracker = build_model(args, &moved, true)?;
+    if let Some(t) = &mut data.truth {
+        // The true base correction: Trans(t) Rot(r) registered = tracker_from_world (true).
+        let truth = SetupScene::default().world_from_tracker.inverse() * registered.inverse();
+        t.extend(truth.translation.vector.iter());
+        t.extend(truth.rotation.scaled_axis().iter());
+    }
+    Ok((tracker, registered))
+}
+
+/// `armlab calibrate`.
+pub(super) fn run(args: &CalibrateArgs, out: &mut dyn Write) -> Result<(), CliError> {
+    let (robot, _) = super::arm_robot(super::load_model(&args.model)?, args.ee.as_deref())?;
+    let base_model = build_model(args, &robot, false)?;
+    if let Some(path) = &args.template {
+        return write_template(args, &base_model, path, out);
+    }
+    let mut opts = CalibrationOptions {
         position_sigma: (args.noise_mm * 1e-3).max(1e-9),
         orientation_sigma: (args.noise_mrad * 1e-3).max(1e-9),
         ..CalibrationOptions::default()
     };
-    let (ms, validation, truth) = data(args, &model, &opts)?;
-    let report = calibrate(&model, &ms, &opts).map_err(calibration_error)?;
-    let val = validation
+    if args.unidentifiable == UnidentifiableArg::MinimumNorm {
+        opts.unidentifiable = Unidentifiable::MinimumNorm;
+    }
+    let mut data = data(args, &base_model, &opts)?;
+    let setup = setup_of(args);
+    let (model, tracker) = if setup == Setup::Tracker {
+        let (m, t) = tracker_model(args, &robot, &base_model, &mut data)?;
+        (m, Some(t))
+    } else {
+        (base_model, None)
+    };
+    let report = calibrate(&model, &data.ms, &opts).map_err(calibration_error)?;
+    let val = data
+        .validation
+        .as_ref()
         .map(|v| -> Result<(Fit, Fit), CliError> {
-            let before = fit(&model, &model.nominal(), &v).map_err(calibration_error)?;
-            let after = fit(&model, &report.estimate, &v).map_err(calibration_error)?;
+            let before = fit(&model, &model.nominal(), v).map_err(calibration_error)?;
+            let after = fit(&model, &report.estimate, v).map_err(calibration_error)?;
             Ok((before, after))
         })
         .transpose()?;
-    if let Some(path) = &args.write_model {
-        let r = model
-            .robot_with(&report.estimate)
-            .map_err(calibration_error)?;
-        let text = crate::model_file::to_toml(&r).ok_or(CliError::Usage(
-            "the calibrated robot cannot be written as a DH model file",
-        ))?;
-        std::fs::write(path, text)?;
+    let mut calibrated = model
+        .robot_with(&report.estimate)
+        .map_err(calibration_error)?;
+    let tracker_from_base = tracker.map(|_| calibrated.base);
+    if tracker.is_some() {
+        // The tracker's pose is the cell's, not the robot's: the written model keeps its base.
+        calibrated.base = robot.base;
     }
+    write_models(args, &calibrated)?;
     if let Some(path) = &args.accuracy_map {
-        accuracy_figures(args, &model, &report.estimate, truth.as_deref(), path)?;
+        accuracy_figures(args, &model, &report.estimate, data.truth.as_deref(), path)?;
     }
+    let kind = data.ms.first().map_or("pose", Measurement::kind);
+    let ctx = Context {
+        setup: if setup == Setup::Pose && kind == "position" {
+            Setup::Position
+        } else {
+            setup
+        },
+        hayati_rows: model.hayati_rows(),
+        tracker_from_base,
+        warnings: &data.warnings,
+        measurements: data.ms.len(),
+    };
     match args.format {
         Format::Json => {
-            let mut v = to_json(&report, val.as_ref(), truth.as_deref());
-            v["hayati_rows"] = json!(model.hayati_rows());
+            let v = to_json(&report, val.as_ref(), data.truth.as_deref(), &ctx);
             serde_json::to_writer_pretty(&mut *out, &v).map_err(std::io::Error::from)?;
             writeln!(out)?;
         }
-        Format::Text => {
-            let rows = model.hayati_rows();
-            if !rows.is_empty() {
-                let list: Vec<String> = rows
-                    .iter()
-                    .map(|r| format!("beta{r} instead of d{r}"))
-                    .collect();
-                writeln!(
-                    out,
-                    "Hayati's parameter (parallel axes): {}",
-                    list.join(", ")
-                )?;
-            }
-            write_text(out, &report, val.as_ref(), truth.as_deref())?
+        Format::Text => write_text(out, &report, val.as_ref(), data.truth.as_deref(), &ctx)?,
+    }
+    Ok(())
+}
+
+/// What the report says besides the calibration itself.
+struct Context<'a> {
+    setup: Setup,
+    hayati_rows: Vec<usize>,
+    tracker_from_base: Option<Pose>,
+    warnings: &'a [String],
+    measurements: usize,
+}
+
+/// `--write-model` (TOML, or URDF by the extension) and `--write-urdf`.
+fn write_models(
+    args: &CalibrateArgs,
+    calibrated: &crate::kinematics::Robot,
+) -> Result<(), CliError> {
+    let urdf = |path: &Path| -> Result<(), CliError> {
+        let text = crate::urdf::to_urdf(calibrated).map_err(|e| CliError::BadTarget {
+            source_name: path.display().to_string(),
+            reason: e.to_string(),
+        })?;
+        std::fs::write(path, text)?;
+        Ok(())
+    };
+    if let Some(path) = &args.write_model {
+        if path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("urdf"))
+        {
+            urdf(path)?;
+        } else {
+            let text = crate::model_file::to_toml(calibrated).ok_or(CliError::Usage(
+                "the calibrated robot cannot be written as a DH model file",
+            ))?;
+            std::fs::write(path, text)?;
         }
     }
+    if let Some(path) = &args.write_urdf {
+        urdf(path)?;
+    }
+    Ok(())
+}
+
+/// `--template FILE`: an annotated measurement file for the setup, with example rows from the
+/// nominal model (simulated without deviations or noise).
+fn write_template(
+    args: &CalibrateArgs,
+    model: &ParameterModel,
+    path: &Path,
+    out: &mut dyn Write,
+) -> Result<(), CliError> {
+    let setup = setup_of(args);
+    let scene = SetupScene {
+        setup,
+        groups: 2,
+        distance: args.distance_mm * 1e-3,
+        radius: args.sphere_radius_mm.map_or(0.025, |r| r * 1e-3),
+        world_from_tracker: Pose::identity(),
+    };
+    let opts = SimulationOptions {
+        poses: 4,
+        validation_poses: 0,
+        tolerance_mm: 0.0,
+        tolerance_deg: 0.0,
+        noise_mm: 0.0,
+        noise_mrad: 0.0,
+        position_only: false,
+        seed: args.seed,
+    };
+    let sim = simulate_setup(model, &scene, &opts).map_err(calibration_error)?;
+    let joints = JointColumns::of(model.nominal_robot());
+    std::fs::write(path, template(&joints, setup, &sim.measurements))?;
+    writeln!(
+        out,
+        "wrote {} (setup {}: {} example rows from the nominal model; replace them with yours)",
+        path.display(),
+        setup.name(),
+        sim.measurements.len()
+    )?;
     Ok(())
 }
 
@@ -334,7 +616,36 @@ fn fit_json(f: &Fit) -> Value {
     })
 }
 
-fn to_json(r: &CalibrationReport, val: Option<&(Fit, Fit)>, truth: Option<&[f64]>) -> Value {
+/// The setup's unknowns as JSON objects: name, estimate and standard deviation.
+fn unknowns_json(r: &CalibrationReport) -> Vec<Value> {
+    let names = r.unknowns.names();
+    r.unknowns
+        .values()
+        .iter()
+        .zip(&names)
+        .zip(&r.unknown_std)
+        .map(|((v, n), s)| json!({"name": n, "estimate": v, "std": s}))
+        .collect()
+}
+
+fn identifiability_json(n: &Identifiability) -> Value {
+    let o = &n.observability;
+    json!({
+        "parameter_count": n.parameter_count,
+        "rank": n.rank,
+        "rank_threshold": n.rank_threshold,
+        "unidentifiable": n.unidentifiable,
+        "combinations": n.combinations,
+        "observability": {"O1": o.o1, "O2": o.o2, "O3": o.o3, "O4": o.o4},
+    })
+}
+
+fn to_json(
+    r: &CalibrationReport,
+    val: Option<&(Fit, Fit)>,
+    truth: Option<&[f64]>,
+    ctx: &Context,
+) -> Value {
     let params: Vec<Value> = r
         .parameters
         .iter()
@@ -350,21 +661,36 @@ fn to_json(r: &CalibrationReport, val: Option<&(Fit, Fit)>, truth: Option<&[f64]
                 "identifiable": r.at_estimate.identifiable[k],
                 "fixed": p.fixed,
             });
+            if let Some((_, why)) = r.auto_fixed.iter().find(|(n, _)| *n == p.name) {
+                o["fixed_because"] = json!(why);
+            }
             if let Some(t) = truth {
                 o["true"] = json!(t[k]);
             }
             o
         })
         .collect();
-    let n = &r.nominal;
-    let o = &n.observability;
+    let e = &r.at_estimate;
+    let o = &e.observability;
     json!({
+        "setup": ctx.setup.name(),
+        "setup_cannot_see": ctx.setup.blind_spots(),
+        "warnings": ctx.warnings,
+        "hayati_rows": ctx.hayati_rows,
         "parameters": params,
-        "parameter_count": n.parameter_count,
-        "rank": n.rank,
-        "rank_threshold": n.rank_threshold,
-        "unidentifiable": n.unidentifiable,
-        "combinations": n.combinations,
+        "unknowns": unknowns_json(r),
+        "identifiability_at": "estimate",
+        "parameter_count": e.parameter_count,
+        "rank": e.rank,
+        "rank_threshold": e.rank_threshold,
+        "unidentifiable": e.unidentifiable,
+        "combinations": e.combinations,
+        "fixed_unidentifiable": r.auto_fixed.iter().map(|(n, why)| json!({"name": n, "because": why})).collect::<Vec<_>>(),
+        "nominal_identifiability": identifiability_json(&r.nominal),
+        "tracker_from_base": ctx.tracker_from_base.map(|p| json!({
+            "translation": p.translation.vector.as_slice(),
+            "rotation_vector": p.rotation.scaled_axis().as_slice(),
+        })),
         "correlations": r.correlations.iter().map(|(a, b, c)| json!({"parameters": [a, b], "correlation": c})).collect::<Vec<_>>(),
         "iterations": r.iterations.iter().map(|i| json!({
             "position_rms": i.position_rms,
@@ -398,11 +724,15 @@ fn fit_text(f: &Fit) -> String {
     )
 }
 
-fn write_identifiability(out: &mut dyn Write, n: &Identifiability) -> std::io::Result<()> {
+fn write_identifiability(
+    out: &mut dyn Write,
+    n: &Identifiability,
+    at: &str,
+) -> std::io::Result<()> {
     writeln!(
         out,
-        "identifiability at the nominal parameters: rank {} of {} (singular values below {:e} of \
-         the largest count as zero)",
+        "identifiability at {at}: rank {} of {} (singular values below {:e} of the largest count \
+         as zero)",
         n.rank, n.parameter_count, n.rank_threshold
     )?;
     for c in &n.combinations {
@@ -411,17 +741,62 @@ fn write_identifiability(out: &mut dyn Write, n: &Identifiability) -> std::io::R
     let o = n.observability;
     writeln!(
         out,
-        "observability: O1 {:.3e}, O2 {:.3e}, O3 {:.3e}, O4 {:.3e}",
+        "  observability: O1 {:.3e}, O2 {:.3e}, O3 {:.3e}, O4 {:.3e}",
         o.o1, o.o2, o.o3, o.o4
     )
 }
 
+/// The setup, the warnings, the Hayati rows and what was kept at its nominal value and why.
+fn write_preamble(
+    out: &mut dyn Write,
+    r: &CalibrationReport,
+    ctx: &Context,
+) -> std::io::Result<()> {
+    for w in ctx.warnings {
+        writeln!(out, "warning: {w}")?;
+    }
+    writeln!(
+        out,
+        "setup: {} ({} measurements); what it cannot see: {}",
+        ctx.setup.name(),
+        ctx.measurements,
+        ctx.setup.blind_spots()
+    )?;
+    if !ctx.hayati_rows.is_empty() {
+        let list: Vec<String> = ctx
+            .hayati_rows
+            .iter()
+            .map(|r| format!("beta{r} instead of d{r}"))
+            .collect();
+        writeln!(
+            out,
+            "Hayati's parameter (parallel axes): {} (d kept at its nominal value: along parallel \
+             axes plain DH cannot place the common normal)",
+            list.join(", ")
+        )?;
+    }
+    write_identifiability(
+        out,
+        &r.nominal,
+        "the nominal parameters (before the iterations)",
+    )?;
+    for (name, why) in &r.auto_fixed {
+        writeln!(
+            out,
+            "kept at its nominal value: {name}, because {why} (--unidentifiable minimum-norm \
+             estimates it anyway)"
+        )?;
+    }
+    Ok(())
+}
 fn write_text(
     out: &mut dyn Write,
     r: &CalibrationReport,
     val: Option<&(Fit, Fit)>,
     truth: Option<&[f64]>,
+    ctx: &Context,
 ) -> std::io::Result<()> {
+    write_preamble(out, r, ctx)?;
     writeln!(
         out,
         "iteration  position rms [mm]  orientation rms [mrad]  step      condition  rank"
@@ -441,7 +816,46 @@ fn write_text(
         None => writeln!(out, "converged")?,
         Some(why) => writeln!(out, "not converged: {why}")?,
     }
-    write_identifiability(out, &r.nominal)?;
+    write_identifiability(
+        out,
+        &r.at_estimate,
+        "the estimate (the table's flags, standard deviations and correlations)",
+    )?;
+    write_table(out, r, truth)?;
+    write_unknowns(out, r)?;
+    if let Some(p) = ctx.tracker_from_base {
+        let t = p.translation.vector * 1e3;
+        let a = p.rotation.scaled_axis();
+        writeln!(
+            out,
+            "tracker_from_base: translation ({:.4}, {:.4}, {:.4}) mm, rotation vector ({:.5}, \
+             {:.5}, {:.5}) deg",
+            t[0],
+            t[1],
+            t[2],
+            a[0].to_degrees(),
+            a[1].to_degrees(),
+            a[2].to_degrees()
+        )?;
+    }
+    for (a, b, c) in &r.correlations {
+        writeln!(out, "correlated: {a} and {b} ({c:+.4})")?;
+    }
+    writeln!(out, "fit: before {}", fit_text(&r.before))?;
+    writeln!(out, "fit: after  {}", fit_text(&r.after))?;
+    if let Some((b, a)) = val {
+        writeln!(out, "validation: before {}", fit_text(b))?;
+        writeln!(out, "validation: after  {}", fit_text(a))?;
+    }
+    Ok(())
+}
+
+/// The parameter table: nominal, true (simulated), estimate, standard deviation, flag.
+fn write_table(
+    out: &mut dyn Write,
+    r: &CalibrationReport,
+    truth: Option<&[f64]>,
+) -> std::io::Result<()> {
     writeln!(
         out,
         "{:<9} {:>12} {:>12} {:>12} {:>10}  unit  identifiable",
@@ -459,7 +873,9 @@ fn write_text(
         };
         let t = truth.map_or(String::new(), |t| format!("{:.5}", t[k] * scale));
         let std = r.std[k].map_or("-".into(), |s| format!("{:.2e}", s * scale));
-        let flag = if p.fixed {
+        let flag = if r.auto_fixed.iter().any(|(n, _)| *n == p.name) {
+            "NO (kept nominal)"
+        } else if p.fixed {
             "fixed"
         } else if r.at_estimate.identifiable[k] {
             "yes"
@@ -476,14 +892,44 @@ fn write_text(
             std
         )?;
     }
-    for (a, b, c) in &r.correlations {
-        writeln!(out, "correlated: {a} and {b} ({c:+.4})")?;
+    Ok(())
+}
+
+/// The setup's unknowns (pivot points, planes, sphere centres) in mm (a plane's tilts a, b
+/// without unit).
+fn write_unknowns(out: &mut dyn Write, r: &CalibrationReport) -> std::io::Result<()> {
+    let u = &r.unknowns;
+    for (k, c) in u.points.iter().enumerate() {
+        writeln!(
+            out,
+            "point {}: ({:.4}, {:.4}, {:.4}) mm",
+            k + 1,
+            c[0] * 1e3,
+            c[1] * 1e3,
+            c[2] * 1e3
+        )?;
     }
-    writeln!(out, "fit: before {}", fit_text(&r.before))?;
-    writeln!(out, "fit: after  {}", fit_text(&r.after))?;
-    if let Some((b, a)) = val {
-        writeln!(out, "validation: before {}", fit_text(b))?;
-        writeln!(out, "validation: after  {}", fit_text(a))?;
+    for (k, pl) in u.planes.iter().enumerate() {
+        let n = pl.normal();
+        writeln!(
+            out,
+            "plane {}: normal ({:.6}, {:.6}, {:.6}), offset {:.4} mm",
+            k + 1,
+            n[0],
+            n[1],
+            n[2],
+            pl.h * 1e3
+        )?;
+    }
+    for (k, c) in u.spheres.iter().enumerate() {
+        writeln!(
+            out,
+            "sphere {}: centre ({:.4}, {:.4}, {:.4}) mm",
+            k + 1,
+            c[0] * 1e3,
+            c[1] * 1e3,
+            c[2] * 1e3
+        )?;
     }
     Ok(())
 }

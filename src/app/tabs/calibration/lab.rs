@@ -4,8 +4,8 @@
 
 use crate::calibration::{
     AccuracyMap, CalibrationOptions, CalibrationReport, Criterion, Fit, Measurement,
-    ParameterModel, SimulationOptions, accuracy_map, calibrate, fit, parse_measurements,
-    select_poses, simulate,
+    ParameterModel, SimulationOptions, Unidentifiable, accuracy_map, calibrate, fit,
+    parse_measurements, select_poses, simulate,
 };
 use crate::kinematics::Robot;
 use crate::kinematics::pose::Pose;
@@ -42,8 +42,11 @@ pub struct LabSettings {
     pub position_only: bool,
     /// Pose choice.
     pub choice: PoseChoice,
-    /// Hayati's beta on parallel axes.
+    /// Hayati's beta on parallel axes (the default).
     pub hayati: bool,
+    /// Estimate unidentifiable parameters by minimum-norm steps instead of keeping them at
+    /// their nominal values (the parallel-axes lesson shows what that does).
+    pub minimum_norm: bool,
     /// Seed of the simulation.
     pub seed: u64,
 }
@@ -58,7 +61,8 @@ impl Default for LabSettings {
             noise_mrad: 0.05,
             position_only: false,
             choice: PoseChoice::Random,
-            hayati: false,
+            hayati: true,
+            minimum_norm: false,
             seed: 1,
         }
     }
@@ -109,6 +113,11 @@ fn options(s: &LabSettings) -> CalibrationOptions {
     CalibrationOptions {
         position_sigma: (s.noise_mm * 1e-3).max(1e-9),
         orientation_sigma: (s.noise_mrad * 1e-3).max(1e-9),
+        unidentifiable: if s.minimum_norm {
+            Unidentifiable::MinimumNorm
+        } else {
+            Unidentifiable::Nominal
+        },
         ..CalibrationOptions::default()
     }
 }
@@ -340,6 +349,8 @@ impl CalibrationLab {
         self.settings = LabSettings {
             poses: 60,
             hayati,
+            // Plain DH with every parameter estimated: what the default protects against.
+            minimum_norm: !hayati,
             ..LabSettings::default()
         };
         self.run_simulated(robot, q_now);

@@ -186,6 +186,14 @@ fn settings(lab: &mut CalibrationLab, ui: &mut egui::Ui) {
         }
         ui.checkbox(&mut s.position_only, "position only");
         ui.checkbox(&mut s.hayati, "Hayati's beta on parallel axes");
+        ui.checkbox(
+            &mut s.minimum_norm,
+            "estimate unidentifiable parameters too",
+        )
+        .on_hover_text(
+            "Off (the default): one parameter of each combination the measurements cannot \
+                 see keeps its nominal value. On: minimum-norm steps, which may drift far.",
+        );
     });
 }
 
