@@ -12,8 +12,8 @@
 //! **Headered CSV** (what a cell's logger writes): the first line that is not all numbers names
 //! the columns, each with an optional unit as `name [unit]`, `name (unit)` or `name_unit`
 //! (`rad`, `deg`, `m`, `mm`):
-//! - joints by the robot's joint names or `q1..qn` (`_a` / `_b` after the name for the two
-//!   joint vectors of a distance);
+//! - joints by the robot's joint names, or numbered `q1`, `j1`, `joint1`, `joint_1`, `axis1`,
+//!   `a1` (`_a` / `_b` after the name for the two joint vectors of a distance);
 //! - the tool point `x, y, z`;
 //! - an orientation as a quaternion `qw, qx, qy, qz`, as roll-pitch-yaw `roll, pitch, yaw`
 //!   (`Rz(yaw) Ry(pitch) Rx(roll)`, (2.21)), as a rotation vector `rx, ry, rz`, or the 16
@@ -255,9 +255,7 @@ impl Parser<'_> {
                 self.err(line, format!("radius {rest:?} is not a positive number"))
             })?;
             self.radius = Some(v);
-        } else if key == self.setup.name()
-            && matches!(self.setup, Setup::Pivot | Setup::Plane | Setup::Sphere)
-        {
+        } else if Some(key.as_str()) == group_word(self.setup) {
             self.group = Some(self.group_index(&rest));
         }
         Ok(())
@@ -391,6 +389,16 @@ impl Parser<'_> {
                 }
             }
         })
+    }
+}
+
+/// The word that starts a group of a setup's lines: `# point K`, `# plane K`, `# sphere K`.
+fn group_word(setup: Setup) -> Option<&'static str> {
+    match setup {
+        Setup::Pivot => Some("point"),
+        Setup::Plane => Some("plane"),
+        Setup::Sphere => Some("sphere"),
+        _ => None,
     }
 }
 
@@ -573,7 +581,10 @@ impl Parser<'_> {
             .iter()
             .position(|n| n.to_ascii_lowercase() == name)
             .or_else(|| {
-                let k: usize = name.strip_prefix('q')?.parse().ok()?;
+                let digits = ["joint_", "joint", "axis_", "axis", "q", "j", "a"]
+                    .iter()
+                    .find_map(|p| name.strip_prefix(p))?;
+                let k: usize = digits.parse().ok()?;
                 (1..=self.joints.dof()).contains(&k).then(|| k - 1)
             })
     }

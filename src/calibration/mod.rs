@@ -17,6 +17,8 @@
 //!   ([`Unknowns`]) and what it cannot see.
 //! - [`select_poses`]: l poses out of candidates maximising O1 or O4 (DETMAX-style exchange);
 //!   [`parse_measurements`] / [`write_measurements`]: the measurement file format.
+//! - [`correct_targets`]: IK on the calibrated arm in every posture of the nominal closed form,
+//!   and the poses to send a controller that runs the nominal model (target filtering).
 //! - [`accuracy_map`]: the position deviation between two models over the top view of the
 //!   workspace (Sect. 2.10.1).
 //! - [`simulate`]: a "real" robot (the nominal plus seeded deviations) and measurements with
@@ -26,6 +28,7 @@
 //! `R_measured R_model^T = Rot(delta phi)` (world frame).
 
 mod accuracy;
+mod correct;
 mod file;
 mod identify;
 mod model;
@@ -35,6 +38,7 @@ mod simulate;
 mod solve;
 
 pub use accuracy::{AccuracyMap, accuracy_map};
+pub use correct::{TargetCorrection, correct_targets};
 pub use file::{
     JointColumns, MeasurementFileError, ParsedFile, parse_measurements, parse_setup, template,
     write_measurements,

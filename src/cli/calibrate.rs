@@ -4,9 +4,9 @@
 use super::{CliError, Format};
 use crate::calibration::{
     CalibrationOptions, CalibrationReport, Criterion, Fit, Identifiability, JointColumns,
-    Measurement, ParameterModel, ParsedFile, Setup, SetupScene, SimulationOptions, Unidentifiable,
-    calibrate, fit, parse_setup, register_tracker, select_poses, simulate_setup, template,
-    write_measurements,
+    Measurement, ParameterModel, ParsedFile, Setup, SetupScene, SimulationOptions,
+    TargetCorrection, Unidentifiable, calibrate, correct_targets, fit, parse_setup,
+    register_tracker, select_poses, simulate_setup, template, write_measurements,
 };
 use crate::kinematics::pose::Pose;
 use serde_json::{Value, json};
@@ -135,6 +135,15 @@ pub struct CalibrateArgs {
     /// Write the calibrated robot as URDF (joint origins updated; FK equal to the TOML's).
     #[arg(long)]
     pub write_urdf: Option<PathBuf>,
+    /// Desired tool poses (per line 16 numbers of the 4x4 world_from_tool, or a headered CSV
+    /// with x, y, z and a quaternion, roll-pitch-yaw or rotation vector): for each pose and
+    /// each posture of the nominal closed form, the joint vector that puts the calibrated arm's
+    /// tool there, and the pose to send a controller that runs the nominal model.
+    #[arg(long)]
+    pub correct_targets: Option<PathBuf>,
+    /// Where `--correct-targets` writes its table (CSV; default: the report only).
+    #[arg(long, requires = "correct_targets")]
+    pub out: Option<PathBuf>,
     /// Calibrate a simulated robot (the model plus seeded deviations) instead.
     #[arg(long)]
     pub simulate: bool,
@@ -441,6 +450,22 @@ pub(super) fn run(args: &CalibrateArgs, out: &mut dyn Write) -> Result<(), CliEr
         calibrated.base = robot.base;
     }
     write_models(args, &calibrated)?;
+    let corrections = match &args.correct_targets {
+        Some(path) => {
+            let targets = read_targets(path)?;
+            let mut nominal = model.nominal_robot().clone();
+            if tracker.is_some() {
+                nominal.base = robot.base;
+            }
+            let rows =
+                correct_targets(&nominal, &calibrated, &targets).map_err(calibration_error)?;
+            if let Some(out_path) = &args.out {
+                std::fs::write(out_path, corrections_csv(&rows, &JointColumns::of(&robot)))?;
+            }
+            Some((path.display().to_string(), targets.len(), rows))
+        }
+        None => None,
+    };
     if let Some(path) = &args.accuracy_map {
         accuracy_figures(args, &model, &report.estimate, data.truth.as_deref(), path)?;
     }
@@ -455,6 +480,7 @@ pub(super) fn run(args: &CalibrateArgs, out: &mut dyn Write) -> Result<(), CliEr
         tracker_from_base,
         warnings: &data.warnings,
         measurements: data.ms.len(),
+        corrections: corrections.as_ref(),
     };
     match args.format {
         Format::Json => {
@@ -474,6 +500,90 @@ struct Context<'a> {
     tracker_from_base: Option<Pose>,
     warnings: &'a [String],
     measurements: usize,
+    /// `--correct-targets`: the file, the number of desired poses, the rows.
+    corrections: Option<&'a (String, usize, Vec<TargetCorrection>)>,
+}
+
+/// The desired poses of `--correct-targets`.
+fn read_targets(path: &Path) -> Result<Vec<Pose>, CliError> {
+    let none = JointColumns {
+        names: Vec::new(),
+        angular: Vec::new(),
+    };
+    let text = crate::input::read_data_text(path).map_err(|e| CliError::BadTarget {
+        source_name: path.display().to_string(),
+        reason: e.to_string(),
+    })?;
+    let file =
+        parse_setup(&text, &path.display().to_string(), &none, Setup::Pose, None).map_err(|e| {
+            CliError::BadTarget {
+                source_name: e.source_name.clone(),
+                reason: format!("line {}: {}", e.line, e.problem),
+            }
+        })?;
+    file.measurements
+        .into_iter()
+        .map(|m| match m {
+            Measurement::Pose {
+                world_from_tool, ..
+            } => Ok(world_from_tool),
+            _ => Err(CliError::BadTarget {
+                source_name: path.display().to_string(),
+                reason: "a desired pose needs an orientation (16 numbers, or x, y, z with a \
+                         quaternion, roll-pitch-yaw or rotation vector)"
+                    .into(),
+            }),
+        })
+        .collect()
+}
+
+/// The `--out` table of `--correct-targets`, SI units.
+fn corrections_csv(rows: &[TargetCorrection], joints: &JointColumns) -> String {
+    let mut s = String::from(
+        "# armlab target correction: per desired pose and posture, the joint vector that puts the \
+         calibrated arm's tool there (q), and the pose to send a controller that runs the nominal \
+         model (send_*, quaternion w x y z); errors of the calibrated FK at q, and of the \
+         uncorrected nominal solution, in m\n",
+    );
+    let mut header = vec!["pose".to_string(), "posture".into(), "within_limits".into()];
+    for (name, angle) in joints.names.iter().zip(&joints.angular) {
+        header.push(format!("{name} [{}]", if *angle { "rad" } else { "m" }));
+    }
+    for c in [
+        "send_x [m]",
+        "send_y [m]",
+        "send_z [m]",
+        "send_qw",
+        "send_qx",
+        "send_qy",
+        "send_qz",
+        "position_error [m]",
+        "orientation_error [rad]",
+        "uncorrected_error [m]",
+    ] {
+        header.push(c.into());
+    }
+    s.push_str(&header.join(", "));
+    s.push('\n');
+    for r in rows {
+        let u = nalgebra::UnitQuaternion::from_rotation_matrix(&r.send.rotation);
+        let mut f = vec![
+            (r.pose + 1).to_string(),
+            format!("\"{}\"", r.posture),
+            r.within_limits.to_string(),
+        ];
+        f.extend(r.q.iter().map(|v| format!("{v:?}")));
+        f.extend(r.send.translation.vector.iter().map(|v| format!("{v:?}")));
+        f.extend([u.w, u.i, u.j, u.k].iter().map(|v| format!("{v:?}")));
+        f.extend(
+            [r.position_error, r.orientation_error, r.uncorrected_error]
+                .iter()
+                .map(|v| format!("{v:e}")),
+        );
+        s.push_str(&f.join(", "));
+        s.push('\n');
+    }
+    s
 }
 
 /// `--write-model` (TOML, or URDF by the extension) and `--write-urdf`.
@@ -705,7 +815,87 @@ fn to_json(
         "observability": {"O1": o.o1, "O2": o.o2, "O3": o.o3, "O4": o.o4},
         "fit": {"before": fit_json(&r.before), "after": fit_json(&r.after)},
         "validation": val.map(|(b, a)| json!({"before": fit_json(b), "after": fit_json(a)})),
+        "target_correction": ctx.corrections.map(corrections_json),
     })
+}
+
+fn corrections_json((file, poses, rows): &(String, usize, Vec<TargetCorrection>)) -> Value {
+    let worst = rows
+        .iter()
+        .map(|r| r.position_error.max(r.orientation_error))
+        .fold(0.0, f64::max);
+    json!({
+        "file": file,
+        "poses": poses,
+        "worst_error": worst,
+        "rows": rows.iter().map(|r| {
+            let u = nalgebra::UnitQuaternion::from_rotation_matrix(&r.send.rotation);
+            json!({
+                "pose": r.pose + 1,
+                "posture": r.posture,
+                "q": r.q,
+                "within_limits": r.within_limits,
+                "send": {
+                    "translation": r.send.translation.vector.as_slice(),
+                    "quaternion_wxyz": [u.w, u.i, u.j, u.k],
+                },
+                "position_error": r.position_error,
+                "orientation_error": r.orientation_error,
+                "uncorrected_error": r.uncorrected_error,
+            })
+        }).collect::<Vec<_>>(),
+    })
+}
+
+/// The target correction's summary and its first rows.
+fn write_corrections(
+    out: &mut dyn Write,
+    (file, poses, rows): &(String, usize, Vec<TargetCorrection>),
+) -> std::io::Result<()> {
+    let worst = rows
+        .iter()
+        .map(|r| r.position_error.max(r.orientation_error))
+        .fold(0.0, f64::max);
+    let off: Vec<f64> = rows
+        .iter()
+        .map(|r| r.uncorrected_error)
+        .filter(|v| v.is_finite())
+        .collect();
+    let rms = (off.iter().map(|v| v * v).sum::<f64>() / off.len().max(1) as f64).sqrt();
+    writeln!(
+        out,
+        "target correction ({file}): {poses} poses, {} pose-posture rows; calibrated FK error at \
+         the corrected q at most {worst:.1e} (m, rad); uncorrected, the real tool would be off by \
+         {:.4} mm rms",
+        rows.len(),
+        rms * 1e3
+    )?;
+    writeln!(
+        out,
+        "{:>5}  {:<42} {:>10}  send x, y, z [mm]",
+        "pose", "posture", "off [mm]"
+    )?;
+    for r in rows.iter().take(20) {
+        let t = r.send.translation.vector * 1e3;
+        writeln!(
+            out,
+            "{:>5}  {:<42} {:>10.4}  {:.4}, {:.4}, {:.4}",
+            r.pose + 1,
+            r.posture,
+            r.uncorrected_error * 1e3,
+            t[0],
+            t[1],
+            t[2]
+        )?;
+    }
+    if rows.len() > 20 {
+        writeln!(
+            out,
+            "  ... {} rows in all (--out FILE writes them)",
+            rows.len()
+        )?;
+    }
+    Ok(())
 }
 
 fn fit_text(f: &Fit) -> String {
@@ -846,6 +1036,9 @@ fn write_text(
     if let Some((b, a)) = val {
         writeln!(out, "validation: before {}", fit_text(b))?;
         writeln!(out, "validation: after  {}", fit_text(a))?;
+    }
+    if let Some(c) = ctx.corrections {
+        write_corrections(out, c)?;
     }
     Ok(())
 }

@@ -249,6 +249,88 @@ fn polish_near_miss(
     Ok(())
 }
 
+/// IK of `robot` through the closed form of `reference`, a model of the same arm whose
+/// structure has one (a calibrated arm and its nominal model, whose parallel or intersecting
+/// axes the calibration moved by a fraction of a degree): every posture of the reference,
+/// each polished by Newton steps on `robot`'s own FK until its pose error is at most
+/// [`NEAR_MISS_CHECK`] (m and rad), labelled as the reference labels that configuration (the
+/// label of its closed-form solution at `FK_reference(q)`). A posture that does not converge is
+/// dropped (the target is out of the real arm's reach in that posture); two that converge to
+/// one configuration are merged, the first label kept. Full-pose targets of a 6-joint arm.
+pub fn solve_from_reference(
+    robot: &Robot,
+    reference: &Robot,
+    target: &Target,
+    opts: &NumericalOptions,
+) -> Result<(IkResult, SolverUsed), IkError> {
+    super::check_target(target)?;
+    let cf = ClosedForm::detect(reference).map_err(IkError::NoClosedForm)?;
+    if robot.dof() != reference.dof() || robot.end_effectors().len() != 1 {
+        return Err(IkError::TargetKind {
+            target: "pose",
+            solver: cf.name(),
+            hint: "the robot and its reference must be one arm with the same joints",
+        });
+    }
+    let mut result = cf.solve(reference, target)?;
+    polish(reference, target, &mut result, opts)?;
+    let local = NumericalOptions {
+        restarts: 0,
+        max_iterations: 30,
+        enforce_limits: false,
+        tolerance: NEAR_MISS_CHECK / 10.0,
+        damping: opts.damping.min(1e-6),
+        ..*opts
+    };
+    let mut kept: Vec<IkSolution> = Vec::with_capacity(result.solutions.len());
+    let mut closest = f64::INFINITY;
+    for s in result.solutions {
+        if !s.free_joints.is_empty() {
+            continue;
+        }
+        let rep = numerical::solve(robot, 0, target, &s.q, &local)?;
+        let (pe, oe) = numerical::pose_errors(robot, 0, &rep.q, target)?;
+        closest = closest.min(pe.max(oe));
+        if pe.max(oe) > NEAR_MISS_CHECK
+            || kept
+                .iter()
+                .any(|k| joint_distance(robot, &k.q, &rep.q) < 1e-9)
+        {
+            continue;
+        }
+        // The label the reference gives this configuration: near a singularity the polish may
+        // cross to the other member of a pair (theta5 changing sign), and a controller running
+        // the reference model, sent FK_reference(q), must find q under this label.
+        let at = Target::Pose(reference.fk(&rep.q)?);
+        let posture = cf
+            .solve(reference, &at)?
+            .solutions
+            .into_iter()
+            .find(|o| joint_distance(robot, &o.q, &rep.q) < 1e-6)
+            .map_or(s.posture, |o| o.posture);
+        kept.push(IkSolution {
+            within_limits: robot.within_limits(&rep.q, 1e-12),
+            q: rep.q,
+            position_error: pe,
+            orientation_error: oe,
+            posture,
+            ..s
+        });
+    }
+    let status = if kept.is_empty() {
+        IkStatus::Unreachable { distance: closest }
+    } else {
+        IkStatus::Ok
+    };
+    Ok((
+        IkResult {
+            status,
+            solutions: kept,
+        },
+        SolverUsed::ClosedForm(cf.name()),
+    ))
+}
+
 /// Distance between two joint vectors: revolute differences wrapped into (-pi, pi].
 pub fn joint_distance(robot: &Robot, a: &[f64], b: &[f64]) -> f64 {
     a.iter()

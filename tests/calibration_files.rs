@@ -1,0 +1,370 @@
+//! The files engineers have (issue 28), through the CLI: a headered CSV typed as a cell logs it
+//! (degrees, millimetres, quaternions, extra columns), every setup's plain file written and read
+//! back, the annotated template, and the calibrated robot written as TOML and as URDF with the
+//! same FK.
+
+use armlab::model_file::load_model;
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn armlab(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_armlab"))
+        .args(args)
+        .output()
+        .expect("run armlab")
+}
+
+fn json(o: &Output) -> serde_json::Value {
+    assert!(
+        o.status.success(),
+        "stderr: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    serde_json::from_slice(&o.stdout).expect("JSON on stdout")
+}
+
+fn dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("armlab-calfiles-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn data(name: &str) -> String {
+    format!(
+        "{}/tests/data/calibration/{name}",
+        env!("CARGO_MANIFEST_DIR")
+    )
+}
+
+#[test]
+fn a_headered_csv_from_a_cell_calibrates_to_the_noise_floor() {
+    // tests/data/calibration/cell_puma_*.csv: joint angles in degrees (J1..J6), tracker
+    // positions in millimetres, the probe's orientation as a quaternion, a timestamp and a note
+    // column, comments and a blank line: 40 poses to fit, 40 held out; 0.02 mm and 0.05 mrad of
+    // noise on a Puma 560 whose every parameter is off by up to 1 mm / 0.5 degree.
+    let v = json(&armlab(&[
+        "calibrate",
+        "puma560",
+        "--measurements",
+        &data("cell_puma_fit.csv"),
+        "--validate",
+        &data("cell_puma_check.csv"),
+        "--noise-mm",
+        "0.02",
+        "--noise-mrad",
+        "0.05",
+        "--format",
+        "json",
+    ]));
+    let warnings: Vec<&str> = v["warnings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|w| w.as_str().unwrap())
+        .collect();
+    assert!(
+        warnings.iter().any(|w| w.contains("\"timestamp\""))
+            && warnings.iter().any(|w| w.contains("\"note\"")),
+        "{warnings:?}"
+    );
+    assert_eq!(v["converged"], true);
+    let before = v["validation"]["before"]["position_rms"].as_f64().unwrap();
+    let after = v["validation"]["after"]["position_rms"].as_f64().unwrap();
+    // Floor sqrt(3) x 0.02 mm; 40 poses for 24 parameters add about 30 % on held-out data.
+    let floor = 3f64.sqrt() * 0.02e-3;
+    assert!(before > 100.0 * floor, "{before}");
+    assert!(after < 1.4 * floor, "{after} vs floor {floor}");
+    // The same file in radians and metres with the columns in another order reads the same.
+    let text = std::fs::read_to_string(data("cell_puma_fit.csv")).unwrap();
+    let mut lines = text
+        .lines()
+        .filter(|l| !l.starts_with('#') && !l.trim().is_empty());
+    let header: Vec<&str> = lines.next().unwrap().split(',').map(str::trim).collect();
+    let rows: Vec<Vec<String>> = lines
+        .map(|l| l.split(',').map(|f| f.trim().to_string()).collect())
+        .collect();
+    let mut si = String::from(
+        "note, qx, qy, qz, qw, x_m, y_m, z_m, q1 (rad), q2 (rad), q3 (rad), q4 (rad), q5 (rad), q6 (rad)\n",
+    );
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    for r in &rows {
+        let num = |name: &str| r[col(name)].parse::<f64>().unwrap();
+        let mut f = vec![r[col("note")].clone()];
+        for c in ["qx", "qy", "qz", "qw"] {
+            f.push(r[col(c)].clone());
+        }
+        for c in ["X [mm]", "Y [mm]", "Z [mm]"] {
+            f.push(format!("{:?}", num(c) * 1e-3));
+        }
+        for k in 1..=6 {
+            f.push(format!("{:?}", num(&format!("J{k} [deg]")).to_radians()));
+        }
+        si.push_str(&f.join(", "));
+        si.push('\n');
+    }
+    let d = dir("si");
+    let path = d.join("si.csv");
+    std::fs::write(&path, si).unwrap();
+    let w = json(&armlab(&[
+        "calibrate",
+        "puma560",
+        "--measurements",
+        path.to_str().unwrap(),
+        "--noise-mm",
+        "0.02",
+        "--noise-mrad",
+        "0.05",
+        "--format",
+        "json",
+    ]));
+    for (a, b) in v["parameters"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .zip(w["parameters"].as_array().unwrap())
+    {
+        let (ea, eb) = (
+            a["estimate"].as_f64().unwrap(),
+            b["estimate"].as_f64().unwrap(),
+        );
+        assert!((ea - eb).abs() < 1e-9, "{}: {ea} vs {eb}", a["name"]);
+    }
+}
+
+#[test]
+fn headered_files_say_what_is_wrong_with_file_line_and_column() {
+    let d = dir("bad");
+    let path = d.join("bad.csv");
+    let run = |text: &str| {
+        std::fs::write(&path, text).unwrap();
+        let o = armlab(&[
+            "calibrate",
+            "puma560",
+            "--measurements",
+            path.to_str().unwrap(),
+        ]);
+        assert_eq!(o.status.code(), Some(2));
+        String::from_utf8_lossy(&o.stderr).to_string()
+    };
+    let e = run("J1 [deg], J2 [deg], J3 [deg], J4 [deg], J5 [deg], x, y, z\n1,2,3,4,5,6,7,8\n");
+    assert!(
+        e.contains("bad.csv") && e.contains("line 1") && e.contains("joint 6"),
+        "{e}"
+    );
+    let e = run("J1 [mm], J2, J3, J4, J5, J6, x, y, z\n");
+    assert!(e.contains("line 1") && e.contains("\"J1 [mm]\""), "{e}");
+    let e = run("J1, J2, J3, J4, J5, J6, x, y, z\n1,2,3,4,5,6,7,8,oops\n");
+    assert!(e.contains("line 2") && e.contains("column 9"), "{e}");
+    let e = run("J1, J2, J3, J4, J5, J6, x, y, z, qw, qx\n1,2,3,4,5,6,7,8,9,1,0\n");
+    assert!(e.contains("line 2") && e.contains("quaternion"), "{e}");
+}
+
+#[test]
+fn every_setup_writes_its_plain_file_and_calibrates_from_it() {
+    let d = dir("setups");
+    for (setup, extra) in [
+        ("distance", &[][..]),
+        ("pivot", &["--groups", "3"][..]),
+        ("plane", &["--groups", "2"][..]),
+        ("sphere", &["--groups", "2", "--sphere-radius-mm", "25"][..]),
+        ("tracker", &[][..]),
+        ("position", &[][..]),
+    ] {
+        let file = d.join(format!("{setup}.csv"));
+        let mut args = vec![
+            "calibrate",
+            "puma560",
+            "--simulate",
+            "--setup",
+            setup,
+            "--poses",
+            "80",
+            "--noise-mm",
+            "0.02",
+            "--write-measurements",
+            file.to_str().unwrap(),
+            "--format",
+            "json",
+        ];
+        args.extend(extra);
+        let sim = json(&armlab(&args));
+        assert_eq!(sim["setup"], setup);
+        assert_eq!(sim["converged"], true, "{setup}");
+        assert!(sim["setup_cannot_see"].as_str().unwrap().len() > 20);
+        // Read back: the same estimate.
+        let mut again = vec![
+            "calibrate",
+            "puma560",
+            "--setup",
+            setup,
+            "--measurements",
+            file.to_str().unwrap(),
+            "--noise-mm",
+            "0.02",
+            "--format",
+            "json",
+        ];
+        if setup == "sphere" {
+            // The radius travels in the file (`# radius_m`): no flag needed.
+            assert!(
+                std::fs::read_to_string(&file)
+                    .unwrap()
+                    .contains("# radius_m 0.025")
+            );
+        }
+        again.truncate(10);
+        let read = json(&armlab(&again));
+        let a = sim["parameters"].as_array().unwrap();
+        let b = read["parameters"].as_array().unwrap();
+        for (pa, pb) in a.iter().zip(b) {
+            let (ea, eb) = (
+                pa["estimate"].as_f64().unwrap(),
+                pb["estimate"].as_f64().unwrap(),
+            );
+            assert!(
+                (ea - eb).abs() < 1e-9,
+                "{setup}: {}: {ea} vs {eb}",
+                pa["name"]
+            );
+        }
+    }
+}
+
+#[test]
+fn the_template_is_an_annotated_file_that_reads_back() {
+    let d = dir("template");
+    for setup in ["pose", "distance", "pivot", "plane", "sphere", "tracker"] {
+        let t = d.join(format!("{setup}.csv"));
+        let o = armlab(&[
+            "calibrate",
+            "puma560",
+            "--setup",
+            setup,
+            "--template",
+            t.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let text = std::fs::read_to_string(&t).unwrap();
+        assert!(text.starts_with("# armlab calibration measurements"));
+        assert!(text.contains("[deg]") && text.contains("What this setup cannot see"));
+        // Its example rows parse. Four full poses are enough equations to run, and the nominal
+        // model fits its own examples to their rounding (1e-4 degree and mm); the other setups
+        // stop at the equation count, not at the file.
+        let o = armlab(&[
+            "calibrate",
+            "puma560",
+            "--setup",
+            setup,
+            "--measurements",
+            t.to_str().unwrap(),
+            "--format",
+            "json",
+        ]);
+        if setup == "pose" {
+            let v = json(&o);
+            assert!(v["fit"]["before"]["position_max"].as_f64().unwrap() < 1e-5);
+        } else {
+            let err = String::from_utf8_lossy(&o.stderr);
+            assert!(err.contains("equations from"), "{setup}: {err}");
+        }
+    }
+}
+
+#[test]
+fn the_calibrated_robot_is_written_as_toml_and_urdf_with_the_same_fk() {
+    let d = dir("urdf");
+    let (toml, urdf) = (d.join("cal.toml"), d.join("cal.urdf"));
+    let o = armlab(&[
+        "calibrate",
+        "puma560",
+        "--simulate",
+        "--with-tool",
+        "--write-model",
+        toml.to_str().unwrap(),
+        "--write-urdf",
+        urdf.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let a = load_model(toml.to_str().unwrap()).unwrap();
+    let b = load_model(urdf.to_str().unwrap()).unwrap();
+    assert_eq!(a.dof(), b.dof());
+    let nominal = armlab::kinematics::models::built_in("puma560").unwrap();
+    let mut worst = 0.0f64;
+    for k in 0..50 {
+        let q: Vec<f64> = (0..6)
+            .map(|j| ((k * 7 + j * 3) as f64 * 0.37).sin() * 2.0)
+            .collect();
+        let (ta, tb) = (a.fk(&q).unwrap(), b.fk(&q).unwrap());
+        let d = (ta.to_homogeneous() - tb.to_homogeneous()).abs().max();
+        worst = worst.max(d);
+        // And the calibration moved the arm (it is not the nominal one).
+        let tn = nominal.fk(&q).unwrap();
+        assert!((ta.to_homogeneous() - tn.to_homogeneous()).abs().max() > 1e-5);
+    }
+    assert!(worst < 1e-12, "URDF vs TOML FK: {worst:e}");
+}
+
+#[test]
+fn correct_targets_writes_a_row_per_pose_and_posture() {
+    let d = dir("targets");
+    let targets = d.join("targets.csv");
+    std::fs::write(
+        &targets,
+        "# desired poses\nx [mm], y [mm], z [mm], roll [deg], pitch [deg], yaw [deg]\n\
+         450, 150, 400, 180, 0, 0\n500, -200, 300, 180, 20, 30\n",
+    )
+    .unwrap();
+    let q = d.join("q.csv");
+    let v = json(&armlab(&[
+        "calibrate",
+        "puma560",
+        "--measurements",
+        &data("cell_puma_fit.csv"),
+        "--noise-mm",
+        "0.02",
+        "--noise-mrad",
+        "0.05",
+        "--correct-targets",
+        targets.to_str().unwrap(),
+        "--out",
+        q.to_str().unwrap(),
+        "--format",
+        "json",
+    ]));
+    let tc = &v["target_correction"];
+    assert_eq!(tc["poses"], 2);
+    assert!(tc["worst_error"].as_f64().unwrap() <= 1e-12);
+    let rows = tc["rows"].as_array().unwrap();
+    assert_eq!(rows.len(), 16, "two poses, eight Puma postures each");
+    for r in rows {
+        for key in [
+            "pose",
+            "posture",
+            "q",
+            "within_limits",
+            "send",
+            "position_error",
+            "uncorrected_error",
+        ] {
+            assert!(r.get(key).is_some(), "{key}");
+        }
+        // The uncorrected nominal solution misses by millimetres on this arm.
+        assert!(r["uncorrected_error"].as_f64().unwrap() > 1e-3);
+    }
+    let text = std::fs::read_to_string(&q).unwrap();
+    let lines: Vec<&str> = text.lines().filter(|l| !l.starts_with('#')).collect();
+    assert_eq!(lines.len(), 17);
+    assert!(lines[0].starts_with("pose, posture, within_limits, q1 [rad]"));
+    assert!(lines[0].contains("send_qw"));
+    // Bad targets: a position without orientation.
+    std::fs::write(&targets, "x, y, z\n0.4, 0.1, 0.5\n").unwrap();
+    let o = armlab(&[
+        "calibrate",
+        "puma560",
+        "--simulate",
+        "--correct-targets",
+        targets.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("needs an orientation"));
+}
