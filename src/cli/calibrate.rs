@@ -450,22 +450,11 @@ pub(super) fn run(args: &CalibrateArgs, out: &mut dyn Write) -> Result<(), CliEr
         calibrated.base = robot.base;
     }
     write_models(args, &calibrated)?;
-    let corrections = match &args.correct_targets {
-        Some(path) => {
-            let targets = read_targets(path)?;
-            let mut nominal = model.nominal_robot().clone();
-            if tracker.is_some() {
-                nominal.base = robot.base;
-            }
-            let rows =
-                correct_targets(&nominal, &calibrated, &targets).map_err(calibration_error)?;
-            if let Some(out_path) = &args.out {
-                std::fs::write(out_path, corrections_csv(&rows, &JointColumns::of(&robot)))?;
-            }
-            Some((path.display().to_string(), targets.len(), rows))
-        }
-        None => None,
-    };
+    let corrections = args
+        .correct_targets
+        .as_ref()
+        .map(|path| corrections(args, path, &robot, &calibrated))
+        .transpose()?;
     if let Some(path) = &args.accuracy_map {
         accuracy_figures(args, &model, &report.estimate, data.truth.as_deref(), path)?;
     }
@@ -502,6 +491,21 @@ struct Context<'a> {
     measurements: usize,
     /// `--correct-targets`: the file, the number of desired poses, the rows.
     corrections: Option<&'a (String, usize, Vec<TargetCorrection>)>,
+}
+
+/// `--correct-targets` (and `--out`): the nominal robot's postures on the calibrated one.
+fn corrections(
+    args: &CalibrateArgs,
+    path: &Path,
+    robot: &crate::kinematics::Robot,
+    calibrated: &crate::kinematics::Robot,
+) -> Result<(String, usize, Vec<TargetCorrection>), CliError> {
+    let targets = read_targets(path)?;
+    let rows = correct_targets(robot, calibrated, &targets).map_err(calibration_error)?;
+    if let Some(out_path) = &args.out {
+        std::fs::write(out_path, corrections_csv(&rows, &JointColumns::of(robot)))?;
+    }
+    Ok((path.display().to_string(), targets.len(), rows))
 }
 
 /// The desired poses of `--correct-targets`.
