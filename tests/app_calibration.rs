@@ -191,3 +191,69 @@ fn measured_poses_are_drawn_as_tool_points_and_a_few_ghosts() {
     let ghosts = (scene.meshes.len() - meshes) / one_arm;
     assert!((1..=MAX_POSE_GHOSTS).contains(&ghosts), "{ghosts} ghosts");
 }
+
+#[test]
+fn the_tab_offers_the_setups_the_files_the_template_and_target_correction() {
+    use armlab::calibration::Setup;
+    let puma = built_in("puma560").unwrap();
+    let mut lab = CalibrationLab::default();
+    // Every setup simulates and calibrates; the report says what it cannot see.
+    for setup in [Setup::Distance, Setup::Sphere, Setup::Tracker, Setup::Pivot] {
+        lab.settings.setup = setup;
+        lab.settings.poses = 80;
+        lab.run_simulated(&puma, &[0.0; 6]);
+        assert!(lab.message.is_none(), "{setup:?}: {:?}", lab.message);
+        let r = lab.result.as_ref().unwrap();
+        assert_eq!(r.setup, setup);
+        assert!(r.report.converged, "{setup:?}");
+        let (before, after) = r.validation.unwrap();
+        assert!(after.position_rms < 0.2 * before.position_rms, "{setup:?}");
+        // The bare Puma's tool point is its wrist centre: no point setup sees the wrist, and the
+        // base pose trades with the scene; both are kept nominal and said.
+        assert!(
+            r.report.auto_fixed.iter().any(|(n, _)| n == "d1"),
+            "{setup:?}"
+        );
+    }
+    // The cell's headered CSV (degrees, millimetres, quaternions, extra columns).
+    lab.settings.setup = Setup::Pose;
+    let path = format!(
+        "{}/tests/data/calibration/cell_puma_fit.csv",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    lab.measurements_path = path;
+    lab.run_file(&puma);
+    assert!(lab.message.is_none(), "{:?}", lab.message);
+    let r = lab.result.as_ref().unwrap();
+    assert!(r.warnings.iter().any(|w| w.contains("timestamp")));
+    assert!(r.report.after.position_rms < 0.05e-3);
+    // The template of a setup reads back as that setup's file.
+    lab.settings.setup = Setup::Distance;
+    let t = lab.template_text(&puma).unwrap();
+    assert!(t.contains("_a [deg]") && t.contains("distance [mm]"));
+    let parsed = armlab::calibration::parse_setup(
+        &t,
+        "template",
+        &armlab::calibration::JointColumns::of(&puma),
+        Setup::Distance,
+        None,
+    )
+    .unwrap();
+    assert_eq!(parsed.measurements.len(), 4);
+    // Target correction on the calibrated cell arm: eight postures for a pose inside.
+    lab.correct_text(
+        &puma,
+        "targets",
+        "x [mm], y [mm], z [mm], roll [deg], pitch [deg], yaw [deg]\n450, 150, 400, 180, 0, 0\n",
+    );
+    assert!(lab.message.is_none(), "{:?}", lab.message);
+    let rows = lab.corrections.as_ref().unwrap();
+    assert_eq!(rows.len(), 8);
+    assert!(rows.iter().all(|r| r.position_error <= 1e-12));
+    let csv = lab.corrections_text(&puma).unwrap();
+    assert_eq!(csv.lines().filter(|l| !l.starts_with('#')).count(), 9);
+    // A bad targets file is a message; the corrections stay.
+    lab.correct_text(&puma, "bad", "x, y, z\n1, 2, 3\n");
+    assert!(lab.message.as_ref().unwrap().contains("orientation"));
+    assert!(lab.corrections.is_some());
+}

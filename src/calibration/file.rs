@@ -871,3 +871,83 @@ fn template_row(joints: &JointColumns, m: &Measurement) -> Vec<String> {
     }
     row
 }
+
+/// Desired tool poses: per line the 16 numbers of a 4x4 `world_from_tool` (plain), or a
+/// headered CSV with `x, y, z` and an orientation (quaternion, roll-pitch-yaw, rotation vector or
+/// `t11..t44`), as the measurement files.
+pub fn parse_targets(text: &str, source_name: &str) -> Result<Vec<Pose>, MeasurementFileError> {
+    let none = JointColumns {
+        names: Vec::new(),
+        angular: Vec::new(),
+    };
+    let file = parse_setup(text, source_name, &none, Setup::Pose, None)?;
+    file.measurements
+        .into_iter()
+        .map(|m| match m {
+            Measurement::Pose {
+                world_from_tool, ..
+            } => Ok(world_from_tool),
+            _ => Err(MeasurementFileError {
+                source_name: source_name.into(),
+                line: 0,
+                problem: "a desired pose needs an orientation (16 numbers, or x, y, z with a \
+                          quaternion, roll-pitch-yaw or rotation vector)"
+                    .into(),
+            }),
+        })
+        .collect()
+}
+
+/// The table of a target correction as a headered CSV in SI units (what
+/// `armlab calibrate --correct-targets ... --out` writes): pose, posture (quoted), within the
+/// limits, the joint vector, the pose to send (position and quaternion w x y z), the errors.
+pub fn write_corrections(
+    rows: &[super::correct::TargetCorrection],
+    joints: &JointColumns,
+) -> String {
+    let mut s = String::from(
+        "# armlab target correction: per desired pose and posture, the joint vector that puts the \
+         calibrated arm's tool there (q), and the pose to send a controller that runs the nominal \
+         model (send_*, quaternion w x y z); errors of the calibrated FK at q, and of the \
+         uncorrected nominal solution, in m\n",
+    );
+    let mut header = vec!["pose".to_string(), "posture".into(), "within_limits".into()];
+    for (name, angle) in joints.names.iter().zip(&joints.angular) {
+        header.push(format!("{name} [{}]", if *angle { "rad" } else { "m" }));
+    }
+    for c in [
+        "send_x [m]",
+        "send_y [m]",
+        "send_z [m]",
+        "send_qw",
+        "send_qx",
+        "send_qy",
+        "send_qz",
+        "position_error [m]",
+        "orientation_error [rad]",
+        "uncorrected_error [m]",
+    ] {
+        header.push(c.into());
+    }
+    s.push_str(&header.join(", "));
+    s.push('\n');
+    for r in rows {
+        let u = nalgebra::UnitQuaternion::from_rotation_matrix(&r.send.rotation);
+        let mut f = vec![
+            (r.pose + 1).to_string(),
+            format!("\"{}\"", r.posture),
+            r.within_limits.to_string(),
+        ];
+        f.extend(r.q.iter().map(|v| format!("{v:?}")));
+        f.extend(r.send.translation.vector.iter().map(|v| format!("{v:?}")));
+        f.extend([u.w, u.i, u.j, u.k].iter().map(|v| format!("{v:?}")));
+        f.extend(
+            [r.position_error, r.orientation_error, r.uncorrected_error]
+                .iter()
+                .map(|v| format!("{v:e}")),
+        );
+        s.push_str(&f.join(", "));
+        s.push('\n');
+    }
+    s
+}

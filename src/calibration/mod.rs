@@ -40,8 +40,8 @@ mod solve;
 pub use accuracy::{AccuracyMap, accuracy_map};
 pub use correct::{TargetCorrection, correct_targets};
 pub use file::{
-    JointColumns, MeasurementFileError, ParsedFile, parse_measurements, parse_setup, template,
-    write_measurements,
+    JointColumns, MeasurementFileError, ParsedFile, parse_measurements, parse_setup, parse_targets,
+    template, write_corrections, write_measurements,
 };
 pub use identify::{Identifiability, Observability, identifiability};
 pub use model::{Kind, Measurement, Parameter, ParameterModel};

@@ -5,8 +5,9 @@ use super::{CliError, Format};
 use crate::calibration::{
     CalibrationOptions, CalibrationReport, Criterion, Fit, Identifiability, JointColumns,
     Measurement, ParameterModel, ParsedFile, Setup, SetupScene, SimulationOptions,
-    TargetCorrection, Unidentifiable, calibrate, correct_targets, fit, parse_setup,
-    register_tracker, select_poses, simulate_setup, template, write_measurements,
+    TargetCorrection, Unidentifiable, calibrate, correct_targets, fit, parse_setup, parse_targets,
+    register_tracker, select_poses, simulate_setup, template, write_corrections,
+    write_measurements,
 };
 use crate::kinematics::pose::Pose;
 use serde_json::{Value, json};
@@ -503,91 +504,21 @@ fn corrections(
     let targets = read_targets(path)?;
     let rows = correct_targets(robot, calibrated, &targets).map_err(calibration_error)?;
     if let Some(out_path) = &args.out {
-        std::fs::write(out_path, corrections_csv(&rows, &JointColumns::of(robot)))?;
+        std::fs::write(out_path, write_corrections(&rows, &JointColumns::of(robot)))?;
     }
     Ok((path.display().to_string(), targets.len(), rows))
 }
 
 /// The desired poses of `--correct-targets`.
 fn read_targets(path: &Path) -> Result<Vec<Pose>, CliError> {
-    let none = JointColumns {
-        names: Vec::new(),
-        angular: Vec::new(),
-    };
     let text = crate::input::read_data_text(path).map_err(|e| CliError::BadTarget {
         source_name: path.display().to_string(),
         reason: e.to_string(),
     })?;
-    let file =
-        parse_setup(&text, &path.display().to_string(), &none, Setup::Pose, None).map_err(|e| {
-            CliError::BadTarget {
-                source_name: e.source_name.clone(),
-                reason: format!("line {}: {}", e.line, e.problem),
-            }
-        })?;
-    file.measurements
-        .into_iter()
-        .map(|m| match m {
-            Measurement::Pose {
-                world_from_tool, ..
-            } => Ok(world_from_tool),
-            _ => Err(CliError::BadTarget {
-                source_name: path.display().to_string(),
-                reason: "a desired pose needs an orientation (16 numbers, or x, y, z with a \
-                         quaternion, roll-pitch-yaw or rotation vector)"
-                    .into(),
-            }),
-        })
-        .collect()
-}
-
-/// The `--out` table of `--correct-targets`, SI units.
-fn corrections_csv(rows: &[TargetCorrection], joints: &JointColumns) -> String {
-    let mut s = String::from(
-        "# armlab target correction: per desired pose and posture, the joint vector that puts the \
-         calibrated arm's tool there (q), and the pose to send a controller that runs the nominal \
-         model (send_*, quaternion w x y z); errors of the calibrated FK at q, and of the \
-         uncorrected nominal solution, in m\n",
-    );
-    let mut header = vec!["pose".to_string(), "posture".into(), "within_limits".into()];
-    for (name, angle) in joints.names.iter().zip(&joints.angular) {
-        header.push(format!("{name} [{}]", if *angle { "rad" } else { "m" }));
-    }
-    for c in [
-        "send_x [m]",
-        "send_y [m]",
-        "send_z [m]",
-        "send_qw",
-        "send_qx",
-        "send_qy",
-        "send_qz",
-        "position_error [m]",
-        "orientation_error [rad]",
-        "uncorrected_error [m]",
-    ] {
-        header.push(c.into());
-    }
-    s.push_str(&header.join(", "));
-    s.push('\n');
-    for r in rows {
-        let u = nalgebra::UnitQuaternion::from_rotation_matrix(&r.send.rotation);
-        let mut f = vec![
-            (r.pose + 1).to_string(),
-            format!("\"{}\"", r.posture),
-            r.within_limits.to_string(),
-        ];
-        f.extend(r.q.iter().map(|v| format!("{v:?}")));
-        f.extend(r.send.translation.vector.iter().map(|v| format!("{v:?}")));
-        f.extend([u.w, u.i, u.j, u.k].iter().map(|v| format!("{v:?}")));
-        f.extend(
-            [r.position_error, r.orientation_error, r.uncorrected_error]
-                .iter()
-                .map(|v| format!("{v:e}")),
-        );
-        s.push_str(&f.join(", "));
-        s.push('\n');
-    }
-    s
+    parse_targets(&text, &path.display().to_string()).map_err(|e| CliError::BadTarget {
+        source_name: e.source_name.clone(),
+        reason: format!("line {}: {}", e.line, e.problem),
+    })
 }
 
 /// `--write-model` (TOML, or URDF by the extension) and `--write-urdf`.
@@ -852,7 +783,7 @@ fn corrections_json((file, poses, rows): &(String, usize, Vec<TargetCorrection>)
 }
 
 /// The target correction's summary and its first rows.
-fn write_corrections(
+fn print_corrections(
     out: &mut dyn Write,
     (file, poses, rows): &(String, usize, Vec<TargetCorrection>),
 ) -> std::io::Result<()> {
@@ -1042,7 +973,7 @@ fn write_text(
         writeln!(out, "validation: after  {}", fit_text(a))?;
     }
     if let Some(c) = ctx.corrections {
-        write_corrections(out, c)?;
+        print_corrections(out, c)?;
     }
     Ok(())
 }

@@ -3,9 +3,10 @@
 //! message; the previous result stays.
 
 use crate::calibration::{
-    AccuracyMap, CalibrationOptions, CalibrationReport, Criterion, Fit, Measurement,
-    ParameterModel, SimulationOptions, Unidentifiable, accuracy_map, calibrate, fit,
-    parse_measurements, select_poses, simulate,
+    AccuracyMap, CalibrationOptions, CalibrationReport, Criterion, Fit, JointColumns, Measurement,
+    ParameterModel, Setup, SetupScene, SimulationOptions, TargetCorrection, Unidentifiable,
+    accuracy_map, calibrate, correct_targets, fit, parse_setup, parse_targets, register_tracker,
+    select_poses, simulate, simulate_setup, template, write_corrections,
 };
 use crate::kinematics::Robot;
 use crate::kinematics::pose::Pose;
@@ -47,6 +48,14 @@ pub struct LabSettings {
     /// Estimate unidentifiable parameters by minimum-norm steps instead of keeping them at
     /// their nominal values (the parallel-axes lesson shows what that does).
     pub minimum_norm: bool,
+    /// How the measurements are taken (simulated, and how a measurement file is read).
+    pub setup: Setup,
+    /// Pivot points, planes or spheres of a simulated setup.
+    pub groups: usize,
+    /// The distance setup's artefact length (mm).
+    pub distance_mm: f64,
+    /// The sphere setup's contact radius, sphere plus probe ball (mm).
+    pub radius_mm: f64,
     /// Seed of the simulation.
     pub seed: u64,
 }
@@ -63,6 +72,10 @@ impl Default for LabSettings {
             choice: PoseChoice::Random,
             hayati: true,
             minimum_norm: false,
+            setup: Setup::Pose,
+            groups: 3,
+            distance_mm: 300.0,
+            radius_mm: 25.0,
             seed: 1,
         }
     }
@@ -83,6 +96,27 @@ pub struct LabResult {
     pub validation: Option<(Fit, Fit)>,
     /// The joint vectors of the measured poses (drawn as ghosts).
     pub poses: Vec<Vec<f64>>,
+    /// The setup of the measurements.
+    pub setup: Setup,
+    /// Quirks of the measurement file accepted with a warning.
+    pub warnings: Vec<String>,
+    /// The robot's own base when the model's base is a tracker's pose (the tracker setup): the
+    /// calibrated robot gets it back.
+    pub robot_base: Option<Pose>,
+}
+
+impl LabResult {
+    /// The calibrated robot (its own base, not a tracker's).
+    pub fn calibrated_robot(&self) -> Result<Robot, String> {
+        let mut r = self
+            .model
+            .robot_with(&self.report.estimate)
+            .map_err(|e| e.to_string())?;
+        if let Some(b) = self.robot_base {
+            r.base = b;
+        }
+        Ok(r)
+    }
 }
 
 /// The Calibration tab.
@@ -98,6 +132,12 @@ pub struct CalibrationLab {
     pub measurements_path: String,
     /// Path typed for saving the calibrated model.
     pub save_path: String,
+    /// Path typed for the measurement-file template.
+    pub template_path: String,
+    /// Path typed for the desired poses of the target correction.
+    pub targets_path: String,
+    /// The target correction of the last result, when computed.
+    pub corrections: Option<Vec<TargetCorrection>>,
     /// The accuracy maps of the last result, when computed: (before, after) against the real
     /// arm when simulated; (none, correction) for measured data.
     pub maps: Option<(Option<AccuracyMap>, AccuracyMap)>,
@@ -172,6 +212,7 @@ impl CalibrationLab {
                 self.maps = None;
                 self.message = None;
                 self.lesson = None;
+                self.corrections = None;
             }
             Err(e) => self.message = Some(e),
         }
@@ -206,6 +247,9 @@ impl CalibrationLab {
 
     fn simulated(&self, robot: &Robot, q_now: &[f64]) -> Result<LabResult, String> {
         let s = self.settings;
+        if !matches!(s.setup, Setup::Pose | Setup::Position) {
+            return self.simulated_setup(robot);
+        }
         let model = model_of(robot, s.hayati)?;
         let opts = options(&s);
         let candidates = match s.choice {
@@ -221,7 +265,7 @@ impl CalibrationLab {
                 tolerance_deg: s.tolerance_deg,
                 noise_mm: s.noise_mm,
                 noise_mrad: s.noise_mrad,
-                position_only: s.position_only,
+                position_only: s.position_only || s.setup == Setup::Position,
                 seed: s.seed,
             },
         )
@@ -250,14 +294,76 @@ impl CalibrationLab {
             s.choice
         )
         .to_lowercase();
-        finish(
-            model,
-            &ms,
-            Some(&sim.validation),
-            Some(sim.truth),
+        let setup = if s.position_only {
+            Setup::Position
+        } else {
+            s.setup
+        };
+        let data = RunData {
+            ms: &ms,
+            validation: Some(&sim.validation),
+            truth: Some(sim.truth),
             title,
-            &opts,
+            setup,
+            warnings: Vec::new(),
+            robot_base: None,
+        };
+        finish(model, data, &opts)
+    }
+
+    /// A simulated setup without a tracker (or a tracker of unknown pose): random joint vectors
+    /// placed where the setup needs the tool.
+    fn simulated_setup(&self, robot: &Robot) -> Result<LabResult, String> {
+        let s = self.settings;
+        let model = model_of(robot, s.hayati)?;
+        let scene = SetupScene {
+            setup: s.setup,
+            groups: s.groups.max(1),
+            distance: s.distance_mm * 1e-3,
+            radius: s.radius_mm * 1e-3,
+            ..SetupScene::default()
+        };
+        let sim = simulate_setup(
+            &model,
+            &scene,
+            &SimulationOptions {
+                poses: s.poses,
+                validation_poses: s.poses.max(10),
+                tolerance_mm: s.tolerance_mm,
+                tolerance_deg: s.tolerance_deg,
+                noise_mm: s.noise_mm,
+                noise_mrad: s.noise_mrad,
+                position_only: false,
+                seed: s.seed,
+            },
         )
+        .map_err(|e| e.to_string())?;
+        let (model, robot_base, mut truth) = if s.setup == Setup::Tracker {
+            let (m, base) = tracker_model(robot, s.hayati, &sim.measurements)?;
+            // The true base correction against the registered pose: not part of the arm's truth.
+            let mut t = sim.truth.clone();
+            t.resize(m.parameters().len(), f64::NAN);
+            (m, Some(base), t)
+        } else {
+            (model, None, sim.truth.clone())
+        };
+        truth.truncate(model.parameters().len());
+        let title = format!(
+            "simulated {}, {} {} measurements",
+            robot.name,
+            sim.measurements.len(),
+            s.setup.name()
+        );
+        let data = RunData {
+            ms: &sim.measurements,
+            validation: Some(&sim.validation),
+            truth: Some(truth),
+            title,
+            setup: s.setup,
+            warnings: Vec::new(),
+            robot_base,
+        };
+        finish(model, data, &options(&s))
     }
 
     /// Calibrates `robot` from the measurement file typed in `measurements_path`.
@@ -269,26 +375,43 @@ impl CalibrationLab {
         }
     }
 
-    /// Calibrates `robot` from the text of a measurement file named `name` (errors name it).
+    /// Calibrates `robot` from the text of a measurement file named `name` (errors name it),
+    /// read as the setup of the settings says (plain or headered CSV).
     pub fn run_text(&mut self, robot: &Robot, name: &str, text: &str) {
-        let result = parse_measurements(text, name, robot.dof())
+        let s = self.settings;
+        let radius = Some(s.radius_mm * 1e-3);
+        let result = parse_setup(text, name, &JointColumns::of(robot), s.setup, radius)
             .map_err(|e| e.to_string())
-            .and_then(|ms| {
-                let model = model_of(robot, self.settings.hayati)?;
-                finish(
-                    model,
-                    &ms,
-                    None,
-                    None,
-                    name.to_string(),
-                    &options(&self.settings),
-                )
+            .and_then(|file| {
+                let ms = &file.measurements;
+                let (model, robot_base) = if s.setup == Setup::Tracker {
+                    let (m, b) = tracker_model(robot, s.hayati, ms)?;
+                    (m, Some(b))
+                } else {
+                    (model_of(robot, s.hayati)?, None)
+                };
+                let kind = ms.first().map_or("pose", Measurement::kind);
+                let data = RunData {
+                    ms,
+                    validation: None,
+                    truth: None,
+                    title: name.to_string(),
+                    setup: if s.setup == Setup::Pose && kind == "position" {
+                        Setup::Position
+                    } else {
+                        s.setup
+                    },
+                    warnings: file.warnings.clone(),
+                    robot_base,
+                };
+                finish(model, data, &options(&s))
             });
         match result {
             Ok(r) => {
                 self.result = Some(r);
                 self.maps = None;
                 self.message = None;
+                self.corrections = None;
             }
             Err(e) => self.message = Some(e),
         }
@@ -299,13 +422,10 @@ impl CalibrationLab {
         let Some(r) = &self.result else {
             return Err("run a calibration first".into());
         };
-        r.model
-            .robot_with(&r.report.estimate)
-            .map_err(|e| e.to_string())
-            .and_then(|robot| {
-                crate::model_file::to_toml(&robot)
-                    .ok_or_else(|| "the calibrated robot is not a DH model file".to_string())
-            })
+        r.calibrated_robot().and_then(|robot| {
+            crate::model_file::to_toml(&robot)
+                .ok_or_else(|| "the calibrated robot is not a DH model file".to_string())
+        })
     }
 
     /// Writes the calibrated robot to `save_path` as a model file.
@@ -326,6 +446,98 @@ impl CalibrationLab {
                 Err(e) => e,
             },
         );
+    }
+
+    /// An annotated measurement-file template for the settings' setup and `robot` (headered CSV,
+    /// degrees and millimetres, four example rows from the nominal model).
+    pub fn template_text(&self, robot: &Robot) -> Result<String, String> {
+        let s = self.settings;
+        let model = model_of(robot, s.hayati)?;
+        let scene = SetupScene {
+            setup: s.setup,
+            groups: 2,
+            distance: s.distance_mm * 1e-3,
+            radius: s.radius_mm * 1e-3,
+            world_from_tracker: Pose::identity(),
+        };
+        let opts = SimulationOptions {
+            poses: 4,
+            validation_poses: 0,
+            tolerance_mm: 0.0,
+            tolerance_deg: 0.0,
+            noise_mm: 0.0,
+            noise_mrad: 0.0,
+            position_only: false,
+            seed: s.seed,
+        };
+        let sim = simulate_setup(&model, &scene, &opts).map_err(|e| e.to_string())?;
+        Ok(template(
+            &JointColumns::of(robot),
+            s.setup,
+            &sim.measurements,
+        ))
+    }
+
+    /// Writes the template to `template_path`.
+    pub fn save_template(&mut self, robot: &Robot) {
+        let path = self.template_path.trim().to_string();
+        if path.is_empty() {
+            self.message = Some("type a file name for the template (e.g. measurements.csv)".into());
+            return;
+        }
+        self.message = Some(
+            match self.template_text(robot).and_then(|t| {
+                std::fs::write(&path, t).map_err(|e| format!("cannot write {path}: {e}"))
+            }) {
+                Ok(()) => format!(
+                    "saved the {} template to {path}",
+                    self.settings.setup.name()
+                ),
+                Err(e) => e,
+            },
+        );
+    }
+
+    /// The target correction of the poses in the file typed in `targets_path` on the last
+    /// result's calibrated arm, through `robot`'s (the nominal model's) closed form.
+    pub fn correct(&mut self, robot: &Robot) {
+        let path = self.targets_path.trim().to_string();
+        let text = match crate::input::read_data_text(std::path::Path::new(&path)) {
+            Ok(t) => t,
+            Err(e) => {
+                self.message = Some(e.to_string());
+                return;
+            }
+        };
+        self.correct_text(robot, &path, &text);
+    }
+
+    /// The target correction of the desired poses in `text` (named `name` in errors).
+    pub fn correct_text(&mut self, robot: &Robot, name: &str, text: &str) {
+        let Some(r) = &self.result else {
+            self.message = Some("run a calibration first".into());
+            return;
+        };
+        let rows = parse_targets(text, name)
+            .map_err(|e| e.to_string())
+            .and_then(|targets| {
+                let calibrated = r.calibrated_robot()?;
+                correct_targets(robot, &calibrated, &targets).map_err(|e| e.to_string())
+            });
+        match rows {
+            Ok(rows) => {
+                self.corrections = Some(rows);
+                self.message = None;
+            }
+            Err(e) => self.message = Some(e),
+        }
+    }
+
+    /// The target correction as CSV (what `armlab calibrate --correct-targets --out` writes).
+    pub fn corrections_text(&self, robot: &Robot) -> Option<String> {
+        self.corrections
+            .as_ref()
+            .map(|rows| write_corrections(rows, &JointColumns::of(robot)))
     }
 
     /// The lesson "converged is not accurate": poses all alike around the current configuration.
@@ -364,16 +576,24 @@ impl CalibrationLab {
     }
 }
 
-fn finish(
-    model: ParameterModel,
-    ms: &[Measurement],
-    validation: Option<&[Measurement]>,
+/// What a run calibrates, besides the model: where the data came from.
+struct RunData<'a> {
+    ms: &'a [Measurement],
+    validation: Option<&'a [Measurement]>,
     truth: Option<Vec<f64>>,
     title: String,
+    setup: Setup,
+    warnings: Vec<String>,
+    robot_base: Option<Pose>,
+}
+
+fn finish(
+    model: ParameterModel,
+    d: RunData<'_>,
     opts: &CalibrationOptions,
 ) -> Result<LabResult, String> {
-    let report = calibrate(&model, ms, opts).map_err(|e| e.to_string())?;
-    let validation = match validation {
+    let report = calibrate(&model, d.ms, opts).map_err(|e| e.to_string())?;
+    let validation = match d.validation {
         Some(v) => Some((
             fit(&model, &model.nominal(), v).map_err(|e| e.to_string())?,
             fit(&model, &report.estimate, v).map_err(|e| e.to_string())?,
@@ -381,11 +601,33 @@ fn finish(
         None => None,
     };
     Ok(LabResult {
-        title,
-        poses: ms.iter().map(|m| m.q().to_vec()).collect(),
+        title: d.title,
+        poses: d
+            .ms
+            .iter()
+            .flat_map(|m| m.joint_vectors())
+            .map(<[f64]>::to_vec)
+            .collect(),
         model,
         report,
-        truth,
+        truth: d.truth,
         validation,
+        setup: d.setup,
+        warnings: d.warnings,
+        robot_base: d.robot_base,
     })
+}
+
+/// The tracker setup's model: the base started at the tracker pose registered from the
+/// measurements, its six parameters estimated; with the robot's own base.
+fn tracker_model(
+    robot: &Robot,
+    hayati: bool,
+    ms: &[Measurement],
+) -> Result<(ParameterModel, Pose), String> {
+    let plain = model_of(robot, hayati)?;
+    let reg = register_tracker(&plain, &plain.nominal(), ms).map_err(|e| e.to_string())?;
+    let mut moved = robot.clone();
+    moved.base = reg * robot.base;
+    Ok((model_of(&moved, hayati)?.with_base(), robot.base))
 }

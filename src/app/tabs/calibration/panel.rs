@@ -3,7 +3,7 @@
 
 use super::lab::{CalibrationLab, LabResult, PoseChoice};
 use crate::app::file_picker::{FileKind, FilePicker};
-use crate::calibration::Fit;
+use crate::calibration::{Fit, Setup};
 use crate::kinematics::Robot;
 use egui::{Color32, RichText};
 
@@ -73,10 +73,96 @@ pub fn show(
             }
             maps(lab, textures, ui);
         }
+        if lab.result.is_some() {
+            corrections(lab, robot, picker, ui);
+        }
         if let Some(r) = &lab.result {
             report(r, ui);
         }
     });
+}
+
+/// Target correction: desired poses in, a row per pose and posture out (what to command the
+/// real arm, what to send a nominal controller), and saving the table.
+fn corrections(
+    lab: &mut CalibrationLab,
+    robot: &Robot,
+    picker: &mut dyn FilePicker,
+    ui: &mut egui::Ui,
+) {
+    ui.separator();
+    ui.strong("Target correction");
+    ui.label(
+        RichText::new(
+            "Desired tool poses (16 numbers per line, or a headered CSV with x y z and a \
+             quaternion or roll pitch yaw): every posture of the nominal closed form, polished on \
+             the calibrated arm, and the pose to send a controller that runs the nominal model.",
+        )
+        .small(),
+    );
+    ui.horizontal(|ui| {
+        let l = ui.label("desired poses");
+        ui.add(
+            egui::TextEdit::singleline(&mut lab.targets_path)
+                .hint_text("targets.csv")
+                .desired_width(200.0),
+        )
+        .labelled_by(l.id);
+        if ui.button("Correct targets").clicked() {
+            lab.correct(robot);
+        }
+        if lab.corrections.is_some() && ui.button("Save table").clicked() {
+            let name = match lab.targets_path.trim() {
+                "" => "corrected.csv".to_string(),
+                n => format!("{}-corrected.csv", n.trim_end_matches(".csv")),
+            };
+            let text = lab.corrections_text(robot).unwrap_or_default();
+            lab.message = Some(if picker.downloads() {
+                if picker.download(&name, "text/csv", text.as_bytes()) {
+                    format!("downloading the table as {name}")
+                } else {
+                    format!("the browser refused the download of {name}")
+                }
+            } else {
+                match std::fs::write(&name, text) {
+                    Ok(()) => format!("saved the table to {name}"),
+                    Err(e) => format!("cannot write {name}: {e}"),
+                }
+            });
+        }
+    });
+    let Some(rows) = &lab.corrections else {
+        return;
+    };
+    egui::Grid::new("target corrections")
+        .striped(true)
+        .show(ui, |ui| {
+            for h in [
+                "pose",
+                "posture",
+                "off without [mm]",
+                "send x, y, z [mm]",
+                "limits",
+            ] {
+                ui.label(RichText::new(h).small().strong());
+            }
+            ui.end_row();
+            for r in rows.iter().take(40) {
+                let t = r.send.translation.vector * 1e3;
+                ui.label((r.pose + 1).to_string());
+                ui.label(&r.posture);
+                ui.label(format!("{:.4}", r.uncorrected_error * 1e3));
+                ui.label(format!("{:.3}, {:.3}, {:.3}", t[0], t[1], t[2]));
+                ui.label(if r.within_limits { "ok" } else { "outside" });
+                ui.end_row();
+            }
+        });
+    if rows.len() > 40 {
+        ui.label(format!(
+            "... {} rows in all (Save table writes them)",
+            rows.len()
+        ));
+    }
 }
 
 /// The accuracy maps side by side, each with its colour bar.
@@ -185,6 +271,45 @@ fn settings(lab: &mut CalibrationLab, ui: &mut egui::Ui) {
             ui.selectable_value(&mut s.choice, c, name);
         }
         ui.checkbox(&mut s.position_only, "position only");
+    });
+    ui.horizontal_wrapped(|ui| {
+        ui.label("setup:");
+        for setup in Setup::ALL {
+            ui.selectable_value(&mut s.setup, setup, setup.name())
+                .on_hover_text(setup.blind_spots());
+        }
+    });
+    ui.horizontal_wrapped(|ui| {
+        match s.setup {
+            Setup::Pivot | Setup::Plane | Setup::Sphere => {
+                let l = ui.label(match s.setup {
+                    Setup::Pivot => "points",
+                    Setup::Plane => "planes",
+                    _ => "spheres",
+                });
+                ui.add(egui::DragValue::new(&mut s.groups).range(1..=10))
+                    .labelled_by(l.id);
+            }
+            Setup::Distance => {
+                let l = ui.label("artefact [mm]");
+                ui.add(
+                    egui::DragValue::new(&mut s.distance_mm)
+                        .range(10.0..=2000.0)
+                        .speed(1.0),
+                )
+                .labelled_by(l.id);
+            }
+            _ => {}
+        }
+        if s.setup == Setup::Sphere {
+            let l = ui.label("contact radius [mm]");
+            ui.add(
+                egui::DragValue::new(&mut s.radius_mm)
+                    .range(1.0..=500.0)
+                    .speed(0.1),
+            )
+            .labelled_by(l.id);
+        }
         ui.checkbox(&mut s.hayati, "Hayati's beta on parallel axes");
         ui.checkbox(
             &mut s.minimum_norm,
@@ -228,6 +353,13 @@ fn actions(lab: &mut CalibrationLab, robot: &Robot, q: &[f64], ui: &mut egui::Ui
 
 /// The measurement file (typed, or chosen in the file dialog) and where to save the result.
 fn files(lab: &mut CalibrationLab, robot: &Robot, picker: &mut dyn FilePicker, ui: &mut egui::Ui) {
+    ui.label(
+        RichText::new(
+            "Measurement files: plain (SI units) or a headered CSV (joint names, units in \
+             brackets, x y z and a quaternion / roll pitch yaw); read as the setup above says.",
+        )
+        .small(),
+    );
     ui.horizontal(|ui| {
         let l = ui.label("measurements");
         ui.add(
@@ -248,6 +380,36 @@ fn files(lab: &mut CalibrationLab, robot: &Robot, picker: &mut dyn FilePicker, u
         {
             lab.measurements_path = p.to_string_lossy().into_owned();
             lab.run_file(robot);
+        }
+    });
+    ui.horizontal(|ui| {
+        let l = ui.label("template");
+        ui.add(
+            egui::TextEdit::singleline(&mut lab.template_path)
+                .hint_text("measurements.csv")
+                .desired_width(200.0),
+        )
+        .labelled_by(l.id);
+        if ui
+            .button("Write template")
+            .on_hover_text("an annotated file for this setup and arm, with example rows")
+            .clicked()
+        {
+            if picker.downloads() {
+                let name = match lab.template_path.trim() {
+                    "" => "measurements.csv",
+                    n => n,
+                };
+                lab.message = Some(match lab.template_text(robot) {
+                    Ok(t) if picker.download(name, "text/csv", t.as_bytes()) => {
+                        format!("downloading the template as {name}")
+                    }
+                    Ok(_) => format!("the browser refused the download of {name}"),
+                    Err(e) => e,
+                });
+            } else {
+                lab.save_template(robot);
+            }
         }
     });
     ui.horizontal(|ui| {
@@ -292,9 +454,32 @@ fn fit_line(name: &str, f: &Fit) -> String {
 fn report(r: &LabResult, ui: &mut egui::Ui) {
     let rep = &r.report;
     ui.strong(&r.title);
+    let wrap = |ui: &mut egui::Ui, t: RichText| ui.add(egui::Label::new(t).wrap());
+    wrap(
+        ui,
+        RichText::new(format!(
+            "setup: {}; what it cannot see: {}",
+            r.setup.name(),
+            r.setup.blind_spots()
+        ))
+        .small(),
+    );
+    for w in &r.warnings {
+        wrap(
+            ui,
+            RichText::new(format!("warning: {w}")).color(Color32::from_rgb(170, 60, 0)),
+        );
+    }
     let rows = r.model.hayati_rows();
     if !rows.is_empty() {
         ui.label(format!("Hayati's beta instead of d on rows {rows:?}"));
+    }
+    for (name, why) in &rep.auto_fixed {
+        wrap(
+            ui,
+            RichText::new(format!("kept at its nominal value: {name}, because {why}"))
+                .color(Color32::from_rgb(0, 70, 140)),
+        );
     }
     egui::Grid::new("calibration iterations")
         .striped(true)
@@ -326,8 +511,9 @@ fn report(r: &LabResult, ui: &mut egui::Ui) {
     });
     let n = &rep.nominal;
     ui.label(format!(
-        "identifiable: rank {} of {}",
-        n.rank, n.parameter_count
+        "identifiable at the nominal parameters: rank {} of {}; at the estimate (the table's \
+         flags): rank {} of {}",
+        n.rank, n.parameter_count, rep.at_estimate.rank, rep.at_estimate.parameter_count
     ));
     for c in &n.combinations {
         ui.add(egui::Label::new(RichText::new(c).color(Color32::from_rgb(170, 60, 0))).wrap());
@@ -345,6 +531,41 @@ fn report(r: &LabResult, ui: &mut egui::Ui) {
         line(ui, RichText::new(fit_line("held-out after", a)).strong());
     }
     parameters(r, ui);
+    unknowns(r, ui);
+}
+
+/// The setup's estimated points, planes and spheres.
+fn unknowns(r: &LabResult, ui: &mut egui::Ui) {
+    let u = &r.report.unknowns;
+    for (k, c) in u.points.iter().enumerate() {
+        ui.label(format!(
+            "point {}: ({:.3}, {:.3}, {:.3}) mm",
+            k + 1,
+            c[0] * 1e3,
+            c[1] * 1e3,
+            c[2] * 1e3
+        ));
+    }
+    for (k, p) in u.planes.iter().enumerate() {
+        let n = p.normal();
+        ui.label(format!(
+            "plane {}: normal ({:.5}, {:.5}, {:.5}), offset {:.3} mm",
+            k + 1,
+            n[0],
+            n[1],
+            n[2],
+            p.h * 1e3
+        ));
+    }
+    for (k, c) in u.spheres.iter().enumerate() {
+        ui.label(format!(
+            "sphere {}: centre ({:.3}, {:.3}, {:.3}) mm",
+            k + 1,
+            c[0] * 1e3,
+            c[1] * 1e3,
+            c[2] * 1e3
+        ));
+    }
 }
 
 fn parameters(r: &LabResult, ui: &mut egui::Ui) {
@@ -367,7 +588,13 @@ fn parameters(r: &LabResult, ui: &mut egui::Ui) {
                 } else {
                     (1e3, "mm")
                 };
-                let state = if p.fixed {
+                let kept = rep.auto_fixed.iter().any(|(n, _)| *n == p.name);
+                let state = if kept {
+                    (
+                        "kept nominal: not identifiable",
+                        Color32::from_rgb(0, 70, 140),
+                    )
+                } else if p.fixed {
                     ("fixed", Color32::GRAY)
                 } else if !rep.at_estimate.identifiable[k] {
                     ("not identifiable", Color32::from_rgb(190, 0, 0))
@@ -381,7 +608,9 @@ fn parameters(r: &LabResult, ui: &mut egui::Ui) {
                 ui.label(
                     r.truth
                         .as_ref()
-                        .map_or("-".into(), |t| format!("{:.4}", t[k] * scale)),
+                        .and_then(|t| t.get(k))
+                        .filter(|v| v.is_finite())
+                        .map_or("-".into(), |t| format!("{:.4}", t * scale)),
                 );
                 ui.label(format!("{:.4}", rep.estimate[k] * scale));
                 ui.label(rep.std[k].map_or("-".into(), |s| format!("{:.2e}", s * scale)));
