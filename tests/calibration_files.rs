@@ -368,3 +368,176 @@ fn correct_targets_writes_a_row_per_pose_and_posture() {
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("needs an orientation"));
 }
+
+/// Simulated full poses of a perturbed Puma 560 (0.02 mm, 0.05 mrad), seen from a camera 2 m
+/// away and turned 90 degrees: (joint vectors, camera_from_tool).
+fn camera_poses(count: usize, seed: u64) -> Vec<(Vec<f64>, armlab::kinematics::pose::Pose)> {
+    use armlab::calibration::{ParameterModel, SimulationOptions, simulate};
+    use armlab::kinematics::pose::Pose;
+    use nalgebra::{Rotation3, Translation3, Vector3};
+    let model = ParameterModel::new(&armlab::kinematics::models::built_in("puma560").unwrap())
+        .unwrap()
+        .with_hayati()
+        .unwrap();
+    let sim = simulate(
+        &model,
+        &SimulationOptions {
+            poses: count,
+            validation_poses: 0,
+            noise_mm: 0.02,
+            noise_mrad: 0.05,
+            seed,
+            ..SimulationOptions::default()
+        },
+    )
+    .unwrap();
+    let world_from_camera = Pose::from_parts(
+        Translation3::new(2.2, 0.7, 1.075),
+        Rotation3::from_axis_angle(&Vector3::z_axis(), std::f64::consts::FRAC_PI_2),
+    );
+    sim.measurements
+        .iter()
+        .map(|m| match m {
+            armlab::calibration::Measurement::Pose {
+                q, world_from_tool, ..
+            } => (q.clone(), world_from_camera.inverse() * world_from_tool),
+            _ => unreachable!(),
+        })
+        .collect()
+}
+
+#[test]
+fn robot_cal_tools_yaml_calibrates_with_the_camera_pose_estimated() {
+    // The layout of robot_cal_tools' kinematic measurements (rct_examples/data/
+    // positioner_kinematic_measurements.yaml): a map from a timestamp to target_joints,
+    // camera_joints (empty: a fixed camera) and pose (x y z qw qx qy qz, the target in the
+    // camera's frame).
+    let mut yaml = String::from("# written like robot_cal_tools' measurement files\n");
+    for (k, (q, t)) in camera_poses(60, 31).iter().enumerate() {
+        let u = nalgebra::UnitQuaternion::from_rotation_matrix(&t.rotation);
+        let p = t.translation.vector;
+        yaml.push_str(&format!(
+            "'{}':\n  camera_joints: []\n  pose:\n",
+            1_593_701_755 + 7 * k
+        ));
+        for (name, v) in [
+            ("qw", u.w),
+            ("qx", u.i),
+            ("qy", u.j),
+            ("qz", u.k),
+            ("x", p.x),
+            ("y", p.y),
+            ("z", p.z),
+        ] {
+            yaml.push_str(&format!("    {name}: {v:?}\n"));
+        }
+        yaml.push_str("  target_joints:\n");
+        for v in q {
+            yaml.push_str(&format!("  - {v:?}\n"));
+        }
+    }
+    let d = dir("yaml");
+    let path = d.join("measurements.yaml");
+    std::fs::write(&path, &yaml).unwrap();
+    let v = json(&armlab(&[
+        "calibrate",
+        "puma560",
+        "--setup",
+        "tracker",
+        "--measurements",
+        path.to_str().unwrap(),
+        "--noise-mm",
+        "0.02",
+        "--noise-mrad",
+        "0.05",
+        "--format",
+        "json",
+    ]));
+    assert_eq!(v["converged"], true);
+    let after = v["fit"]["after"]["position_rms"].as_f64().unwrap();
+    assert!(after < 1.3 * 3f64.sqrt() * 0.02e-3, "{after}");
+    // The camera found where it is: 2.2 m, 0.7 m, 1.075 m, turned 90 degrees (the base in the
+    // camera's frame is the inverse).
+    let t: Vec<f64> = v["tracker_from_base"]["translation"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect();
+    let expect = [-0.7, 2.2, -1.075];
+    for (a, b) in t.iter().zip(expect) {
+        assert!((a - b).abs() < 0.01, "{t:?}");
+    }
+    // A camera on a moving chain is refused with the observation's name and line.
+    let bad = yaml.replacen("camera_joints: []", "camera_joints: [0.1]", 1);
+    std::fs::write(&path, bad).unwrap();
+    let o = armlab(&[
+        "calibrate",
+        "puma560",
+        "--setup",
+        "tracker",
+        "--measurements",
+        path.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        e.contains("1593701755") && e.contains("line 2") && e.contains("camera_joints"),
+        "{e}"
+    );
+}
+
+#[test]
+fn figaroh_csv_calibrates() {
+    // FIGAROH's layout (figaroh-examples, examples/ur10/data/calibration.csv): marker columns
+    // x1, y1, z1, phix1, phiy1, phiz1 (roll-pitch-yaw, rad), then the joints by name; a time
+    // column `t` as in the Talos files; SI units, no unit in the header.
+    let puma = armlab::kinematics::models::built_in("puma560").unwrap();
+    let names = armlab::calibration::JointColumns::of(&puma).names;
+    let mut csv = format!("t,x1,y1,z1,phix1,phiy1,phiz1,{}\n", names.join(","));
+    for (k, (q, t)) in camera_poses(60, 32).iter().enumerate() {
+        // The camera is the world here: undo the camera pose of camera_poses.
+        let world_from_camera = armlab::kinematics::pose::Pose::from_parts(
+            nalgebra::Translation3::new(2.2, 0.7, 1.075),
+            nalgebra::Rotation3::from_axis_angle(
+                &nalgebra::Vector3::z_axis(),
+                std::f64::consts::FRAC_PI_2,
+            ),
+        );
+        let w = world_from_camera * t;
+        let rpy = armlab::kinematics::orientation::rpy_from_rotation(&w.rotation).angles;
+        let p = w.translation.vector;
+        let mut f = vec![
+            format!("{}", k as f64 * 0.5),
+            format!("{:?}", p.x),
+            format!("{:?}", p.y),
+            format!("{:?}", p.z),
+        ];
+        // rpy_from_rotation gives (phi, theta, psi) of Rz(phi) Ry(theta) Rx(psi): phiz, phiy, phix.
+        f.extend([rpy[2], rpy[1], rpy[0]].iter().map(|v| format!("{v:?}")));
+        f.extend(q.iter().map(|v| format!("{v:?}")));
+        csv.push_str(&f.join(","));
+        csv.push('\n');
+    }
+    let d = dir("figaroh");
+    let path = d.join("calibration.csv");
+    std::fs::write(&path, csv).unwrap();
+    let v = json(&armlab(&[
+        "calibrate",
+        "puma560",
+        "--measurements",
+        path.to_str().unwrap(),
+        "--noise-mm",
+        "0.02",
+        "--noise-mrad",
+        "0.05",
+        "--format",
+        "json",
+    ]));
+    assert_eq!(v["setup"], "pose");
+    assert_eq!(v["converged"], true);
+    let after = v["fit"]["after"]["position_rms"].as_f64().unwrap();
+    assert!(after < 1.3 * 3f64.sqrt() * 0.02e-3, "{after}");
+    let warnings = v["warnings"].to_string();
+    assert!(warnings.contains("\\\"t\\\""), "{warnings}");
+}

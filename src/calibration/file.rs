@@ -77,7 +77,7 @@ impl JointColumns {
         }
     }
 
-    fn dof(&self) -> usize {
+    pub(super) fn dof(&self) -> usize {
         self.names.len()
     }
 }
@@ -118,6 +118,19 @@ pub fn parse_setup(
     setup: Setup,
     radius: Option<f64>,
 ) -> Result<ParsedFile, MeasurementFileError> {
+    if super::yaml::looks_like_yaml(text) {
+        if !matches!(setup, Setup::Pose | Setup::Tracker) {
+            return Err(MeasurementFileError {
+                source_name: source_name.into(),
+                line: 0,
+                problem: format!(
+                    "a robot_cal_tools YAML file holds full poses: use --setup pose or tracker, not {}",
+                    setup.name()
+                ),
+            });
+        }
+        return super::yaml::parse_rct_yaml(text, source_name, joints.dof());
+    }
     let mut p = Parser {
         source_name,
         joints,
@@ -333,7 +346,7 @@ impl Parser<'_> {
         r: Option<Rotation3<f64>>,
     ) -> Result<Measurement, MeasurementFileError> {
         match (self.setup, r) {
-            (Setup::Pose, Some(r)) => Ok(Measurement::Pose {
+            (Setup::Pose | Setup::Tracker, Some(r)) => Ok(Measurement::Pose {
                 q,
                 world_from_tool: Pose::from_parts(Translation3::from(p), r),
             }),
@@ -551,6 +564,15 @@ impl Parser<'_> {
             return Col::Joint(k, side, scale);
         }
         let xyz = |c: &str| ["x", "y", "z"].iter().position(|v| *v == c);
+        // FIGAROH's marker columns: x1, y1, z1 and phix1, phiy1, phiz1 (roll-pitch-yaw, (2.21));
+        // markers 2.. are not read.
+        let name = match name {
+            "x1" | "y1" | "z1" => &name[..1],
+            "phix1" => "roll",
+            "phiy1" => "pitch",
+            "phiz1" => "yaw",
+            _ => name,
+        };
         match name {
             "x" | "y" | "z" => Col::Point(xyz(name).unwrap_or(0), scale),
             "qw" | "qx" | "qy" | "qz" => Col::Quat(

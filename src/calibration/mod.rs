@@ -36,6 +36,7 @@ mod select;
 mod setup;
 mod simulate;
 mod solve;
+mod yaml;
 
 pub use accuracy::{AccuracyMap, accuracy_map};
 pub use correct::{TargetCorrection, correct_targets};

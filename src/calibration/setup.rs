@@ -19,8 +19,9 @@ pub enum Setup {
     Pose,
     /// Tool points in the robot's world frame.
     Position,
-    /// Tool points in a tracker's own frame, whose pose relative to the robot's base is unknown
-    /// and estimated (six base parameters, started from a rigid registration).
+    /// Tool points or poses in a tracker's (or camera's) own frame, whose pose relative to the
+    /// robot's base is unknown and estimated (six base parameters, started from a rigid
+    /// registration of the tool points).
     Tracker,
     /// Pairs of joint vectors whose tool points are a known distance apart (a two-socket
     /// artefact, a ball bar).
@@ -419,13 +420,20 @@ pub fn register_tracker(
 ) -> Result<crate::kinematics::pose::Pose, CalibrationError> {
     let mut pairs = Vec::with_capacity(ms.len());
     for m in ms {
-        if let Measurement::Position { q, p } = m {
-            pairs.push((tool_point(model, zeta, q)?, *p));
+        match m {
+            Measurement::Position { q, p } => pairs.push((tool_point(model, zeta, q)?, *p)),
+            Measurement::Pose {
+                q, world_from_tool, ..
+            } => pairs.push((
+                tool_point(model, zeta, q)?,
+                world_from_tool.translation.vector,
+            )),
+            _ => {}
         }
     }
     if pairs.len() < 3 {
         return Err(CalibrationError::InvalidOption(
-            "the tracker setup needs at least 3 position measurements".into(),
+            "the tracker setup needs at least 3 position or pose measurements".into(),
         ));
     }
     let ca = pairs.iter().map(|(a, _)| a).sum::<Vector3<f64>>() / pairs.len() as f64;

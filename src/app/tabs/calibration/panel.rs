@@ -272,6 +272,11 @@ fn settings(lab: &mut CalibrationLab, ui: &mut egui::Ui) {
         }
         ui.checkbox(&mut s.position_only, "position only");
     });
+    setup_settings(s, ui);
+}
+
+/// The setup, its scene, and the model's options.
+fn setup_settings(s: &mut super::lab::LabSettings, ui: &mut egui::Ui) {
     ui.horizontal_wrapped(|ui| {
         ui.label("setup:");
         for setup in Setup::ALL {
@@ -382,6 +387,42 @@ fn files(lab: &mut CalibrationLab, robot: &Robot, picker: &mut dyn FilePicker, u
             lab.run_file(robot);
         }
     });
+    template(lab, robot, picker, ui);
+    ui.horizontal(|ui| {
+        let l = ui.label("save as");
+        ui.add(
+            egui::TextEdit::singleline(&mut lab.save_path)
+                .hint_text("calibrated.toml")
+                .desired_width(200.0),
+        )
+        .labelled_by(l.id);
+        if ui.button("Save calibrated model").clicked() {
+            if picker.downloads() {
+                let name = match lab.save_path.trim() {
+                    "" => "calibrated.toml",
+                    n => n,
+                };
+                lab.message = Some(match lab.calibrated_text() {
+                    Ok(t) if picker.download(name, "application/toml", t.as_bytes()) => {
+                        format!("downloading the calibrated model as {name}")
+                    }
+                    Ok(_) => format!("the browser refused the download of {name}"),
+                    Err(e) => e,
+                });
+            } else {
+                lab.save_model();
+            }
+        }
+    });
+}
+
+/// The template's path and its button.
+fn template(
+    lab: &mut CalibrationLab,
+    robot: &Robot,
+    picker: &mut dyn FilePicker,
+    ui: &mut egui::Ui,
+) {
     ui.horizontal(|ui| {
         let l = ui.label("template");
         ui.add(
@@ -412,32 +453,6 @@ fn files(lab: &mut CalibrationLab, robot: &Robot, picker: &mut dyn FilePicker, u
             }
         }
     });
-    ui.horizontal(|ui| {
-        let l = ui.label("save as");
-        ui.add(
-            egui::TextEdit::singleline(&mut lab.save_path)
-                .hint_text("calibrated.toml")
-                .desired_width(200.0),
-        )
-        .labelled_by(l.id);
-        if ui.button("Save calibrated model").clicked() {
-            if picker.downloads() {
-                let name = match lab.save_path.trim() {
-                    "" => "calibrated.toml",
-                    n => n,
-                };
-                lab.message = Some(match lab.calibrated_text() {
-                    Ok(t) if picker.download(name, "application/toml", t.as_bytes()) => {
-                        format!("downloading the calibrated model as {name}")
-                    }
-                    Ok(_) => format!("the browser refused the download of {name}"),
-                    Err(e) => e,
-                });
-            } else {
-                lab.save_model();
-            }
-        }
-    });
 }
 
 fn fit_line(name: &str, f: &Fit) -> String {
@@ -451,8 +466,8 @@ fn fit_line(name: &str, f: &Fit) -> String {
     )
 }
 
-fn report(r: &LabResult, ui: &mut egui::Ui) {
-    let rep = &r.report;
+/// The run's title, setup, file warnings, Hayati rows and what was kept nominal and why.
+fn header(r: &LabResult, ui: &mut egui::Ui) {
     ui.strong(&r.title);
     let wrap = |ui: &mut egui::Ui, t: RichText| ui.add(egui::Label::new(t).wrap());
     wrap(
@@ -474,13 +489,18 @@ fn report(r: &LabResult, ui: &mut egui::Ui) {
     if !rows.is_empty() {
         ui.label(format!("Hayati's beta instead of d on rows {rows:?}"));
     }
-    for (name, why) in &rep.auto_fixed {
+    for (name, why) in &r.report.auto_fixed {
         wrap(
             ui,
             RichText::new(format!("kept at its nominal value: {name}, because {why}"))
                 .color(Color32::from_rgb(0, 70, 140)),
         );
     }
+}
+
+fn report(r: &LabResult, ui: &mut egui::Ui) {
+    let rep = &r.report;
+    header(r, ui);
     egui::Grid::new("calibration iterations")
         .striped(true)
         .show(ui, |ui| {
