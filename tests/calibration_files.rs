@@ -541,3 +541,64 @@ fn figaroh_csv_calibrates() {
     let warnings = v["warnings"].to_string();
     assert!(warnings.contains("\\\"t\\\""), "{warnings}");
 }
+
+#[test]
+fn a_urdf_arm_calibrates_through_its_dh_form_and_keeps_its_joints_in_the_written_urdf() {
+    // The UR5 URDF (tests/data/urdf_corpus): not a DH table. It is calibrated through its
+    // derived standard DH table (Hayati's beta on the parallel axes 2-3-4), and the URDF written
+    // keeps the chain's joints, their origins moved, with the FK of the calibrated table.
+    let d = dir("ur5");
+    let (toml, urdf) = (d.join("cal.toml"), d.join("cal.urdf"));
+    let src = format!(
+        "{}/tests/data/urdf_corpus/ur5_robot.urdf",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let v = json(&armlab(&[
+        "calibrate",
+        &src,
+        "--simulate",
+        "--poses",
+        "60",
+        "--noise-mm",
+        "0.02",
+        "--write-model",
+        toml.to_str().unwrap(),
+        "--write-urdf",
+        urdf.to_str().unwrap(),
+        "--format",
+        "json",
+    ]));
+    assert!(
+        v["warnings"]
+            .to_string()
+            .contains("derived standard DH table")
+    );
+    assert_eq!(v["hayati_rows"], serde_json::json!([2, 3]));
+    assert_eq!(v["converged"], true);
+    let after = v["validation"]["after"]["position_rms"].as_f64().unwrap();
+    assert!(after < 1.3 * 3f64.sqrt() * 0.02e-3, "{after}");
+    let original = load_model(&src).unwrap();
+    let a = load_model(toml.to_str().unwrap()).unwrap();
+    let b = load_model(urdf.to_str().unwrap()).unwrap();
+    let names = |r: &armlab::kinematics::Robot| armlab::calibration::JointColumns::of(r).names;
+    assert_eq!(
+        names(&b),
+        names(&original),
+        "the URDF keeps the chain's joint names"
+    );
+    let (mut worst, mut moved) = (0.0f64, 0.0f64);
+    for k in 0..40 {
+        let q: Vec<f64> = (0..6)
+            .map(|j| ((k * 5 + j * 2) as f64 * 0.41).sin() * 2.5)
+            .collect();
+        let (ta, tb) = (a.fk(&q).unwrap(), b.fk(&q).unwrap());
+        worst = worst.max((ta.to_homogeneous() - tb.to_homogeneous()).abs().max());
+        let to = original.fk(&q).unwrap();
+        moved = moved.max((tb.translation.vector - to.translation.vector).norm());
+    }
+    assert!(worst < 1e-12, "URDF vs TOML FK: {worst:e}");
+    assert!(
+        moved > 1e-3,
+        "the calibration moved the tool by {moved} m at most"
+    );
+}

@@ -17,6 +17,8 @@
 //!   ([`Unknowns`]) and what it cannot see.
 //! - [`select_poses`]: l poses out of candidates maximising O1 or O4 (DETMAX-style exchange);
 //!   [`parse_measurements`] / [`write_measurements`]: the measurement file format.
+//! - [`dh_form`] / [`with_calibrated_origins`]: a URDF chain calibrated through its derived DH
+//!   table, the result carried back into its joint origins.
 //! - [`correct_targets`]: IK on the calibrated arm in every posture of the nominal closed form,
 //!   and the poses to send a controller that runs the nominal model (target filtering).
 //! - [`accuracy_map`]: the position deviation between two models over the top view of the
@@ -28,6 +30,7 @@
 //! `R_measured R_model^T = Rot(delta phi)` (world frame).
 
 mod accuracy;
+mod chain;
 mod correct;
 mod file;
 mod identify;
@@ -39,6 +42,7 @@ mod solve;
 mod yaml;
 
 pub use accuracy::{AccuracyMap, accuracy_map};
+pub use chain::{dh_form, with_calibrated_origins};
 pub use correct::{TargetCorrection, correct_targets};
 pub use file::{
     JointColumns, MeasurementFileError, ParsedFile, parse_measurements, parse_setup, parse_targets,

@@ -5,9 +5,9 @@ use super::{CliError, Format};
 use crate::calibration::{
     CalibrationOptions, CalibrationReport, Criterion, Fit, Identifiability, JointColumns,
     Measurement, ParameterModel, ParsedFile, Setup, SetupScene, SimulationOptions,
-    TargetCorrection, Unidentifiable, calibrate, correct_targets, fit, parse_setup, parse_targets,
-    register_tracker, select_poses, simulate_setup, template, write_corrections,
-    write_measurements,
+    TargetCorrection, Unidentifiable, calibrate, correct_targets, dh_form, fit, parse_setup,
+    parse_targets, register_tracker, select_poses, simulate_setup, template,
+    with_calibrated_origins, write_corrections, write_measurements,
 };
 use crate::kinematics::pose::Pose;
 use serde_json::{Value, json};
@@ -411,7 +411,15 @@ fn tracker_model(
 
 /// `armlab calibrate`.
 pub(super) fn run(args: &CalibrateArgs, out: &mut dyn Write) -> Result<(), CliError> {
-    let (robot, _) = super::arm_robot(super::load_model(&args.model)?, args.ee.as_deref())?;
+    let (original, _) = super::arm_robot(super::load_model(&args.model)?, args.ee.as_deref())?;
+    // A chain that is not a DH table (a URDF arm) is calibrated through its derived table.
+    let (robot, chain) = match ParameterModel::new(&original) {
+        Err(crate::calibration::CalibrationError::NotSerialDh(_)) => (
+            dh_form(&original).map_err(calibration_error)?,
+            Some(&original),
+        ),
+        _ => (original.clone(), None),
+    };
     let base_model = build_model(args, &robot, false)?;
     if let Some(path) = &args.template {
         return write_template(args, &base_model, path, out);
@@ -425,6 +433,13 @@ pub(super) fn run(args: &CalibrateArgs, out: &mut dyn Write) -> Result<(), CliEr
         opts.unidentifiable = Unidentifiable::MinimumNorm;
     }
     let mut data = data(args, &base_model, &opts)?;
+    if chain.is_some() {
+        data.warnings.push(format!(
+            "{} is not a DH table: calibrated through its derived standard DH table (same FK); \
+             --write-urdf / --write-model FILE.urdf carry the result into its joint origins",
+            original.name
+        ));
+    }
     let setup = setup_of(args);
     let (model, tracker) = if setup == Setup::Tracker {
         let (m, t) = tracker_model(args, &robot, &base_model, &mut data)?;
@@ -450,7 +465,7 @@ pub(super) fn run(args: &CalibrateArgs, out: &mut dyn Write) -> Result<(), CliEr
         // The tracker's pose is the cell's, not the robot's: the written model keeps its base.
         calibrated.base = robot.base;
     }
-    write_models(args, &calibrated)?;
+    write_models(args, &calibrated, chain.map(|c| (c, &robot)))?;
     let corrections = args
         .correct_targets
         .as_ref()
@@ -459,26 +474,48 @@ pub(super) fn run(args: &CalibrateArgs, out: &mut dyn Write) -> Result<(), CliEr
     if let Some(path) = &args.accuracy_map {
         accuracy_figures(args, &model, &report.estimate, data.truth.as_deref(), path)?;
     }
-    let kind = data.ms.first().map_or("pose", Measurement::kind);
     let ctx = Context {
-        setup: if setup == Setup::Pose && kind == "position" {
-            Setup::Position
-        } else {
-            setup
-        },
+        setup: reported_setup(setup, &data.ms),
         hayati_rows: model.hayati_rows(),
         tracker_from_base,
         warnings: &data.warnings,
         measurements: data.ms.len(),
         corrections: corrections.as_ref(),
     };
-    match args.format {
+    print_report(
+        args.format,
+        out,
+        &report,
+        val.as_ref(),
+        data.truth.as_deref(),
+        &ctx,
+    )
+}
+
+/// The setup the report names: `pose` read from a file of positions is `position`.
+fn reported_setup(setup: Setup, ms: &[Measurement]) -> Setup {
+    match ms.first() {
+        Some(Measurement::Position { .. }) if setup == Setup::Pose => Setup::Position,
+        _ => setup,
+    }
+}
+
+/// The report as text or JSON.
+fn print_report(
+    format: Format,
+    out: &mut dyn Write,
+    report: &CalibrationReport,
+    val: Option<&(Fit, Fit)>,
+    truth: Option<&[f64]>,
+    ctx: &Context,
+) -> Result<(), CliError> {
+    match format {
         Format::Json => {
-            let v = to_json(&report, val.as_ref(), data.truth.as_deref(), &ctx);
+            let v = to_json(report, val, truth, ctx);
             serde_json::to_writer_pretty(&mut *out, &v).map_err(std::io::Error::from)?;
             writeln!(out)?;
         }
-        Format::Text => write_text(out, &report, val.as_ref(), data.truth.as_deref(), &ctx)?,
+        Format::Text => write_text(out, report, val, truth, ctx)?,
     }
     Ok(())
 }
@@ -521,13 +558,21 @@ fn read_targets(path: &Path) -> Result<Vec<Pose>, CliError> {
     })
 }
 
-/// `--write-model` (TOML, or URDF by the extension) and `--write-urdf`.
+/// `--write-model` (TOML, or URDF by the extension) and `--write-urdf`; `chain` is the original
+/// chain and its nominal DH form when the calibration ran on a derived table (the URDF then
+/// keeps the chain's joints, their origins updated).
 fn write_models(
     args: &CalibrateArgs,
     calibrated: &crate::kinematics::Robot,
+    chain: Option<(&crate::kinematics::Robot, &crate::kinematics::Robot)>,
 ) -> Result<(), CliError> {
     let urdf = |path: &Path| -> Result<(), CliError> {
-        let text = crate::urdf::to_urdf(calibrated).map_err(|e| CliError::BadTarget {
+        let carried = chain
+            .map(|(original, nominal)| with_calibrated_origins(original, nominal, calibrated))
+            .transpose()
+            .map_err(calibration_error)?;
+        let robot = carried.as_ref().unwrap_or(calibrated);
+        let text = crate::urdf::to_urdf(robot).map_err(|e| CliError::BadTarget {
             source_name: path.display().to_string(),
             reason: e.to_string(),
         })?;
