@@ -412,14 +412,8 @@ fn tracker_model(
 /// `armlab calibrate`.
 pub(super) fn run(args: &CalibrateArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let (original, _) = super::arm_robot(super::load_model(&args.model)?, args.ee.as_deref())?;
-    // A chain that is not a DH table (a URDF arm) is calibrated through its derived table.
-    let (robot, chain) = match ParameterModel::new(&original) {
-        Err(crate::calibration::CalibrationError::NotSerialDh(_)) => (
-            dh_form(&original).map_err(calibration_error)?,
-            Some(&original),
-        ),
-        _ => (original.clone(), None),
-    };
+    let (robot, derived) = dh_robot(&original)?;
+    let chain = derived.then_some(&original);
     let base_model = build_model(args, &robot, false)?;
     if let Some(path) = &args.template {
         return write_template(args, &base_model, path, out);
@@ -490,6 +484,19 @@ pub(super) fn run(args: &CalibrateArgs, out: &mut dyn Write) -> Result<(), CliEr
         data.truth.as_deref(),
         &ctx,
     )
+}
+
+/// The robot to calibrate: `original` itself, or, for a chain that is not a DH table (a URDF
+/// arm), its derived standard DH table (true).
+fn dh_robot(
+    original: &crate::kinematics::Robot,
+) -> Result<(crate::kinematics::Robot, bool), CliError> {
+    match ParameterModel::new(original) {
+        Err(crate::calibration::CalibrationError::NotSerialDh(_)) => {
+            Ok((dh_form(original).map_err(calibration_error)?, true))
+        }
+        _ => Ok((original.clone(), false)),
+    }
 }
 
 /// The setup the report names: `pose` read from a file of positions is `position`.
