@@ -299,6 +299,19 @@ pub fn parse_urdf(text: &str, path: &Path) -> Result<Robot, UrdfError> {
     let (visuals, warnings) =
         visuals::read(&urdf, path, |link| child_of.get(link).map(|&s| new_id[s]));
     robot.visuals = visuals;
+    // The links' masses at their centres of mass (the inertia tensors are not needed for
+    // gravity).
+    robot.masses = urdf
+        .links
+        .iter()
+        .filter(|l| l.inertial.mass.value > 0.0 && l.inertial.mass.value.is_finite())
+        .map(|l| crate::kinematics::PointMass {
+            joint: child_of.get(l.name.as_str()).map(|&s| new_id[s]),
+            com: Vector3::from(l.inertial.origin.xyz.0),
+            mass: l.inertial.mass.value,
+        })
+        .filter(|m| m.com.iter().all(|v| v.is_finite()))
+        .collect();
     robot.load_warnings = quirks(uj);
     robot.load_warnings.extend(warnings);
     let description = format!(

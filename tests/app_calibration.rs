@@ -257,3 +257,22 @@ fn the_tab_offers_the_setups_the_files_the_template_and_target_correction() {
     assert!(lab.message.as_ref().unwrap().contains("orientation"));
     assert!(lab.corrections.is_some());
 }
+
+#[test]
+fn the_compliance_lesson_shows_the_error_no_dh_parameter_absorbs() {
+    let puma = built_in("puma560").unwrap();
+    let q = puma.config("ready").unwrap().to_vec();
+    let mut lab = CalibrationLab::default();
+    lab.lesson_compliance(&puma, &q, false);
+    assert!(lab.message.is_none(), "{:?}", lab.message);
+    let (_, geometric) = lab.result.as_ref().unwrap().validation.unwrap();
+    lab.lesson_compliance(&puma, &q, true);
+    let r = lab.result.as_ref().unwrap();
+    let (_, with) = r.validation.unwrap();
+    // The tracker's floor: sqrt(3) x 2 um.
+    let floor = 3f64.sqrt() * 0.002e-3;
+    assert!(geometric.position_rms > 3.0 * floor, "{geometric:?}");
+    assert!(with.position_rms < 1.3 * floor, "{with:?}");
+    assert!(r.report.parameters.iter().any(|p| p.name == "c2"));
+    assert!(lab.lesson.unwrap().contains("compliance"));
+}

@@ -13,7 +13,7 @@ use super::CalibrationError;
 use crate::kinematics::dh::Convention;
 use crate::kinematics::dh_derive::derive_dh;
 use crate::kinematics::pose::Pose;
-use crate::kinematics::robot::{Drive, Robot};
+use crate::kinematics::robot::{Drive, PointMass, Robot};
 
 /// The FK agreement the carried-back chain must reach (m, and rad times nothing).
 const AGREEMENT: f64 = 1e-12;
@@ -23,7 +23,45 @@ const AGREEMENT: f64 = 1e-12;
 pub fn dh_form(robot: &Robot) -> Result<Robot, CalibrationError> {
     let derived = derive_dh(robot, 0, Convention::Standard)
         .map_err(|e| CalibrationError::InvalidOption(e.to_string()))?;
-    Ok(derived.robot(&robot.name)?)
+    let mut dh = derived.robot(&robot.name)?;
+    dh.masses = transfer_masses(robot, &dh)?;
+    Ok(dh)
+}
+
+/// `from`'s masses on `to` (the same arm, other frames): each on the joint of `to` driven by
+/// the same variable as its nearest moving ancestor in `from`, at the same place at q = 0.
+/// Masses on the base pull on no joint and are left out.
+fn transfer_masses(from: &Robot, to: &Robot) -> Result<Vec<PointMass>, CalibrationError> {
+    let zero = vec![0.0; from.dof()];
+    let (ff, tf) = (from.fk_frames(&zero)?, to.fk_frames(&zero)?);
+    let mut out = Vec::with_capacity(from.masses.len());
+    for m in &from.masses {
+        let Some(on) = m.joint else { continue };
+        let mut j = Some(on);
+        let k = loop {
+            match j {
+                Some(a) => match from.joints()[a].drive {
+                    Drive::Actuated(k) => break Some(k),
+                    _ => j = from.joints()[a].parent,
+                },
+                None => break None,
+            }
+        };
+        let Some(t) = k.and_then(|k| {
+            to.joints()
+                .iter()
+                .position(|x| x.drive == Drive::Actuated(k))
+        }) else {
+            continue;
+        };
+        let world = ff[on] * nalgebra::Point3::from(m.com);
+        out.push(PointMass {
+            joint: Some(t),
+            com: (tf[t].inverse() * world).coords,
+            mass: m.mass,
+        });
+    }
+    Ok(out)
 }
 
 /// The frame whose z axis is DH joint k's axis (frame k-1, and the joint's constant `pre`,

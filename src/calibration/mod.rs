@@ -52,7 +52,9 @@ pub use identify::{Identifiability, Observability, identifiability};
 pub use model::{Kind, Measurement, Parameter, ParameterModel};
 pub use select::{Criterion, select_poses};
 pub use setup::{Linearised, PlaneUnknown, Setup, Unknowns, linearise, register_tracker};
-pub use simulate::{SetupScene, Simulated, SimulationOptions, simulate, simulate_setup};
+pub use simulate::{
+    SIMULATED_COMPLIANCE, SetupScene, Simulated, SimulationOptions, simulate, simulate_setup,
+};
 pub use solve::{
     CalibrationOptions, CalibrationReport, Fit, Iteration, Unidentifiable, calibrate, fit,
 };

@@ -32,6 +32,9 @@ pub enum Kind {
     ToolTranslation(usize),
     /// A rotation of the tool about its own axis 0, 1, 2 (rad; the rotation vector r).
     ToolRotation(usize),
+    /// A revolute joint's compliance (rad per N m): gravity's torque tau on the joint turns it
+    /// by `c tau` beyond its reading.
+    Compliance,
 }
 
 impl Kind {
@@ -47,6 +50,17 @@ impl Kind {
             Kind::BaseRotation(k) => ["base_rx", "base_ry", "base_rz"][k.min(2)],
             Kind::ToolTranslation(k) => ["tool_x", "tool_y", "tool_z"][k.min(2)],
             Kind::ToolRotation(k) => ["tool_rx", "tool_ry", "tool_rz"][k.min(2)],
+            Kind::Compliance => "c",
+        }
+    }
+
+    /// How reports show a value: the factor from SI and the unit (degrees, millimetres, or
+    /// microradians per N m for a compliance).
+    pub fn display(self) -> (f64, &'static str) {
+        match self {
+            Kind::Compliance => (1e6, "urad/Nm"),
+            k if k.is_angle() => (180.0 / std::f64::consts::PI, "deg"),
+            _ => (1e3, "mm"),
         }
     }
 
@@ -213,6 +227,8 @@ pub struct ParameterModel {
     tool_at: Option<usize>,
     /// Rows (0-based) with Hayati's beta, and the index of beta in zeta.
     betas: Vec<(usize, usize)>,
+    /// Rows (0-based) with a compliance, and the index of the compliance in zeta.
+    compliances: Vec<(usize, usize)>,
 }
 
 impl ParameterModel {
@@ -265,7 +281,8 @@ impl ParameterModel {
                     | Kind::BaseTranslation(_)
                     | Kind::BaseRotation(_)
                     | Kind::ToolTranslation(_)
-                    | Kind::ToolRotation(_) => 0.0,
+                    | Kind::ToolRotation(_)
+                    | Kind::Compliance => 0.0,
                 };
                 params.push(Parameter {
                     name: format!("{}{}", kind.as_str(), i + 1),
@@ -284,6 +301,7 @@ impl ParameterModel {
             base_at: None,
             tool_at: None,
             betas: Vec::new(),
+            compliances: Vec::new(),
         })
     }
 
@@ -333,6 +351,71 @@ impl ParameterModel {
     /// The DH convention of the table.
     pub fn convention(&self) -> Convention {
         self.convention
+    }
+
+    /// Also estimates one compliance per revolute joint (`c1` .. , rad per N m, nominal 0):
+    /// joint i turns by `c_i tau_i(q)` beyond its reading, `tau_i` the torque of gravity (world
+    /// -z, 9.80665 m/s^2) on the links after it, from the robot's masses (a URDF's inertials, a
+    /// model file's `mass` and `com`) on the nominal geometry. An error when the robot has none.
+    pub fn with_compliance(mut self) -> Result<Self, CalibrationError> {
+        if self.nominal.masses.iter().all(|m| m.joint.is_none()) {
+            return Err(CalibrationError::InvalidOption(
+                "joint compliance needs the links' masses: a URDF with <inertial> elements, or \
+                 `mass` and `com` on the joints of the model file"
+                    .into(),
+            ));
+        }
+        for i in 0..self.rows.len() {
+            if self.rows[i].kind != JointKind::Revolute || self.rows[i].dof.is_none() {
+                continue;
+            }
+            if self.compliances.iter().any(|&(r, _)| r == i) {
+                continue;
+            }
+            self.compliances.push((i, self.params.len()));
+            self.params.push(Parameter {
+                name: format!("c{}", i + 1),
+                joint: i + 1,
+                kind: Kind::Compliance,
+                nominal: 0.0,
+                fixed: false,
+            });
+        }
+        Ok(self)
+    }
+
+    /// The torque of gravity on each row's joint at `q` (N m, about the joint's axis; 0 for a
+    /// row without a compliance), from the nominal robot's masses and geometry.
+    fn gravity_torques(&self, q: &[f64]) -> Result<Vec<f64>, CalibrationError> {
+        let mut tau = vec![0.0; self.rows.len()];
+        if self.compliances.is_empty() {
+            return Ok(tau);
+        }
+        let robot = &self.nominal;
+        let frames = robot.fk_frames(q)?;
+        let g = Vector3::new(0.0, 0.0, -9.80665);
+        for &(i, _) in &self.compliances {
+            // Joint i's axis: z of the frame before it (with its constant pre), standard DH.
+            let j = &robot.joints()[i];
+            let before = j.parent.map_or(robot.base, |p| frames[p]) * j.pre;
+            let (u, o) = match self.convention {
+                Convention::Standard => (before.rotation * Vector3::z(), before.translation.vector),
+                Convention::Modified => (
+                    frames[i].rotation * Vector3::z(),
+                    frames[i].translation.vector,
+                ),
+            };
+            tau[i] = robot
+                .masses
+                .iter()
+                .filter(|m| m.joint.is_some_and(|a| a >= i))
+                .map(|m| {
+                    let p = frames[m.joint.unwrap_or(0)] * nalgebra::Point3::from(m.com);
+                    u.dot(&(p.coords - o).cross(&(g * m.mass)))
+                })
+                .sum();
+        }
+        Ok(tau)
     }
 
     /// The rows (1-based) that use Hayati's beta.
@@ -442,12 +525,18 @@ impl ParameterModel {
     /// pose: `k(zeta, q)` of (2.84) with the robot's base and tool.
     pub fn frames(&self, zeta: &[f64], q: &[f64]) -> Result<(Vec<Pose>, Pose), CalibrationError> {
         self.nominal.check_q(q)?;
+        let tau = self.gravity_torques(q)?;
         let mut frames = Vec::with_capacity(self.rows.len() + 1);
         let mut t = Self::six(zeta, self.base_at) * self.nominal.base;
         frames.push(t);
         for (i, r) in self.rows.iter().enumerate() {
             let [a, alpha, d, theta] = self.row_values(zeta, i);
-            let v = r.dof.map_or(0.0, |k| q[k]);
+            let bend = self
+                .compliances
+                .iter()
+                .find(|&&(row, _)| row == i)
+                .map_or(0.0, |&(_, k)| zeta[k] * tau[i]);
+            let v = r.dof.map_or(0.0, |k| q[k]) + bend;
             let (theta, d) = match r.kind {
                 JointKind::Revolute => (v + theta, d),
                 JointKind::Prismatic => (theta, v + d),
@@ -597,6 +686,23 @@ impl ParameterModel {
             put(n + i, a_axis, Some(a_point));
             put(2 * n + i, t_axis, None);
             put(3 * n + i, t_axis, Some(t_point));
+        }
+        if !self.compliances.is_empty() {
+            // A compliance turns joint i by tau_i: the joint's own column times tau_i.
+            let tau = self.gravity_torques(q)?;
+            for &(i, k) in &self.compliances {
+                let (u, o) = match self.convention {
+                    Convention::Standard => (
+                        frames[i].rotation.matrix().column(2).into_owned(),
+                        frames[i].translation.vector,
+                    ),
+                    Convention::Modified => (
+                        frames[i + 1].rotation.matrix().column(2).into_owned(),
+                        frames[i + 1].translation.vector,
+                    ),
+                };
+                put(k, u * tau[i], Some(o));
+            }
         }
         for &(i, k) in &self.betas {
             // Ry(beta) at the end of row i: a rotation about y_i through o_i.

@@ -127,6 +127,10 @@ pub struct CalibrateArgs {
     /// Also estimate the tool transform (6 parameters).
     #[arg(long)]
     pub with_tool: bool,
+    /// Also estimate one compliance per revolute joint (rad per N m), with gravity's torque from
+    /// the links' masses (a URDF's inertials, or `mass` and `com` in the model file).
+    #[arg(long)]
+    pub with_compliance: bool,
     /// Hayati's parameter for parallel consecutive axes (auto: on every such pair).
     #[arg(long, value_enum, default_value_t)]
     pub hayati: Hayati,
@@ -371,6 +375,9 @@ fn build_model(
     if args.hayati == Hayati::Auto && model.convention() == crate::kinematics::Convention::Standard
     {
         model = model.with_hayati().map_err(calibration_error)?;
+    }
+    if args.with_compliance {
+        model = model.with_compliance().map_err(calibration_error)?;
     }
     if with_base {
         model = model.with_base();
@@ -1038,7 +1045,7 @@ fn write_table(
 ) -> std::io::Result<()> {
     writeln!(
         out,
-        "{:<9} {:>12} {:>12} {:>12} {:>10}  unit  identifiable",
+        "{:<9} {:>12} {:>12} {:>12} {:>10}  unit     identifiable",
         "parameter",
         "nominal",
         if truth.is_some() { "true" } else { "" },
@@ -1046,11 +1053,7 @@ fn write_table(
         "std"
     )?;
     for (k, p) in r.parameters.iter().enumerate() {
-        let (scale, unit) = if p.kind.is_angle() {
-            (180.0 / std::f64::consts::PI, "deg")
-        } else {
-            (1e3, "mm")
-        };
+        let (scale, unit) = p.kind.display();
         let t = truth.map_or(String::new(), |t| format!("{:.5}", t[k] * scale));
         let std = r.std[k].map_or("-".into(), |s| format!("{:.2e}", s * scale));
         let flag = if r.auto_fixed.iter().any(|(n, _)| *n == p.name) {
@@ -1064,7 +1067,7 @@ fn write_table(
         };
         writeln!(
             out,
-            "{:<9} {:>12.5} {:>12} {:>12.5} {:>10}  {unit:<4}  {flag}",
+            "{:<9} {:>12.5} {:>12} {:>12.5} {:>10}  {unit:<7}  {flag}",
             p.name,
             p.nominal * scale,
             t,

@@ -31,6 +31,6 @@ pub use jacobian::JacobianAnalysis;
 pub use orientation::EulerKind;
 pub use pose::Pose;
 pub use robot::{
-    DhJoint, Drive, EndEffector, Joint, JointGeometry, JointId, JointKind, NamedConfig, Robot,
-    UNBOUNDED,
+    DhJoint, Drive, EndEffector, Joint, JointGeometry, JointId, JointKind, NamedConfig, PointMass,
+    Robot, UNBOUNDED,
 };

@@ -736,7 +736,19 @@ pub fn puma560() -> Robot {
     .with_config("ready", vec![0.0, FRAC_PI_2, -FRAC_PI_2, 0.0, 0.0, 0.0])
     .with_config("stretch", vec![0.0, 0.0, -FRAC_PI_2, 0.0, 0.0, 0.0])
     .with_config("nominal", vec![0.0, FRAC_PI_4, -PI, 0.0, FRAC_PI_4, 0.0])
+    .with_masses(&PUMA560_MASSES)
 }
+
+/// The Puma 560's link masses (kg) and centres of mass (m, in DH frame i), from the Robotics
+/// Toolbox's `Puma560` dynamics (Armstrong, Khatib and Burdick 1986; Tarn et al.): link 1's
+/// mass sits on its axis and pulls no torque, so it is left out.
+const PUMA560_MASSES: [(usize, f64, [f64; 3]); 5] = [
+    (1, 17.4, [-0.3638, 0.006, 0.2275]),
+    (2, 4.8, [-0.0203, -0.0141, 0.070]),
+    (3, 0.82, [0.0, 0.019, 0.0]),
+    (4, 0.34, [0.0, 0.0, 0.0]),
+    (5, 0.09, [0.0, 0.0, 0.032]),
+];
 
 fn gripper_tool() -> Pose {
     // Rz(-45 deg), then 0.103 m along z: the Robotics Toolbox's flange-to-gripper transform.

@@ -249,6 +249,17 @@ pub(crate) enum FastDh {
 /// A serial DH table: convention and, per joint, kind, row and offset.
 pub type DhTable = (Convention, Vec<(JointKind, DhRow, f64)>);
 
+/// A link's mass, lumped at its centre of mass.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PointMass {
+    /// The joint whose frame carries it (its child link); `None` for the base.
+    pub joint: Option<JointId>,
+    /// The centre of mass in that frame (m).
+    pub com: Vector3<f64>,
+    /// The mass (kg).
+    pub mass: f64,
+}
+
 /// A manipulator: base transform, joint tree, end-effectors and named configurations.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Robot {
@@ -268,6 +279,9 @@ pub struct Robot {
     /// What loading the model skipped, in words naming the file (a mesh that could not be read
     /// and was replaced by the joint's body); empty when nothing was.
     pub load_warnings: Vec<String>,
+    /// The links' masses as points (a URDF's `<inertial>`, a model file's `mass` and `com`):
+    /// what gravity pulls on, for the joints' compliance in calibration; empty when unknown.
+    pub masses: Vec<PointMass>,
     pub(crate) lowered: Vec<Lowered>,
     /// `dof_joint[k]` = joint driven by `q[k]`.
     pub(crate) dof_joint: Vec<JointId>,
@@ -344,6 +358,7 @@ impl Robot {
             }],
             visuals: Vec::new(),
             load_warnings: Vec::new(),
+            masses: Vec::new(),
             lowered,
             dof_joint,
             chains,
@@ -581,6 +596,19 @@ impl Robot {
             out.push((j.kind, row, j.offset));
         }
         conv.map(|c| (c, out))
+    }
+
+    /// The robot with point masses `(joint, mass kg, centre of mass m in the joint's frame)`.
+    pub fn with_masses(mut self, masses: &[(JointId, f64, [f64; 3])]) -> Self {
+        self.masses = masses
+            .iter()
+            .map(|&(j, mass, com)| PointMass {
+                joint: Some(j),
+                com: Vector3::from(com),
+                mass,
+            })
+            .collect();
+        self
     }
 
     /// Replaces joint `j`'s DH row (live editing, calibration); the robot is re-lowered.

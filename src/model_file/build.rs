@@ -5,8 +5,9 @@ use super::value::{Ctx, Res, Span, Table, Val};
 use crate::kinematics::pose::Pose;
 use crate::kinematics::{
     Convention, DhRow, Drive, EndEffector, Joint, JointGeometry, JointKind, ModelError,
-    NamedConfig, Robot,
+    NamedConfig, PointMass, Robot,
 };
+use nalgebra::Vector3;
 use std::collections::HashMap;
 use std::f64::consts::PI;
 use toml::de::DeTable;
@@ -23,6 +24,7 @@ const TOP_KEYS: &[&str] = &[
 ];
 const JOINT_KEYS: &[&str] = &[
     "type", "a", "alpha", "d", "theta", "offset", "limits", "name", "parent", "pre", "couple",
+    "mass", "com",
 ];
 const EE_KEYS: &[&str] = &["name", "parent", "tool"];
 const CONFIG_KEYS: &[&str] = &["name", "q"];
@@ -71,16 +73,50 @@ pub(super) fn build(ctx: &Ctx) -> Res<Robot> {
     }
     let mut joints: Vec<Joint> = Vec::with_capacity(tables.len());
     let mut names = Names::new();
+    let mut masses = Vec::new();
     for (i, t) in tables.iter().enumerate() {
         let j = joint(ctx, t, i, tables.len(), convention, &joints, &mut names)?;
         joints.push(j);
+        masses.extend(point_mass(ctx, t, i)?);
     }
     let ees = end_effectors(ctx, &top, &names, joints.len(), tool)?;
     let mut robot = Robot::new(name, base, joints, ees)
         .map_err(|e| model_error(ctx, e, &tables, top.key_span("joints")))?
         .with_description(description);
+    robot.masses = masses;
     configurations(ctx, &top, &mut robot)?;
     Ok(robot)
+}
+
+/// The link's mass (`mass`, kg, >= 0) at its centre of mass (`com`, m in the joint's frame;
+/// default the frame's origin), if the joint gives one.
+fn point_mass(ctx: &Ctx, t: &Table, i: usize) -> Res<Option<PointMass>> {
+    let Some(v) = t.get("mass") else {
+        if t.get("com").is_some() {
+            return Err(t.missing(ctx, "mass"));
+        }
+        return Ok(None);
+    };
+    let mass = ctx.number(&t.path("mass"), v)?;
+    if mass < 0.0 {
+        return Err(ctx.wrong_type(&t.path("mass"), "a mass >= 0 (kg)", v));
+    }
+    let com = match t.get("com") {
+        Some(c) => {
+            let a = ctx.array_n(&t.path("com"), c, 3, "[x, y, z] in metres")?;
+            let mut xyz = [0.0; 3];
+            for (k, e) in a.iter().enumerate() {
+                xyz[k] = ctx.number(&format!("{}[{k}]", t.path("com")), e)?;
+            }
+            Vector3::from(xyz)
+        }
+        None => Vector3::zeros(),
+    };
+    Ok(Some(PointMass {
+        joint: Some(i),
+        com,
+        mass,
+    }))
 }
 
 fn optional_pose(ctx: &Ctx, t: &Table, key: &str) -> Res<Pose> {

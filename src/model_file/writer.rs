@@ -40,7 +40,7 @@ pub fn to_toml(robot: &Robot) -> Option<String> {
     if default_ee && ees[0].tool != Pose::identity() {
         let _ = writeln!(s, "tool = {}", matrix(&ees[0].tool));
     }
-    for ((j, (kind, row, offset)), pre) in joints.iter().zip(rows).zip(&pres) {
+    for (i, ((j, (kind, row, offset)), pre)) in joints.iter().zip(rows).zip(&pres).enumerate() {
         let revolute = kind == JointKind::Revolute;
         let _ = writeln!(s, "\n[[joints]]\ntype = \"{}\"", kind.as_str());
         let _ = writeln!(s, "name = {}", quote(&j.name));
@@ -70,6 +70,18 @@ pub fn to_toml(robot: &Robot) -> Option<String> {
                     scalar(hi, revolute)
                 );
             }
+        }
+        // The link's masses as one (the same pull of gravity): total mass at their centre.
+        let on: Vec<_> = robot.masses.iter().filter(|m| m.joint == Some(i)).collect();
+        let total: f64 = on.iter().map(|m| m.mass).sum();
+        if total > 0.0 {
+            let com = on
+                .iter()
+                .map(|m| m.com * m.mass)
+                .sum::<nalgebra::Vector3<f64>>()
+                / total;
+            let _ = writeln!(s, "mass = {}", num(total));
+            let _ = writeln!(s, "com = [{}, {}, {}]", num(com.x), num(com.y), num(com.z));
         }
     }
     if !default_ee {

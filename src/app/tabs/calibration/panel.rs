@@ -316,6 +316,8 @@ fn setup_settings(s: &mut super::lab::LabSettings, ui: &mut egui::Ui) {
             .labelled_by(l.id);
         }
         ui.checkbox(&mut s.hayati, "Hayati's beta on parallel axes");
+        ui.checkbox(&mut s.bend, "real joints bend under gravity");
+        ui.checkbox(&mut s.with_compliance, "estimate joint compliance");
         ui.checkbox(
             &mut s.minimum_norm,
             "estimate unidentifiable parameters too",
@@ -352,6 +354,20 @@ fn actions(lab: &mut CalibrationLab, robot: &Robot, q: &[f64], ui: &mut egui::Ui
             .clicked()
         {
             lab.lesson_parallel(robot, q, true);
+        }
+        if ui
+            .button("Lesson: joints that bend")
+            .on_hover_text("gravity bends the joints: the error no DH parameter can absorb")
+            .clicked()
+        {
+            lab.lesson_compliance(robot, q, false);
+        }
+        if ui
+            .button("... with compliance")
+            .on_hover_text("one compliance per joint, estimated with the geometry")
+            .clicked()
+        {
+            lab.lesson_compliance(robot, q, true);
         }
     });
 }
@@ -603,11 +619,7 @@ fn parameters(r: &LabResult, ui: &mut egui::Ui) {
             }
             ui.end_row();
             for (k, p) in rep.parameters.iter().enumerate() {
-                let (scale, unit) = if p.kind.is_angle() {
-                    (180.0 / std::f64::consts::PI, "deg")
-                } else {
-                    (1e3, "mm")
-                };
+                let (scale, unit) = p.kind.display();
                 let kept = rep.auto_fixed.iter().any(|(n, _)| *n == p.name);
                 let state = if kept {
                     (
