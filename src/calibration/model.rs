@@ -212,6 +212,10 @@ struct RowInfo {
     row: DhRow,
 }
 
+/// A compliance's index in zeta, its joint's axis times gravity's torque (world), and a point
+/// on the axis.
+type ComplianceAxis = (usize, Vector3<f64>, Vector3<f64>);
+
 /// The calibration model of a serial DH robot: its 4n parameters zeta = [a; alpha; d; theta]
 /// (2.84) in that order, each row's joint offset included (theta of a revolute row, d of a
 /// prismatic one), and which of them are fixed.
@@ -416,6 +420,30 @@ impl ParameterModel {
                 .sum();
         }
         Ok(tau)
+    }
+
+    /// Per compliance: its index in zeta, the joint's axis (world) times gravity's torque on it
+    /// at `q`, and a point on the axis; `frames` are [`Self::frames`]'s.
+    fn compliance_axes(
+        &self,
+        frames: &[Pose],
+        q: &[f64],
+    ) -> Result<Vec<ComplianceAxis>, CalibrationError> {
+        if self.compliances.is_empty() {
+            return Ok(Vec::new());
+        }
+        let tau = self.gravity_torques(q)?;
+        Ok(self
+            .compliances
+            .iter()
+            .map(|&(i, k)| {
+                let f = match self.convention {
+                    Convention::Standard => &frames[i],
+                    Convention::Modified => &frames[i + 1],
+                };
+                (k, f.rotation * Vector3::z() * tau[i], f.translation.vector)
+            })
+            .collect())
     }
 
     /// The rows (1-based) that use Hayati's beta.
@@ -687,31 +715,14 @@ impl ParameterModel {
             put(2 * n + i, t_axis, None);
             put(3 * n + i, t_axis, Some(t_point));
         }
-        if !self.compliances.is_empty() {
-            // A compliance turns joint i by tau_i: the joint's own column times tau_i.
-            let tau = self.gravity_torques(q)?;
-            for &(i, k) in &self.compliances {
-                let (u, o) = match self.convention {
-                    Convention::Standard => (
-                        frames[i].rotation.matrix().column(2).into_owned(),
-                        frames[i].translation.vector,
-                    ),
-                    Convention::Modified => (
-                        frames[i + 1].rotation.matrix().column(2).into_owned(),
-                        frames[i + 1].translation.vector,
-                    ),
-                };
-                put(k, u * tau[i], Some(o));
-            }
+        // A compliance turns joint i by tau_i: the joint's own column times tau_i.
+        for (k, u, o) in self.compliance_axes(&frames, q)? {
+            put(k, u, Some(o));
         }
         for &(i, k) in &self.betas {
             // Ry(beta) at the end of row i: a rotation about y_i through o_i.
             let f = &frames[i + 1];
-            put(
-                k,
-                f.rotation.matrix().column(1).into_owned(),
-                Some(f.translation.vector),
-            );
+            put(k, f.rotation * Vector3::y(), Some(f.translation.vector));
         }
         if let Some(k) = self.base_at {
             // world_from_tool = Trans(t) Rot(r) B X: a translation e_j moves everything by e_j;

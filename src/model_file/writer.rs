@@ -71,18 +71,7 @@ pub fn to_toml(robot: &Robot) -> Option<String> {
                 );
             }
         }
-        // The link's masses as one (the same pull of gravity): total mass at their centre.
-        let on: Vec<_> = robot.masses.iter().filter(|m| m.joint == Some(i)).collect();
-        let total: f64 = on.iter().map(|m| m.mass).sum();
-        if total > 0.0 {
-            let com = on
-                .iter()
-                .map(|m| m.com * m.mass)
-                .sum::<nalgebra::Vector3<f64>>()
-                / total;
-            let _ = writeln!(s, "mass = {}", num(total));
-            let _ = writeln!(s, "com = [{}, {}, {}]", num(com.x), num(com.y), num(com.z));
-        }
+        write_mass(&mut s, robot, i);
     }
     if !default_ee {
         for e in ees {
@@ -109,6 +98,21 @@ pub fn to_toml(robot: &Robot) -> Option<String> {
 }
 
 /// Shortest decimal that reads back to the same f64 (valid TOML for finite values).
+/// Joint `i`'s link masses as one (the same pull of gravity): their total mass at their centre.
+fn write_mass(s: &mut String, robot: &Robot, i: usize) {
+    let on: Vec<_> = robot.masses.iter().filter(|m| m.joint == Some(i)).collect();
+    let total: f64 = on.iter().map(|m| m.mass).sum();
+    if total > 0.0 {
+        let com = on
+            .iter()
+            .map(|m| m.com * m.mass)
+            .sum::<nalgebra::Vector3<f64>>()
+            / total;
+        let _ = writeln!(s, "mass = {}", num(total));
+        let _ = writeln!(s, "com = [{}, {}, {}]", num(com.x), num(com.y), num(com.z));
+    }
+}
+
 fn num(v: f64) -> String {
     format!("{v:?}")
 }
