@@ -602,3 +602,50 @@ fn a_urdf_arm_calibrates_through_its_dh_form_and_keeps_its_joints_in_the_written
         "the calibration moved the tool by {moved} m at most"
     );
 }
+
+#[test]
+fn with_compliance_uses_the_urdf_inertials_and_says_when_there_are_none() {
+    let src = format!(
+        "{}/tests/data/urdf_corpus/ur5_robot.urdf",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let v = json(&armlab(&[
+        "calibrate",
+        &src,
+        "--simulate",
+        "--with-compliance",
+        "--poses",
+        "100",
+        "--noise-mm",
+        "0.005",
+        "--noise-mrad",
+        "0.01",
+        "--format",
+        "json",
+    ]));
+    assert_eq!(v["converged"], true);
+    let cs: Vec<&serde_json::Value> = v["parameters"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|p| p["kind"] == "c")
+        .collect();
+    assert_eq!(cs.len(), 6, "a compliance per revolute joint");
+    // The UR5's shoulder and elbow carry the arm: their compliances are identified.
+    for p in &cs[1..3] {
+        assert_eq!(p["identifiable"], true, "{}", p["name"]);
+        let (e, t, s) = (
+            p["estimate"].as_f64().unwrap(),
+            p["true"].as_f64().unwrap(),
+            p["std"].as_f64().unwrap(),
+        );
+        assert!(
+            (e - t).abs() < 4.0 * s,
+            "{}: {e} vs {t} (std {s})",
+            p["name"]
+        );
+    }
+    let o = armlab(&["calibrate", "stanford", "--simulate", "--with-compliance"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("needs the links' masses"));
+}

@@ -5,7 +5,7 @@
 //! frozen at the given q.
 
 use super::hold::hold_joints;
-use super::robot::{Drive, EndEffector, Joint, JointId, NamedConfig, Robot};
+use super::robot::{Drive, EndEffector, Joint, JointId, NamedConfig, PointMass, Robot};
 use super::{KinematicsError, ModelError};
 use thiserror::Error;
 
@@ -114,6 +114,7 @@ pub fn arm_of(robot: &Robot, ee: usize, q: &[f64]) -> Result<Arm, ArmError> {
         "The arm of end-effector \"{}\" of {}: the chain from the root to it.",
         e.name, robot.name
     );
+    arm.masses = carried_masses(robot, &kept, q)?;
     arm.configurations = robot
         .configurations
         .iter()
@@ -128,6 +129,38 @@ pub fn arm_of(robot: &Robot, ee: usize, q: &[f64]) -> Result<Arm, ArmError> {
         ee,
         chain: chain_names,
     })
+}
+
+/// The whole robot's masses as the arm carries them: each on its joint's nearest kept ancestor
+/// (a gripper's links ride on the last link; at the whole robot's `q`), renumbered; masses on
+/// the base stay there.
+fn carried_masses(robot: &Robot, kept: &[JointId], q: &[f64]) -> Result<Vec<PointMass>, ArmError> {
+    let frames = robot.fk_frames(q)?;
+    let mut out = Vec::with_capacity(robot.masses.len());
+    for m in &robot.masses {
+        let Some(on) = m.joint else {
+            out.push(*m);
+            continue;
+        };
+        let mut j = Some(on);
+        while let Some(a) = j.filter(|a| !kept.contains(a)) {
+            j = robot.joints()[a].parent;
+        }
+        let carried = match j {
+            Some(a) => PointMass {
+                joint: kept.iter().position(|&c| c == a),
+                com: (frames[a].inverse() * (frames[on] * nalgebra::Point3::from(m.com))).coords,
+                mass: m.mass,
+            },
+            None => PointMass {
+                joint: None,
+                com: (robot.base.inverse() * (frames[on] * nalgebra::Point3::from(m.com))).coords,
+                mass: m.mass,
+            },
+        };
+        out.push(carried);
+    }
+    Ok(out)
 }
 
 /// Which joints an arm keeps: the chain, and the joints off it that a chain joint follows (a
