@@ -39,6 +39,8 @@ const ALLOWED_DIRECT: &[&str] = &[
     "mesh-loader",
     "thiserror",
     "rayon",
+    // robot_cal_tools' calibration files (pure Rust, no graphics).
+    "yaml-rust2",
 ];
 
 fn cargo_tree(args: &[&str]) -> String {
