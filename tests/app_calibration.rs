@@ -276,3 +276,15 @@ fn the_compliance_lesson_shows_the_error_no_dh_parameter_absorbs() {
     assert!(r.report.parameters.iter().any(|p| p.name == "c2"));
     assert!(lab.lesson.unwrap().contains("compliance"));
 }
+
+#[test]
+fn an_empty_path_says_what_to_type_and_keeps_the_result() {
+    let puma = built_in("puma560").unwrap();
+    let mut lab = CalibrationLab::default();
+    lab.run_simulated(&puma, &[0.0; 6]);
+    lab.run_file(&puma);
+    assert!(lab.message.as_ref().unwrap().contains("type the path"));
+    lab.correct(&puma);
+    assert!(lab.message.as_ref().unwrap().contains("desired tool poses"));
+    assert!(lab.result.is_some());
+}

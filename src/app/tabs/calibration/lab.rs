@@ -391,6 +391,10 @@ impl CalibrationLab {
     /// Calibrates `robot` from the measurement file typed in `measurements_path`.
     pub fn run_file(&mut self, robot: &Robot) {
         let path = self.measurements_path.trim().to_string();
+        if path.is_empty() {
+            self.message = Some("type the path of a measurement file (or Browse...)".into());
+            return;
+        }
         match crate::input::read_data_text(std::path::Path::new(&path)) {
             Ok(text) => self.run_text(robot, &path, &text),
             Err(e) => self.message = Some(e.to_string()),
@@ -524,6 +528,10 @@ impl CalibrationLab {
     /// result's calibrated arm, through `robot`'s (the nominal model's) closed form.
     pub fn correct(&mut self, robot: &Robot) {
         let path = self.targets_path.trim().to_string();
+        if path.is_empty() {
+            self.message = Some("type the path of a file of desired tool poses".into());
+            return;
+        }
         let text = match crate::input::read_data_text(std::path::Path::new(&path)) {
             Ok(t) => t,
             Err(e) => {
