@@ -649,3 +649,59 @@ fn with_compliance_uses_the_urdf_inertials_and_says_when_there_are_none() {
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("needs the links' masses"));
 }
+
+#[test]
+fn ik_on_a_calibrated_model_keeps_the_nominal_postures() {
+    // A calibrated Puma (Hayati's beta on axes 2-3: no longer exactly the Puma's structure):
+    // `armlab ik CAL --nominal puma560` gives the Puma's eight labelled postures, each on the
+    // calibrated arm to 1e-12.
+    let d = dir("ik");
+    let cal = d.join("cal.toml");
+    let o = armlab(&[
+        "calibrate",
+        "puma560",
+        "--simulate",
+        "--write-model",
+        cal.to_str().unwrap(),
+    ]);
+    assert!(o.status.success());
+    let puma = armlab::kinematics::models::built_in("puma560").unwrap();
+    let t = puma
+        .fk(&[0.3, -0.5, 0.4, 0.6, -0.7, 0.2])
+        .unwrap()
+        .to_homogeneous();
+    let pose: Vec<String> = (0..4)
+        .flat_map(|r| (0..4).map(move |c| (r, c)))
+        .map(|(r, c)| format!("{:?}", t[(r, c)]))
+        .collect();
+    let pose = pose.join(",");
+    let v = json(&armlab(&[
+        "ik",
+        cal.to_str().unwrap(),
+        "--nominal",
+        "puma560",
+        "--pose",
+        &pose,
+        "--all",
+        "--format",
+        "json",
+    ]));
+    let sols = v[0]["solutions"].as_array().unwrap();
+    assert_eq!(sols.len(), 8);
+    let calibrated = load_model(cal.to_str().unwrap()).unwrap();
+    for s in sols {
+        assert!(
+            s["posture"].as_str().unwrap().starts_with("shoulder "),
+            "{s}"
+        );
+        let q: Vec<f64> = s["q"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect();
+        // FK-checked here, on the calibrated model.
+        let e = calibrated.fk(&q).unwrap().to_homogeneous();
+        assert!((e - t).abs().max() < 1e-12, "{}", s["posture"]);
+    }
+}

@@ -98,6 +98,11 @@ pub struct IkArgs {
     /// Output format.
     #[arg(long, value_enum, default_value_t)]
     pub format: Format,
+    /// The nominal model of this arm (e.g. the model a calibrated one came from): every posture
+    /// of its closed form, polished by Newton steps on MODEL to 1e-12 and labelled as the
+    /// nominal model labels it. Full-pose targets.
+    #[arg(long, conflicts_with = "solver")]
+    pub nominal: Option<String>,
 }
 
 /// `--task` values.
@@ -261,15 +266,17 @@ pub(super) fn run(args: &IkArgs, out: &mut dyn Write) -> Result<(), CliError> {
     };
     let (choice, opts) = solver_setup(args)?;
     let reference = seed.clone().unwrap_or_else(|| vec![0.0; robot.dof()]);
+    let nominal = args.nominal.as_deref().map(super::load_model).transpose()?;
     let mut answers = Vec::with_capacity(targets.len());
     for (src, t) in &targets {
-        let (result, used) =
-            solver::solve(&robot, ee, t, seed.as_deref(), choice, &opts).map_err(|e| {
-                CliError::Ik {
-                    source_name: src.clone(),
-                    source: e,
-                }
-            })?;
+        let solved = match &nominal {
+            Some(n) => solver::solve_from_reference(&robot, n, t, &opts),
+            None => solver::solve(&robot, ee, t, seed.as_deref(), choice, &opts),
+        };
+        let (result, used) = solved.map_err(|e| CliError::Ik {
+            source_name: src.clone(),
+            source: e,
+        })?;
         let (picked, note) = pick(&robot, &result, args, &reference);
         answers.push((t, result, used, picked, note));
     }
