@@ -53,7 +53,8 @@ pub use model::{Kind, Measurement, Parameter, ParameterModel};
 pub use select::{Criterion, select_poses};
 pub use setup::{Linearised, PlaneUnknown, Setup, Unknowns, linearise, register_tracker};
 pub use simulate::{
-    SIMULATED_COMPLIANCE, SetupScene, Simulated, SimulationOptions, simulate, simulate_setup,
+    SIMULATED_COMPLIANCE, SetupScene, Simulated, SimulationOptions, nominal_examples, simulate,
+    simulate_setup,
 };
 pub use solve::{
     CalibrationOptions, CalibrationReport, Fit, Iteration, Unidentifiable, calibrate, fit,

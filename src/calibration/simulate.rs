@@ -387,3 +387,24 @@ impl Placer<'_> {
         ))
     }
 }
+
+/// `count` noise-free measurements of the nominal arm (no deviations) in `scene`: the example
+/// rows of a measurement-file template.
+pub fn nominal_examples(
+    model: &ParameterModel,
+    scene: &SetupScene,
+    count: usize,
+    seed: u64,
+) -> Result<Vec<Measurement>, CalibrationError> {
+    let opts = SimulationOptions {
+        poses: count,
+        validation_poses: 0,
+        tolerance_mm: 0.0,
+        tolerance_deg: 0.0,
+        noise_mm: 0.0,
+        noise_mrad: 0.0,
+        position_only: false,
+        seed,
+    };
+    Ok(simulate_setup(model, scene, &opts)?.measurements)
+}

@@ -5,8 +5,8 @@ use super::{CliError, Format};
 use crate::calibration::{
     CalibrationOptions, CalibrationReport, Criterion, Fit, Identifiability, JointColumns,
     Measurement, ParameterModel, ParsedFile, Setup, SetupScene, SimulationOptions,
-    TargetCorrection, Unidentifiable, calibrate, correct_targets, dh_form, fit, parse_setup,
-    parse_targets, register_tracker, select_poses, simulate_setup, template,
+    TargetCorrection, Unidentifiable, calibrate, correct_targets, dh_form, fit, nominal_examples,
+    parse_setup, parse_targets, register_tracker, select_poses, simulate_setup, template,
     with_calibrated_origins, write_corrections, write_measurements,
 };
 use crate::kinematics::pose::Pose;
@@ -628,25 +628,15 @@ fn write_template(
         radius: args.sphere_radius_mm.map_or(0.025, |r| r * 1e-3),
         world_from_tracker: Pose::identity(),
     };
-    let opts = SimulationOptions {
-        poses: 4,
-        validation_poses: 0,
-        tolerance_mm: 0.0,
-        tolerance_deg: 0.0,
-        noise_mm: 0.0,
-        noise_mrad: 0.0,
-        position_only: false,
-        seed: args.seed,
-    };
-    let sim = simulate_setup(model, &scene, &opts).map_err(calibration_error)?;
+    let examples = nominal_examples(model, &scene, 4, args.seed).map_err(calibration_error)?;
     let joints = JointColumns::of(model.nominal_robot());
-    std::fs::write(path, template(&joints, setup, &sim.measurements))?;
+    std::fs::write(path, template(&joints, setup, &examples))?;
     writeln!(
         out,
         "wrote {} (setup {}: {} example rows from the nominal model; replace them with yours)",
         path.display(),
         setup.name(),
-        sim.measurements.len()
+        examples.len()
     )?;
     Ok(())
 }

@@ -5,8 +5,8 @@
 use crate::calibration::{
     AccuracyMap, CalibrationOptions, CalibrationReport, Criterion, Fit, JointColumns, Measurement,
     ParameterModel, Setup, SetupScene, SimulationOptions, TargetCorrection, Unidentifiable,
-    accuracy_map, calibrate, correct_targets, fit, parse_setup, parse_targets, register_tracker,
-    select_poses, simulate, simulate_setup, template, write_corrections,
+    accuracy_map, calibrate, correct_targets, fit, nominal_examples, parse_setup, parse_targets,
+    register_tracker, select_poses, simulate, simulate_setup, template, write_corrections,
 };
 use crate::kinematics::Robot;
 use crate::kinematics::pose::Pose;
@@ -486,22 +486,8 @@ impl CalibrationLab {
             radius: s.radius_mm * 1e-3,
             world_from_tracker: Pose::identity(),
         };
-        let opts = SimulationOptions {
-            poses: 4,
-            validation_poses: 0,
-            tolerance_mm: 0.0,
-            tolerance_deg: 0.0,
-            noise_mm: 0.0,
-            noise_mrad: 0.0,
-            position_only: false,
-            seed: s.seed,
-        };
-        let sim = simulate_setup(&model, &scene, &opts).map_err(|e| e.to_string())?;
-        Ok(template(
-            &JointColumns::of(robot),
-            s.setup,
-            &sim.measurements,
-        ))
+        let examples = nominal_examples(&model, &scene, 4, s.seed).map_err(|e| e.to_string())?;
+        Ok(template(&JointColumns::of(robot), s.setup, &examples))
     }
 
     /// Writes the template to `template_path`.
