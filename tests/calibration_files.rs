@@ -689,6 +689,35 @@ fn ik_on_a_calibrated_model_keeps_the_nominal_postures() {
     let sols = v[0]["solutions"].as_array().unwrap();
     assert_eq!(sols.len(), 8);
     let calibrated = load_model(cal.to_str().unwrap()).unwrap();
+    // Without --nominal: the general 6R elimination, 8 branches, each polished to 1e-12 on the
+    // model (they were left at 3e-12 m when the polish refused an orientation error rising from
+    // 1e-16 to 1e-14).
+    let general = json(&armlab(&[
+        "ik",
+        cal.to_str().unwrap(),
+        "--pose",
+        &pose,
+        "--all",
+        "--format",
+        "json",
+    ]));
+    let branches = general[0]["solutions"].as_array().unwrap();
+    assert_eq!(branches.len(), 8);
+    for s in branches {
+        let q: Vec<f64> = s["q"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect();
+        let e = calibrated.fk(&q).unwrap().to_homogeneous();
+        assert!(
+            (e - t).abs().max() < 1e-12,
+            "{}: {:e}",
+            s["posture"],
+            (e - t).abs().max()
+        );
+    }
     for s in sols {
         assert!(
             s["posture"].as_str().unwrap().starts_with("shoulder "),
