@@ -205,6 +205,19 @@ fn polish(
 /// exact model.
 pub const NEAR_MISS_CHECK: f64 = 1e-12;
 
+/// Newton steps from a closed-form solution of a nearby structure: no restarts, no limits,
+/// to a tenth of [`NEAR_MISS_CHECK`], little damping.
+fn near_miss_options(opts: &NumericalOptions) -> NumericalOptions {
+    NumericalOptions {
+        restarts: 0,
+        max_iterations: 30,
+        enforce_limits: false,
+        tolerance: NEAR_MISS_CHECK / 10.0,
+        damping: opts.damping.min(1e-6),
+        ..*opts
+    }
+}
+
 /// A near-miss closed form's solutions are the ideal structure's: each is polished by Newton
 /// (Levenberg-Marquardt without damping to speak of) on the exact model, whatever the target,
 /// keeping its posture label, and only those whose forward kinematics then meets the target to
@@ -216,14 +229,7 @@ fn polish_near_miss(
     result: &mut IkResult,
     opts: &NumericalOptions,
 ) -> Result<(), IkError> {
-    let local = NumericalOptions {
-        restarts: 0,
-        max_iterations: 30,
-        enforce_limits: false,
-        tolerance: NEAR_MISS_CHECK / 10.0,
-        damping: opts.damping.min(1e-6),
-        ..*opts
-    };
+    let local = near_miss_options(opts);
     // Only where the family controls the whole target can every solution be held to the check.
     let whole = match target {
         Target::Pose(_) => robot.dof() >= 6,
@@ -278,14 +284,7 @@ pub fn solve_from_reference(
     }
     let mut result = cf.solve(reference, target)?;
     polish(reference, target, &mut result, opts)?;
-    let local = NumericalOptions {
-        restarts: 0,
-        max_iterations: 30,
-        enforce_limits: false,
-        tolerance: NEAR_MISS_CHECK / 10.0,
-        damping: opts.damping.min(1e-6),
-        ..*opts
-    };
+    let local = near_miss_options(opts);
     let mut kept: Vec<IkSolution> = Vec::with_capacity(result.solutions.len());
     let mut closest = f64::INFINITY;
     for s in result.solutions {
