@@ -11,6 +11,8 @@ pub use crate::input;
 mod reach;
 pub mod reference;
 mod self_motion;
+mod symbolic;
+pub use symbolic::to_json as symbolic_json;
 mod view;
 
 use crate::kinematics::{KinematicsError, Robot};
@@ -146,6 +148,9 @@ pub enum Command {
     /// Kinematic calibration (Sect. 2.11): estimate the DH parameters from measured poses (or a
     /// simulated robot), with what can and cannot be identified.
     Calibrate(Box<calibrate::CalibrateArgs>),
+    /// The direct kinematics in symbols, in the textbook's notation: each A_i^{i-1}, the
+    /// product T_n^0 and, for an arm with a spherical wrist, the wrist point p_W (Sect. 2.9).
+    Symbolic(symbolic::SymbolicArgs),
     /// Write a model as URDF (same forward kinematics, limits, simple visuals) or as a TOML
     /// model file.
     Export(export::ExportArgs),
@@ -295,6 +300,7 @@ pub fn run(cli: Cli, out: &mut dyn std::io::Write) -> Result<(), CliError> {
         Some(Command::Reach(args)) => reach::run(&args, out),
         Some(Command::SelfMotion(args)) => self_motion::run(&args, out),
         Some(Command::Export(args)) => export::run(&args, out),
+        Some(Command::Symbolic(args)) => symbolic::run(&args, out),
     }
 }
 

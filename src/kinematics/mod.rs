@@ -22,6 +22,7 @@ pub mod pose;
 pub mod redundancy;
 pub mod robot;
 pub mod singularity;
+pub mod symbolic;
 pub mod trig;
 pub mod visual;
 
