@@ -431,3 +431,30 @@ fn the_workspace_tab_shows_the_finished_figure_while_it_resizes_it() {
     let f = tab.job.as_ref().unwrap().figure().unwrap();
     assert_ne!([f.width(), f.height()], [1200, 900], "the tab's own size");
 }
+
+/// The Symbols section shows the kinematics in the textbook's notation, steps through the
+/// product, and highlights the partial product's frame in the 3D view.
+#[test]
+fn the_symbols_section_steps_through_the_product() {
+    // a tall window: at 1280x800 the section is below the fold of the right panel
+    let app = AppUi::new(AppState::from_spec("anthropomorphic_spherical_wrist").unwrap());
+    let mut h = Harness::builder()
+        .with_size(egui::vec2(1280.0, 2400.0))
+        .build_ui_state(|ui, app: &mut AppUi| app.show(ui, None), app);
+    h.run();
+    h.get_by_label("Show the kinematics in symbols").click();
+    h.run();
+    assert!(h.state().ik.symbols.shown);
+    // the wrist point of (2.95), in a layout whose subscripts are smaller (text without '_')
+    assert!(h.query_by_label("pWx = c1(a2c2 + d4s23)").is_some());
+    for _ in 0..5 {
+        h.get_by_label("Next >").click();
+        h.run();
+    }
+    assert_eq!(h.state().ik.symbols.step, 5);
+    assert!(h.query_by_label("step 6 of 6").is_some());
+    let mut scene = armlab::scene::Scene::default();
+    let state = AppState::from_spec("anthropomorphic_spherical_wrist").unwrap();
+    h.state_mut().ik.symbols.decorate(&state, 0, &mut scene);
+    assert!(scene.labels.iter().any(|l| l.text == "frame 6"));
+}

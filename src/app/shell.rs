@@ -394,6 +394,7 @@ impl AppUi {
         }
         self.ik.construction.decorate(&self.state, &mut scene);
         let ee = self.ee();
+        self.ik.symbols.decorate(&self.state, ee, &mut scene);
         if let Ok(view) = self.state.self_motion(ee) {
             let ghosts = if self.state.display.ghosts {
                 self.state.self_motion_ghosts(ee)

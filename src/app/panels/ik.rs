@@ -13,12 +13,14 @@ use egui::{Color32, RichText};
 const GIMBAL_WARNING: f64 = 0.017_453_292_519_943_295;
 
 /// The right panel's own state.
-#[derive(Debug, Default)]
+#[derive(Default)]
 pub struct IkPanel {
     /// The end-effector the readouts and the target refer to.
     pub ee: usize,
     /// The construction overlay.
     pub construction: ConstructionPanel,
+    /// The kinematics in symbols, with the partial product's frame highlighted.
+    pub symbols: super::symbols::SymbolsPanel,
 }
 
 impl IkPanel {
@@ -38,6 +40,8 @@ impl IkPanel {
                 ik_section(state, ui, ee, out);
                 ui.separator();
                 self.construction.ui(state, ui);
+                ui.separator();
+                self.symbols.ui(state, ui, ee);
                 ui.separator();
                 super::redundancy::panel(state, ui, ee, out);
             });

@@ -6,3 +6,4 @@ pub mod construction;
 pub mod ik;
 pub mod model;
 pub mod redundancy;
+pub mod symbols;

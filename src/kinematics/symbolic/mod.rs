@@ -552,14 +552,7 @@ fn derive_chain(
             matrix,
         });
     }
-    let mut partials: Vec<SymMatrix> = Vec::with_capacity(links.len());
-    for link in &links {
-        let next = match partials.last() {
-            Some(prev) => mat_mul(prev, &link.matrix),
-            None => link.matrix.clone(),
-        };
-        partials.push(next);
-    }
+    let partials = partial_products(&links);
     conventions.dedup();
     let convention = match conventions.as_slice() {
         [one] => one,
@@ -583,6 +576,19 @@ fn derive_chain(
     };
     out.wrist = wrist_point(&out);
     Ok(out)
+}
+
+/// `T_1^0, T_2^0, ..., T_n^0`: the product one matrix at a time, simplified after each.
+fn partial_products(links: &[LinkMatrix]) -> Vec<SymMatrix> {
+    let mut partials: Vec<SymMatrix> = Vec::with_capacity(links.len());
+    for link in links {
+        let next = match partials.last() {
+            Some(prev) => mat_mul(prev, &link.matrix),
+            None => link.matrix.clone(),
+        };
+        partials.push(next);
+    }
+    partials
 }
 
 /// A URDF joint: `parent_from_joint` then the motion about/along `axis`.
