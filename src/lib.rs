@@ -86,6 +86,7 @@ pub mod camera;
 #[cfg(feature = "app")]
 pub mod cli;
 pub mod construction;
+pub mod exercise;
 #[cfg(feature = "gui")]
 pub mod figure;
 #[cfg(feature = "gui")]

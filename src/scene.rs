@@ -589,6 +589,27 @@ pub fn point32(p: &Vector3<f64>) -> Point3<f32> {
     Point3::from(v32(p))
 }
 
+/// Adds a labelled frame triad (x red, y green, z blue, each `len` m long, labels `x{name}`,
+/// `y{name}`, `z{name}`) at `world_from_frame`: a sheet's base and tool frames, an IK target.
+pub fn frame_triad(scene: &mut Scene, world_from_frame: &Pose, name: &str, len: f64) {
+    let o = world_from_frame.translation.vector;
+    for (k, color) in AXIS_COLORS.iter().enumerate() {
+        let tip = o + world_from_frame.rotation * Vector3::ith(k, len);
+        scene.lines.push(Line {
+            a: v32(&o),
+            b: v32(&tip),
+            color: *color,
+            width_px: 3.0,
+        });
+        scene.labels.push(Label {
+            p: v32(&tip),
+            text: format!("{}{name}", ["x", "y", "z"][k]),
+            color: *color,
+            movable: false,
+        });
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

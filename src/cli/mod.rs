@@ -2,6 +2,7 @@
 //! parses and reports errors; everything here returns typed errors.
 
 mod calibrate;
+mod exercise;
 mod export;
 mod figures;
 mod fk;
@@ -148,6 +149,9 @@ pub enum Command {
     /// Kinematic calibration (Sect. 2.11): estimate the DH parameters from measured poses (or a
     /// simulated robot), with what can and cannot be identified.
     Calibrate(Box<calibrate::CalibrateArgs>),
+    /// Exercises checked automatically: sheets with figures and answer keys for a class
+    /// (`new`), answers graded by equivalence with feedback in words (`check`).
+    Exercise(exercise::ExerciseArgs),
     /// The direct kinematics in symbols, in the textbook's notation: each A_i^{i-1}, the
     /// product T_n^0 and, for an arm with a spherical wrist, the wrist point p_W (Sect. 2.9).
     Symbolic(symbolic::SymbolicArgs),
@@ -301,6 +305,7 @@ pub fn run(cli: Cli, out: &mut dyn std::io::Write) -> Result<(), CliError> {
         Some(Command::SelfMotion(args)) => self_motion::run(&args, out),
         Some(Command::Export(args)) => export::run(&args, out),
         Some(Command::Symbolic(args)) => symbolic::run(&args, out),
+        Some(Command::Exercise(args)) => exercise::run(&args, out),
     }
 }
 

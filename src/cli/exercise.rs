@@ -1,0 +1,314 @@
+//! `armlab exercise new` and `armlab exercise check`: sheets with figures and answer keys, and
+//! grading by equivalence ([`crate::exercise`]).
+
+use super::CliError;
+use super::figures::{Size, framing_camera};
+use crate::camera::Preset;
+use crate::exercise::{Answer, Grade, Key, KeyAnswer, Kind, Sheet, generate, grade, grade_dh};
+use crate::figure::Theme;
+use crate::figure::figures::{Figures, Scene3d};
+use crate::headless::write_png;
+use crate::scene::{ArmStyle, Dot, Label, arm_scene, frame_triad, point32};
+use clap::{Subcommand, ValueEnum};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// `armlab exercise ...`.
+#[derive(Debug, clap::Args)]
+pub struct ExerciseArgs {
+    /// What to do.
+    #[command(subcommand)]
+    pub action: ExerciseAction,
+}
+
+/// The exercise subcommands.
+#[derive(Debug, Subcommand)]
+pub enum ExerciseAction {
+    /// Write sheets (question in Markdown and a figure) and, separately, their answer keys.
+    New(NewArgs),
+    /// Grade an answer against a key (or a DH table against a model with --against).
+    Check(CheckArgs),
+}
+
+/// The kinds on the command line.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum KindArg {
+    /// Write the DH table of the arm drawn with its base and tool frames only.
+    DhTable,
+    /// T at a given q.
+    Fk,
+    /// Every solution of a pose, with its posture.
+    Ik,
+    /// Which points a two-link arm reaches, with how many postures; its workspace area.
+    Workspace,
+    /// n, m and r for a stated task.
+    Redundancy,
+}
+
+impl From<KindArg> for Kind {
+    fn from(k: KindArg) -> Self {
+        match k {
+            KindArg::DhTable => Kind::DhTable,
+            KindArg::Fk => Kind::Fk,
+            KindArg::Ik => Kind::Ik,
+            KindArg::Workspace => Kind::Workspace,
+            KindArg::Redundancy => Kind::Redundancy,
+        }
+    }
+}
+
+/// Arguments of `armlab exercise new`.
+#[derive(Debug, clap::Args)]
+pub struct NewArgs {
+    /// The kind of exercise.
+    #[arg(value_enum)]
+    pub kind: KindArg,
+    /// The arm of every sheet (built-in name or model file).
+    #[arg(long, conflicts_with = "random")]
+    pub robot: Option<String>,
+    /// A different textbook arm per sheet, with its lengths varied.
+    #[arg(long)]
+    pub random: bool,
+    /// Seed: the same seed gives the same sheets.
+    #[arg(long)]
+    pub seed: u64,
+    /// Number of students: one sheet each, all different.
+    #[arg(long, default_value_t = 1)]
+    pub class: usize,
+    /// Folder to write `student-NN/sheet.md`, `student-NN/figure.png` and `keys/student-NN.json`.
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Figure size in pixels, WIDTHxHEIGHT.
+    #[arg(long, default_value = "960x720")]
+    pub size: Size,
+}
+
+/// Arguments of `armlab exercise check`.
+#[derive(Debug, clap::Args)]
+pub struct CheckArgs {
+    /// KEY ANSWER, or only ANSWER with --against.
+    #[arg(num_args = 1..=2, required = true)]
+    pub files: Vec<PathBuf>,
+    /// Grade a DH-table answer against this model (built-in name or file) instead of a key.
+    #[arg(long)]
+    pub against: Option<String>,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t)]
+    pub format: super::Format,
+}
+
+/// Runs `armlab exercise`.
+pub(super) fn run(args: &ExerciseArgs, out: &mut dyn Write) -> Result<(), CliError> {
+    match &args.action {
+        ExerciseAction::New(a) => new(a, out),
+        ExerciseAction::Check(a) => check(a, out),
+    }
+}
+
+fn io_error(path: &Path, e: impl std::fmt::Display) -> CliError {
+    CliError::Export(format!("{}: {e}", path.display()))
+}
+
+/// `armlab exercise new`.
+fn new(args: &NewArgs, out: &mut dyn Write) -> Result<(), CliError> {
+    let robot = match (&args.robot, args.random) {
+        (Some(spec), _) => Some(super::load_model(spec)?),
+        (None, true) => None,
+        (None, false) if Kind::from(args.kind) == Kind::Workspace => None,
+        (None, false) => {
+            return Err(CliError::Usage("give --robot MODEL or --random"));
+        }
+    };
+    if args.class == 0 {
+        return Err(CliError::Usage("--class must be at least 1"));
+    }
+    let keys = args.out.join("keys");
+    std::fs::create_dir_all(&keys).map_err(|e| io_error(&keys, e))?;
+    let mut figures = Figures::new()?;
+    for student in 1..=args.class {
+        let sheet =
+            generate(args.kind.into(), robot.as_ref(), args.seed, student).map_err(|e| {
+                CliError::BadTarget {
+                    source_name: "exercise new".into(),
+                    reason: e.to_string(),
+                }
+            })?;
+        let dir = args.out.join(format!("student-{student:02}"));
+        std::fs::create_dir_all(&dir).map_err(|e| io_error(&dir, e))?;
+        let md = dir.join("sheet.md");
+        let text = format!(
+            "{}\n![figure](figure.png)\n\nSheet {student} of {} (seed {}).\n",
+            sheet.markdown, args.class, args.seed
+        );
+        std::fs::write(&md, text).map_err(|e| io_error(&md, e))?;
+        let png = dir.join("figure.png");
+        let img = figure(&mut figures, &sheet, args.size.0)?;
+        write_png(&img, &png)?;
+        let key_path = keys.join(format!("student-{student:02}.json"));
+        let json = serde_json::to_string_pretty(&sheet.key).map_err(std::io::Error::from)?;
+        std::fs::write(&key_path, json + "\n").map_err(|e| io_error(&key_path, e))?;
+        writeln!(
+            out,
+            "wrote {}, {} and {} ({})",
+            md.display(),
+            png.display(),
+            key_path.display(),
+            sheet.robot.name
+        )?;
+    }
+    Ok(())
+}
+
+/// The sheet's figure: the arm, with every DH frame or (dh-table) only the base and tool
+/// frames; the ik target's frame; the workspace's points, numbered.
+fn figure(
+    figures: &mut Figures,
+    sheet: &Sheet,
+    size: [u32; 2],
+) -> Result<image::RgbaImage, CliError> {
+    let style = ArmStyle {
+        frames: sheet.frames,
+        frame_labels: sheet.frames,
+        ..ArmStyle::default()
+    };
+    let robot = &sheet.robot;
+    let mut scene = arm_scene(robot, &sheet.q, &style)?;
+    let len = 0.18 * robot.characteristic_length().max(0.1);
+    let n = robot.dof();
+    if !sheet.frames {
+        frame_triad(&mut scene, &robot.base, "0", len);
+        frame_triad(&mut scene, &robot.fk(&sheet.q)?, &n.to_string(), len);
+    }
+    if let Some(t) = &sheet.target {
+        frame_triad(&mut scene, t, "t", len);
+    }
+    let mut points = crate::scene::arm_points(robot, &sheet.q)?;
+    for (i, p) in sheet.points.iter().enumerate() {
+        let v = nalgebra::Vector3::new(p[0], p[1], p[2]);
+        scene.dots.push(Dot {
+            p: point32(&v).into(),
+            color: [0.8, 0.1, 0.1, 1.0],
+            size_px: 10.0,
+        });
+        scene.labels.push(Label {
+            p: point32(&v).into(),
+            text: (i + 1).to_string(),
+            color: [0.8, 0.1, 0.1, 1.0],
+            movable: true,
+        });
+        points.push(point32(&v));
+    }
+    let preset = if sheet.points.is_empty() {
+        Preset::Iso
+    } else {
+        Preset::Top
+    };
+    let camera = framing_camera(preset, &points, size, false);
+    let fig = Scene3d {
+        title: format!(
+            "Exercise {}, sheet {}",
+            sheet.key.kind.name(),
+            sheet.key.student
+        ),
+        subtitle: format!("{} joints", robot.dof()),
+        scene: &scene,
+        camera,
+        legend: Vec::new(),
+        caption: String::new(),
+    };
+    Ok(figures.scene(size, Theme::Light, &fig)?)
+}
+
+/// Reads an answer: a model file for dh-table, rows of numbers otherwise (`#` comments; a
+/// first line `# deg` makes ik rows degrees).
+fn read_answer(key_answer: &KeyAnswer, path: &Path) -> Result<Answer, CliError> {
+    if matches!(key_answer, KeyAnswer::DhTable) {
+        return Ok(Answer::Model(Box::new(super::load_model(
+            &path.to_string_lossy(),
+        )?)));
+    }
+    let text = std::fs::read_to_string(path).map_err(|e| io_error(path, e))?;
+    let degrees = text.lines().next().is_some_and(|l| {
+        l.trim()
+            .trim_start_matches('#')
+            .trim()
+            .eq_ignore_ascii_case("deg")
+    });
+    let mut rows = Vec::new();
+    for (i, line) in text.lines().enumerate() {
+        let body = line.split('#').next().unwrap_or("").trim();
+        if body.is_empty() {
+            continue;
+        }
+        let mut row = Vec::new();
+        for field in body
+            .split(|c: char| c == ',' || c.is_whitespace())
+            .filter(|f| !f.is_empty())
+        {
+            let v: f64 = field.parse().map_err(|_| CliError::BadTarget {
+                source_name: format!("{}:{}", path.display(), i + 1),
+                reason: format!("{field:?} is not a number"),
+            })?;
+            row.push(if degrees { v.to_radians() } else { v });
+        }
+        rows.push(row);
+    }
+    Ok(Answer::Rows(rows))
+}
+
+/// `armlab exercise check`.
+fn check(args: &CheckArgs, out: &mut dyn Write) -> Result<(), CliError> {
+    let grade_result = match (&args.against, args.files.as_slice()) {
+        (Some(model), [answer]) => {
+            let reference =
+                crate::exercise::sheet_arm(&super::load_model(model)?, None).map_err(|e| {
+                    CliError::BadTarget {
+                        source_name: model.clone(),
+                        reason: e.to_string(),
+                    }
+                })?;
+            let answer = super::load_model(&answer.to_string_lossy())?;
+            grade_dh(&reference, &answer, crate::exercise::Tolerance::default())
+        }
+        (None, [key_path, answer]) => {
+            let text = std::fs::read_to_string(key_path).map_err(|e| io_error(key_path, e))?;
+            let key: Key = serde_json::from_str(&text).map_err(|e| CliError::BadTarget {
+                source_name: key_path.display().to_string(),
+                reason: format!("not an armlab exercise key: {e}"),
+            })?;
+            let answer = read_answer(&key.answer, answer)?;
+            grade(&key, &answer).map_err(|e| CliError::BadTarget {
+                source_name: args.files[1].display().to_string(),
+                reason: e.to_string(),
+            })?
+        }
+        (Some(_), _) => return Err(CliError::Usage("with --against give only the ANSWER file")),
+        (None, _) => {
+            return Err(CliError::Usage(
+                "give KEY ANSWER (or --against MODEL ANSWER)",
+            ));
+        }
+    };
+    report(&grade_result, args.format, out)
+}
+
+fn report(g: &Grade, format: super::Format, out: &mut dyn Write) -> Result<(), CliError> {
+    match format {
+        super::Format::Json => {
+            serde_json::to_writer_pretty(&mut *out, g).map_err(std::io::Error::from)?;
+            writeln!(out)?;
+        }
+        super::Format::Text => {
+            writeln!(out, "score {} of {}", g.score, g.max)?;
+            for i in &g.items {
+                let mark = if i.correct { "ok   " } else { "WRONG" };
+                if i.feedback.starts_with(&format!("{}:", i.item)) {
+                    writeln!(out, "  {mark} {}", i.feedback)?;
+                } else {
+                    writeln!(out, "  {mark} {}: {}", i.item, i.feedback)?;
+                }
+            }
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,873 @@
+//! Exercises checked automatically (Sects. 2.8-2.12): per student, a question in Markdown with
+//! what its figure must show, and an answer key; answers graded by equivalence, not by string,
+//! with feedback that names the first wrong item in words. Pure compute: the CLI writes the
+//! files and draws the figures.
+//!
+//! The kinds: `dh-table` (write the DH table of the arm drawn with its base and tool frames:
+//! [`dh_table`]), `fk` (T at a given q), `ik` (every solution of a pose, with postures),
+//! `workspace` (which points a two-link arm reaches and with how many postures; the area of its
+//! workspace), `redundancy` (n, m, r for a stated task).
+
+pub mod dh_table;
+
+use crate::kinematics::ik::Target;
+use crate::kinematics::ik::closed_form::{ClosedForm, Solutions, Verify};
+use crate::kinematics::models::built_in;
+use crate::kinematics::pose::pose_to_rows;
+use crate::kinematics::redundancy::{Redundancy, Task};
+use crate::kinematics::{Convention, DhJoint, DhRow, JointKind, Pose, Robot};
+use serde::{Deserialize, Serialize};
+use std::f64::consts::PI;
+use thiserror::Error;
+
+pub use dh_table::Tolerance;
+
+/// The format tag written into every key.
+pub const KEY_FORMAT: &str = "armlab exercise key 1";
+
+/// The kinds of exercise.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Kind {
+    /// Write the DH table of the arm drawn with its base and tool frames only.
+    DhTable,
+    /// T at a given q.
+    Fk,
+    /// Every solution of a pose, with its posture.
+    Ik,
+    /// Which points a two-link planar arm reaches, with how many postures; its workspace area.
+    Workspace,
+    /// n, m and r for a stated task.
+    Redundancy,
+}
+
+impl Kind {
+    /// Every kind, in the CLI's order.
+    pub const ALL: [Kind; 5] = [
+        Kind::DhTable,
+        Kind::Fk,
+        Kind::Ik,
+        Kind::Workspace,
+        Kind::Redundancy,
+    ];
+
+    /// The CLI name (`dh-table`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Kind::DhTable => "dh-table",
+            Kind::Fk => "fk",
+            Kind::Ik => "ik",
+            Kind::Workspace => "workspace",
+            Kind::Redundancy => "redundancy",
+        }
+    }
+}
+
+/// What goes wrong making or grading an exercise.
+#[derive(Debug, Error, PartialEq)]
+pub enum ExerciseError {
+    /// The robot does not suit the kind.
+    #[error("{kind} exercise: {reason}")]
+    Unsuitable {
+        /// The kind's name.
+        kind: &'static str,
+        /// Why.
+        reason: String,
+    },
+    /// An answer of the wrong shape.
+    #[error("answer: {reason}")]
+    Answer {
+        /// What is wrong.
+        reason: String,
+    },
+}
+
+/// The answer key of one sheet (written as JSON by the CLI).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Key {
+    /// [`KEY_FORMAT`].
+    pub format: String,
+    /// The kind.
+    pub kind: Kind,
+    /// The seed the class was made with.
+    pub seed: u64,
+    /// The student's number (1-based).
+    pub student: usize,
+    /// The arm's name.
+    pub robot: String,
+    /// The arm as a TOML model file (DH rows, base and tool at its frames 0 and n).
+    pub model: String,
+    /// The configuration drawn or asked about (rad, m).
+    pub q: Vec<f64>,
+    /// What the sheet asks and its answer.
+    pub answer: KeyAnswer,
+    /// Tolerances of the grading.
+    pub tolerance: Tolerance,
+}
+
+/// The answer part of a key.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "type", rename_all = "kebab-case")]
+pub enum KeyAnswer {
+    /// Any DH table describing the model (graded by [`dh_table::check`]).
+    DhTable,
+    /// `T` (rows) at `q`.
+    Fk {
+        /// Rows of T (m).
+        t: [[f64; 4]; 4],
+    },
+    /// Every solution of `target`, with its posture.
+    Ik {
+        /// Rows of the target pose (m).
+        target: [[f64; 4]; 4],
+        /// The solutions (rad, m) and their postures.
+        solutions: Vec<(Vec<f64>, String)>,
+    },
+    /// Points (m, in the arm's plane), the number of postures reaching each, the area (m^2).
+    Workspace {
+        /// The points asked about.
+        points: Vec<[f64; 2]>,
+        /// How many postures reach each (0, 1 on the boundary, 2).
+        postures: Vec<usize>,
+        /// The workspace's area, 4 pi a1 a2 (m^2).
+        area: f64,
+    },
+    /// n, m, r for `task`.
+    Redundancy {
+        /// The task's CLI name.
+        task: String,
+        /// Joints.
+        n: usize,
+        /// Operational space dimension.
+        m: usize,
+        /// Components the task constrains.
+        r: usize,
+    },
+}
+
+/// One sheet: the question (Markdown), the key, and the arm and configuration its figure
+/// draws.
+#[derive(Debug, Clone)]
+pub struct Sheet {
+    /// The question in Markdown (the figure is `figure.png` next to it).
+    pub markdown: String,
+    /// The answer key.
+    pub key: Key,
+    /// The arm drawn.
+    pub robot: Robot,
+    /// Its configuration in the figure.
+    pub q: Vec<f64>,
+    /// Draw the DH frames of every joint (false: the base and tool frames only).
+    pub frames: bool,
+    /// A target frame to draw (ik).
+    pub target: Option<Pose>,
+    /// Points to mark (workspace), world frame (m).
+    pub points: Vec<[f64; 3]>,
+}
+
+/// The arms `--random` draws from (the textbook's, with their lengths varied).
+pub const POOL: [&str; 7] = [
+    "planar3",
+    "anthropomorphic3r",
+    "spherical_arm",
+    "stanford",
+    "anthropomorphic_spherical_wrist",
+    "scara",
+    "puma560",
+];
+
+/// A small deterministic generator (xorshift), seeded per student.
+pub struct Rng(u64);
+
+impl Rng {
+    /// A generator for `seed` and `student`.
+    pub fn new(seed: u64, student: usize) -> Self {
+        Rng((seed ^ 0x9E37_79B9_7F4A_7C15).wrapping_mul(student as u64 * 2 + 1) | 1)
+    }
+
+    /// Uniform in [0, 1).
+    pub fn uniform(&mut self) -> f64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    /// Uniform in [lo, hi), rounded to `step`.
+    pub fn stepped(&mut self, lo: f64, hi: f64, step: f64) -> f64 {
+        ((lo + (hi - lo) * self.uniform()) / step).round() * step
+    }
+}
+
+/// The arm of a sheet: the serial DH chain of end-effector 0 with base and tool at its frames
+/// 0 and n (what the figure draws), optionally with its nonzero lengths varied (`--random`).
+pub fn sheet_arm(robot: &Robot, rng: Option<&mut Rng>) -> Result<Robot, ExerciseError> {
+    let unsuitable = |reason: &str| ExerciseError::Unsuitable {
+        kind: "this",
+        reason: reason.into(),
+    };
+    let (conv, table) = robot
+        .dh_table()
+        .ok_or_else(|| unsuitable("the arm needs a serial DH table"))?;
+    let mut rows: Vec<DhJoint> = table
+        .iter()
+        .map(|(k, r, o)| DhJoint::new(*k, *r).offset(*o))
+        .collect();
+    for (row, j) in rows.iter_mut().zip(robot.joints()) {
+        row.limits = j.limits;
+        row.name = Some(j.name.clone());
+    }
+    if let Some(rng) = rng {
+        for r in &mut rows {
+            for v in [&mut r.row.a, &mut r.row.d] {
+                if *v != 0.0 {
+                    *v = v.signum() * rng.stepped(0.2, 0.8, 0.05);
+                }
+            }
+        }
+    }
+    Robot::from_dh(&robot.name, conv, &rows, Pose::identity(), Pose::identity())
+        .map_err(|e| unsuitable(&e.to_string()))
+}
+
+/// A configuration inside the limits, away from them, on a 15-degree (5 cm) grid.
+fn random_q(robot: &Robot, rng: &mut Rng) -> Vec<f64> {
+    (0..robot.dof())
+        .map(|k| {
+            let [lo, hi] = robot.sampling_range(k);
+            let (lo, hi) = (lo + 0.15 * (hi - lo), hi - 0.15 * (hi - lo));
+            if robot.dof_joint(k).kind == JointKind::Prismatic {
+                rng.stepped(lo, hi, 0.05)
+            } else {
+                rng.stepped(lo, hi, PI / 12.0)
+            }
+        })
+        .collect()
+}
+
+/// Makes one sheet. `robot`: the arm of every sheet (`--robot`), or `None` to draw one per
+/// student from [`POOL`] with varied lengths (`--random`).
+pub fn generate(
+    kind: Kind,
+    robot: Option<&Robot>,
+    seed: u64,
+    student: usize,
+) -> Result<Sheet, ExerciseError> {
+    let mut rng = Rng::new(seed, student);
+    if kind == Kind::Workspace {
+        return workspace_sheet(robot, seed, student, &mut rng);
+    }
+    let arm = match robot {
+        Some(r) => sheet_arm(r, None)?,
+        None => {
+            let name = POOL[(rng.uniform() * POOL.len() as f64) as usize % POOL.len()];
+            let base = built_in(name).expect("pool names are built-ins");
+            sheet_arm(&base, Some(&mut rng))?
+        }
+    };
+    let q = random_q(&arm, &mut rng);
+    let model = crate::model_file::to_toml(&arm).unwrap_or_default();
+    let key = |answer: KeyAnswer| Key {
+        format: KEY_FORMAT.into(),
+        kind,
+        seed,
+        student,
+        robot: arm.name.clone(),
+        model: model.clone(),
+        q: q.clone(),
+        answer,
+        tolerance: Tolerance::default(),
+    };
+    let shown = q_text(&arm, &q);
+    let mut sheet = Sheet {
+        markdown: String::new(),
+        key: key(KeyAnswer::DhTable),
+        robot: arm.clone(),
+        q: q.clone(),
+        frames: false,
+        target: None,
+        points: Vec::new(),
+    };
+    match kind {
+        Kind::DhTable => {
+            sheet.markdown = dh_question(&arm, &q, &shown);
+        }
+        Kind::Fk => {
+            let t = arm.fk(&q).map_err(|e| unsuitable(kind, e.to_string()))?;
+            sheet.key = key(KeyAnswer::Fk {
+                t: pose_to_rows(&t),
+            });
+            sheet.frames = true;
+            sheet.markdown = format!(
+                "# Direct kinematics\n\n{}\n\nThe figure shows the arm with its DH frames; its table:\n\n{}\n\
+                 Compute the end-effector pose T = T_n^0(q) (2.50) at\n\n    q = {shown}\n\n\
+                 Answer with a text file of four rows of four numbers (the rows of T, metres), \
+                 then `armlab exercise check KEY ANSWER`.\n",
+                arm.name,
+                dh_table_markdown(&arm)
+            );
+        }
+        Kind::Ik => ik_sheet(&mut sheet, &arm, &mut rng, key(KeyAnswer::DhTable))?,
+        Kind::Redundancy => {
+            let tasks = [Task::Pose, Task::Position, Task::PositionAxis];
+            let task = tasks[(rng.uniform() * 3.0) as usize % 3];
+            let red = Redundancy::of(&arm, task);
+            sheet.key = key(KeyAnswer::Redundancy {
+                task: task.name().into(),
+                n: red.n,
+                m: red.m,
+                r: red.r,
+            });
+            sheet.markdown = format!(
+                "# Redundancy\n\n{} ({} joints, figure). The task: {} ({}).\n\n\
+                 Give n (joint-space dimension), m (operational-space dimension) and r (the \
+                 components the task prescribes), Sect. 2.10.2, as one row `n m r`; then \
+                 `armlab exercise check KEY ANSWER`.\n",
+                arm.name,
+                arm.dof(),
+                task.name(),
+                task.description()
+            );
+        }
+        Kind::Workspace => unreachable!("handled above"),
+    }
+    Ok(sheet)
+}
+
+fn unsuitable(kind: Kind, reason: String) -> ExerciseError {
+    ExerciseError::Unsuitable {
+        kind: kind.name(),
+        reason,
+    }
+}
+
+/// q as the sheet prints it: degrees for revolute joints, metres for prismatic ones.
+fn q_text(robot: &Robot, q: &[f64]) -> String {
+    let parts: Vec<String> = q
+        .iter()
+        .enumerate()
+        .map(|(k, v)| match robot.dof_joint(k).kind {
+            JointKind::Prismatic => format!("{v:.3} m"),
+            _ => format!("{:.0} deg", v.to_degrees()),
+        })
+        .collect();
+    format!("({})", parts.join(", "))
+}
+
+/// The arm's DH table as a Markdown table (for the kinds that give it).
+fn dh_table_markdown(robot: &Robot) -> String {
+    let Some((conv, table)) = robot.dh_table() else {
+        return String::new();
+    };
+    let mut s = format!(
+        "{} convention:\n\n| row | joint | a (m) | alpha (deg) | d (m) | theta (deg) |\n|---|---|---|---|---|---|\n",
+        conv.as_str()
+    );
+    for (i, (kind, row, _)) in table.iter().enumerate() {
+        let (d, theta) = match kind {
+            JointKind::Prismatic => ("q".to_string(), format!("{:.0}", row.theta.to_degrees())),
+            _ => (format!("{}", row.d), "q".to_string()),
+        };
+        s.push_str(&format!(
+            "| {} | {} | {} | {:.0} | {d} | {theta} |\n",
+            i + 1,
+            kind.as_str(),
+            row.a,
+            row.alpha.to_degrees()
+        ));
+    }
+    s
+}
+
+/// The dh-table question: the arm's joint axes in the base frame at the drawn q (so that the
+/// lengths can be read off), the tool frame, and what to hand in.
+fn dh_question(arm: &Robot, q: &[f64], shown: &str) -> String {
+    let mut s = format!(
+        "# The DH table of an arm\n\nThe figure shows an arm with {} joints at q = {shown}, with \
+         only its base frame (frame 0) and its tool frame (frame {}). Revolute joints are drawn \
+         as cylinders along their axes, prismatic joints as boxes.\n\nIts joint axes at this q, \
+         in the base frame (m):\n\n| joint | type | a point on the axis | direction |\n|---|---|---|---|\n",
+        arm.dof(),
+        arm.dof()
+    );
+    let frames = arm.fk_frames(q).unwrap_or_default();
+    for k in 0..arm.dof() {
+        let j = arm.dof_joint(k);
+        // the axis of joint k is z of the frame before it (its parent's output frame)
+        let parent = j.parent.map_or(Pose::identity(), |p| frames[p]);
+        let axis_frame = parent * j.pre;
+        let (p, z) = match j.geometry {
+            crate::kinematics::JointGeometry::Dh {
+                convention: Convention::Modified,
+                row,
+            } => {
+                let f = axis_frame
+                    * crate::kinematics::pose::rot_x(row.alpha)
+                    * crate::kinematics::pose::trans_x(row.a);
+                (f.translation.vector, f.rotation * nalgebra::Vector3::z())
+            }
+            _ => (
+                axis_frame.translation.vector,
+                axis_frame.rotation * nalgebra::Vector3::z(),
+            ),
+        };
+        s.push_str(&format!(
+            "| {} | {} | ({:.3}, {:.3}, {:.3}) | ({:.3}, {:.3}, {:.3}) |\n",
+            k + 1,
+            j.kind.as_str(),
+            p.x,
+            p.y,
+            p.z,
+            z.x,
+            z.y,
+            z.z
+        ));
+    }
+    let tool = arm.fk(q).unwrap_or_default();
+    let r = pose_to_rows(&tool);
+    s.push_str(&format!(
+        "\nThe tool frame in the base frame (rows of T, m):\n\n    {}\n\n",
+        r.iter()
+            .map(|row| row
+                .iter()
+                .map(|v| format!("{v:7.3}"))
+                .collect::<Vec<_>>()
+                .join(" "))
+            .collect::<Vec<_>>()
+            .join("\n    ")
+    ));
+    s.push_str(
+        "Write the arm's DH table (standard or modified convention) as an armlab model file \
+         (`name`, `convention`, one `[[joints]]` per row with `type`, `a`, `alpha`, `d`, and \
+         `offset` where your q differs from the figure's), with frame 0 the base frame and frame \
+         n the tool frame. Any valid choice of the z axes' directions and of the x axes is \
+         accepted. Check it with `armlab exercise check KEY answer.toml`.\n",
+    );
+    s
+}
+
+/// The ik sheet: a target reached at a random q; every closed-form solution with its posture.
+fn ik_sheet(sheet: &mut Sheet, arm: &Robot, rng: &mut Rng, key: Key) -> Result<(), ExerciseError> {
+    let solver = ClosedForm::detect(arm).map_err(|e| unsuitable(Kind::Ik, e.to_string()))?;
+    let q0 = random_q(arm, rng);
+    let target_pose = arm
+        .fk(&q0)
+        .map_err(|e| unsuitable(Kind::Ik, e.to_string()))?;
+    let mut sols = Solutions::default();
+    solver
+        .solve_into(arm, &Target::Pose(target_pose), Verify::Fk, &mut sols)
+        .map_err(|e| unsuitable(Kind::Ik, e.to_string()))?;
+    let solutions: Vec<(Vec<f64>, String)> = sols
+        .iter()
+        .map(|s| (s.q().to_vec(), s.posture.to_string()))
+        .collect();
+    let target = pose_to_rows(&target_pose);
+    sheet.key = Key {
+        answer: KeyAnswer::Ik { target, solutions },
+        q: q0,
+        ..key
+    };
+    sheet.frames = true;
+    sheet.target = Some(target_pose);
+    sheet.markdown = format!(
+        "# Inverse kinematics\n\n{}; its DH table:\n\n{}\nFind every joint vector q that puts the \
+         end-effector at the pose (rows of T, m; the frame drawn in the figure)\n\n    {}\n\n\
+         Answer with one row per solution (radians; a first line `# deg` for degrees), in any \
+         order; then `armlab exercise check KEY ANSWER`.\n",
+        arm.name,
+        dh_table_markdown(arm),
+        target
+            .iter()
+            .map(|row| row
+                .iter()
+                .map(|v| format!("{v:7.4}"))
+                .collect::<Vec<_>>()
+                .join(" "))
+            .collect::<Vec<_>>()
+            .join("\n    ")
+    );
+    Ok(())
+}
+
+/// The workspace sheet: a two-link planar arm (the one given, or random lengths), six points.
+fn workspace_sheet(
+    robot: Option<&Robot>,
+    seed: u64,
+    student: usize,
+    rng: &mut Rng,
+) -> Result<Sheet, ExerciseError> {
+    let (a1, a2) = match robot {
+        Some(r) => two_link_lengths(r)?,
+        None => (rng.stepped(0.4, 1.0, 0.05), rng.stepped(0.2, 0.8, 0.05)),
+    };
+    let row = |a| {
+        DhJoint::revolute(DhRow {
+            a,
+            alpha: 0.0,
+            d: 0.0,
+            theta: 0.0,
+        })
+        .unbounded()
+    };
+    let arm = Robot::from_dh(
+        "Two-link planar arm",
+        Convention::Standard,
+        &[row(a1), row(a2)],
+        Pose::identity(),
+        Pose::identity(),
+    )
+    .map_err(|e| unsuitable(Kind::Workspace, e.to_string()))?;
+    let (inner, outer) = ((a1 - a2).abs(), a1 + a2);
+    let mut points = Vec::new();
+    let mut postures = Vec::new();
+    for i in 0..6 {
+        // radii: two inside, one on the outer circle, one outside, one inside the hole (if
+        // any), one more inside
+        let r = match i {
+            0 | 5 => inner + (outer - inner) * (0.2 + 0.6 * rng.uniform()),
+            1 => inner + (outer - inner) * 0.5,
+            2 => outer,
+            3 => outer * (1.1 + 0.3 * rng.uniform()),
+            // inside the hole; with a1 = a2 there is none (and the base point is reached with
+            // every q1), so one more point inside
+            _ if inner > 0.05 => inner * 0.5,
+            _ => inner + (outer - inner) * 0.3,
+        };
+        let phi = rng.stepped(-PI, PI, PI / 36.0);
+        let p = [r * phi.cos(), r * phi.sin()];
+        // by the law of cosines: two elbow postures strictly inside, one on either circle
+        let count = if r > outer + 1e-12 || r < inner - 1e-12 {
+            0
+        } else if (r - outer).abs() <= 1e-12 || (r - inner).abs() <= 1e-12 {
+            1
+        } else {
+            2
+        };
+        points.push([(p[0] * 1e4).round() / 1e4, (p[1] * 1e4).round() / 1e4]);
+        postures.push(count);
+    }
+    let area = 4.0 * PI * a1 * a2;
+    let q = vec![0.0, 0.0];
+    let key = Key {
+        format: KEY_FORMAT.into(),
+        kind: Kind::Workspace,
+        seed,
+        student,
+        robot: arm.name.clone(),
+        model: crate::model_file::to_toml(&arm).unwrap_or_default(),
+        q: q.clone(),
+        answer: KeyAnswer::Workspace {
+            points: points.clone(),
+            postures,
+            area,
+        },
+        tolerance: Tolerance::default(),
+    };
+    let list: Vec<String> = points
+        .iter()
+        .enumerate()
+        .map(|(i, p)| format!("{}. ({:.4}, {:.4}) m", i + 1, p[0], p[1]))
+        .collect();
+    Ok(Sheet {
+        markdown: format!(
+            "# Workspace of a two-link planar arm\n\nThe arm has a1 = {a1} m, a2 = {a2} m and joints \
+             that turn fully (Sect. 2.10.1). For each point of the plane below, how many postures \
+             reach it (0, 1 or 2)? And what is the area of the workspace (m^2)?\n\n{}\n\n\
+             Answer with six rows of one number (the counts, in order) and a seventh row with \
+             the area; then `armlab exercise check KEY ANSWER`.\n",
+            list.join("\n")
+        ),
+        key,
+        robot: arm,
+        q,
+        frames: false,
+        target: None,
+        points: points.iter().map(|p| [p[0], p[1], 0.0]).collect(),
+    })
+}
+
+/// a1, a2 of a two-link planar arm.
+fn two_link_lengths(r: &Robot) -> Result<(f64, f64), ExerciseError> {
+    match r.dh_table() {
+        Some((_, t))
+            if t.len() == 2
+                && t.iter().all(|(k, row, _)| {
+                    *k == JointKind::Revolute && row.alpha == 0.0 && row.d == 0.0
+                }) =>
+        {
+            Ok((t[0].1.a, t[1].1.a))
+        }
+        _ => Err(unsuitable(
+            Kind::Workspace,
+            "the workspace exercise needs a two-link planar arm (planar2)".into(),
+        )),
+    }
+}
+
+/// An answer as the CLI read it.
+#[derive(Debug, Clone)]
+pub enum Answer {
+    /// A model file (dh-table).
+    Model(Box<Robot>),
+    /// Rows of numbers (fk, ik, workspace, redundancy); ik rows in radians.
+    Rows(Vec<Vec<f64>>),
+}
+
+/// One graded item.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Item {
+    /// What it is ("row 3", "T[2][4]", "solution 2").
+    pub item: String,
+    /// Right or not.
+    pub correct: bool,
+    /// In words.
+    pub feedback: String,
+}
+
+/// A grade: `score` of `max` and the items.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Grade {
+    /// Items right.
+    pub score: usize,
+    /// Items.
+    pub max: usize,
+    /// Each item.
+    pub items: Vec<Item>,
+}
+
+impl Grade {
+    fn of(items: Vec<Item>) -> Self {
+        Grade {
+            score: items.iter().filter(|i| i.correct).count(),
+            max: items.len(),
+            items,
+        }
+    }
+}
+
+/// The key's arm.
+pub fn key_robot(key: &Key) -> Result<Robot, ExerciseError> {
+    crate::model_file::parse_model(&key.model, std::path::Path::new("key.model.toml")).map_err(
+        |e| ExerciseError::Answer {
+            reason: format!("the key's model: {e}"),
+        },
+    )
+}
+
+/// Grades `answer` against `key`.
+pub fn grade(key: &Key, answer: &Answer) -> Result<Grade, ExerciseError> {
+    let bad = |reason: String| ExerciseError::Answer { reason };
+    match (&key.answer, answer) {
+        (KeyAnswer::DhTable, Answer::Model(a)) => Ok(grade_dh(&key_robot(key)?, a, key.tolerance)),
+        (KeyAnswer::Fk { t }, Answer::Rows(rows)) => grade_fk(t, rows, key.tolerance),
+        (KeyAnswer::Ik { solutions, .. }, Answer::Rows(rows)) => {
+            grade_ik(&key_robot(key)?, solutions, rows, key.tolerance)
+        }
+        (KeyAnswer::Workspace { postures, area, .. }, Answer::Rows(rows)) => {
+            grade_workspace(postures, *area, rows)
+        }
+        (KeyAnswer::Redundancy { n, m, r, .. }, Answer::Rows(rows)) => {
+            let got: Vec<f64> = rows.iter().flatten().copied().collect();
+            if got.len() != 3 {
+                return Err(bad(format!(
+                    "give n, m, r: three numbers, not {}",
+                    got.len()
+                )));
+            }
+            let items = [
+                ("n", *n, "the number of joints"),
+                (
+                    "m",
+                    *m,
+                    "the dimension of the operational space of the task's kind",
+                ),
+                ("r", *r, "the number of components the task prescribes"),
+            ]
+            .iter()
+            .zip(&got)
+            .map(|((name, want, what), g)| Item {
+                item: name.to_string(),
+                correct: (*g - *want as f64).abs() < 1e-9,
+                feedback: if (*g - *want as f64).abs() < 1e-9 {
+                    "right".into()
+                } else {
+                    format!("{name} is wrong: it is {what}")
+                },
+            })
+            .collect();
+            Ok(Grade::of(items))
+        }
+        (KeyAnswer::DhTable, Answer::Rows(_)) => {
+            Err(bad("a dh-table answer is a TOML model file".into()))
+        }
+        (_, Answer::Model(_)) => Err(bad(
+            "this answer is rows of numbers, not a model file".into()
+        )),
+    }
+}
+
+/// Grades a DH table: one item per row.
+pub fn grade_dh(reference: &Robot, answer: &Robot, tol: Tolerance) -> Grade {
+    let v = dh_table::check(reference, answer, tol);
+    Grade::of(
+        v.rows
+            .into_iter()
+            .map(|r| Item {
+                item: format!("row {}", r.row),
+                correct: r.correct,
+                feedback: r.feedback,
+            })
+            .collect(),
+    )
+}
+
+/// Grades T: one item per entry of the top three rows.
+fn grade_fk(t: &[[f64; 4]; 4], rows: &[Vec<f64>], tol: Tolerance) -> Result<Grade, ExerciseError> {
+    let got: Vec<f64> = rows.iter().flatten().copied().collect();
+    if got.len() != 16 && got.len() != 12 {
+        return Err(ExerciseError::Answer {
+            reason: format!(
+                "T has 16 numbers (or 12: its top three rows), the answer has {}",
+                got.len()
+            ),
+        });
+    }
+    let names = [
+        ["n_x", "s_x", "a_x", "p_x"],
+        ["n_y", "s_y", "a_y", "p_y"],
+        ["n_z", "s_z", "a_z", "p_z"],
+    ];
+    let mut items = Vec::new();
+    for i in 0..3 {
+        for j in 0..4 {
+            let (want, g) = (t[i][j], got[4 * i + j]);
+            let tol = if j == 3 { tol.length } else { tol.angle };
+            let ok = (want - g).abs() <= tol;
+            items.push(Item {
+                item: format!("T[{}][{}] ({})", i + 1, j + 1, names[i][j]),
+                correct: ok,
+                feedback: if ok {
+                    "right".into()
+                } else if (want + g).abs() <= tol {
+                    format!("{} has the wrong sign", names[i][j])
+                } else if j == 3 {
+                    format!(
+                        "{} is wrong: it is the tool origin's coordinate in the base frame",
+                        names[i][j]
+                    )
+                } else {
+                    format!(
+                        "{} is wrong: it is a component of a unit vector of the tool frame",
+                        names[i][j]
+                    )
+                },
+            });
+        }
+    }
+    Ok(Grade::of(items))
+}
+
+/// Two joint vectors equal modulo 2 pi (revolute) within the tolerances.
+fn same_q(robot: &Robot, a: &[f64], b: &[f64], tol: Tolerance) -> bool {
+    a.len() == b.len()
+        && a.iter().zip(b).enumerate().all(|(k, (x, y))| {
+            let d = x - y;
+            match robot.dof_joint(k).kind {
+                JointKind::Prismatic => d.abs() <= tol.length,
+                _ => (d - (d / (2.0 * PI)).round() * 2.0 * PI).abs() <= tol.angle * 5.0,
+            }
+        })
+}
+
+/// Grades a solution set: one item per key solution (found or not), wrong extra rows named.
+fn grade_ik(
+    robot: &Robot,
+    solutions: &[(Vec<f64>, String)],
+    rows: &[Vec<f64>],
+    tol: Tolerance,
+) -> Result<Grade, ExerciseError> {
+    if let Some(r) = rows.iter().find(|r| r.len() != robot.dof()) {
+        return Err(ExerciseError::Answer {
+            reason: format!(
+                "each row is one q of {} numbers; a row has {}",
+                robot.dof(),
+                r.len()
+            ),
+        });
+    }
+    let mut items: Vec<Item> = solutions
+        .iter()
+        .enumerate()
+        .map(|(i, (q, posture))| {
+            let found = rows.iter().any(|r| same_q(robot, r, q, tol));
+            Item {
+                item: format!("solution {} ({posture})", i + 1),
+                correct: found,
+                feedback: if found {
+                    "found".into()
+                } else {
+                    format!("missing: the {posture} posture")
+                },
+            }
+        })
+        .collect();
+    for (i, r) in rows.iter().enumerate() {
+        if !solutions.iter().any(|(q, _)| same_q(robot, r, q, tol)) {
+            items.push(Item {
+                item: format!("answer row {}", i + 1),
+                correct: false,
+                feedback: format!("row {} does not reach the target", i + 1),
+            });
+        }
+    }
+    Ok(Grade::of(items))
+}
+
+/// Grades the workspace answer: six counts and the area (1 % tolerance).
+fn grade_workspace(
+    postures: &[usize],
+    area: f64,
+    rows: &[Vec<f64>],
+) -> Result<Grade, ExerciseError> {
+    let got: Vec<f64> = rows.iter().flatten().copied().collect();
+    if got.len() != postures.len() + 1 {
+        return Err(ExerciseError::Answer {
+            reason: format!(
+                "give {} counts and the area: {} numbers, not {}",
+                postures.len(),
+                postures.len() + 1,
+                got.len()
+            ),
+        });
+    }
+    let mut items: Vec<Item> = postures
+        .iter()
+        .zip(&got)
+        .enumerate()
+        .map(|(i, (want, g))| {
+            let ok = (*g - *want as f64).abs() < 1e-9;
+            Item {
+                item: format!("point {}", i + 1),
+                correct: ok,
+                feedback: if ok {
+                    "right".into()
+                } else {
+                    "wrong: compare its distance from the base with |a1 - a2| and a1 + a2".into()
+                },
+            }
+        })
+        .collect();
+    let g = got[postures.len()];
+    let ok = (g - area).abs() <= 0.01 * area;
+    items.push(Item {
+        item: "area".into(),
+        correct: ok,
+        feedback: if ok {
+            "right".into()
+        } else {
+            "wrong: the workspace is the ring between the circles of radius |a1 - a2| and a1 + a2"
+                .into()
+        },
+    });
+    Ok(Grade::of(items))
+}

@@ -1,0 +1,307 @@
+//! Exercises checked automatically: sheets for a class, and grading by equivalence.
+//!
+//! The DH grader's verdicts are checked against an independent brute force written here: two
+//! tables describe the same arm when some sign and right-angle offset per joint makes their
+//! forward kinematics agree at random joint vectors.
+
+use armlab::exercise::{
+    Answer, Key, KeyAnswer, Kind, Tolerance, generate, grade, grade_dh, sheet_arm,
+};
+use armlab::kinematics::dh::standard_to_modified;
+use armlab::kinematics::models::built_in;
+use armlab::kinematics::{Convention, DhJoint, Pose, Robot};
+use std::f64::consts::{FRAC_PI_2, PI};
+
+fn table(robot: &Robot) -> (Convention, Vec<DhJoint>) {
+    let (c, t) = robot.dh_table().unwrap();
+    (
+        c,
+        t.iter()
+            .map(|(k, r, o)| DhJoint::new(*k, *r).offset(*o))
+            .collect(),
+    )
+}
+
+fn build(conv: Convention, rows: &[DhJoint]) -> Robot {
+    Robot::from_dh("answer", conv, rows, Pose::identity(), Pose::identity()).unwrap()
+}
+
+/// The brute force: signs in {+1, -1}, offsets in {-pi/2, 0, pi/2, pi} per revolute joint.
+fn same_arm_brute_force(reference: &Robot, answer: &Robot) -> bool {
+    let n = reference.dof();
+    let samples: Vec<Vec<f64>> = (0..3)
+        .map(|s| {
+            (0..n)
+                .map(|k| 0.37 * (s + 1) as f64 - 0.29 * k as f64)
+                .collect()
+        })
+        .collect();
+    let want: Vec<Pose> = samples.iter().map(|q| reference.fk(q).unwrap()).collect();
+    let offsets = [-FRAC_PI_2, 0.0, FRAC_PI_2, PI];
+    let combos = 2usize.pow(n as u32) * 4usize.pow(n as u32);
+    (0..combos).any(|c| {
+        let mut code = c;
+        let mut sign = vec![0.0; n];
+        let mut off = vec![0.0; n];
+        for k in 0..n {
+            sign[k] = if code % 2 == 0 { 1.0 } else { -1.0 };
+            code /= 2;
+            off[k] = offsets[code % 4];
+            code /= 4;
+        }
+        samples.iter().zip(&want).all(|(q, w)| {
+            let qa: Vec<f64> = (0..n).map(|k| sign[k] * q[k] + off[k]).collect();
+            let t = answer.fk(&qa).unwrap();
+            (t.translation.vector - w.translation.vector).norm() < 1e-9
+                && (t.rotation.matrix() - w.rotation.matrix()).abs().max() < 1e-9
+        })
+    })
+}
+
+#[test]
+fn one_sign_changed_the_grader_agrees_with_brute_force_and_names_a_real_slip() {
+    for name in ["puma560", "anthropomorphic3r", "planar3"] {
+        let reference = sheet_arm(&built_in(name).unwrap(), None).unwrap();
+        let (conv, rows) = table(&reference);
+        let mut wrong_seen = 0;
+        for i in 0..rows.len() {
+            for p in 0..3 {
+                let mut edited = rows.clone();
+                let v = match p {
+                    0 => &mut edited[i].row.alpha,
+                    1 => &mut edited[i].row.a,
+                    _ => &mut edited[i].row.d,
+                };
+                if *v == 0.0 {
+                    continue;
+                }
+                *v = -*v;
+                let answer = build(conv, &edited);
+                let g = grade_dh(&reference, &answer, Tolerance::default());
+                let graded_right = g.score == g.max;
+                assert_eq!(
+                    graded_right,
+                    same_arm_brute_force(&reference, &answer),
+                    "{name} row {} param {p}: {g:?}",
+                    i + 1
+                );
+                if !graded_right {
+                    wrong_seen += 1;
+                    // the slip is named: its row and parameter
+                    let param = ["alpha", "a", "d"][p];
+                    let wrong: Vec<_> = g.items.iter().filter(|it| !it.correct).collect();
+                    assert_eq!(wrong.len(), 1, "{name}: {g:?}");
+                    assert!(
+                        wrong[0]
+                            .feedback
+                            .starts_with(&format!("row {}: {param}", i + 1)),
+                        "{name} row {} {param}: {}",
+                        i + 1,
+                        wrong[0].feedback
+                    );
+                    assert!(wrong[0].feedback.contains("wrong sign"));
+                }
+            }
+        }
+        if name == "puma560" {
+            assert!(wrong_seen >= 3, "{name}: {wrong_seen}");
+        }
+    }
+}
+
+#[test]
+fn the_issue_s_example_feedback() {
+    let reference = sheet_arm(&built_in("puma560").unwrap(), None).unwrap();
+    let (conv, mut rows) = table(&reference);
+    rows[2].row.alpha = -rows[2].row.alpha;
+    let g = grade_dh(&reference, &build(conv, &rows), Tolerance::default());
+    let wrong: Vec<_> = g.items.iter().filter(|i| !i.correct).collect();
+    assert_eq!(
+        wrong[0].feedback,
+        "row 3: alpha3 has the wrong sign: z2 turns into z3 the other way"
+    );
+    assert_eq!(g.score, 5);
+}
+
+#[test]
+fn the_modified_convention_and_other_frames_get_full_marks() {
+    for name in [
+        "puma560",
+        "stanford",
+        "anthropomorphic_spherical_wrist",
+        "scara",
+    ] {
+        let reference = sheet_arm(&built_in(name).unwrap(), None).unwrap();
+        let (_, rows) = table(&reference);
+        let std_rows: Vec<_> = rows.iter().map(|r| r.row).collect();
+        let (modified, tool) = standard_to_modified(&std_rows);
+        if tool != Pose::identity() {
+            continue;
+        }
+        let mrows: Vec<DhJoint> = rows
+            .iter()
+            .zip(modified)
+            .map(|(r, m)| DhJoint::new(r.kind, m).offset(r.offset))
+            .collect();
+        let g = grade_dh(
+            &reference,
+            &build(Convention::Modified, &mrows),
+            Tolerance::default(),
+        );
+        assert_eq!(g.score, g.max, "{name} modified: {g:?}");
+    }
+    // x1 the other way and z2 the other way (a valid choice) on the anthropomorphic arm
+    let reference = sheet_arm(&built_in("anthropomorphic_spherical_wrist").unwrap(), None).unwrap();
+    let (conv, mut rows) = table(&reference);
+    rows[0].row.alpha = -rows[0].row.alpha;
+    let g = grade_dh(&reference, &build(conv, &rows), Tolerance::default());
+    assert_eq!(g.score, g.max, "{g:?}");
+    assert!(
+        g.items.iter().any(|i| i.feedback.contains("your q")),
+        "{g:?}"
+    );
+}
+
+#[test]
+fn a_class_of_thirty_sheets_all_different_each_key_grades_itself_right() {
+    let mut seen = std::collections::HashSet::new();
+    for student in 1..=30 {
+        let sheet = generate(Kind::DhTable, None, 7, student).unwrap();
+        let q: Vec<String> = sheet.key.q.iter().map(|v| format!("{v:.6}")).collect();
+        assert!(
+            seen.insert((sheet.key.model.clone(), q)),
+            "sheet {student} repeats another"
+        );
+        let reference = armlab::exercise::key_robot(&sheet.key).unwrap();
+        let g = grade(&sheet.key, &Answer::Model(Box::new(reference))).unwrap();
+        assert_eq!(g.score, g.max, "sheet {student}: {g:?}");
+        assert!(sheet.markdown.contains("DH table"));
+    }
+    // the same seed gives the same class
+    let again = generate(Kind::DhTable, None, 7, 4).unwrap();
+    assert_eq!(again.key, generate(Kind::DhTable, None, 7, 4).unwrap().key);
+}
+
+fn rows_of_key(key: &Key) -> Vec<Vec<f64>> {
+    match &key.answer {
+        KeyAnswer::Fk { t } => t.iter().map(|r| r.to_vec()).collect(),
+        KeyAnswer::Ik { solutions, .. } => solutions.iter().map(|(q, _)| q.clone()).collect(),
+        KeyAnswer::Workspace { postures, area, .. } => {
+            let mut r: Vec<Vec<f64>> = postures.iter().map(|&p| vec![p as f64]).collect();
+            r.push(vec![*area]);
+            r
+        }
+        KeyAnswer::Redundancy { n, m, r, .. } => vec![vec![*n as f64, *m as f64, *r as f64]],
+        KeyAnswer::DhTable => unreachable!(),
+    }
+}
+
+#[test]
+fn fk_ik_workspace_and_redundancy_sheets_grade_the_key_right_and_a_slip_wrong() {
+    let puma = built_in("puma560").unwrap();
+    let planar = built_in("planar2").unwrap();
+    for (kind, robot) in [
+        (Kind::Fk, Some(&puma)),
+        (Kind::Ik, Some(&puma)),
+        (Kind::Redundancy, Some(&puma)),
+        (Kind::Workspace, Some(&planar)),
+        (Kind::Workspace, None),
+    ] {
+        let sheet = generate(kind, robot, 3, 2).unwrap();
+        let rows = rows_of_key(&sheet.key);
+        let g = grade(&sheet.key, &Answer::Rows(rows.clone())).unwrap();
+        assert_eq!(g.score, g.max, "{kind:?}: {g:?}");
+        let mut slipped = rows.clone();
+        slipped[0][0] += 0.5;
+        let g = grade(&sheet.key, &Answer::Rows(slipped)).unwrap();
+        assert!(g.score < g.max, "{kind:?}: {g:?}");
+    }
+    // ik: eight Puma postures, each checked by FK here (independent of the solver)
+    let sheet = generate(Kind::Ik, Some(&puma), 3, 2).unwrap();
+    let KeyAnswer::Ik { target, solutions } = &sheet.key.answer else {
+        panic!()
+    };
+    assert_eq!(solutions.len(), 8);
+    let arm = armlab::exercise::key_robot(&sheet.key).unwrap();
+    for (q, _) in solutions {
+        let t = armlab::kinematics::pose::pose_to_rows(&arm.fk(q).unwrap());
+        for i in 0..3 {
+            for j in 0..4 {
+                assert!((t[i][j] - target[i][j]).abs() < 1e-9);
+            }
+        }
+    }
+    // workspace: the counts follow from the distances (independent of the key's code)
+    let sheet = generate(Kind::Workspace, Some(&planar), 5, 1).unwrap();
+    let KeyAnswer::Workspace {
+        points,
+        postures,
+        area,
+    } = &sheet.key.answer
+    else {
+        panic!()
+    };
+    assert!((area - 4.0 * PI).abs() < 1e-12, "planar2 has a1 = a2 = 1 m");
+    for (p, n) in points.iter().zip(postures) {
+        let r = p[0].hypot(p[1]);
+        let expect = if r > 2.0 + 1e-3 {
+            0
+        } else if (r - 2.0).abs() < 1e-3 {
+            1
+        } else {
+            2
+        };
+        assert_eq!(*n, expect, "point {p:?}");
+    }
+}
+
+/// The issue's commands: a class of 30 dh-table sheets, then grading from the files.
+#[cfg(feature = "app")]
+#[test]
+fn the_cli_writes_a_class_and_grades_from_files() {
+    let dir = std::env::temp_dir().join(format!("armlab-exercise-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let run = |args: &[&str]| {
+        let o = std::process::Command::new(env!("CARGO_BIN_EXE_armlab"))
+            .args(args)
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        String::from_utf8(o.stdout).unwrap()
+    };
+    let out = dir.to_string_lossy().to_string();
+    run(&[
+        "exercise", "new", "dh-table", "--random", "--seed", "11", "--class", "30", "--out", &out,
+        "--size", "320x240",
+    ]);
+    for s in 1..=30 {
+        assert!(dir.join(format!("student-{s:02}/sheet.md")).is_file());
+        assert!(dir.join(format!("student-{s:02}/figure.png")).is_file());
+        assert!(dir.join(format!("keys/student-{s:02}.json")).is_file());
+    }
+    let key_path = dir.join("keys/student-05.json");
+    let key: Key = serde_json::from_str(&std::fs::read_to_string(&key_path).unwrap()).unwrap();
+    let answer = dir.join("answer.toml");
+    std::fs::write(&answer, &key.model).unwrap();
+    let json = run(&[
+        "exercise",
+        "check",
+        &key_path.to_string_lossy(),
+        &answer.to_string_lossy(),
+        "--format",
+        "json",
+    ]);
+    let v: serde_json::Value = serde_json::from_str(&json).unwrap();
+    assert_eq!(v["score"], v["max"]);
+    assert!(v["items"][0]["item"].is_string() && v["items"][0]["feedback"].is_string());
+    assert_eq!(v["items"][0]["correct"], true);
+    let text = run(&[
+        "exercise",
+        "check",
+        "--against",
+        "planar3",
+        &answer.to_string_lossy(),
+    ]);
+    assert!(text.starts_with("score "), "{text}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
