@@ -347,7 +347,6 @@ fn repairs(conv: Convention, rows: &[DhJoint], r: usize, reference: &[DhJoint]) 
         change(&mut rs[r]);
         out.push(Repair { rows: rs, feedback });
     };
-    let row = rows[r].row;
     let reference_row = reference.get(r).map(|d| d.row);
     let turn = format!("z{} turns into z{} the other way", i - 1, i);
     push(
@@ -385,6 +384,21 @@ fn repairs(conv: Convention, rows: &[DhJoint], r: usize, reference: &[DhJoint]) 
             ),
         );
     }
+    out.extend(length_repairs(rows, r, reference_row, i, j, &d_axis));
+    out
+}
+
+/// Changes of row `r`'s a or d to zero or to the reference's value (either sign).
+fn length_repairs(
+    rows: &[DhJoint],
+    r: usize,
+    reference_row: Option<crate::kinematics::DhRow>,
+    i: usize,
+    j: usize,
+    d_axis: &str,
+) -> Vec<Repair> {
+    let row = rows[r].row;
+    let mut out = Vec::new();
     for (value, what) in [
         (0.0, "a"),
         (reference_row.map_or(row.a, |r| r.a), "a"),
@@ -404,16 +418,21 @@ fn repairs(conv: Convention, rows: &[DhJoint], r: usize, reference: &[DhJoint]) 
                 i - 1
             )
         };
-        push(
-            &move |d| {
+        let mut rs = rows.to_vec();
+        {
+            let d = &mut rs[r];
+            {
                 if what == "a" {
                     d.row.a = value
                 } else {
                     d.row.d = value
                 }
-            },
-            text,
-        );
+            }
+        }
+        out.push(Repair {
+            rows: rs,
+            feedback: text,
+        });
     }
     out
 }
@@ -470,31 +489,7 @@ pub fn check(reference: &Robot, answer: &Robot, tol: Tolerance) -> DhVerdict {
         tol,
         scale: reference.characteristic_length().max(1e-3),
     };
-    let mut verdicts: Vec<Option<String>> = vec![None; n];
-    for (r, (ours, theirs)) in rows.iter_mut().zip(&target.axes).enumerate() {
-        let figure_revolute = theirs.revolute;
-        if (ours.kind == JointKind::Revolute) != figure_revolute {
-            let kind = if figure_revolute {
-                "revolute"
-            } else {
-                "prismatic"
-            };
-            verdicts[r] = Some(format!(
-                "row {}: joint {} is {kind} in the figure",
-                r + 1,
-                r + 1
-            ));
-            *ours = DhJoint::new(
-                if figure_revolute {
-                    JointKind::Revolute
-                } else {
-                    JointKind::Prismatic
-                },
-                ours.row,
-            )
-            .unbounded();
-        }
-    }
+    let mut verdicts = fix_joint_kinds(&mut rows, &target);
     let mut ungraded_from = None;
     let mut mapping = None;
     for _ in 0..=2 * n {
@@ -524,7 +519,24 @@ pub fn check(reference: &Robot, answer: &Robot, tol: Tolerance) -> DhVerdict {
             }
         }
     }
-    let row_verdicts: Vec<RowVerdict> = (0..n)
+    let row_verdicts = row_verdicts(&verdicts, ungraded_from, mapping.as_deref(), &rows);
+    let equivalent = row_verdicts.iter().all(|v| v.correct);
+    DhVerdict {
+        rows: row_verdicts,
+        equivalent,
+        mapping: if equivalent { mapping } else { None },
+    }
+}
+
+/// The verdicts per row: wrong with what was said, not graded after a row that could not be
+/// explained, otherwise right (saying how the variable maps where frames differ).
+fn row_verdicts(
+    verdicts: &[Option<String>],
+    ungraded_from: Option<usize>,
+    mapping: Option<&[(f64, f64)]>,
+    rows: &[DhJoint],
+) -> Vec<RowVerdict> {
+    (0..verdicts.len())
         .map(|r| match (&verdicts[r], ungraded_from) {
             (Some(f), _) => RowVerdict {
                 row: r + 1,
@@ -542,20 +554,41 @@ pub fn check(reference: &Robot, answer: &Robot, tol: Tolerance) -> DhVerdict {
             (None, _) => RowVerdict {
                 row: r + 1,
                 correct: true,
-                feedback: mapping
-                    .as_ref()
-                    .map_or(String::new(), |m: &Vec<(f64, f64)>| {
-                        describe_mapping(r, m[r], &rows[r])
-                    }),
+                feedback: mapping.map_or(String::new(), |m| describe_mapping(r, m[r], &rows[r])),
             },
         })
-        .collect();
-    let equivalent = row_verdicts.iter().all(|v| v.correct);
-    DhVerdict {
-        rows: row_verdicts,
-        equivalent,
-        mapping: if equivalent { mapping } else { None },
+        .collect()
+}
+
+/// Rows whose joint type differs from the figure's get that type (and a verdict saying so),
+/// so that the rest of the table can still be graded.
+fn fix_joint_kinds(rows: &mut [DhJoint], target: &Target) -> Vec<Option<String>> {
+    let mut verdicts: Vec<Option<String>> = vec![None; rows.len()];
+    for (r, (ours, theirs)) in rows.iter_mut().zip(&target.axes).enumerate() {
+        let figure_revolute = theirs.revolute;
+        if (ours.kind == JointKind::Revolute) != figure_revolute {
+            let kind = if figure_revolute {
+                "revolute"
+            } else {
+                "prismatic"
+            };
+            verdicts[r] = Some(format!(
+                "row {}: joint {} is {kind} in the figure",
+                r + 1,
+                r + 1
+            ));
+            *ours = DhJoint::new(
+                if figure_revolute {
+                    JointKind::Revolute
+                } else {
+                    JointKind::Prismatic
+                },
+                ours.row,
+            )
+            .unbounded();
+        }
     }
+    verdicts
 }
 
 /// The repair that explains a failure at `level`: first one change that makes the whole table

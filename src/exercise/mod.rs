@@ -308,27 +308,7 @@ pub fn generate(
             );
         }
         Kind::Ik => ik_sheet(&mut sheet, &arm, &mut rng, key(KeyAnswer::DhTable))?,
-        Kind::Redundancy => {
-            let tasks = [Task::Pose, Task::Position, Task::PositionAxis];
-            let task = tasks[(rng.uniform() * 3.0) as usize % 3];
-            let red = Redundancy::of(&arm, task);
-            sheet.key = key(KeyAnswer::Redundancy {
-                task: task.name().into(),
-                n: red.n,
-                m: red.m,
-                r: red.r,
-            });
-            sheet.markdown = format!(
-                "# Redundancy\n\n{} ({} joints, figure). The task: {} ({}).\n\n\
-                 Give n (joint-space dimension), m (operational-space dimension) and r (the \
-                 components the task prescribes), Sect. 2.10.2, as one row `n m r`; then \
-                 `armlab exercise check KEY ANSWER`.\n",
-                arm.name,
-                arm.dof(),
-                task.name(),
-                task.description()
-            );
-        }
+        Kind::Redundancy => redundancy_sheet(&mut sheet, &arm, &mut rng, key(KeyAnswer::DhTable)),
         Kind::Workspace => unreachable!("handled above"),
     }
     Ok(sheet)
@@ -446,6 +426,32 @@ fn dh_question(arm: &Robot, q: &[f64], shown: &str) -> String {
     s
 }
 
+/// The redundancy sheet: a task drawn at random among pose, position, position + axis.
+fn redundancy_sheet(sheet: &mut Sheet, arm: &Robot, rng: &mut Rng, key: Key) {
+    let tasks = [Task::Pose, Task::Position, Task::PositionAxis];
+    let task = tasks[(rng.uniform() * 3.0) as usize % 3];
+    let red = Redundancy::of(arm, task);
+    sheet.key = Key {
+        answer: KeyAnswer::Redundancy {
+            task: task.name().into(),
+            n: red.n,
+            m: red.m,
+            r: red.r,
+        },
+        ..key
+    };
+    sheet.markdown = format!(
+        "# Redundancy\n\n{} ({} joints, figure). The task: {} ({}).\n\n\
+         Give n (joint-space dimension), m (operational-space dimension) and r (the \
+         components the task prescribes), Sect. 2.10.2, as one row `n m r`; then \
+         `armlab exercise check KEY ANSWER`.\n",
+        arm.name,
+        arm.dof(),
+        task.name(),
+        task.description()
+    );
+}
+
 /// The ik sheet: a target reached at a random q; every closed-form solution with its posture.
 fn ik_sheet(sheet: &mut Sheet, arm: &Robot, rng: &mut Rng, key: Key) -> Result<(), ExerciseError> {
     let solver = ClosedForm::detect(arm).map_err(|e| unsuitable(Kind::Ik, e.to_string()))?;
@@ -517,35 +523,7 @@ fn workspace_sheet(
         Pose::identity(),
     )
     .map_err(|e| unsuitable(Kind::Workspace, e.to_string()))?;
-    let (inner, outer) = ((a1 - a2).abs(), a1 + a2);
-    let mut points = Vec::new();
-    let mut postures = Vec::new();
-    for i in 0..6 {
-        // radii: two inside, one on the outer circle, one outside, one inside the hole (if
-        // any), one more inside
-        let r = match i {
-            0 | 5 => inner + (outer - inner) * (0.2 + 0.6 * rng.uniform()),
-            1 => inner + (outer - inner) * 0.5,
-            2 => outer,
-            3 => outer * (1.1 + 0.3 * rng.uniform()),
-            // inside the hole; with a1 = a2 there is none (and the base point is reached with
-            // every q1), so one more point inside
-            _ if inner > 0.05 => inner * 0.5,
-            _ => inner + (outer - inner) * 0.3,
-        };
-        let phi = rng.stepped(-PI, PI, PI / 36.0);
-        let p = [r * phi.cos(), r * phi.sin()];
-        // by the law of cosines: two elbow postures strictly inside, one on either circle
-        let count = if r > outer + 1e-12 || r < inner - 1e-12 {
-            0
-        } else if (r - outer).abs() <= 1e-12 || (r - inner).abs() <= 1e-12 {
-            1
-        } else {
-            2
-        };
-        points.push([(p[0] * 1e4).round() / 1e4, (p[1] * 1e4).round() / 1e4]);
-        postures.push(count);
-    }
+    let (points, postures) = workspace_points(a1, a2, rng);
     let area = 4.0 * PI * a1 * a2;
     let q = vec![0.0, 0.0];
     let key = Key {
@@ -584,6 +562,42 @@ fn workspace_sheet(
         target: None,
         points: points.iter().map(|p| [p[0], p[1], 0.0]).collect(),
     })
+}
+
+/// Six points of the plane and how many postures of the two-link arm reach each: two inside
+/// the ring, one on its outer circle, one outside, one in the hole (or inside where there is
+/// none), one more inside.
+fn workspace_points(a1: f64, a2: f64, rng: &mut Rng) -> (Vec<[f64; 2]>, Vec<usize>) {
+    let (inner, outer) = ((a1 - a2).abs(), a1 + a2);
+    let mut points = Vec::new();
+    let mut postures = Vec::new();
+    for i in 0..6 {
+        // radii: two inside, one on the outer circle, one outside, one inside the hole (if
+        // any), one more inside
+        let r = match i {
+            0 | 5 => inner + (outer - inner) * (0.2 + 0.6 * rng.uniform()),
+            1 => inner + (outer - inner) * 0.5,
+            2 => outer,
+            3 => outer * (1.1 + 0.3 * rng.uniform()),
+            // inside the hole; with a1 = a2 there is none (and the base point is reached with
+            // every q1), so one more point inside
+            _ if inner > 0.05 => inner * 0.5,
+            _ => inner + (outer - inner) * 0.3,
+        };
+        let phi = rng.stepped(-PI, PI, PI / 36.0);
+        let p = [r * phi.cos(), r * phi.sin()];
+        // by the law of cosines: two elbow postures strictly inside, one on either circle
+        let count = if r > outer + 1e-12 || r < inner - 1e-12 {
+            0
+        } else if (r - outer).abs() <= 1e-12 || (r - inner).abs() <= 1e-12 {
+            1
+        } else {
+            2
+        };
+        points.push([(p[0] * 1e4).round() / 1e4, (p[1] * 1e4).round() / 1e4]);
+        postures.push(count);
+    }
+    (points, postures)
 }
 
 /// a1, a2 of a two-link planar arm.
