@@ -93,6 +93,7 @@ pub mod figure;
 pub mod headless;
 pub mod input;
 pub mod kinematics;
+pub mod lesson;
 pub mod mesh;
 pub mod model_file;
 pub mod offload;

@@ -45,7 +45,13 @@ impl WebHandle {
     pub async fn start(&self, canvas: web_sys::HtmlCanvasElement) -> Result<(), JsValue> {
         let requested = url_parameter("model");
         let q = url_parameter("q");
-        let (state, model_given) = initial_state(requested.as_deref(), q.as_deref());
+        let (state, mut model_given) = initial_state(requested.as_deref(), q.as_deref());
+        // ?lesson=URL: the lesson file fetched before the app starts, opened on its first step
+        let lesson = match url_parameter("lesson") {
+            Some(url) => Some(fetch_text(&url).await.map(|text| (url.clone(), text))),
+            None => None,
+        };
+        model_given |= lesson.is_some();
         let options = eframe::WebOptions {
             // The window has flat colours only: nothing to dither.
             dithering: false,
@@ -58,6 +64,21 @@ impl WebHandle {
                 Box::new(move |cc| {
                     let mut ui = AppUi::new(state);
                     ui.file_picker = Box::new(BrowserFiles::default());
+                    match lesson {
+                        Some(Ok((url, text))) => {
+                            let opened = crate::lesson::Lesson::parse(&text, &url)
+                                .map_err(|e| e.to_string())
+                                .and_then(|l| ui.open_lesson(l, &url));
+                            if let Err(e) = opened {
+                                ui.state
+                                    .push_message(Level::Error, format!("?lesson=: {e}"));
+                            }
+                        }
+                        Some(Err(e)) => ui
+                            .state
+                            .push_message(Level::Error, format!("?lesson=: {e}")),
+                        None => {}
+                    }
                     match WorkerOffload::new() {
                         Ok(w) => ui.offload = Some(Box::new(w)),
                         Err(e) => web_sys::console::warn_1(&e),
@@ -228,7 +249,31 @@ fn status_json(app: &AppUi) -> serde_json::Value {
         "workspace_dots": app.tabs.workspace.job.as_ref().and_then(|w| w.dots()).map(<[_]>::len),
         "workspace_error": app.tabs.workspace.job.as_ref().and_then(|w| w.error()),
         "messages": s.messages().iter().map(|m| m.text.clone()).collect::<Vec<_>>(),
+        "lesson": app.lesson.as_ref().map(|p| serde_json::json!({
+            "title": p.lesson.title,
+            "step": p.step,
+            "steps": p.lesson.steps.len(),
+        })),
     })
+}
+
+/// The text at `url` (relative to the page), fetched.
+async fn fetch_text(url: &str) -> Result<String, String> {
+    let window = web_sys::window().ok_or("no window")?;
+    let response = wasm_bindgen_futures::JsFuture::from(window.fetch_with_str(url))
+        .await
+        .map_err(|e| format!("{url}: {e:?}"))?;
+    let response: web_sys::Response = response
+        .dyn_into()
+        .map_err(|_| format!("{url}: no response"))?;
+    if !response.ok() {
+        return Err(format!("{url}: HTTP {}", response.status()));
+    }
+    let text = response.text().map_err(|e| format!("{url}: {e:?}"))?;
+    let text = wasm_bindgen_futures::JsFuture::from(text)
+        .await
+        .map_err(|e| format!("{url}: {e:?}"))?;
+    text.as_string().ok_or_else(|| format!("{url}: not text"))
 }
 
 /// The model name in the page's URL query, e.g. `?model=puma560`.

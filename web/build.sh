@@ -40,6 +40,8 @@ mkdir -p "$out"
 wasm-bindgen --target web --no-typescript --out-dir "$out" --out-name armlab \
   "$CARGO_TARGET_DIR/$target/web/armlab.wasm"
 cp web/index.html web/worker.js "$out/"
+# the shipped lessons, for ?lesson=lessons/NAME.toml
+mkdir -p "$out/lessons" && cp assets/lessons/*.toml "$out/lessons/"
 wasm=$(stat -c %s "$out/armlab_bg.wasm")
 gz=$(gzip -9 -c "$out/armlab_bg.wasm" | wc -c)
 echo "web build in $out: armlab_bg.wasm $((wasm / 1024)) KiB, $((gz / 1024)) KiB gzipped"

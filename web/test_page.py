@@ -402,6 +402,14 @@ def main():
         st = wait_for(d, "the Puma's solutions", lambda s: s.get("solutions") == 8, 10)
         print(f"  ?model=puma560&q=...: {st['model']}, {st['solutions']} solutions "
               f"({st['within_limits']} within limits)")
+        st, ms = open_page(d, url + "?lesson=lessons/anthropomorphic_postures.toml")
+        st = wait_for(d, "the lesson to open", lambda s: (s.get("lesson") or {}).get("steps") == 4, 10)
+        if st["dof"] != 3 or st["solutions"] != 4:
+            fail(f"the lesson's first step: {st['model']} with {st['solutions']} solutions")
+        press(d, "\ue00f")  # Page Down
+        st = wait_for(d, "the lesson's next step", lambda s: s["lesson"]["step"] == 1, 10)
+        print(f"  ?lesson=...: {st['lesson']['title']}, step {st['lesson']['step'] + 1} of "
+              f"{st['lesson']['steps']}, {st['solutions']} solutions")
         errors = d.js("return window.__errors || []")
         severe = [e for e in d.browser_log() if e.get("level") == "SEVERE"]
         if errors or severe:

@@ -77,6 +77,12 @@ pub enum Action {
     ToggleHelp,
     /// Show a central tab by its index.
     ShowTab(usize),
+    /// Show step `k` (0-based) of the lesson being played.
+    LessonStep(usize),
+    /// Append the current setup to the lesson as a step and write the lesson file.
+    SaveAsLesson,
+    /// Stop playing the lesson (the state stays as it is).
+    CloseLesson,
     /// A message for the status bar.
     Message(Level, String),
 }

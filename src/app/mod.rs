@@ -10,6 +10,7 @@ pub mod file_picker;
 pub mod gizmo;
 pub mod inner;
 pub mod layout;
+pub mod lesson;
 pub mod panels;
 pub mod probe;
 pub mod screenshot;
@@ -273,6 +274,8 @@ pub struct RunOptions {
     pub model_given: bool,
     /// The end-effector the right panel starts on.
     pub ee: usize,
+    /// A lesson to play (and the file it came from).
+    pub lesson: Option<(crate::lesson::Lesson, String)>,
 }
 
 /// The name eframe stores the settings under (`~/.local/share/armlab/app.ron` on Linux).
@@ -314,7 +317,8 @@ pub fn run_with(spec: &str, opts: &RunOptions) -> Result<Option<probe::FrameRepo
     // Measured runs neither read nor write the remembered settings and window size.
     let remember = probe.is_none();
     options.persist_window = remember;
-    let model_given = opts.model_given || opts.q.is_some();
+    let model_given = opts.model_given || opts.q.is_some() || opts.lesson.is_some();
+    let lesson = opts.lesson.clone();
     if probe.is_some() {
         options.wgpu_options.surface.present_mode = wgpu::PresentMode::AutoNoVsync;
     }
@@ -324,6 +328,11 @@ pub fn run_with(spec: &str, opts: &RunOptions) -> Result<Option<probe::FrameRepo
         Box::new(move |cc| {
             let mut ui = AppUi::new(state);
             ui.ik.ee = ee;
+            if let Some((lesson, file)) = lesson
+                && let Err(e) = ui.open_lesson(lesson, &file)
+            {
+                ui.state.push_message(state::Level::Error, e);
+            }
             ui.file_picker = Box::new(file_picker::NativeDialogs);
             Ok(Box::new(ArmlabApp::new(
                 cc,

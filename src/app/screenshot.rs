@@ -101,6 +101,40 @@ pub fn screenshot(
     Ok(render_window(&gpu, app, size, None, false)?.0)
 }
 
+/// The app window at every step of a lesson, as the class sees it (the caption under the 3D
+/// view): `armlab lesson FILE --render DIR`.
+pub fn lesson_frames(
+    state: AppState,
+    lesson: crate::lesson::Lesson,
+    file: &str,
+    size: [u32; 2],
+) -> Result<Vec<image::RgbaImage>, AppError> {
+    let gpu = Gpu::new_headless().map_err(crate::figure::FigureError::from)?;
+    let mut app = AppUi::new(state);
+    app.open_lesson(lesson, file).map_err(AppError::Input)?;
+    let n = app.lesson.as_ref().map_or(0, |p| p.lesson.steps.len());
+    let mut frames = Vec::with_capacity(n);
+    for i in 0..n {
+        let mut copy = AppUi::new(app.state.clone());
+        copy.lesson = app.lesson.clone();
+        copy.go_to_step(i);
+        if let Some(w) = &copy.tabs.workspace.job {
+            // the workspace overlay: computed to the end before the picture is taken
+            while w.progress().is_some() {
+                w.step(Some(&gpu), None);
+            }
+        }
+        let explicit = copy
+            .lesson
+            .as_ref()
+            .and_then(|p| p.lesson.steps[i].camera)
+            .is_some_and(|c| c.distance.is_some());
+        let camera = explicit.then_some(copy.tabs.view3d.camera);
+        frames.push(render_window(&gpu, copy, size, camera, false)?.0);
+    }
+    Ok(frames)
+}
+
 /// Lays the window out once to learn the viewport size, renders the 3D view (with `camera`, or
 /// framing the arm), and paints the window with it, all on `gpu`. With `defer`, the image is
 /// blank and the pixels come from the read-back returned with it.
@@ -117,7 +151,11 @@ fn render_window(
     offscreen.layout(&gpu.device, size, 1.0, |ui| app.show(ui, None))?;
     match camera {
         Some(c) => app.tabs.view3d.set_camera(c),
-        None => app.fit(),
+        None => {
+            if !app.frame_lesson_step() {
+                app.fit();
+            }
+        }
     }
     let texture = app.render_viewport(&mut vp, offscreen.renderer_mut(), false);
     if defer {

@@ -47,6 +47,8 @@ pub struct AppUi {
     /// The panel rectangles of the last layout (points): left, right, central, toolbar,
     /// status bar (tests check them).
     pub rects: PanelRects,
+    /// The lesson being played, if any.
+    pub lesson: Option<super::lesson::LessonPlayer>,
     /// The newest message seen and when it came (s, egui time).
     message_seen: (u64, f64),
 }
@@ -95,6 +97,7 @@ impl AppUi {
             browser: FileBrowser::default(),
             offload: None,
             rects: PanelRects::default(),
+            lesson: None,
             message_seen: (0, 0.0),
         }
     }
@@ -110,6 +113,8 @@ impl AppUi {
     }
 
     /// Applies one action of a panel, a tab, the toolbar or a key.
+    // Long on purpose (why): one flat match arm per action is the app's single door for changes,
+    // and reads best whole.
     pub fn apply(&mut self, action: Action) {
         let warn = |state: &mut AppState, r: Result<(), String>| {
             if let Err(e) = r {
@@ -187,6 +192,12 @@ impl AppUi {
             Action::ToggleHelp => self.show_help ^= true,
             Action::ShowTab(k) => self.tab = k.min(Tabs::COUNT - 1),
             Action::Message(level, text) => self.state.push_message(level, text),
+            Action::LessonStep(k) => self.go_to_step(k),
+            Action::SaveAsLesson => match self.save_as_lesson() {
+                Ok(m) => self.state.push_message(Level::Info, m),
+                Err(e) => self.state.push_message(Level::Error, e),
+            },
+            Action::CloseLesson => self.lesson = None,
         }
     }
 
@@ -206,6 +217,18 @@ impl AppUi {
             );
             return;
         }
+        let lesson = std::fs::read_to_string(spec)
+            .ok()
+            .and_then(|text| crate::lesson::Lesson::detect(&text, spec));
+        if let Some(lesson) = lesson {
+            match lesson.and_then(|l| self.open_lesson(l, spec)) {
+                Ok(()) => self
+                    .state
+                    .push_message(Level::Info, format!("lesson {spec}")),
+                Err(e) => self.state.push_message(Level::Error, e),
+            }
+            return;
+        }
         match self.state.load_model(spec) {
             Ok(()) => self.model_changed(),
             Err(e) => self.state.push_message(Level::Error, e.to_string()),
@@ -215,7 +238,7 @@ impl AppUi {
     /// A new model: every tab drops what belonged to the old one (a running workspace job is
     /// cancelled), the view is framed again, the end-effector reset; a job that was shown starts
     /// again for the new model at once.
-    fn model_changed(&mut self) {
+    pub(super) fn model_changed(&mut self) {
         let had_job = self.tabs.workspace.job.is_some();
         for t in self.tabs.all_mut() {
             t.model_changed();
@@ -312,6 +335,15 @@ impl AppUi {
             self.state.push_message(Level::Error, e);
             return;
         };
+        if let Some(lesson) = crate::lesson::Lesson::detect(text, name) {
+            match lesson.and_then(|l| self.open_lesson(l, name)) {
+                Ok(()) => self
+                    .state
+                    .push_message(Level::Info, format!("lesson {name}")),
+                Err(e) => self.state.push_message(Level::Error, e),
+            }
+            return;
+        }
         self.model.load_path = name.to_string();
         match self.state.load_model_text(name, text) {
             Ok(()) => self.model_changed(),
@@ -464,6 +496,14 @@ impl AppUi {
                 out.push(a);
             }
         }
+        if let Some(p) = &self.lesson {
+            if pressed(Key::PageDown) {
+                out.push(Action::LessonStep(p.step + 1));
+            }
+            if pressed(Key::PageUp) {
+                out.push(Action::LessonStep(p.step.saturating_sub(1)));
+            }
+        }
         if pressed(Key::H) || pressed(Key::F1) {
             out.push(Action::ToggleHelp);
         }
@@ -541,6 +581,9 @@ impl AppUi {
         self.rects.top = top.response.rect;
         let bottom = egui::Panel::bottom("status").show(ui, |ui| self.status_bar(ui));
         self.rects.bottom = bottom.response.rect;
+        if self.lesson.is_some() {
+            egui::Panel::bottom("lesson").show(ui, |ui| self.lesson_bar(ui, &mut out));
+        }
         self.side_panels(ui, &mut out);
         let central = egui::CentralPanel::default().show(ui, |ui| {
             let ee = self.ee();
@@ -707,6 +750,7 @@ fn help(ui: &mut egui::Ui) {
             ("L", "lock the posture while dragging"),
             ("C", "show the construction behind the solution"),
             ("N / B", "next / previous construction step"),
+            ("PgDn / PgUp", "next / previous lesson step"),
             ("R", "reset to the ready configuration"),
             ("D / G / T", "DH frames / grid / trail"),
             ("W", "workspace overlay"),

@@ -8,6 +8,7 @@ mod figures;
 mod fk;
 mod ik;
 mod info;
+mod lesson;
 pub use crate::input;
 mod reach;
 pub mod reference;
@@ -149,6 +150,9 @@ pub enum Command {
     /// Kinematic calibration (Sect. 2.11): estimate the DH parameters from measured poses (or a
     /// simulated robot), with what can and cannot be identified.
     Calibrate(Box<calibrate::CalibrateArgs>),
+    /// A lesson (a TOML file of steps: robot, joints, target, view, overlays, caption) in the
+    /// app with Previous and Next, or rendered to one PNG per step with --render DIR.
+    Lesson(lesson::LessonArgs),
     /// Exercises checked automatically: sheets with figures and answer keys for a class
     /// (`new`), answers graded by equivalence with feedback in words (`check`).
     Exercise(exercise::ExerciseArgs),
@@ -306,6 +310,7 @@ pub fn run(cli: Cli, out: &mut dyn std::io::Write) -> Result<(), CliError> {
         Some(Command::Export(args)) => export::run(&args, out),
         Some(Command::Symbolic(args)) => symbolic::run(&args, out),
         Some(Command::Exercise(args)) => exercise::run(&args, out),
+        Some(Command::Lesson(args)) => lesson::run(&args, out),
     }
 }
 

@@ -65,6 +65,7 @@ pub(super) fn run(args: &ViewArgs, out: &mut dyn std::io::Write) -> Result<(), C
             q,
             model_given: args.model.is_some(),
             ee,
+            lesson: None,
         };
         if let Some(report) = crate::app::run_with(spec, &opts).map_err(CliError::App)? {
             writeln!(out, "{report}")?;

@@ -117,6 +117,16 @@ impl ModelPanel {
                 out.push(Action::SaveDialog);
             }
         });
+        if ui
+            .button("Save as lesson")
+            .on_hover_text(
+                "Append the current joints, target, view and overlays as a step of a lesson \
+                 file (the open lesson's, else lesson.toml)",
+            )
+            .clicked()
+        {
+            out.push(Action::SaveAsLesson);
+        }
     }
 
     /// The Save row: a file name that follows the model, and Save (or Enter).

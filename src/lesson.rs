@@ -1,0 +1,285 @@
+//! Lessons a teacher prepares once and gives every year: a TOML file naming a robot and a list
+//! of steps, each with the joint values, the IK target, the view, the overlays and a caption in
+//! Markdown. The app plays them (`armlab lesson FILE`, `?lesson=URL` in the browser) and
+//! renders them to PNG for slides; "Save as lesson" appends the app's current setup as a step.
+//! Parsing and writing only: no graphics, no file system (the callers read and write).
+//!
+//! ```toml
+//! title = "The anthropomorphic arm's four postures"
+//! robot = "anthropomorphic3r"          # a built-in, a path (relative to the lesson), or a
+//!                                      # [robot] table in the model-file schema
+//! [[steps]]
+//! caption = "Four postures reach the same point (Fig. 2.33)."
+//! q_deg = [0, 45, -90]                 # or q = [...] in rad (m for prismatic joints)
+//! target_position = [1.0, 0.0, 0.5]    # optional IK target (m), in the world frame
+//! target_rpy_deg = [0, 0, 0]           # its orientation (roll, pitch, yaw)
+//! view = "iso"                         # front, side, top, iso
+//! overlays = ["ghosts", "frames", "labels"]
+//! ```
+
+use crate::kinematics::Robot;
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+use thiserror::Error;
+
+/// What can be drawn over a step.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Overlay {
+    /// The workspace (Sect. 2.10.1).
+    Workspace,
+    /// The construction behind the closed-form solution (Sect. 2.12).
+    Construction,
+    /// Every IK solution of the target as a ghost arm.
+    Ghosts,
+    /// The DH frames.
+    Frames,
+    /// The frames' labels.
+    Labels,
+    /// The self-motion's traced path and its tab (Sect. 2.10.2).
+    SelfMotion,
+}
+
+impl Overlay {
+    /// Every overlay, in the file's spelling order.
+    pub const ALL: [Overlay; 6] = [
+        Overlay::Workspace,
+        Overlay::Construction,
+        Overlay::Ghosts,
+        Overlay::Frames,
+        Overlay::Labels,
+        Overlay::SelfMotion,
+    ];
+}
+
+/// A camera given by angles instead of a preset.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CameraSpec {
+    /// Azimuth about the world z axis (deg).
+    pub azimuth_deg: f64,
+    /// Elevation above the x-y plane (deg).
+    pub elevation_deg: f64,
+    /// Distance from the target point (m); absent: framed to fit the arm.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub distance: Option<f64>,
+}
+
+/// One step of a lesson.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Step {
+    /// What the class reads (Markdown).
+    #[serde(default)]
+    pub caption: String,
+    /// Joint values (rad; m for prismatic joints).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub q: Option<Vec<f64>>,
+    /// Joint values with revolute joints in degrees (prismatic still m).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub q_deg: Option<Vec<f64>>,
+    /// The IK target's position (m, world frame).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub target_position: Option<[f64; 3]>,
+    /// The IK target's orientation as roll, pitch, yaw (deg); absent: the tool's.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub target_rpy_deg: Option<[f64; 3]>,
+    /// A camera preset: front, side, top, iso.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub view: Option<String>,
+    /// A camera by angles (wins over `view`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub camera: Option<CameraSpec>,
+    /// What is drawn; absent: the arm with its frames and labels.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub overlays: Option<Vec<Overlay>>,
+}
+
+/// A lesson as in its file.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Lesson {
+    /// Its title.
+    pub title: String,
+    /// A built-in name or a model file's path (relative to the lesson), or a model embedded as
+    /// a table in the model-file schema.
+    pub robot: toml::Value,
+    /// The steps, in order.
+    #[serde(default)]
+    pub steps: Vec<Step>,
+}
+
+/// Where a lesson's robot comes from.
+#[derive(Debug, Clone, PartialEq)]
+pub enum RobotSource {
+    /// A built-in name or a path, as written (resolve paths against the lesson's folder).
+    Spec(String),
+    /// A model file's text, embedded.
+    Embedded(String),
+}
+
+/// What is wrong with a lesson.
+#[derive(Debug, Error, PartialEq)]
+pub enum LessonError {
+    /// Not a valid lesson file.
+    #[error("{file}: line {line}: {message}")]
+    Parse {
+        /// The file.
+        file: String,
+        /// The line (1-based; 0 where unknown).
+        line: usize,
+        /// What is wrong.
+        message: String,
+    },
+    /// A step that does not fit the robot.
+    #[error("{file}: step {step}: {message}")]
+    Step {
+        /// The file.
+        file: String,
+        /// The step (1-based).
+        step: usize,
+        /// What is wrong.
+        message: String,
+    },
+}
+
+impl Lesson {
+    /// Parses a lesson's text; `file` names it in errors.
+    pub fn parse(text: &str, file: &str) -> Result<Lesson, LessonError> {
+        let lesson: Lesson = toml::from_str(text).map_err(|e| LessonError::Parse {
+            file: file.into(),
+            line: e.span().map_or(0, |s| {
+                text[..s.start.min(text.len())].matches('\n').count() + 1
+            }),
+            message: e.message().to_string(),
+        })?;
+        lesson
+            .robot_source()
+            .map_err(|message| LessonError::Parse {
+                file: file.into(),
+                line: 0,
+                message,
+            })?;
+        for (i, s) in lesson.steps.iter().enumerate() {
+            if s.q.is_some() && s.q_deg.is_some() {
+                return Err(LessonError::Step {
+                    file: file.into(),
+                    step: i + 1,
+                    message: "give q or q_deg, not both".into(),
+                });
+            }
+            if let Some(v) = &s.view
+                && !["front", "side", "top", "iso"].contains(&v.as_str())
+            {
+                return Err(LessonError::Step {
+                    file: file.into(),
+                    step: i + 1,
+                    message: format!("view {v:?}: the views are front, side, top, iso"),
+                });
+            }
+        }
+        Ok(lesson)
+    }
+
+    /// Whether `text` is a lesson (a TOML file with a title and `[[steps]]`) rather than a
+    /// model file: `None` if not, else the lesson or why it cannot be read (as text).
+    pub fn detect(text: &str, file: &str) -> Option<Result<Lesson, String>> {
+        let table: toml::Table = toml::from_str(text).ok()?;
+        if !(table.contains_key("steps") && table.contains_key("title")) {
+            return None;
+        }
+        Some(Lesson::parse(text, file).map_err(|e| e.to_string()))
+    }
+
+    /// The lesson as TOML (what "Save as lesson" writes).
+    pub fn to_toml(&self) -> String {
+        toml::to_string(self).unwrap_or_default()
+    }
+
+    /// Where the robot comes from.
+    pub fn robot_source(&self) -> Result<RobotSource, String> {
+        match &self.robot {
+            toml::Value::String(s) => Ok(RobotSource::Spec(s.clone())),
+            toml::Value::Table(t) => toml::to_string(t)
+                .map(RobotSource::Embedded)
+                .map_err(|e| e.to_string()),
+            _ => Err("robot: a built-in name, a path, or a [robot] table".into()),
+        }
+    }
+
+    /// The joint values of step `i` for `robot` (rad, m), if the step gives them; checked
+    /// against the robot's number of joints.
+    pub fn step_q(
+        &self,
+        i: usize,
+        robot: &Robot,
+        file: &str,
+    ) -> Result<Option<Vec<f64>>, LessonError> {
+        let s = &self.steps[i];
+        let q = match (&s.q, &s.q_deg) {
+            (Some(q), _) => q.clone(),
+            (None, Some(q)) => q
+                .iter()
+                .enumerate()
+                .map(|(k, v)| {
+                    if k < robot.dof()
+                        && robot.dof_joint(k).kind == crate::kinematics::JointKind::Revolute
+                    {
+                        v.to_radians()
+                    } else {
+                        *v
+                    }
+                })
+                .collect(),
+            (None, None) => return Ok(None),
+        };
+        if q.len() != robot.dof() {
+            return Err(LessonError::Step {
+                file: file.into(),
+                step: i + 1,
+                message: format!(
+                    "{} joint values for a robot with {} joints",
+                    q.len(),
+                    robot.dof()
+                ),
+            });
+        }
+        Ok(Some(q))
+    }
+
+    /// The overlays of step `i` (default: frames and labels).
+    pub fn overlays(&self, i: usize) -> Vec<Overlay> {
+        self.steps[i]
+            .overlays
+            .clone()
+            .unwrap_or_else(|| vec![Overlay::Frames, Overlay::Labels])
+    }
+}
+
+/// Resolves a robot spec written in a lesson at `lesson_path`: a built-in name stays, a
+/// relative path is taken from the lesson's folder.
+pub fn resolve_spec(spec: &str, lesson_path: &Path) -> String {
+    if crate::kinematics::models::built_in(spec).is_some() || Path::new(spec).is_absolute() {
+        return spec.to_string();
+    }
+    match lesson_path.parent() {
+        Some(dir) if !dir.as_os_str().is_empty() => dir.join(spec).to_string_lossy().into_owned(),
+        _ => spec.to_string(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_lesson_round_trips_and_errors_name_the_line() {
+        let text = "title = \"t\"\nrobot = \"planar2\"\n[[steps]]\ncaption = \"a\"\nq_deg = [0, 90]\noverlays = [\"ghosts\"]\n";
+        let l = Lesson::parse(text, "l.toml").unwrap();
+        assert_eq!(l.steps[0].overlays, Some(vec![Overlay::Ghosts]));
+        assert_eq!(Lesson::parse(&l.to_toml(), "again").unwrap(), l);
+        let bad = "title = \"t\"\nrobot = \"planar2\"\n[[steps]]\ncaptoin = \"a\"\n";
+        let e = Lesson::parse(bad, "l.toml").unwrap_err();
+        assert!(e.to_string().starts_with("l.toml: line 4"), "{e}");
+    }
+}
