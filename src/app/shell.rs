@@ -113,8 +113,6 @@ impl AppUi {
     }
 
     /// Applies one action of a panel, a tab, the toolbar or a key.
-    // Long on purpose (why): one flat match arm per action is the app's single door for changes,
-    // and reads best whole.
     pub fn apply(&mut self, action: Action) {
         let warn = |state: &mut AppState, r: Result<(), String>| {
             if let Err(e) = r {
@@ -130,16 +128,8 @@ impl AppUi {
                 let r = self.state.edit_dh(joint, field, &text);
                 warn(&mut self.state, r.map_err(|e| e.to_string()));
             }
-            Action::Undo => {
-                if !self.state.undo_edit() {
-                    self.state.push_message(Level::Info, "nothing to undo");
-                }
-            }
-            Action::Redo => {
-                if !self.state.redo_edit() {
-                    self.state.push_message(Level::Info, "nothing to redo");
-                }
-            }
+            Action::Undo => self.undo_redo(true),
+            Action::Redo => self.undo_redo(false),
             Action::ResetEdits => self.state.reset_edits(),
             Action::SetJoint(k, v) => {
                 let r = self.state.set_joint(k, v).map(|_| ());
@@ -182,6 +172,39 @@ impl AppUi {
             }
             Action::ShowConstruction(on) => self.ik.construction.shown = on,
             Action::ConstructionStep(k) => self.ik.construction.step = k,
+            Action::CameraPreset(_)
+            | Action::Fit
+            | Action::ToggleProjection
+            | Action::ToggleWorkspace
+            | Action::ToggleProjector
+            | Action::ToggleSidePanels
+            | Action::Screenshot
+            | Action::ToggleHelp
+            | Action::ShowTab(_) => self.apply_view(action),
+            Action::Message(level, text) => self.state.push_message(level, text),
+            Action::LessonStep(_) | Action::SaveAsLesson | Action::CloseLesson => {
+                self.apply_lesson(action)
+            }
+        }
+    }
+
+    /// Undo (or redo) the last model edit, saying so when there is none.
+    fn undo_redo(&mut self, undo: bool) {
+        let done = if undo {
+            self.state.undo_edit()
+        } else {
+            self.state.redo_edit()
+        };
+        if !done {
+            let what = if undo { "undo" } else { "redo" };
+            self.state
+                .push_message(Level::Info, format!("nothing to {what}"));
+        }
+    }
+
+    /// The view's and the window's actions.
+    fn apply_view(&mut self, action: Action) {
+        match action {
             Action::CameraPreset(p) => self.tabs.view3d.preset(p, &self.state),
             Action::Fit => self.tabs.view3d.fit(&self.state),
             Action::ToggleProjection => self.tabs.view3d.toggle_projection(&self.state),
@@ -191,13 +214,20 @@ impl AppUi {
             Action::Screenshot => self.screenshot_requested = true,
             Action::ToggleHelp => self.show_help ^= true,
             Action::ShowTab(k) => self.tab = k.min(Tabs::COUNT - 1),
-            Action::Message(level, text) => self.state.push_message(level, text),
+            _ => {}
+        }
+    }
+
+    /// The lesson bar's actions.
+    fn apply_lesson(&mut self, action: Action) {
+        match action {
             Action::LessonStep(k) => self.go_to_step(k),
             Action::SaveAsLesson => match self.save_as_lesson() {
                 Ok(m) => self.state.push_message(Level::Info, m),
                 Err(e) => self.state.push_message(Level::Error, e),
             },
             Action::CloseLesson => self.lesson = None,
+            _ => {}
         }
     }
 
