@@ -458,3 +458,46 @@ fn the_symbols_section_steps_through_the_product() {
     h.state_mut().ik.symbols.decorate(&state, 0, &mut scene);
     assert!(scene.labels.iter().any(|l| l.text == "frame 6"));
 }
+
+/// The Exercise tab: a sheet's key opens its arm with the DH table and frames hidden, the
+/// answer typed in the grid is graded by equivalence, with feedback per row.
+#[test]
+fn the_exercise_tab_grades_a_typed_dh_table() {
+    use armlab::exercise::{Kind, generate};
+    let puma = armlab::kinematics::models::built_in("puma560").unwrap();
+    let sheet = generate(Kind::DhTable, Some(&puma), 5, 1).unwrap();
+    let key = serde_json::to_string(&sheet.key).unwrap();
+    let mut app = AppUi::new(AppState::from_spec("planar3").unwrap());
+    app.open_exercise_text("key.json", &key).unwrap();
+    assert!(app.state.hidden.dh_table && !app.state.display.frames);
+    assert_eq!(app.tab, armlab::app::tabs::EXERCISE);
+    // the answer: the Puma's table with z1 chosen the other way (alpha1 = -90 deg)
+    let (_, table) = puma.dh_table().unwrap();
+    let open = app.tabs.exercise.sheet.as_mut().unwrap();
+    for (row, (_, r, _)) in open.rows.iter_mut().zip(&table) {
+        row.a = r.a.to_string();
+        row.alpha_deg = r.alpha.to_degrees().to_string();
+        row.d = r.d.to_string();
+    }
+    open.rows[0].alpha_deg = "-90".into();
+    let app = {
+        let mut h = Harness::builder()
+            .with_size(egui::vec2(1280.0, 1600.0))
+            .build_ui_state(|ui, app: &mut AppUi| app.show(ui, None), app);
+        h.run();
+        h.get_by_label("Check").click();
+        h.run();
+        assert!(h.query_by_label("score 6 of 6").is_some());
+        // a real slip: d4 the other way
+        let open = h.state_mut().tabs.exercise.sheet.as_mut().unwrap();
+        open.rows[3].d = format!("-{}", table[3].1.d);
+        h.run();
+        h.get_by_label("Check").click();
+        h.run();
+        assert!(h.query_by_label("score 5 of 6").is_some());
+        h.get_by_label("Close sheet").click();
+        h.run();
+        h.into_state()
+    };
+    assert!(!app.state.hidden.dh_table && app.tabs.exercise.sheet.is_none());
+}

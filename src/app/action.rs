@@ -83,6 +83,10 @@ pub enum Action {
     SaveAsLesson,
     /// Stop playing the lesson (the state stays as it is).
     CloseLesson,
+    /// Open an exercise sheet's key file (the Exercise tab).
+    OpenExercise(String),
+    /// Close the exercise sheet: the panels show everything again.
+    CloseExercise,
     /// A message for the status bar.
     Message(Level, String),
 }

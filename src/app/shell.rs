@@ -182,9 +182,11 @@ impl AppUi {
             | Action::ToggleHelp
             | Action::ShowTab(_) => self.apply_view(action),
             Action::Message(level, text) => self.state.push_message(level, text),
-            Action::LessonStep(_) | Action::SaveAsLesson | Action::CloseLesson => {
-                self.apply_lesson(action)
-            }
+            Action::LessonStep(_)
+            | Action::SaveAsLesson
+            | Action::CloseLesson
+            | Action::OpenExercise(_)
+            | Action::CloseExercise => self.apply_lesson(action),
         }
     }
 
@@ -218,7 +220,7 @@ impl AppUi {
         }
     }
 
-    /// The lesson bar's actions.
+    /// The lesson bar's and the Exercise tab's actions.
     fn apply_lesson(&mut self, action: Action) {
         match action {
             Action::LessonStep(k) => self.go_to_step(k),
@@ -227,6 +229,15 @@ impl AppUi {
                 Err(e) => self.state.push_message(Level::Error, e),
             },
             Action::CloseLesson => self.lesson = None,
+            Action::OpenExercise(path) => {
+                let opened = std::fs::read_to_string(&path)
+                    .map_err(|e| format!("{path}: {e}"))
+                    .and_then(|text| self.open_exercise_text(&path, &text));
+                if let Err(e) = opened {
+                    self.state.push_message(Level::Error, e);
+                }
+            }
+            Action::CloseExercise => self.close_exercise(),
             _ => {}
         }
     }
@@ -247,9 +258,17 @@ impl AppUi {
             );
             return;
         }
-        let lesson = std::fs::read_to_string(spec)
-            .ok()
-            .and_then(|text| crate::lesson::Lesson::detect(&text, spec));
+        let text = std::fs::read_to_string(spec).ok();
+        if let Some(text) = text
+            .as_deref()
+            .filter(|t| t.contains(crate::exercise::KEY_FORMAT))
+        {
+            if let Err(e) = self.open_exercise_text(spec, text) {
+                self.state.push_message(Level::Error, e);
+            }
+            return;
+        }
+        let lesson = text.and_then(|text| crate::lesson::Lesson::detect(&text, spec));
         if let Some(lesson) = lesson {
             match lesson.and_then(|l| self.open_lesson(l, spec)) {
                 Ok(()) => self
@@ -365,6 +384,12 @@ impl AppUi {
             self.state.push_message(Level::Error, e);
             return;
         };
+        if text.contains(crate::exercise::KEY_FORMAT) {
+            if let Err(e) = self.open_exercise_text(name, text) {
+                self.state.push_message(Level::Error, e);
+            }
+            return;
+        }
         if let Some(lesson) = crate::lesson::Lesson::detect(text, name) {
             match lesson.and_then(|l| self.open_lesson(l, name)) {
                 Ok(()) => self

@@ -88,6 +88,8 @@ pub struct AppState {
     dh: Vec<DhRowCells>,
     /// What to draw.
     pub display: DisplayToggles,
+    /// What an exercise sheet asks for, hidden from the panels while it is being answered.
+    pub hidden: Hidden,
     angle_unit: AngleUnit,
     /// Orientation representation of the readouts (ZYZ or RPY).
     pub orientation: EulerKind,
@@ -135,6 +137,17 @@ impl ArmsOfRobot {
     }
 }
 
+/// What the panels hide while an exercise sheet is answered (the answer would be in them).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Hidden {
+    /// The DH table (a dh-table sheet).
+    pub dh_table: bool,
+    /// The pose readouts (T) and the Jacobian (an fk sheet).
+    pub pose: bool,
+    /// The IK solutions (an ik sheet).
+    pub solutions: bool,
+}
+
 impl AppState {
     /// The state for `robot` (loaded from `spec`, a built-in name or a path): q at the "ready"
     /// configuration if the robot has one (else zero), clamped into the limits; each target at
@@ -150,6 +163,7 @@ impl AppState {
             lock: false,
             dh,
             display: DisplayToggles::default(),
+            hidden: Hidden::default(),
             angle_unit: AngleUnit::default(),
             orientation: EulerKind::Zyz,
             trails: Vec::new(),

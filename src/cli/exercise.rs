@@ -228,31 +228,12 @@ fn read_answer(key_answer: &KeyAnswer, path: &Path) -> Result<Answer, CliError> 
         )?)));
     }
     let text = std::fs::read_to_string(path).map_err(|e| io_error(path, e))?;
-    let degrees = text.lines().next().is_some_and(|l| {
-        l.trim()
-            .trim_start_matches('#')
-            .trim()
-            .eq_ignore_ascii_case("deg")
-    });
-    let mut rows = Vec::new();
-    for (i, line) in text.lines().enumerate() {
-        let body = line.split('#').next().unwrap_or("").trim();
-        if body.is_empty() {
-            continue;
+    let rows = crate::exercise::parse_rows(&text, &path.display().to_string()).map_err(|e| {
+        CliError::BadTarget {
+            source_name: path.display().to_string(),
+            reason: e.to_string(),
         }
-        let mut row = Vec::new();
-        for field in body
-            .split(|c: char| c == ',' || c.is_whitespace())
-            .filter(|f| !f.is_empty())
-        {
-            let v: f64 = field.parse().map_err(|_| CliError::BadTarget {
-                source_name: format!("{}:{}", path.display(), i + 1),
-                reason: format!("{field:?} is not a number"),
-            })?;
-            row.push(if degrees { v.to_radians() } else { v });
-        }
-        rows.push(row);
-    }
+    })?;
     Ok(Answer::Rows(rows))
 }
 

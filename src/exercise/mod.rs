@@ -103,6 +103,9 @@ pub struct Key {
     pub answer: KeyAnswer,
     /// Tolerances of the grading.
     pub tolerance: Tolerance,
+    /// The sheet's question (Markdown), for the app's Exercise tab.
+    #[serde(default)]
+    pub question: String,
 }
 
 /// The answer part of a key.
@@ -277,6 +280,7 @@ pub fn generate(
         q: q.clone(),
         answer,
         tolerance: Tolerance::default(),
+        question: String::new(),
     };
     let shown = q_text(&arm, &q);
     let mut sheet = Sheet {
@@ -311,6 +315,7 @@ pub fn generate(
         Kind::Redundancy => redundancy_sheet(&mut sheet, &arm, &mut rng, key(KeyAnswer::DhTable)),
         Kind::Workspace => unreachable!("handled above"),
     }
+    sheet.key.question = sheet.markdown.clone();
     Ok(sheet)
 }
 
@@ -540,22 +545,27 @@ fn workspace_sheet(
             area,
         },
         tolerance: Tolerance::default(),
+        question: String::new(),
     };
     let list: Vec<String> = points
         .iter()
         .enumerate()
         .map(|(i, p)| format!("{}. ({:.4}, {:.4}) m", i + 1, p[0], p[1]))
         .collect();
-    Ok(Sheet {
-        markdown: format!(
-            "# Workspace of a two-link planar arm\n\nThe arm has a1 = {a1} m, a2 = {a2} m and joints \
+    let markdown = format!(
+        "# Workspace of a two-link planar arm\n\nThe arm has a1 = {a1} m, a2 = {a2} m and joints \
              that turn fully (Sect. 2.10.1). For each point of the plane below, how many postures \
              reach it (0, 1 or 2)? And what is the area of the workspace (m^2)?\n\n{}\n\n\
              Answer with six rows of one number (the counts, in order) and a seventh row with \
              the area; then `armlab exercise check KEY ANSWER`.\n",
-            list.join("\n")
-        ),
-        key,
+        list.join("\n")
+    );
+    Ok(Sheet {
+        key: Key {
+            question: markdown.clone(),
+            ..key
+        },
+        markdown,
         robot: arm,
         q,
         frames: false,
@@ -616,6 +626,37 @@ fn two_link_lengths(r: &Robot) -> Result<(f64, f64), ExerciseError> {
             "the workspace exercise needs a two-link planar arm (planar2)".into(),
         )),
     }
+}
+
+/// Rows of numbers from an answer's text: one row per line, separated by commas or spaces,
+/// `#` comments; a first line `# deg` makes every number an angle in degrees (turned into
+/// radians). Errors name `file` and the line.
+pub fn parse_rows(text: &str, file: &str) -> Result<Vec<Vec<f64>>, ExerciseError> {
+    let degrees = text.lines().next().is_some_and(|l| {
+        l.trim()
+            .trim_start_matches('#')
+            .trim()
+            .eq_ignore_ascii_case("deg")
+    });
+    let mut rows = Vec::new();
+    for (i, line) in text.lines().enumerate() {
+        let body = line.split('#').next().unwrap_or("").trim();
+        if body.is_empty() {
+            continue;
+        }
+        let mut row = Vec::new();
+        for field in body
+            .split(|c: char| c == ',' || c.is_whitespace())
+            .filter(|f| !f.is_empty())
+        {
+            let v: f64 = field.parse().map_err(|_| ExerciseError::Answer {
+                reason: format!("{file}: line {}: {field:?} is not a number", i + 1),
+            })?;
+            row.push(if degrees { v.to_radians() } else { v });
+        }
+        rows.push(row);
+    }
+    Ok(rows)
 }
 
 /// An answer as the CLI read it.

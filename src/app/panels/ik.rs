@@ -35,9 +35,17 @@ impl IkPanel {
                     ee_picker(state, ui, self.ee, out);
                 }
                 let ee = self.ee;
-                pose_readouts(state, ui, ee);
+                if state.hidden.pose {
+                    ui.label("Pose: hidden while the exercise is answered");
+                } else {
+                    pose_readouts(state, ui, ee);
+                }
                 ui.separator();
-                ik_section(state, ui, ee, out);
+                if state.hidden.solutions {
+                    ui.label("Inverse kinematics: hidden while the exercise is answered");
+                } else {
+                    ik_section(state, ui, ee, out);
+                }
                 ui.separator();
                 self.construction.ui(state, ui);
                 ui.separator();

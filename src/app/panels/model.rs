@@ -50,7 +50,9 @@ impl ModelPanel {
                     .joints()
                     .iter()
                     .all(|j| matches!(j.geometry, crate::kinematics::JointGeometry::Dh { .. }));
-                if plain_dh {
+                if state.hidden.dh_table {
+                    ui.label("DH table: hidden while the exercise is answered");
+                } else if plain_dh {
                     egui::CollapsingHeader::new("DH table (editable)")
                         .default_open(!projector)
                         .show(ui, |ui| self.dh_table(state, ui, out));

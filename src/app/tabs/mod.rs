@@ -3,6 +3,7 @@
 //! Adding a tab is one file here and one line in the `tabs!` list below.
 
 pub mod calibration;
+pub mod exercise;
 pub mod self_motion;
 pub mod view3d;
 pub mod workspace;
@@ -88,6 +89,7 @@ tabs! {
     workspace: workspace::WorkspaceTab,
     calibration: calibration::CalibrationTab,
     self_motion: self_motion::SelfMotionTab,
+    exercise: exercise::ExerciseTab,
 }
 
 /// The index of the 3D view among the tabs.
@@ -98,3 +100,5 @@ pub const WORKSPACE: usize = 1;
 pub const CALIBRATION: usize = 2;
 /// The index of the self-motion tab.
 pub const SELF_MOTION: usize = 3;
+/// The index of the exercise tab.
+pub const EXERCISE: usize = 4;
