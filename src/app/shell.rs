@@ -258,7 +258,7 @@ impl AppUi {
             );
             return;
         }
-        let text = std::fs::read_to_string(spec).ok();
+        let text = lesson_or_key_text(spec);
         if let Some(text) = text
             .as_deref()
             .filter(|t| t.contains(crate::exercise::KEY_FORMAT))
@@ -824,4 +824,18 @@ fn help(ui: &mut egui::Ui) {
             ui.end_row();
         }
     });
+}
+
+/// The text of `path` if it may be a lesson (.toml) or an exercise key (.json): a regular file
+/// of at most 4 MB (never `/dev/zero` read to the end); `None` otherwise.
+fn lesson_or_key_text(path: &str) -> Option<String> {
+    let ext = std::path::Path::new(path)
+        .extension()?
+        .to_str()?
+        .to_ascii_lowercase();
+    let meta = std::fs::metadata(path).ok()?;
+    let small = meta.is_file() && meta.len() <= 4 << 20;
+    (small && (ext == "toml" || ext == "json"))
+        .then(|| std::fs::read_to_string(path).ok())
+        .flatten()
 }

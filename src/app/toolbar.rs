@@ -29,8 +29,11 @@ pub struct ToolbarContext<'a> {
 pub fn show(app: &mut ToolbarContext<'_>, ui: &mut egui::Ui, out: &mut Actions) {
     let projector = app.layout.projector;
     ui.horizontal(|ui| {
-        ui.strong(RichText::new("armlab").size(if projector { 22.0 } else { 16.0 }));
-        ui.separator();
+        // In projector mode on a narrow window the name gives its room to the tabs.
+        if !projector || ui.available_width() > 1300.0 {
+            ui.strong(RichText::new("armlab").size(if projector { 22.0 } else { 16.0 }));
+            ui.separator();
+        }
         let shown = app.tabs.1;
         for (k, title) in app.tabs.0.iter().enumerate() {
             if ui.selectable_label(shown == k, *title).clicked() {
@@ -38,8 +41,9 @@ pub fn show(app: &mut ToolbarContext<'_>, ui: &mut egui::Ui, out: &mut Actions) 
             }
         }
         ui.separator();
-        if projector {
-            // Large text: the presets fold into a menu, so the row still fits.
+        // Large text or a narrow window: the presets fold into a menu, so the row still fits
+        // (the buttons take about 280 points, and about 540 follow them).
+        if projector || ui.available_width() < 820.0 {
             ui.menu_button("View", |ui| view_buttons(app, ui, out));
         } else {
             view_buttons(app, ui, out);
