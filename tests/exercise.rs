@@ -192,7 +192,7 @@ fn rows_of_key(key: &Key) -> Vec<Vec<f64>> {
             r
         }
         KeyAnswer::Redundancy { n, m, r, .. } => vec![vec![*n as f64, *m as f64, *r as f64]],
-        KeyAnswer::DhTable => unreachable!(),
+        KeyAnswer::DhTable | KeyAnswer::Identifiability { .. } => unreachable!(),
     }
 }
 
@@ -304,4 +304,30 @@ fn the_cli_writes_a_class_and_grades_from_files() {
     ]);
     assert!(text.starts_with("score "), "{text}");
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn identifiability_sheets_name_the_parallel_axes_lesson() {
+    use armlab::exercise::parse_words;
+    let puma = built_in("puma560").unwrap();
+    let sheet = generate(Kind::Identifiability, Some(&puma), 1, 1).unwrap();
+    let KeyAnswer::Identifiability {
+        setup, parameters, ..
+    } = &sheet.key.answer
+    else {
+        panic!("{:?}", sheet.key.answer)
+    };
+    // Full poses of a plain-DH Puma: axes 2 and 3 are parallel, so d2 and d3 are seen only as
+    // d2 + d3 (Sect. 2.11); everything else is identifiable.
+    assert_eq!(setup, "pose");
+    assert_eq!(parameters, &vec!["d2".to_string(), "d3".to_string()]);
+    let g = grade(&sheet.key, &Answer::Words(parse_words("d2, d3\n"))).unwrap();
+    assert_eq!((g.score, g.max), (2, 2));
+    let g = grade(&sheet.key, &Answer::Words(parse_words("D2 a2"))).unwrap();
+    assert_eq!(g.score, 1);
+    let missed = g.items.iter().find(|i| i.item == "d3").unwrap();
+    assert!(missed.feedback.contains("d2 + d3"), "{}", missed.feedback);
+    let extra = g.items.iter().find(|i| i.item == "a2").unwrap();
+    assert!(!extra.correct && extra.feedback.contains("can be identified"));
+    assert!(sheet.markdown.contains("Identifiability"));
 }

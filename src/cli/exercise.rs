@@ -43,6 +43,8 @@ pub enum KindArg {
     Workspace,
     /// n, m and r for a stated task.
     Redundancy,
+    /// Which DH parameters a stated measurement setup cannot identify.
+    Identifiability,
 }
 
 impl From<KindArg> for Kind {
@@ -53,6 +55,7 @@ impl From<KindArg> for Kind {
             KindArg::Ik => Kind::Ik,
             KindArg::Workspace => Kind::Workspace,
             KindArg::Redundancy => Kind::Redundancy,
+            KindArg::Identifiability => Kind::Identifiability,
         }
     }
 }
@@ -228,6 +231,9 @@ fn read_answer(key_answer: &KeyAnswer, path: &Path) -> Result<Answer, CliError> 
         )?)));
     }
     let text = std::fs::read_to_string(path).map_err(|e| io_error(path, e))?;
+    if matches!(key_answer, KeyAnswer::Identifiability { .. }) {
+        return Ok(Answer::Words(crate::exercise::parse_words(&text)));
+    }
     let rows = crate::exercise::parse_rows(&text, &path.display().to_string()).map_err(|e| {
         CliError::BadTarget {
             source_name: path.display().to_string(),

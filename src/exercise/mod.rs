@@ -39,16 +39,19 @@ pub enum Kind {
     Workspace,
     /// n, m and r for a stated task.
     Redundancy,
+    /// Which DH parameters a stated measurement setup cannot identify (Sect. 2.11).
+    Identifiability,
 }
 
 impl Kind {
     /// Every kind, in the CLI's order.
-    pub const ALL: [Kind; 5] = [
+    pub const ALL: [Kind; 6] = [
         Kind::DhTable,
         Kind::Fk,
         Kind::Ik,
         Kind::Workspace,
         Kind::Redundancy,
+        Kind::Identifiability,
     ];
 
     /// The CLI name (`dh-table`).
@@ -59,6 +62,7 @@ impl Kind {
             Kind::Ik => "ik",
             Kind::Workspace => "workspace",
             Kind::Redundancy => "redundancy",
+            Kind::Identifiability => "identifiability",
         }
     }
 }
@@ -134,6 +138,15 @@ pub enum KeyAnswer {
         postures: Vec<usize>,
         /// The workspace's area, 4 pi a1 a2 (m^2).
         area: f64,
+    },
+    /// The parameters a setup cannot identify on their own, and why, in words.
+    Identifiability {
+        /// The setup's name (`pose`, `position`, `distance`).
+        setup: String,
+        /// The parameters' names (`d2`, `theta6`).
+        parameters: Vec<String>,
+        /// The combinations the data sees instead, in words.
+        combinations: Vec<String>,
     },
     /// n, m, r for `task`.
     Redundancy {
@@ -313,6 +326,9 @@ pub fn generate(
         }
         Kind::Ik => ik_sheet(&mut sheet, &arm, &mut rng, key(KeyAnswer::DhTable))?,
         Kind::Redundancy => redundancy_sheet(&mut sheet, &arm, &mut rng, key(KeyAnswer::DhTable)),
+        Kind::Identifiability => {
+            identifiability_sheet(&mut sheet, &arm, &mut rng, key(KeyAnswer::DhTable))?
+        }
         Kind::Workspace => unreachable!("handled above"),
     }
     sheet.key.question = sheet.markdown.clone();
@@ -455,6 +471,70 @@ fn redundancy_sheet(sheet: &mut Sheet, arm: &Robot, rng: &mut Rng, key: Key) {
         task.name(),
         task.description()
     );
+}
+
+/// The identifiability sheet: plain DH parameters (no Hayati), a setup drawn among full poses,
+/// tool points and a distance artefact, the rank analysis (2.87) of noise-free measurements at
+/// the nominal parameters.
+fn identifiability_sheet(
+    sheet: &mut Sheet,
+    arm: &Robot,
+    rng: &mut Rng,
+    key: Key,
+) -> Result<(), ExerciseError> {
+    use crate::calibration::{
+        CalibrationOptions, ParameterModel, Setup, SetupScene, identifiability, nominal_examples,
+    };
+    let fail =
+        |e: crate::calibration::CalibrationError| unsuitable(Kind::Identifiability, e.to_string());
+    let setups = [Setup::Pose, Setup::Position, Setup::Distance];
+    let setup = setups[(rng.uniform() * 3.0) as usize % 3];
+    let model = ParameterModel::new(arm).map_err(fail)?;
+    let scene = SetupScene {
+        setup,
+        ..SetupScene::default()
+    };
+    let seed = (rng.uniform() * 1e9) as u64;
+    let ms = nominal_examples(&model, &scene, 60, seed).map_err(fail)?;
+    let id = identifiability(
+        &model,
+        &model.nominal(),
+        &ms,
+        &CalibrationOptions::default(),
+    )
+    .map_err(fail)?;
+    let names: Vec<String> = model.parameters().iter().map(|p| p.name.clone()).collect();
+    let parameters: Vec<String> = id
+        .unidentifiable
+        .iter()
+        .filter(|n| names.contains(n))
+        .cloned()
+        .collect();
+    sheet.key = Key {
+        answer: KeyAnswer::Identifiability {
+            setup: setup.name().into(),
+            parameters,
+            combinations: id.combinations.clone(),
+        },
+        ..key
+    };
+    let what = match setup {
+        Setup::Pose => "the full pose of the tool (a tracker measuring position and orientation)",
+        Setup::Position => "the position of the tool point only",
+        _ => "pairs of tool points a known distance apart (a ball bar)",
+    };
+    sheet.frames = true;
+    sheet.markdown = format!(
+        "# Identifiability\n\n{}; its DH table (standard convention, parameters a_i, alpha_i, \
+         d_i, theta_i as offsets):\n\n{}\nThe arm is calibrated (Sect. 2.11) from measurements \
+         of {what}, at many well spread joint vectors, with every DH parameter free. Which \
+         parameters can the measurements not identify on their own? Answer with their names \
+         (`d2`, `theta6`, ...), one per line or separated by commas (nothing for none); then \
+         `armlab exercise check KEY ANSWER`.\n",
+        arm.name,
+        dh_table_markdown(arm)
+    );
+    Ok(())
 }
 
 /// The ik sheet: a target reached at a random q; every closed-form solution with its posture.
@@ -666,6 +746,8 @@ pub enum Answer {
     Model(Box<Robot>),
     /// Rows of numbers (fk, ik, workspace, redundancy); ik rows in radians.
     Rows(Vec<Vec<f64>>),
+    /// Names (identifiability).
+    Words(Vec<String>),
 }
 
 /// One graded item.
@@ -752,6 +834,18 @@ pub fn grade(key: &Key, answer: &Answer) -> Result<Grade, ExerciseError> {
             .collect();
             Ok(Grade::of(items))
         }
+        (
+            KeyAnswer::Identifiability {
+                parameters,
+                combinations,
+                ..
+            },
+            Answer::Words(words),
+        ) => Ok(grade_identifiability(parameters, combinations, words)),
+        (KeyAnswer::Identifiability { .. }, _) => {
+            Err(bad("an identifiability answer is parameter names".into()))
+        }
+        (_, Answer::Words(_)) => Err(bad("this answer is not a list of names".into())),
         (KeyAnswer::DhTable, Answer::Rows(_)) => {
             Err(bad("a dh-table answer is a TOML model file".into()))
         }
@@ -759,6 +853,64 @@ pub fn grade(key: &Key, answer: &Answer) -> Result<Grade, ExerciseError> {
             "this answer is rows of numbers, not a model file".into()
         )),
     }
+}
+
+/// Parameter names from an answer's text: separated by commas, spaces or lines; `#` comments.
+pub fn parse_words(text: &str) -> Vec<String> {
+    text.lines()
+        .map(|l| l.split('#').next().unwrap_or(""))
+        .flat_map(|l| l.split(|c: char| c == ',' || c.is_whitespace()))
+        .filter(|w| !w.is_empty())
+        .map(|w| w.to_ascii_lowercase())
+        .collect()
+}
+
+/// Grades a list of unidentifiable parameters: one item per parameter of the key (named or
+/// missed, with the combination the data sees), one per name given that is identifiable.
+fn grade_identifiability(
+    parameters: &[String],
+    combinations: &[String],
+    words: &[String],
+) -> Grade {
+    let why = |p: &str| {
+        combinations
+            .iter()
+            .find(|c| c.split(|ch: char| !ch.is_alphanumeric()).any(|w| w == p))
+            .cloned()
+            .unwrap_or_default()
+    };
+    let mut items: Vec<Item> = parameters
+        .iter()
+        .map(|p| {
+            let named = words.iter().any(|w| w == p);
+            Item {
+                item: p.clone(),
+                correct: named,
+                feedback: if named {
+                    "right".into()
+                } else {
+                    format!("missed: {}", why(p))
+                },
+            }
+        })
+        .collect();
+    for w in words {
+        if !parameters.contains(w) {
+            items.push(Item {
+                item: w.clone(),
+                correct: false,
+                feedback: format!("{w} can be identified with this setup"),
+            });
+        }
+    }
+    if items.is_empty() {
+        items.push(Item {
+            item: "none".into(),
+            correct: true,
+            feedback: "right: every parameter is identifiable".into(),
+        });
+    }
+    Grade::of(items)
 }
 
 /// Grades a DH table: one item per row.

@@ -106,7 +106,7 @@ impl ExerciseTab {
         } else {
             ui.add(
                 egui::TextEdit::multiline(&mut sheet.text)
-                    .hint_text("rows of numbers, as the question says")
+                    .hint_text("rows of numbers, or names, as the question says")
                     .desired_rows(6)
                     .font(egui::TextStyle::Monospace),
             );
@@ -240,6 +240,9 @@ fn answer_robot(sheet: &OpenSheet) -> Result<Robot, String> {
 fn check(sheet: &OpenSheet) -> Result<Grade, String> {
     let answer = match sheet.key.answer {
         KeyAnswer::DhTable => Answer::Model(Box::new(answer_robot(sheet)?)),
+        KeyAnswer::Identifiability { .. } => {
+            Answer::Words(crate::exercise::parse_words(&sheet.text))
+        }
         _ => Answer::Rows(parse_rows(&sheet.text, "answer").map_err(|e| e.to_string())?),
     };
     grade(&sheet.key, &answer).map_err(|e| e.to_string())
