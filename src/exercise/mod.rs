@@ -753,7 +753,7 @@ pub enum Answer {
 /// One graded item.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Item {
-    /// What it is ("row 3", "T[2][4]", "solution 2").
+    /// What it is ("row 3", "T\[2\]\[4\]", "solution 2").
     pub item: String,
     /// Right or not.
     pub correct: bool,

@@ -54,7 +54,7 @@ pub enum SymbolicError {
     },
 }
 
-/// Options of [`derive`].
+/// Options of [`derive()`].
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Options {
     /// Substitute the constant lengths by their values (m) instead of naming them `a2`, `d4`.
@@ -124,7 +124,7 @@ pub struct SymbolicKinematics {
     pub separate_indices: bool,
     /// The index of the first variable and row: 1, or 4 for the spherical wrist numbered 4-6.
     pub first: u16,
-    /// Whether the DH table was derived from URDF origins and axes (see [`derive`]).
+    /// Whether the DH table was derived from URDF origins and axes (see [`derive()`]).
     pub derived_dh: bool,
     /// Where near misses of the derived table were rounded (CAD noise below 1e-9): the largest
     /// end-effector difference it makes (m, rotations times the arm's size).
@@ -497,7 +497,7 @@ fn ideal_table(robot: &Robot, ee: usize) -> Option<(Robot, f64)> {
     (worst <= NEAR_MISS * scale).then_some((dh, worst))
 }
 
-/// [`derive`] on the robot's own joint geometry.
+/// [`derive()`] on the robot's own joint geometry.
 fn derive_chain(
     robot: &Robot,
     ee: usize,
