@@ -344,7 +344,7 @@ def check_screenshot_download(d, folder):
         "cmd": "Browser.setDownloadBehavior",
         "params": {"behavior": "allow", "downloadPath": folder},
     })
-    click(d, 1034, 20)  # "Screenshot", in the toolbar's one row (x 993-1076)
+    click(d, 860, 20)  # "Screenshot", in the toolbar's one row (x 822-898)
     deadline = time.time() + 30
     while True:
         done = [f for f in os.listdir(folder) if f.endswith(".png")]
