@@ -344,7 +344,7 @@ def check_screenshot_download(d, folder):
         "cmd": "Browser.setDownloadBehavior",
         "params": {"behavior": "allow", "downloadPath": folder},
     })
-    click(d, 860, 20)  # "Screenshot", in the toolbar's one row (x 822-898)
+    click(d, 1100, 20)  # "Screenshot", in the toolbar's one row (x 1058-1140)
     deadline = time.time() + 30
     while True:
         done = [f for f in os.listdir(folder) if f.endswith(".png")]

@@ -42,8 +42,8 @@ pub fn show(app: &mut ToolbarContext<'_>, ui: &mut egui::Ui, out: &mut Actions) 
         }
         ui.separator();
         // Large text or a narrow window: the presets fold into a menu, so the row still fits
-        // (the buttons take about 280 points, and about 540 follow them).
-        if projector || ui.available_width() < 820.0 {
+        // (the buttons take about 280 points, and about 470 follow them, the model name shrinking).
+        if projector || ui.available_width() < 760.0 {
             ui.menu_button("View", |ui| view_buttons(app, ui, out));
         } else {
             view_buttons(app, ui, out);
