@@ -190,23 +190,37 @@ fn latex_variable(sk: &SymbolicKinematics, k: usize) -> String {
     }
 }
 
+/// Each `A_i^{i-1}(q_i) = ...` and then `T_n^0 = ...` as a LaTeX equation.
+fn matrix_equations(sk: &SymbolicKinematics) -> Vec<String> {
+    let sep = sk.separate_indices;
+    let mut out: Vec<String> = sk
+        .links
+        .iter()
+        .map(|link| {
+            format!(
+                "A_{{{}}}^{{{}}}({}) = {}",
+                link.to,
+                link.from,
+                latex_variable(sk, link.to),
+                latex_matrix(&link.matrix, sep)
+            )
+        })
+        .collect();
+    let (lo, hi) = span(sk);
+    out.push(format!(
+        "T_{{{hi}}}^{{{lo}}} = {}",
+        latex_matrix(&sk.t(), sep)
+    ));
+    out
+}
+
 /// The derivation as LaTeX display equations (for `amsmath`), one per matrix.
 pub fn latex(sk: &SymbolicKinematics) -> String {
     let sep = sk.separate_indices;
     let mut s = String::new();
-    for link in &sk.links {
-        let _ = writeln!(
-            s,
-            "A_{{{}}}^{{{}}}({}) = {}\n",
-            link.to,
-            link.from,
-            latex_variable(sk, link.to),
-            latex_matrix(&link.matrix, sep)
-        );
+    for eq in matrix_equations(sk) {
+        let _ = writeln!(s, "{eq}\n");
     }
-    let (lo, hi) = span(sk);
-    let t = sk.t();
-    let _ = writeln!(s, "T_{{{hi}}}^{{{lo}}} = {}\n", latex_matrix(&t, sep));
     if let Some((_, pw)) = &sk.wrist {
         let w = vector(pw, Style::Latex, sep);
         let _ = writeln!(
@@ -236,22 +250,9 @@ pub fn markdown(sk: &SymbolicKinematics, numbers: bool) -> String {
         };
         let _ = writeln!(s, "{verb}: {}.\n", symbol_list(sk));
     }
-    for link in &sk.links {
-        let _ = writeln!(
-            s,
-            "$$\nA_{{{}}}^{{{}}}({}) = {}\n$$\n",
-            link.to,
-            link.from,
-            latex_variable(sk, link.to),
-            latex_matrix(&link.matrix, sep)
-        );
+    for eq in matrix_equations(sk) {
+        let _ = writeln!(s, "$$\n{eq}\n$$\n");
     }
-    let (lo, hi) = span(sk);
-    let _ = writeln!(
-        s,
-        "$$\nT_{{{hi}}}^{{{lo}}} = {}\n$$\n",
-        latex_matrix(&sk.t(), sep)
-    );
     if let Some((_, pw)) = &sk.wrist {
         let w = vector(pw, Style::Latex, sep);
         for (axis, e) in AXES.iter().zip(&w) {

@@ -36,18 +36,23 @@ pub fn factor(p: &Poly) -> Vec<Term> {
     out
 }
 
+/// The terms as they are, ungrouped.
+fn plain(terms: Vec<(Monomial, f64)>) -> Vec<Term> {
+    terms
+        .into_iter()
+        .map(|(factors, coef)| Term {
+            coef,
+            factors,
+            group: Vec::new(),
+        })
+        .collect()
+}
+
 /// Factors a sum. `hoist_sign`: inside a group, an all-negative sum gives its sign to the
 /// factor outside (`-c1(s4c5c6 + c4s6)` rather than `c1(-s4c5c6 - c4s6)`).
 fn factor_terms(terms: Vec<(Monomial, f64)>, hoist_sign: bool) -> Vec<Term> {
     if terms.len() <= 1 {
-        return terms
-            .into_iter()
-            .map(|(factors, coef)| Term {
-                coef,
-                factors,
-                group: Vec::new(),
-            })
-            .collect();
+        return plain(terms);
     }
     let common = common_monomial(&terms);
     let numeric = common_coefficient(&terms, !common.is_empty() || hoist_sign);
@@ -66,14 +71,7 @@ fn factor_terms(terms: Vec<(Monomial, f64)>, hoist_sign: bool) -> Vec<Term> {
         return vec![absorb(numeric, common, group)];
     }
     let Some(f) = grouping_factor(&terms) else {
-        return terms
-            .into_iter()
-            .map(|(factors, coef)| Term {
-                coef,
-                factors,
-                group: Vec::new(),
-            })
-            .collect();
+        return plain(terms);
     };
     let (with, rest): (Vec<_>, Vec<_>) = terms
         .into_iter()
