@@ -43,9 +43,77 @@ pub fn textbook_figure(
     }
 }
 
+/// Figures for an output file: with vector capture on when `path` ends in `.svg` or `.pdf`.
+pub fn figures_for(path: &Path) -> Result<Figures, FigureError> {
+    let mut figs = Figures::new()?;
+    figs.capture_vectors(vector_format(path).is_some());
+    Ok(figs)
+}
+
+/// The vector format an output path asks for, by its extension (`svg`, `pdf`).
+pub fn vector_format(path: &Path) -> Option<&'static str> {
+    match path.extension()?.to_str()?.to_ascii_lowercase().as_str() {
+        "svg" => Some("svg"),
+        "pdf" => Some("pdf"),
+        _ => None,
+    }
+}
+
+#[cfg(feature = "app")]
+/// Writes the figure just made with `figs` to `path`: PNG pixels (`img`), or, for `.svg` and
+/// `.pdf`, what `figs` captured as vectors ([`figures_for`]).
+pub fn write_figure(
+    figs: &mut Figures,
+    img: &image::RgbaImage,
+    path: &Path,
+) -> Result<(), HeadlessError> {
+    let Some(format) = vector_format(path) else {
+        return write_png(img, path);
+    };
+    let page = figs.take_vector().ok_or_else(|| HeadlessError::NoVector {
+        path: path.to_path_buf(),
+    })?;
+    let svg = crate::figure::vector::to_svg(&page);
+    let bytes = if format == "svg" {
+        svg.into_bytes()
+    } else {
+        crate::figure::vector::svg_to_pdf(&svg).map_err(|source| HeadlessError::Pdf {
+            path: path.to_path_buf(),
+            source,
+        })?
+    };
+    std::fs::write(path, bytes).map_err(|source| HeadlessError::Io {
+        path: path.to_path_buf(),
+        source,
+    })
+}
+
 /// Writing a figure failed.
 #[derive(Debug, Error)]
 pub enum HeadlessError {
+    /// A vector file could not be written.
+    #[error("cannot write {}: {source}", path.display())]
+    Io {
+        /// Output file.
+        path: std::path::PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// The PDF could not be made.
+    #[cfg(feature = "app")]
+    #[error("cannot write {}: {source}", path.display())]
+    Pdf {
+        /// Output file.
+        path: std::path::PathBuf,
+        /// The cause.
+        source: crate::figure::vector::PdfError,
+    },
+    /// The figure was not captured as vectors (a bug: the figure bypassed [`figures_for`]).
+    #[error("cannot write {}: the figure was not captured as vectors", path.display())]
+    NoVector {
+        /// Output file.
+        path: std::path::PathBuf,
+    },
     /// The PNG could not be encoded or written.
     #[error("cannot write {}: {source}", path.display())]
     Write {

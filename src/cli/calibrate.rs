@@ -180,8 +180,8 @@ pub struct CalibrateArgs {
     #[arg(long)]
     pub write_measurements: Option<PathBuf>,
     /// Draw the accuracy map (position deviation over the top view of the workspace) to this
-    /// PNG: calibrated vs real when simulated (and nominal vs real to FILE-before.png), else the
-    /// correction, calibrated vs nominal.
+    /// file (PNG, SVG or PDF by its extension): calibrated vs real when simulated (and nominal
+    /// vs real to FILE-before.png, same extension), else the correction, calibrated vs nominal.
     #[arg(long)]
     pub accuracy_map: Option<PathBuf>,
     /// Cells of the accuracy map, "WxH" (16 to 8192 each).
@@ -665,7 +665,8 @@ fn accuracy_figures(
                 .file_stem()
                 .and_then(|s| s.to_str())
                 .unwrap_or("accuracy");
-            let before = path.with_file_name(format!("{stem}-before.png"));
+            let ext = path.extension().and_then(|s| s.to_str()).unwrap_or("png");
+            let before = path.with_file_name(format!("{stem}-before.{ext}"));
             maps.push((
                 before,
                 &nominal[..],
@@ -680,8 +681,8 @@ fn accuracy_figures(
             format!("Correction of the {name} by the calibration"),
         )),
     }
-    let mut figures = crate::figure::figures::Figures::new()?;
     for (file, a, b, title) in maps {
+        let mut figures = crate::headless::figures_for(&file)?;
         if args.map_samples == 0 || args.map_samples > 100_000_000 {
             return Err(CliError::Usage(
                 "--map-samples must be between 1 and 100000000",
@@ -696,7 +697,7 @@ fn accuracy_figures(
             [1200, 1000],
             crate::figure::Theme::Light,
         )?;
-        crate::headless::write_png(&img, &file)?;
+        crate::headless::write_figure(&mut figures, &img, &file)?;
     }
     Ok(())
 }

@@ -5,8 +5,7 @@ use super::fk::fmt_vec;
 use super::{CliError, JointInput, joint_vectors};
 use crate::camera::{Camera, Preset, Projection};
 use crate::figure::Theme;
-use crate::figure::figures::{Figures, Scene3d};
-use crate::headless::write_png;
+use crate::figure::figures::Scene3d;
 use crate::scene::{ArmStyle, arm_scene};
 use clap::ValueEnum;
 use std::path::PathBuf;
@@ -99,7 +98,7 @@ pub struct RenderArgs {
     /// Joint vector (default: the "ready" configuration).
     #[command(flatten)]
     pub joints: JointInput,
-    /// Output PNG file.
+    /// Output file: PNG, or SVG / PDF (vectors: exact arcs, text as text) by its extension.
     #[arg(long)]
     pub out: PathBuf,
     /// Image size in pixels, WIDTHxHEIGHT.
@@ -174,9 +173,9 @@ pub(super) fn render(args: &RenderArgs, out: &mut dyn std::io::Write) -> Result<
         legend: Vec::new(),
         caption: String::new(),
     };
-    let mut figures = Figures::new()?;
+    let mut figures = crate::headless::figures_for(&args.out)?;
     let img = figures.scene(args.size.0, args.theme.into(), &fig)?;
-    write_png(&img, &args.out)?;
+    crate::headless::write_figure(&mut figures, &img, &args.out)?;
     writeln!(
         out,
         "wrote {} ({}x{})",
@@ -236,7 +235,7 @@ pub struct WorkspaceArgs {
     /// robot with several, the command works on the chain from the root to it alone.
     #[arg(long)]
     pub ee: Option<String>,
-    /// Output PNG file.
+    /// Output file: PNG, or SVG / PDF (vectors: exact arcs, text as text) by its extension.
     #[arg(long)]
     pub out: PathBuf,
     /// View (default: plane for planar arms, top otherwise).
@@ -306,13 +305,13 @@ pub(super) fn workspace(
         caption: String::new(),
     };
     let bar = crate::headless::Progress::new(1000, "workspace");
-    let mut figures = Figures::new()?;
+    let mut figures = crate::headless::figures_for(&args.out)?;
     let title = robot.name.to_lowercase();
     let fig = workspace_figure(&mut figures, &robot, &title, &opts, &|f| {
         bar.set((f * 1000.0) as u64)
     })?;
     bar.finish();
-    write_png(&fig.image, &args.out)?;
+    crate::headless::write_figure(&mut figures, &fig.image, &args.out)?;
     match args.format {
         super::Format::Json => {
             let v = stats_json(&robot, args, &fig.stats);
@@ -384,7 +383,7 @@ pub struct FigureArgs {
     /// List the figures and what each shows.
     #[arg(long)]
     pub list: bool,
-    /// Output PNG file.
+    /// Output file: PNG, or SVG / PDF (vectors: exact arcs, text as text) by its extension.
     #[arg(long)]
     pub out: Option<PathBuf>,
     /// Image size in pixels, WIDTHxHEIGHT.
@@ -419,9 +418,9 @@ pub(super) fn figure(args: &FigureArgs, out: &mut dyn std::io::Write) -> Result<
     let Some(path) = &args.out else {
         return Err(CliError::Usage("--out FILE.png is required"));
     };
-    let mut figures = Figures::new()?;
+    let mut figures = crate::headless::figures_for(path)?;
     let img = textbook_figure(&mut figures, name, args.size.0, args.theme.into())?;
-    write_png(&img, path)?;
+    crate::headless::write_figure(&mut figures, &img, path)?;
     writeln!(
         out,
         "wrote {} ({}x{}): Fig. {name}",

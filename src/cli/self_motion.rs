@@ -32,7 +32,8 @@ pub struct SelfMotionArgs {
     /// Output format.
     #[arg(long, value_enum, default_value_t)]
     pub format: Format,
-    /// Write the self-motion figure (every joint over the parameter, limit bands) to this PNG.
+    /// Write the self-motion figure (every joint over the parameter, limit bands) to this file
+    /// (PNG, SVG or PDF by its extension).
     #[arg(long)]
     pub out: Option<PathBuf>,
 }
@@ -66,8 +67,9 @@ pub(super) fn run(args: &SelfMotionArgs, out: &mut dyn std::io::Write) -> Result
         motion.keep_branch(b).map_err(|e| bad(e.to_string()))?;
     }
     if let Some(path) = &args.out {
-        let img = crate::figure::self_motion::figure(&robot, &motion)?;
-        crate::headless::write_png(&img, path)?;
+        let mut figs = crate::headless::figures_for(path)?;
+        let img = crate::figure::self_motion::figure(&mut figs, &robot, &motion)?;
+        crate::headless::write_figure(&mut figs, &img, path)?;
     }
     match args.format {
         Format::Json => write_json(&motion, out),

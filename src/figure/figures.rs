@@ -60,6 +60,8 @@ pub struct Figures {
     pub gpu: Gpu,
     offscreen: Offscreen,
     renderer: Renderer,
+    /// A multi-panel figure's composed vectors ([`Self::set_composite`]).
+    composite: Option<super::vector::VectorPage>,
 }
 
 impl Figures {
@@ -76,6 +78,7 @@ impl Figures {
             gpu,
             offscreen,
             renderer,
+            composite: None,
         })
     }
 
@@ -83,6 +86,35 @@ impl Figures {
     /// (a browser cannot wait for the GPU; see [`Offscreen::defer_readback`]).
     pub fn defer_readback(&mut self) {
         self.offscreen.defer_readback();
+    }
+
+    /// From now on (`on`) each figure also keeps what it painted, for [`Self::take_vector`].
+    pub fn capture_vectors(&mut self, on: bool) {
+        self.offscreen.capture_shapes(on);
+        super::vector::set_capturing(&self.offscreen.ctx, on);
+    }
+
+    /// The last figure as vectors (with [`Self::capture_vectors`] on).
+    pub fn take_vector(&mut self) -> Option<super::vector::VectorPage> {
+        if let Some(page) = self.composite.take() {
+            return Some(page);
+        }
+        let capture = self.offscreen.take_capture()?;
+        Some(super::vector::VectorPage::single(
+            capture,
+            super::vector::tags(&self.offscreen.ctx),
+        ))
+    }
+
+    /// Whether figures keep their vectors ([`Self::capture_vectors`]).
+    pub fn capturing(&self) -> bool {
+        super::vector::capturing(&self.offscreen.ctx)
+    }
+
+    /// Sets the page [`Self::take_vector`] returns next: a figure of several panels composes
+    /// its panels' vectors as it composes their pixels.
+    pub fn set_composite(&mut self, page: super::vector::VectorPage) {
+        self.composite = Some(page);
     }
 
     /// The read-back of the last deferred figure, if any.
@@ -231,6 +263,21 @@ impl Figures {
                 }
                 paint_caption_and_legend(painter, rect, fig, text, ui.visuals().weak_text_color());
             });
+        if self.offscreen.take_capture().is_some_and(|mut c| {
+            // A vector figure embeds the 3D view as an image under its vector text.
+            match target.read_egui_rgba(&self.gpu) {
+                Ok(img) => {
+                    let size = [img.width() as usize, img.height() as usize];
+                    let view = egui::ColorImage::from_rgba_unmultiplied(size, img.as_raw());
+                    c.images.insert(id, std::sync::Arc::new(view));
+                    self.offscreen.put_capture(c);
+                    false
+                }
+                Err(_) => true,
+            }
+        }) {
+            return Err(FigureError::NotLaidOut);
+        }
         self.offscreen.free_texture(id);
         Ok(result?)
     }

@@ -10,6 +10,7 @@ pub mod plot2d;
 pub mod raster;
 pub mod self_motion;
 pub mod textbook;
+pub mod vector;
 pub mod workspace;
 
 use thiserror::Error;

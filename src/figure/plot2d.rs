@@ -1,11 +1,12 @@
 //! A 2D figure drawn with egui_plot: title, axes with ticks and units, a legend, curves, point
 //! labels, and a large point set shown as one image. The app's plot tab draws the same thing.
 
+use super::vector::{self, PlotArc, TaggedArcs};
 use egui::Color32;
 use egui_plot::{Corner, Legend, Line, LineStyle, Plot, PlotImage, PlotPoint, Points, Text};
 
 /// A polyline in plot coordinates.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, Default, PartialEq)]
 pub struct Curve {
     /// Legend name, or `None` to keep it out of the legend.
     pub name: Option<String>,
@@ -17,6 +18,12 @@ pub struct Curve {
     pub width: f32,
     /// Dashed line.
     pub dashed: bool,
+    /// The same curve as exact circular arcs, when it is made of them (empty otherwise): a
+    /// vector figure writes these as SVG arcs instead of the polyline.
+    pub arcs: Vec<PlotArc>,
+    /// What the curve is, for a vector figure's `class` attribute (`boundary` for the boundary
+    /// of a workspace); empty for none.
+    pub class: &'static str,
 }
 
 /// A filled polygon in plot coordinates (drawn under the curves).
@@ -189,12 +196,35 @@ pub fn show_at(
         .default_x_bounds(x0, x1)
         .default_y_bounds(y0, y1)
         .set_margin_fraction(egui::vec2(0.0, 0.0));
-    let resp = p.show(ui, |pui| draw_items(pui, plot, image, text_color));
+    let capturing = vector::capturing(ui.ctx());
+    let resp = p.show(ui, |pui| {
+        draw_items(pui, plot, image, text_color, capturing)
+    });
     let b = resp.transform.bounds();
-    PlotFrame {
+    let frame = PlotFrame {
         rect: *resp.transform.frame(),
         bounds: [b.min()[0], b.max()[0], b.min()[1], b.max()[1]],
+    };
+    if capturing {
+        for (k, c) in plot.curves.iter().enumerate() {
+            if !c.arcs.is_empty() {
+                vector::register(
+                    ui.ctx(),
+                    TaggedArcs {
+                        tag: vector::tag_color(k),
+                        arcs: c.arcs.clone(),
+                        color: c.color,
+                        width: c.width,
+                        dashed: c.dashed,
+                        class: c.class,
+                        frame: frame.rect,
+                        bounds: frame.bounds,
+                    },
+                );
+            }
+        }
     }
+    frame
 }
 
 /// Bounds egui_plot can show: finite, each side at least a millimetre-scale width wide (a
@@ -225,6 +255,7 @@ fn draw_items(
     plot: &Plot2d,
     image: Option<(egui::TextureId, [f64; 4])>,
     text_color: Color32,
+    capturing: bool,
 ) {
     let [x0, x1, y0, y1] = drawable_bounds(plot.bounds);
     let equal = plot.equal_aspect;
@@ -269,14 +300,30 @@ fn draw_items(
                 .radius(0.0),
         );
     }
-    for c in &plot.curves {
-        let mut line = Line::new(c.name.clone().unwrap_or_default(), c.points.clone())
-            .color(c.color)
+    for (k, c) in plot.curves.iter().enumerate() {
+        let tagged = capturing && !c.arcs.is_empty();
+        let mut name = c.name.clone().unwrap_or_default();
+        if tagged && !name.is_empty() {
+            // The legend keeps the real colour: a one-point line of it carries the name, and the
+            // tagged stand-in goes unnamed.
+            pui.line(Line::new(std::mem::take(&mut name), vec![c.points[0]]).color(c.color));
+        }
+        let color = if tagged {
+            vector::tag_color(k)
+        } else {
+            c.color
+        };
+        let mut line = Line::new(name, c.points.clone())
+            .color(color)
             .width(c.width);
-        if c.dashed {
+        if tagged {
+            // One path the writer can swap for the arcs (not egui_plot's bands of samples).
+            line = line.allow_band(false);
+        }
+        if c.dashed && !tagged {
             line = line.style(LineStyle::dashed_loose());
         }
-        if c.name.is_none() {
+        if c.name.is_none() || tagged {
             line = line.allow_hover(false);
         }
         pui.line(line);

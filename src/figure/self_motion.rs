@@ -22,7 +22,11 @@ const JOINT_COLORS: [[u8; 3]; 7] = [
 
 /// The figure (1200 x 800, light theme) of a sampled self-motion: its samples (parameter value,
 /// solutions), the feasible intervals of each branch (rad) and the branch names.
-pub fn figure(robot: &Robot, motion: &SelfMotionSamples) -> Result<image::RgbaImage, FigureError> {
+pub fn figure(
+    figs: &mut Figures,
+    robot: &Robot,
+    motion: &SelfMotionSamples,
+) -> Result<image::RgbaImage, FigureError> {
     let SelfMotionSamples {
         parameter,
         samples,
@@ -47,7 +51,6 @@ pub fn figure(robot: &Robot, motion: &SelfMotionSamples) -> Result<image::RgbaIm
         add_feasible_bars(&mut plot, b, name, &feasible[b]);
     }
     add_limit_lines(&mut plot, robot, dof);
-    let mut figs = Figures::new()?;
     figs.plot([1200, 800], Theme::Light, &plot, None)
 }
 
@@ -71,6 +74,7 @@ fn add_branch(
                     color: Color32::from_rgb(c[0], c[1], c[2]),
                     width: 1.8,
                     dashed: b % 2 == 1,
+                    ..Curve::default()
                 });
                 labelled = true;
             }
@@ -121,6 +125,7 @@ fn add_limit_lines(plot: &mut Plot2d, robot: &Robot, dof: usize) {
                 color: Color32::from_rgba_unmultiplied(c[0], c[1], c[2], 140),
                 width: 1.0,
                 dashed: true,
+                ..Curve::default()
             });
         }
     }

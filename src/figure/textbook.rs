@@ -6,6 +6,7 @@
 use super::figures::{Figures, Scene3d};
 use super::palette::{CLASS_COLORS, c32};
 use super::plot2d::{Curve, Plot2d};
+use super::vector::VectorPage;
 use super::workspace::{ColorBy, WsFigureOptions, WsView};
 use super::{FigureError, Theme};
 use crate::camera::Preset;
@@ -98,6 +99,21 @@ fn line(
         color,
         width,
         dashed,
+        ..Curve::default()
+    }
+}
+
+/// An arc of Fig. 2.31 (radius `r` about `c`, from `a0` to `a1` rad) as a solid curve that a
+/// vector figure writes as a true arc.
+fn arc_curve(c: [f64; 2], r: f64, a0: f64, a1: f64, color: Color32, width: f32) -> Curve {
+    Curve {
+        arcs: vec![crate::figure::vector::PlotArc {
+            centre: c,
+            radius: r,
+            start: a0,
+            sweep: a1 - a0,
+        }],
+        ..line(None, arc(c, r, a0, a1), color, width, false)
     }
 }
 
@@ -148,13 +164,8 @@ fn two_link_postures(
     };
     plot.curves
         .push(line(None, vec![[0.0, 0.0], p], ink, 1.0, true));
-    plot.curves.push(line(
-        None,
-        arc([0.0, 0.0], 0.35, 0.0, k.alpha),
-        ink,
-        1.5,
-        false,
-    ));
+    plot.curves
+        .push(arc_curve([0.0, 0.0], 0.35, 0.0, k.alpha, ink, 1.5));
     plot.labels.push((
         "α".into(),
         [0.42 * (k.alpha / 2.0).cos(), 0.42 * (k.alpha / 2.0).sin()],
@@ -185,13 +196,8 @@ fn add_posture(
     ));
     // beta between the line O-W and link 1; theta2 between link 1's extension and link 2.
     let r = 0.55 + 0.12 * i as f64;
-    plot.curves.push(line(
-        None,
-        arc([0.0, 0.0], r, k.alpha, pos.theta1),
-        color,
-        1.5,
-        false,
-    ));
+    plot.curves
+        .push(arc_curve([0.0, 0.0], r, k.alpha, pos.theta1, color, 1.5));
     let mid = 0.5 * (k.alpha + pos.theta1);
     plot.labels
         .push(("β".into(), [(r + 0.08) * mid.cos(), (r + 0.08) * mid.sin()]));
@@ -199,13 +205,8 @@ fn add_posture(
     plot.curves
         .push(line(None, vec![pos.elbow, ext], color, 1.0, true));
     let a_end = pos.theta1 + pos.theta2;
-    plot.curves.push(line(
-        None,
-        arc(pos.elbow, 0.25, pos.theta1, a_end),
-        color,
-        1.5,
-        false,
-    ));
+    plot.curves
+        .push(arc_curve(pos.elbow, 0.25, pos.theta1, a_end, color, 1.5));
     let m2 = pos.theta1 + 0.5 * pos.theta2;
     plot.labels.push((
         format!("θ2 = {:.1}°", pos.theta2.to_degrees()),
@@ -260,6 +261,7 @@ fn spherical_wrist(
         w.p_w.x, w.p_w.y, w.p_w.z
     );
     let mut out = image::RgbaImage::new(size[0], size[1]);
+    let mut pages = Vec::new();
     for (k, (title, camera)) in [
         ("Manipulator with spherical wrist (Fig. 2.32)", whole),
         ("the wrist close up", close),
@@ -288,6 +290,10 @@ fn spherical_wrist(
             },
         )?;
         image::imageops::overlay(&mut out, &img, 0, i64::from(k as u32 * panel[1]));
+        pages.extend(figs.take_vector().map(|p| ([0, k as u32 * panel[1]], p)));
+    }
+    if figs.capturing() {
+        figs.set_composite(VectorPage::compose(size, pages));
     }
     Ok(out)
 }
@@ -350,6 +356,7 @@ fn anthropomorphic_configurations(
     }
     let camera = framing(&points, panel);
     let mut out = image::RgbaImage::new(size[0], size[1]);
+    let mut pages = Vec::new();
     for (slot, (label, q, k)) in solutions.iter().enumerate() {
         let c8 = CLASS_COLORS[*k % CLASS_COLORS.len()];
         let c = [c8[0], c8[1], c8[2]].map(|v| f32::from(v) / 255.0);
@@ -393,6 +400,10 @@ fn anthropomorphic_configurations(
         )?;
         let (x, y) = ((slot as u32 % 2) * panel[0], (slot as u32 / 2) * panel[1]);
         image::imageops::overlay(&mut out, &img, i64::from(x), i64::from(y));
+        pages.extend(figs.take_vector().map(|p| ([x, y], p)));
+    }
+    if figs.capturing() {
+        figs.set_composite(VectorPage::compose(size, pages));
     }
     Ok(out)
 }

@@ -383,6 +383,7 @@ fn joint_space(
                 2.5
             },
             dashed: s.kind == CurveKind::Singular,
+            ..Curve::default()
         });
     }
     for p in &rect.points {
@@ -508,6 +509,12 @@ fn decorate(
             color,
             width,
             dashed,
+            arcs: c.arc.map(|a| vec![a.into()]).unwrap_or_default(),
+            class: match c.role {
+                CurveRole::Boundary => "boundary",
+                CurveRole::PostureBoundary => "posture-boundary",
+                CurveRole::Candidate => "candidate",
+            },
         });
     }
 }
@@ -535,6 +542,7 @@ fn add_plane_marks(plot: &mut Plot2d, marks: &PlaneMarks) {
             color: Color32::from_gray(110),
             width: 1.2,
             dashed: true,
+            ..Curve::default()
         });
     }
     plot.labels.extend(marks.labels.iter().cloned());

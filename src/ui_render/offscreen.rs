@@ -18,6 +18,38 @@ pub struct Offscreen {
     /// Renders return at once and leave their read-back here (a browser cannot wait for it).
     defer_readback: bool,
     deferred: Option<crate::render::PendingRead>,
+    /// Keep what each render paints ([`Self::capture_shapes`]).
+    capture: bool,
+    captured: Option<UiCapture>,
+    /// The images of egui's managed textures (not the font atlas), kept for captures.
+    images: std::collections::HashMap<egui::TextureId, std::sync::Arc<egui::ColorImage>>,
+}
+
+/// What one render painted, before tessellation: egui's shapes in points, and the images they
+/// show. The vector figures ([`crate::figure::vector`]) write it as SVG.
+#[derive(Clone)]
+pub struct UiCapture {
+    /// Canvas size (px).
+    pub size: [u32; 2],
+    /// Pixels per egui point.
+    pub pixels_per_point: f32,
+    /// The colour the canvas was cleared to.
+    pub background: egui::Color32,
+    /// The shapes in paint order, with their clip rectangles (points).
+    pub shapes: Vec<egui::epaint::ClippedShape>,
+    /// The images of the textures the shapes use (managed textures and, where the figure
+    /// added them, native ones such as a 3D view).
+    pub images: std::collections::HashMap<egui::TextureId, std::sync::Arc<egui::ColorImage>>,
+}
+
+impl std::fmt::Debug for UiCapture {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("UiCapture")
+            .field("size", &self.size)
+            .field("shapes", &self.shapes.len())
+            .field("images", &self.images.len())
+            .finish()
+    }
 }
 
 impl Drop for Offscreen {
@@ -48,6 +80,9 @@ impl Offscreen {
             pending: TexturesDelta::default(),
             defer_readback: false,
             deferred: None,
+            capture: false,
+            captured: None,
+            images: Default::default(),
         }
     }
 
@@ -97,6 +132,9 @@ impl Offscreen {
         let mut output = self.ctx.run_ui(input, &mut ui);
         deltas.append(std::mem::take(&mut output.textures_delta));
         output.textures_delta = deltas;
+        if self.capture {
+            self.keep_capture(size, &output);
+        }
         let texture = canvas(device, size, true);
         let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
         self.paint(device, queue, &view, size, output);
@@ -113,6 +151,50 @@ impl Offscreen {
     /// the GPU).
     pub fn defer_readback(&mut self) {
         self.defer_readback = true;
+    }
+
+    /// From now on (`on`) each [`Self::render`] also keeps its shapes and images for
+    /// [`Self::take_capture`] (vector figures).
+    pub fn capture_shapes(&mut self, on: bool) {
+        self.capture = on;
+        if !on {
+            self.captured = None;
+        }
+    }
+
+    /// What the last render painted, when [`Self::capture_shapes`] is on.
+    pub fn take_capture(&mut self) -> Option<UiCapture> {
+        self.captured.take()
+    }
+
+    /// Puts a capture back (after the figure added the images of its native textures, e.g. a
+    /// 3D view it read back).
+    pub fn put_capture(&mut self, capture: UiCapture) {
+        self.captured = Some(capture);
+    }
+
+    /// Records the output's shapes and the images of the textures it sets.
+    fn keep_capture(&mut self, size: [u32; 2], output: &egui::FullOutput) {
+        for (id, list) in &output.textures_delta.set {
+            for delta in list {
+                let egui::ImageData::Color(img) = &delta.image;
+                if *id != egui::TextureId::default() && delta.pos.is_none() {
+                    self.images.insert(*id, img.clone());
+                }
+            }
+        }
+        for id in &output.textures_delta.free {
+            self.images.remove(id);
+        }
+        self.captured = Some(UiCapture {
+            size,
+            pixels_per_point: output.pixels_per_point,
+            background: self
+                .background
+                .unwrap_or(self.ctx.global_style().visuals.panel_fill),
+            shapes: output.shapes.clone(),
+            images: self.images.clone(),
+        });
     }
 
     /// The read-back of the last deferred render, if any.

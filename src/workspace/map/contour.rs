@@ -106,7 +106,11 @@ fn chain(
             at = next;
         }
         if line.len() > 1 {
-            out.push(MapCurve { points: line, role });
+            out.push(MapCurve {
+                points: line,
+                role,
+                arc: None,
+            });
         }
     }
     out

@@ -138,6 +138,10 @@ pub struct MapCurve {
     pub points: Vec<[f64; 2]>,
     /// What it is.
     pub role: CurveRole,
+    /// The same curve as one exact circular arc, where it is one (planar arms' exact maps);
+    /// vector figures write it as an arc. Not serialized.
+    #[serde(skip)]
+    pub arc: Option<crate::workspace::exact::Arc>,
 }
 
 /// A workspace map (see the module documentation).

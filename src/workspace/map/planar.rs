@@ -55,6 +55,7 @@ fn curves(e: &ExactPlanar, step: f64) -> Vec<MapCurve> {
         .map(|a| MapCurve {
             points: a.polyline(step),
             role: CurveRole::Boundary,
+            arc: Some(*a),
         })
         .collect();
     let mut inner: Vec<Arc> = Vec::new();
@@ -69,6 +70,7 @@ fn curves(e: &ExactPlanar, step: f64) -> Vec<MapCurve> {
     out.extend(inner.iter().map(|a| MapCurve {
         points: a.polyline(step),
         role: CurveRole::PostureBoundary,
+        arc: Some(*a),
     }));
     out
 }
