@@ -78,6 +78,7 @@ pub use nalgebra;
 /// implement, re-exported for the same reason.
 pub use serde;
 
+pub mod animation;
 #[cfg(feature = "gui")]
 pub mod app;
 pub mod calibration;

@@ -2,7 +2,7 @@
 //! comments and string literals removed, and fails naming the file and line of each breach:
 //!
 //! - a compute module (`kinematics`, `workspace`, `calibration`, `redundancy`, `model_file`,
-//!   `urdf`, `construction`, `mesh`, `offload`) names egui, eframe, wgpu, winit, image or
+//!   `urdf`, `construction`, `mesh`, `offload`, `animation`) names egui, eframe, wgpu, winit, image or
 //!   `std::fs`, or a layer above it (`scene`, `render`, `ui_render`, `figure`, `headless`, `app`,
 //!   `cli`, `camera`);
 //! - `render` names egui or `kinematics`;
@@ -26,6 +26,7 @@ const COMPUTE: &[&str] = &[
     "construction",
     "mesh",
     "offload",
+    "animation",
 ];
 
 /// Crates and paths a compute module must not name.

@@ -1,6 +1,7 @@
 //! The scriptable command line: subcommands, their arguments, and dispatch. `main.rs` only
 //! parses and reports errors; everything here returns typed errors.
 
+mod animate;
 mod calibrate;
 mod exercise;
 mod export;
@@ -162,6 +163,9 @@ pub enum Command {
     /// Write a model as URDF (same forward kinematics, limits, simple visuals) or as a TOML
     /// model file.
     Export(export::ExportArgs),
+    /// An animation to GIF or APNG: the self-motion, a morph through the postures, the DH
+    /// build one elementary motion at a time, or a straight tool path with its joint rates.
+    Animate(animate::AnimateArgs),
 }
 
 impl From<crate::model_file::LoadError> for CliError {
@@ -311,6 +315,7 @@ pub fn run(cli: Cli, out: &mut dyn std::io::Write) -> Result<(), CliError> {
         Some(Command::Symbolic(args)) => symbolic::run(&args, out),
         Some(Command::Exercise(args)) => exercise::run(&args, out),
         Some(Command::Lesson(args)) => lesson::run(&args, out),
+        Some(Command::Animate(args)) => animate::run(&args, out),
     }
 }
 

@@ -3,6 +3,8 @@
 //! the same code, by the app.
 
 pub mod accuracy;
+#[cfg(feature = "app")]
+pub mod animation;
 pub mod figures;
 pub mod labels;
 pub(crate) mod palette;

@@ -300,6 +300,22 @@ fn draw_items(
                 .radius(0.0),
         );
     }
+    add_curves(pui, plot, capturing);
+    for (text, at) in &plot.labels {
+        pui.text(
+            Text::new(
+                "",
+                PlotPoint::new(at[0], at[1]),
+                egui::RichText::new(text).strong().size(15.0),
+            )
+            .color(text_color),
+        );
+    }
+}
+
+/// The plot's curves (a curve of exact arcs painted in its tag colour during a vector
+/// capture, see [`vector`]).
+fn add_curves(pui: &mut egui_plot::PlotUi<'_>, plot: &Plot2d, capturing: bool) {
     for (k, c) in plot.curves.iter().enumerate() {
         let tagged = capturing && !c.arcs.is_empty();
         let mut name = c.name.clone().unwrap_or_default();
@@ -327,15 +343,5 @@ fn draw_items(
             line = line.allow_hover(false);
         }
         pui.line(line);
-    }
-    for (text, at) in &plot.labels {
-        pui.text(
-            Text::new(
-                "",
-                PlotPoint::new(at[0], at[1]),
-                egui::RichText::new(text).strong().size(15.0),
-            )
-            .color(text_color),
-        );
     }
 }

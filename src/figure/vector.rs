@@ -351,51 +351,48 @@ impl SvgWriter<'_> {
             Shape::Text(t) => self.text(t),
             Shape::Mesh(m) => self.mesh(m, c),
             Shape::QuadraticBezier(b) => {
-                let d = format!(
-                    "M{}Q{} {}{}",
-                    self.pt(b.points[0]),
-                    self.pt(b.points[1]),
-                    self.pt(b.points[2]),
-                    if b.closed { "Z" } else { "" }
-                );
-                let paint = paint_attrs(
-                    b.fill,
-                    stroke_color(&b.stroke.color),
-                    self.px(b.stroke.width),
-                );
-                let _ = writeln!(self.out, "<path d=\"{d}\"{paint}/>");
+                let [p0, p1, p2] = b.points;
+                let d = format!("M{}Q{} {}", self.pt(p0), self.pt(p1), self.pt(p2));
+                self.curve(d, b.closed, b.fill, &b.stroke);
             }
             Shape::CubicBezier(b) => {
-                let d = format!(
-                    "M{}C{} {} {}{}",
-                    self.pt(b.points[0]),
-                    self.pt(b.points[1]),
-                    self.pt(b.points[2]),
-                    self.pt(b.points[3]),
-                    if b.closed { "Z" } else { "" }
-                );
-                let paint = paint_attrs(
-                    b.fill,
-                    stroke_color(&b.stroke.color),
-                    self.px(b.stroke.width),
-                );
-                let _ = writeln!(self.out, "<path d=\"{d}\"{paint}/>");
+                let [p0, p1, p2, p3] = b.points;
+                let (a, c_, e) = (self.pt(p1), self.pt(p2), self.pt(p3));
+                let d = format!("M{}C{a} {c_} {e}", self.pt(p0));
+                self.curve(d, b.closed, b.fill, &b.stroke);
             }
-            Shape::Band(b) => {
-                // A band of samples (egui_plot's dense lines): its outline as a polygon.
-                if self.tagged(b.fill) || b.points.is_empty() {
-                    return;
-                }
-                let mut pts: Vec<Pos2> = b.points.iter().map(|p| Pos2::new(p.x, p.y.min)).collect();
-                pts.extend(b.points.iter().rev().map(|p| Pos2::new(p.x, p.y.max)));
-                if b.angle != 0.0 {
-                    let rot = egui::emath::Rot2::from_angle(b.angle);
-                    pts.iter_mut()
-                        .for_each(|p| *p = (rot * p.to_vec2()).to_pos2());
-                }
-                self.polyline(&pts, true, b.fill, b.stroke.color, b.stroke.width);
-            }
+            Shape::Band(b) => self.band(b),
         }
+    }
+
+    /// A Bezier curve's path `d` (without its closing `Z`).
+    fn curve(
+        &mut self,
+        mut d: String,
+        closed: bool,
+        fill: Color32,
+        stroke: &egui::epaint::PathStroke,
+    ) {
+        if closed {
+            d.push('Z');
+        }
+        let paint = paint_attrs(fill, stroke_color(&stroke.color), self.px(stroke.width));
+        let _ = writeln!(self.out, "<path d=\"{d}\"{paint}/>");
+    }
+
+    /// A band of samples (egui_plot's dense lines): its outline as a polygon.
+    fn band(&mut self, b: &egui::epaint::BandShape) {
+        if self.tagged(b.fill) || b.points.is_empty() {
+            return;
+        }
+        let mut pts: Vec<Pos2> = b.points.iter().map(|p| Pos2::new(p.x, p.y.min)).collect();
+        pts.extend(b.points.iter().rev().map(|p| Pos2::new(p.x, p.y.max)));
+        if b.angle != 0.0 {
+            let rot = egui::emath::Rot2::from_angle(b.angle);
+            pts.iter_mut()
+                .for_each(|p| *p = (rot * p.to_vec2()).to_pos2());
+        }
+        self.polyline(&pts, true, b.fill, b.stroke.color, b.stroke.width);
     }
 
     /// Whether `color` is the tag of an exact curve: writes the curve the first time (its
@@ -575,58 +572,58 @@ impl SvgWriter<'_> {
                     _ => runs.push((section, x, y, x + g.advance_width, g.chr.to_string())),
                 }
             }
-            for (section, x, y, end, text) in runs {
-                if text.trim().is_empty() {
-                    continue;
-                }
-                let Some(s) = job.sections.get(section) else {
-                    continue;
-                };
-                let f = &s.format;
-                let mut color = if f.color == Color32::PLACEHOLDER {
-                    t.fallback_color
-                } else {
-                    f.color
-                };
-                if let Some(o) = t.override_text_color {
-                    color = o;
-                }
-                let family = match f.font_id.family {
-                    egui::FontFamily::Monospace => MONO_LIST,
-                    _ => SANS_LIST,
-                };
-                let rotate = if t.angle != 0.0 {
-                    format!(
-                        " transform=\"rotate({} {} {})\"",
-                        t.angle.to_degrees(),
-                        self.px(t.pos.x),
-                        self.px(t.pos.y)
-                    )
-                } else {
-                    String::new()
-                };
-                let italic = if f.italics {
-                    " font-style=\"italic\""
-                } else {
-                    ""
-                };
-                let (fill, opacity) = unmultiply(color);
-                let _ = writeln!(
-                    self.out,
-                    "<text x=\"{}\" y=\"{}\" font-family=\"{family}\" font-size=\"{}\" textLength=\"{}\" lengthAdjust=\"spacingAndGlyphs\" fill=\"{fill}\"{}{italic}{rotate} xml:space=\"preserve\">{}</text>",
-                    self.px(x),
-                    self.px(y),
-                    self.px(f.font_id.size),
-                    self.px(end - x),
-                    if opacity < 1.0 {
-                        format!(" fill-opacity=\"{opacity:.3}\"")
-                    } else {
-                        String::new()
-                    },
-                    escape(&text)
-                );
+            for run in runs {
+                self.text_run(t, run);
             }
         }
+    }
+
+    /// One run of glyphs of one format: `(section, x, baseline y, end x, text)` (points).
+    fn text_run(&mut self, t: &egui::epaint::TextShape, run: (usize, f32, f32, f32, String)) {
+        let (section, x, y, end, text) = run;
+        if text.trim().is_empty() {
+            return;
+        }
+        let Some(s) = t.galley.job.sections.get(section) else {
+            return;
+        };
+        let f = &s.format;
+        let color = match (t.override_text_color, f.color == Color32::PLACEHOLDER) {
+            (Some(o), _) => o,
+            (None, true) => t.fallback_color,
+            (None, false) => f.color,
+        };
+        let family = match f.font_id.family {
+            egui::FontFamily::Monospace => MONO_LIST,
+            _ => SANS_LIST,
+        };
+        let mut extra = String::new();
+        if t.angle != 0.0 {
+            let (px, py) = (self.px(t.pos.x), self.px(t.pos.y));
+            let _ = write!(
+                extra,
+                " transform=\"rotate({} {px} {py})\"",
+                t.angle.to_degrees()
+            );
+        }
+        if f.italics {
+            extra.push_str(" font-style=\"italic\"");
+        }
+        let (fill, opacity) = unmultiply(color);
+        if opacity < 1.0 {
+            let _ = write!(extra, " fill-opacity=\"{opacity:.3}\"");
+        }
+        let _ = writeln!(
+            self.out,
+            "<text x=\"{}\" y=\"{}\" font-family=\"{family}\" font-size=\"{}\" \
+             textLength=\"{}\" lengthAdjust=\"spacingAndGlyphs\" fill=\"{fill}\"{extra} \
+             xml:space=\"preserve\">{}</text>",
+            self.px(x),
+            self.px(y),
+            self.px(f.font_id.size),
+            self.px(end - x),
+            escape(&text)
+        );
     }
 }
 

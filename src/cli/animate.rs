@@ -1,0 +1,110 @@
+//! `armlab animate MODEL --what self-motion|postures|dh-frames|path`: an animation to GIF or
+//! APNG (by the extension of `--out`).
+
+use super::CliError;
+use super::figures::{Size, ThemeArg};
+use crate::animation::{Motion, plan};
+use std::io::Write;
+use std::path::PathBuf;
+
+/// What to animate.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum WhatArg {
+    /// The hand held still while the elbow sweeps the feasible interval (redundant arms).
+    SelfMotion,
+    /// A morph between the closed-form postures of one hand pose, with the ghosts.
+    Postures,
+    /// The DH build: each A_i as Rot(z, theta) Trans(z, d) Trans(x, a) Rot(x, alpha).
+    DhFrames,
+    /// A straight tool path with the joint rates plotted beside it.
+    Path,
+}
+
+/// Arguments of `armlab animate`.
+#[derive(Debug, clap::Args)]
+pub struct AnimateArgs {
+    /// Built-in name, model file (.toml) or URDF.
+    pub model: String,
+    /// What to animate.
+    #[arg(long, value_enum)]
+    pub what: WhatArg,
+    /// Output file: .gif (256 colours a frame) or .apng / .png (animated PNG, lossless).
+    #[arg(long, default_value = "animation.gif")]
+    pub out: PathBuf,
+    /// Frame size, WIDTHxHEIGHT.
+    #[arg(long, default_value = "800x600")]
+    pub size: Size,
+    /// Frames per second (1 to 60).
+    #[arg(long, default_value_t = 30)]
+    pub fps: u32,
+    /// Length (s); default 5 s, for the DH build 1.5 s per joint.
+    #[arg(long)]
+    pub seconds: Option<f64>,
+    /// Light or dark.
+    #[arg(long, value_enum, default_value_t = ThemeArg::Light)]
+    pub theme: ThemeArg,
+}
+
+/// Runs `armlab animate`.
+pub(super) fn run(args: &AnimateArgs, out: &mut dyn Write) -> Result<(), CliError> {
+    let (robot, _) = super::arm_robot(super::load_model(&args.model)?, None)?;
+    if !(1..=60).contains(&args.fps) {
+        return Err(CliError::Usage("--fps must be between 1 and 60"));
+    }
+    let motion = match args.what {
+        WhatArg::SelfMotion => Motion::SelfMotion,
+        WhatArg::Postures => Motion::Postures,
+        WhatArg::DhFrames => Motion::DhFrames,
+        WhatArg::Path => Motion::Path,
+    };
+    let seconds = args.seconds.unwrap_or(match motion {
+        Motion::DhFrames => 1.5 * robot.dof() as f64,
+        _ => 5.0,
+    });
+    if !(seconds > 0.0 && seconds <= 600.0) {
+        return Err(CliError::Usage(
+            "--seconds must be more than 0 and at most 600",
+        ));
+    }
+    let frames = ((seconds * f64::from(args.fps)).round() as usize).max(2);
+    let ext = args
+        .out
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase)
+        .unwrap_or_default();
+    if !matches!(ext.as_str(), "gif" | "apng" | "png") {
+        return Err(CliError::Usage(
+            "--out must end in .gif, .apng or .png (MP4 is not written: no maintained \
+             pure-Rust encoder)",
+        ));
+    }
+    let bad = |reason: String| CliError::BadTarget {
+        source_name: args.model.clone(),
+        reason,
+    };
+    let anim = plan(&robot, motion, frames, seconds).map_err(|e| bad(e.to_string()))?;
+    let mut figs = crate::figure::figures::Figures::new()?;
+    let images =
+        crate::figure::animation::frames(&mut figs, &robot, &anim, args.size.0, args.theme.into())?;
+    let file = std::fs::File::create(&args.out)
+        .map_err(|e| CliError::Export(format!("{}: {e}", args.out.display())))?;
+    let w = std::io::BufWriter::new(file);
+    let encoded = if ext == "gif" {
+        crate::figure::animation::encode_gif(&images, args.fps, w)
+    } else {
+        crate::figure::animation::encode_apng(&images, args.fps, w)
+    };
+    encoded.map_err(|e| CliError::Export(format!("{}: {e}", args.out.display())))?;
+    writeln!(
+        out,
+        "wrote {} ({} frames, {}x{}, {} fps, {seconds:.2} s): {}",
+        args.out.display(),
+        images.len(),
+        args.size.0[0],
+        args.size.0[1],
+        args.fps,
+        anim.title
+    )?;
+    Ok(())
+}
