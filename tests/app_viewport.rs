@@ -9,6 +9,7 @@ use armlab::app::viewport::{Viewport3d, build_scene};
 use armlab::render::Gpu;
 use armlab::scene::{ArmStyle, MeshInstance, arm_scene};
 use armlab::ui_render::offscreen::Offscreen;
+use egui_kittest::Harness;
 
 fn gpu() -> Gpu {
     Gpu::new_headless().unwrap_or_else(|e| panic!("{e}"))
@@ -334,4 +335,53 @@ fn a_tree_labels_only_the_driven_chain_unless_asked() {
             j + 1
         );
     }
+}
+
+/// No two scene labels overlap, and none leaves the 3D view, in the live window at 1280x800:
+/// every built-in, and the biggest robots of the real-robot corpus (Baxter, PR2, Romeo), whose
+/// views label the driven chain only. The labels are those the placer drew this frame.
+#[test]
+fn scene_labels_never_overlap_in_the_window() {
+    let corpus = ["baxter", "pr2", "romeo"]
+        .map(|n| format!("{}/tests/data/urdf_corpus/{n}.urdf", env!("CARGO_MANIFEST_DIR")));
+    let specs: Vec<String> = armlab::kinematics::models::BUILT_INS
+        .iter()
+        .map(|b| b.name.to_string())
+        .chain(corpus)
+        .collect();
+    let gpu = gpu();
+    let mut offscreen = Offscreen::new(&gpu.device);
+    let mut vp = Viewport3d::adaptive(gpu.clone()).unwrap();
+    let mut total = 0;
+    for spec in &specs {
+        let state = AppState::from_spec(spec).unwrap_or_else(|e| panic!("{spec}: {e}"));
+        let mut h = Harness::builder()
+            .with_size(egui::vec2(1280.0, 800.0))
+            .build_ui_state(|ui, app: &mut AppUi| app.show(ui, None), AppUi::new(state));
+        h.run();
+        // The scene's labels come with a rendered frame, as in the window.
+        h.state_mut()
+            .render_viewport(&mut vp, offscreen.renderer_mut(), false)
+            .unwrap_or_else(|| panic!("{spec}: the view was not rendered"));
+        h.run();
+        let app = h.state();
+        let view = app.tabs.view3d.viewport_rect;
+        let placed = &app.tabs.view3d.placed_labels;
+        assert!(!placed.is_empty(), "{spec}: no labels were drawn");
+        total += placed.len();
+        for (i, a) in placed.iter().enumerate() {
+            assert!(
+                view.expand(0.5).contains_rect(*a),
+                "{spec}: label {a:?} leaves the view {view:?}"
+            );
+            for b in &placed[i + 1..] {
+                let overlap = a.intersect(*b);
+                assert!(
+                    !overlap.is_positive(),
+                    "{spec}: labels {a:?} and {b:?} overlap"
+                );
+            }
+        }
+    }
+    assert!(total > 5 * specs.len(), "{total} labels in all");
 }

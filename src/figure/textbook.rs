@@ -247,15 +247,23 @@ fn spherical_wrist(
     // Top: the whole arm; bottom: the wrist close up, the same scene.
     let panel = [size[0], size[1] / 2];
     let whole = framing(&crate::scene::arm_points(robot, q)?, panel);
-    let r = 0.8 * w.d6;
-    let near: Vec<nalgebra::Point3<f32>> = [-1.0, 1.0]
+    // The close-up: the wrist, p_e and the tip of a_e filling the panel, seen from the side of
+    // a_e (so the segment -d6 a_e is long on the page and its label stands clear of p_W's).
+    let r = 0.5 * w.d6;
+    let tip = w.p_e + w.a_e * (1.5 * w.d6);
+    let mut near: Vec<nalgebra::Point3<f32>> = [-1.0, 1.0]
         .iter()
         .flat_map(|sx| [-1.0, 1.0].map(|sy| (sx, sy)))
         .flat_map(|(sx, sy)| {
             [-1.0, 1.0].map(|sz| point32(&(w.p_w + Vector3::new(sx * r, sy * r, sz * r))))
         })
         .collect();
-    let close = framing(&near, panel);
+    near.extend([point32(&w.p_e), point32(&tip)]);
+    let mut close = crate::camera::Camera::default();
+    close.set_preset(Preset::Iso);
+    close.yaw = (w.a_e.y.atan2(w.a_e.x) + std::f64::consts::FRAC_PI_2) as f32;
+    close.pitch = 0.5;
+    close.fit_points(&near, panel[0], panel[1], 0.7);
     let subtitle = format!(
         "p_W = p_e - d6 a_e (2.93) = ({:.3}, {:.3}, {:.3}) m: it depends on q1-q3 only",
         w.p_w.x, w.p_w.y, w.p_w.z
