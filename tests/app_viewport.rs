@@ -342,8 +342,12 @@ fn a_tree_labels_only_the_driven_chain_unless_asked() {
 /// views label the driven chain only. The labels are those the placer drew this frame.
 #[test]
 fn scene_labels_never_overlap_in_the_window() {
-    let corpus = ["baxter", "pr2", "romeo"]
-        .map(|n| format!("{}/tests/data/urdf_corpus/{n}.urdf", env!("CARGO_MANIFEST_DIR")));
+    let corpus = ["baxter", "pr2", "romeo"].map(|n| {
+        format!(
+            "{}/tests/data/urdf_corpus/{n}.urdf",
+            env!("CARGO_MANIFEST_DIR")
+        )
+    });
     let specs: Vec<String> = armlab::kinematics::models::BUILT_INS
         .iter()
         .map(|b| b.name.to_string())
