@@ -5,6 +5,7 @@
 
 use super::figures::{Figures, Scene3d};
 use super::plot2d::{Curve, Plot2d};
+use super::self_motion::JOINT_COLORS;
 use super::{FigureError, Theme};
 use crate::animation::{Animation, Shot};
 use crate::camera::{Camera, Preset};
@@ -13,17 +14,6 @@ use crate::scene::{ArmStyle, Label, Line, Scene, arm_scene, point32};
 use egui::Color32;
 use rayon::prelude::*;
 
-/// Joint colours of the rate plot (as the self-motion figure's).
-const JOINT_COLORS: [[u8; 3]; 8] = [
-    [31, 119, 180],
-    [255, 127, 14],
-    [44, 160, 44],
-    [214, 39, 40],
-    [148, 103, 189],
-    [140, 86, 75],
-    [227, 119, 194],
-    [120, 120, 120],
-];
 
 /// Share of the height the 3D view keeps when a plot stands under it.
 const VIEW_SHARE: f32 = 0.62;

@@ -9,8 +9,8 @@ use crate::kinematics::Robot;
 use crate::redundancy::sampler::SelfMotionSamples;
 use egui::Color32;
 
-/// Joint colours (colour-blind safe), by joint index.
-const JOINT_COLORS: [[u8; 3]; 7] = [
+/// Joint colours (colour-blind safe), by joint index (the animations' rate plot uses them too).
+pub(crate) const JOINT_COLORS: [[u8; 3]; 7] = [
     [0, 114, 178],
     [213, 94, 0],
     [0, 158, 115],

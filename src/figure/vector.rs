@@ -3,7 +3,7 @@
 //! (a raster map, a 3D view) embedded as PNG; and that SVG turned into a PDF with its fonts
 //! embedded ([`svg_to_pdf`], the `app` feature).
 //!
-//! Every figure is an egui layout ([`super::Figures`]), so one writer covers them all and the
+//! Every figure is an egui layout ([`super::figures::Figures`]), so one writer covers them all and the
 //! vector file has the PNG's layout by construction. A plot curve that is a union of circular
 //! arcs ([`PlotArc`]) is painted during a capture in a tag colour of its own; the writer swaps
 //! the tagged polyline for the exact arcs, in the same place in the paint order and clip.
