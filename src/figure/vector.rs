@@ -159,10 +159,12 @@ impl VectorPage {
 }
 
 /// Family names written for egui's fonts (those [`font_database`] loads for the PDF).
+#[cfg(feature = "app")]
 const SANS: &str = "Ubuntu";
 /// What the SVG asks for: egui's Ubuntu Light where the reader has it, else a sans-serif.
 const SANS_LIST: &str = "Ubuntu, 'Ubuntu Light', sans-serif";
 const MONO_LIST: &str = "Hack, monospace";
+#[cfg(feature = "app")]
 const MONO: &str = "Hack";
 
 /// Writes `page` as a standalone SVG document (pixel units, the PNG's size).
