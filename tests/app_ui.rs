@@ -501,3 +501,12 @@ fn the_exercise_tab_grades_a_typed_dh_table() {
     };
     assert!(!app.state.hidden.dh_table && app.tabs.exercise.sheet.is_none());
 }
+
+#[test]
+fn the_record_button_starts_and_stops_a_recording() {
+    let mut h = harness(AppUi::new(AppState::from_spec("planar3").unwrap()));
+    h.get_by_label("Record").click();
+    h.run();
+    assert!(h.state().recorder.is_some());
+    assert!(h.query_by_label("Stop (0)").is_some());
+}

@@ -389,3 +389,45 @@ fn scene_labels_never_overlap_in_the_window() {
     }
     assert!(total > 5 * specs.len(), "{total} labels in all");
 }
+
+/// The Record button's path: what the 3D view draws is kept (at most ten frames a second),
+/// drawn again and written as a GIF with the view's size and the recording's timing.
+#[test]
+fn recording_the_view_saves_its_frames_as_a_gif() {
+    use armlab::app::recorder::{FPS, Recorder};
+    let gpu = gpu();
+    let mut offscreen = Offscreen::new(&gpu.device);
+    let mut vp = Viewport3d::adaptive(gpu.clone()).unwrap();
+    let mut app = AppUi::new(AppState::from_spec("planar3").unwrap());
+    app.tabs.view3d.viewport_px = [321, 240];
+    app.recorder = Some(Recorder::default());
+    for k in 0..4 {
+        app.state.set_q(&[0.3 * k as f64, 0.5, -0.4]).unwrap();
+        // Drawn twice: the second comes too soon after the first and is not kept.
+        for _ in 0..2 {
+            app.render_viewport(&mut vp, offscreen.renderer_mut(), false)
+                .unwrap();
+        }
+        std::thread::sleep(std::time::Duration::from_millis(1000 / u64::from(FPS) + 10));
+    }
+    let rec = app.recorder.take().unwrap();
+    assert_eq!(rec.len(), 4);
+    let gif_bytes = rec.finish().unwrap();
+    let mut opts = gif::DecodeOptions::new();
+    opts.set_color_output(gif::ColorOutput::RGBA);
+    let mut dec = opts.read_info(gif_bytes.as_slice()).unwrap();
+    assert_eq!((dec.width(), dec.height()), (320, 240), "an even size");
+    let mut frames = 0;
+    let mut centis = 0;
+    let mut changed = 0;
+    while let Some(f) = dec.read_next_frame().unwrap() {
+        frames += 1;
+        centis += u32::from(f.delay);
+        if frames > 1 && f.width > 1 {
+            changed += 1;
+        }
+    }
+    assert_eq!(frames, 4);
+    assert_eq!(centis, 40, "ten frames a second");
+    assert_eq!(changed, 3, "the arm moved between every two frames");
+}

@@ -73,6 +73,8 @@ pub enum Action {
     ToggleSidePanels,
     /// Save the window as a PNG.
     Screenshot,
+    /// Start recording the 3D view, or stop and save the recording as a GIF.
+    Record,
     /// The shortcut help.
     ToggleHelp,
     /// Show a central tab by its index.

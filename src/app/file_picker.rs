@@ -145,15 +145,26 @@ pub fn deliver_png(
 ) -> Result<String, String> {
     let mut png = Vec::new();
     crate::figure::encode_png(img, &mut png).map_err(|e| e.to_string())?;
-    let name = format!("armlab-{stem}.png");
-    if picker.download(&name, "image/png", &png) {
+    deliver_bytes(picker, &png, stem, ("png", "image/png"))
+}
+
+/// Saves `bytes` as `armlab-<stem>-<n>.<ext>` (the first free n) in the current folder, or
+/// offers them as a download in a browser; returns the message for the status bar.
+pub fn deliver_bytes(
+    picker: &mut dyn FilePicker,
+    bytes: &[u8],
+    stem: &str,
+    (ext, mime): (&str, &str),
+) -> Result<String, String> {
+    let name = format!("armlab-{stem}.{ext}");
+    if picker.download(&name, mime, bytes) {
         return Ok(format!("downloading {name}"));
     }
     let path = (1..1000)
-        .map(|n| PathBuf::from(format!("armlab-{stem}-{n}.png")))
+        .map(|n| PathBuf::from(format!("armlab-{stem}-{n}.{ext}")))
         .find(|p| !p.exists())
         .ok_or_else(|| "no free file name".to_string())?;
-    std::fs::write(&path, png).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+    std::fs::write(&path, bytes).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
     Ok(format!("saved {}", full_path(&path).display()))
 }
 

@@ -13,6 +13,8 @@ pub mod layout;
 pub mod lesson;
 pub mod panels;
 pub mod probe;
+#[cfg(feature = "app")]
+pub mod recorder;
 pub mod screenshot;
 pub mod settings;
 pub mod shell;
@@ -102,6 +104,12 @@ impl eframe::App for ArmlabApp {
             ui.ctx()
                 .send_viewport_cmd(egui::ViewportCommand::Title(title.clone()));
             self.title = title;
+        }
+        #[cfg(feature = "app")]
+        if self.ui.recorder.is_some() {
+            // Recording: keep drawing the view (and offering its frames) while nothing moves.
+            ui.ctx()
+                .request_repaint_after(std::time::Duration::from_millis(100));
         }
         if std::mem::take(&mut self.ui.screenshot_requested) {
             self.save_screenshot();

@@ -36,6 +36,9 @@ pub struct AppUi {
     pub show_help: bool,
     /// Set by the Screenshot button; the frame loop saves the window and clears it.
     pub screenshot_requested: bool,
+    /// The 3D view being recorded (the toolbar's Record button).
+    #[cfg(feature = "app")]
+    pub recorder: Option<super::recorder::Recorder>,
     /// Window size in points, from the last layout (the screenshot button renders at it).
     pub window_points: [f32; 2],
     /// File dialogs: native in the window, none in tests and screenshots.
@@ -92,6 +95,8 @@ impl AppUi {
             ik: IkPanel::default(),
             show_help: false,
             screenshot_requested: false,
+            #[cfg(feature = "app")]
+            recorder: None,
             window_points: [1280.0, 800.0],
             file_picker: Box::new(NoDialogs),
             browser: FileBrowser::default(),
@@ -179,6 +184,7 @@ impl AppUi {
             | Action::ToggleProjector
             | Action::ToggleSidePanels
             | Action::Screenshot
+            | Action::Record
             | Action::ToggleHelp
             | Action::ShowTab(_) => self.apply_view(action),
             Action::Message(level, text) => self.state.push_message(level, text),
@@ -214,6 +220,7 @@ impl AppUi {
             Action::ToggleProjector => self.layout.projector ^= true,
             Action::ToggleSidePanels => self.layout.toggle_side_panels(),
             Action::Screenshot => self.screenshot_requested = true,
+            Action::Record => self.toggle_recording(),
             Action::ToggleHelp => self.show_help ^= true,
             Action::ShowTab(k) => self.tab = k.min(Tabs::COUNT - 1),
             _ => {}
@@ -461,6 +468,41 @@ impl AppUi {
         self.tabs.view3d.gizmo_grip(&self.state, self.ee())
     }
 
+    /// Starts recording the 3D view, or stops and saves what was recorded as
+    /// `armlab-<model>-<n>.gif` (a download in a browser); the result is said in the status bar.
+    fn toggle_recording(&mut self) {
+        #[cfg(feature = "app")]
+        match self.recorder.take() {
+            None => {
+                self.recorder = Some(super::recorder::Recorder::default());
+                self.state.push_message(
+                    Level::Info,
+                    "recording the 3D view: press Stop to save it as a GIF",
+                );
+            }
+            Some(rec) => {
+                let n = rec.len();
+                let stem = self.state.robot().name.to_lowercase().replace(' ', "_");
+                let saved = rec.finish().and_then(|gif| {
+                    super::file_picker::deliver_bytes(
+                        self.file_picker.as_mut(),
+                        &gif,
+                        &stem,
+                        ("gif", "image/gif"),
+                    )
+                });
+                match saved {
+                    Ok(m) => self
+                        .state
+                        .push_message(Level::Info, format!("{m} ({n} frames)")),
+                    Err(e) => self
+                        .state
+                        .push_message(Level::Error, format!("recording failed: {e}")),
+                }
+            }
+        }
+    }
+
     /// Frames the arm in the 3D view.
     pub fn fit(&mut self) {
         self.tabs.view3d.fit(&self.state);
@@ -490,6 +532,11 @@ impl AppUi {
             };
             let path = self.state.display.self_motion_path;
             super::viewport::add_self_motion(&mut scene, self.state.robot(), &view, &ghosts, path);
+        }
+        #[cfg(feature = "app")]
+        if let Some(rec) = &mut self.recorder {
+            let view = &self.tabs.view3d;
+            rec.offer(&scene, view.camera, view.viewport_px, dark);
         }
         match self.tabs.view3d.render(vp, registry, scene, dark) {
             Ok(image) => Some(image),
@@ -630,6 +677,8 @@ impl AppUi {
                 projection: self.tabs.view3d.camera.projection,
                 display: &mut self.state.display,
                 follow: &mut self.tabs.view3d.follow,
+                #[cfg(feature = "app")]
+                recording: self.recorder.as_ref().map(super::recorder::Recorder::len),
             };
             super::toolbar::show(&mut cx, ui, &mut out);
         });

@@ -23,6 +23,9 @@ pub struct ToolbarContext<'a> {
     pub display: &'a mut DisplayToggles,
     /// The 3D view's camera follows the IK target.
     pub follow: &'a mut bool,
+    /// Frames recorded so far while the 3D view is being recorded.
+    #[cfg(feature = "app")]
+    pub recording: Option<usize>,
 }
 
 /// Lays the toolbar out.
@@ -71,6 +74,24 @@ pub fn show(app: &mut ToolbarContext<'_>, ui: &mut egui::Ui, out: &mut Actions) 
             .clicked()
         {
             out.push(Action::Screenshot);
+        }
+        // Record, except in projector mode where the row has no room for it (1200 px); a
+        // recording in progress always shows its Stop.
+        #[cfg(feature = "app")]
+        if app.recording.is_some() || !projector || ui.available_width() > 130.0 {
+            let (label, hint) = match app.recording {
+                None => (
+                    "Record".to_string(),
+                    "Record what the 3D view shows; Stop saves it as armlab-<model>-<n>.gif",
+                ),
+                Some(n) => (
+                    format!("Stop ({n})"),
+                    "Stop recording and save the GIF (frames recorded so far)",
+                ),
+            };
+            if ui.button(label).on_hover_text(hint).clicked() {
+                out.push(Action::Record);
+            }
         }
         if ui.button("Help (H)").clicked() {
             out.push(Action::ToggleHelp);

@@ -14,7 +14,6 @@ use crate::scene::{ArmStyle, Label, Line, Scene, arm_scene, point32};
 use egui::Color32;
 use rayon::prelude::*;
 
-
 /// Share of the height the 3D view keeps when a plot stands under it.
 const VIEW_SHARE: f32 = 0.62;
 
