@@ -295,6 +295,67 @@ fn workspace_svg_boundary_is_exact_arcs_enclosing_the_exact_area() {
     }
 }
 
+/// The area (m^2) of the filled region paths of class mask `mask` (`class="region"`).
+fn region_area(svg: &str, mask: u8) -> f64 {
+    let paths: Vec<&str> = paths_of_class(svg, "region")
+        .into_iter()
+        .filter(|p| attr(p, "data-mask") == Some(&mask.to_string()))
+        .collect();
+    assert_eq!(paths.len(), 1, "one region of mask {mask}");
+    let d = attr(paths[0], "d").unwrap();
+    assert!(d.contains('A') && d.ends_with('Z'), "{d}");
+    // Closed loops of arcs (or, failing that, fans from the page's corner whose radial sides
+    // cancel): Green's integral over them is the region's area (on the page, y down, with the
+    // opposite sign); the scale is the boundary paths' frame and bounds.
+    let b = paths_of_class(svg, "boundary")[0];
+    let f: Vec<f64> = attr(b, "data-frame")
+        .unwrap()
+        .split(' ')
+        .map(|v| v.parse().unwrap())
+        .collect();
+    let bb: Vec<f64> = attr(b, "data-bounds")
+        .unwrap()
+        .split(' ')
+        .map(|v| v.parse().unwrap())
+        .collect();
+    let scale = (f[2] - f[0]) / (bb[1] - bb[0]) * (f[3] - f[1]) / (bb[3] - bb[2]);
+    -green_of_path(&d.replace('Z', "")) / scale
+}
+
+/// The posture regions of an exact map are disjoint filled paths bounded by the exact arcs (no
+/// raster): elbow down alone + elbow up alone + both = the reachable area.
+#[test]
+fn exact_regions_are_filled_arc_paths() {
+    use std::f64::consts::PI;
+    let path = tmp("fig230-fills.svg");
+    armlab(&["figure", "2.30", "--out", path.to_str().unwrap()]);
+    let svg = std::fs::read_to_string(&path).unwrap();
+    assert!(
+        !svg.contains("<image"),
+        "the regions are vectors, not an embedded raster"
+    );
+    let (a, b, both) = (
+        region_area(&svg, 1),
+        region_area(&svg, 2),
+        region_area(&svg, 3),
+    );
+    let exact = two_link_area(1.0, 1.0, [-PI / 2.0, PI / 2.0], [-0.75 * PI, PI / 2.0]);
+    let union = a + b + both;
+    assert!(
+        (union - exact).abs() <= 1e-6 * exact,
+        "{a} + {b} + {both} = {union}, the exact area is {exact}"
+    );
+    // Elbow down (q2 in [0, pi/2], alone or with elbow up) is one-to-one over its joint box:
+    // (q1 range) a1 a2 (cos 0 - cos pi/2).
+    let elbow_down = PI * (1.0 - (PI / 2.0).cos());
+    assert!(
+        (a + both - elbow_down).abs() < 1e-6 * elbow_down
+            || (b + both - elbow_down).abs() < 1e-6 * elbow_down,
+        "one class alone plus both is the elbow-down region ({elbow_down}): {a}, {b}, {both}"
+    );
+    assert!(a > 0.1 && b > 0.1 && both > 0.1, "{a}, {b}, {both}");
+}
+
 #[test]
 fn problem_2_17_svg_has_arcs_and_text() {
     let path = tmp("p217.svg");

@@ -3,6 +3,9 @@
 
 use super::vector::{self, PlotArc, TaggedArcs};
 use egui::Color32;
+
+/// Tag numbers of the exact fills (after those of the curves).
+const FILL_TAGS: usize = 3072;
 use egui_plot::{Corner, Legend, Line, LineStyle, Plot, PlotImage, PlotPoint, Points, Text};
 
 /// A polyline in plot coordinates.
@@ -37,6 +40,19 @@ pub struct Area {
     pub fill: Color32,
 }
 
+/// A region bounded by circular arcs (plot coordinates, the region on each arc's left), filled.
+/// A vector figure writes it as a filled path in place of the raster under the curves; the PNG
+/// shows the raster.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ArcFill {
+    /// The boundary arcs, in any order.
+    pub arcs: Vec<PlotArc>,
+    /// Fill colour.
+    pub color: Color32,
+    /// What the region is (the class mask of an exact map), written as `data-mask`.
+    pub mask: u8,
+}
+
 /// Everything a 2D figure shows.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Plot2d {
@@ -57,6 +73,8 @@ pub struct Plot2d {
     pub equal_aspect: bool,
     /// Filled areas.
     pub areas: Vec<Area>,
+    /// Exact regions a vector figure fills instead of the raster (painted in order).
+    pub fills: Vec<ArcFill>,
     /// Curves.
     pub curves: Vec<Curve>,
     /// Text labels at points (e.g. the letters of Fig. 2.30).
@@ -206,6 +224,22 @@ pub fn show_at(
         bounds: [b.min()[0], b.max()[0], b.min()[1], b.max()[1]],
     };
     if capturing {
+        for (k, f) in plot.fills.iter().enumerate() {
+            vector::register(
+                ui.ctx(),
+                TaggedArcs {
+                    tag: vector::tag_color(FILL_TAGS + k),
+                    arcs: f.arcs.clone(),
+                    color: f.color,
+                    width: 0.0,
+                    dashed: false,
+                    class: "region",
+                    frame: frame.rect,
+                    bounds: frame.bounds,
+                    fill: Some(f.mask),
+                },
+            );
+        }
         for (k, c) in plot.curves.iter().enumerate() {
             if !c.arcs.is_empty() {
                 vector::register(
@@ -219,6 +253,7 @@ pub fn show_at(
                         class: c.class,
                         frame: frame.rect,
                         bounds: frame.bounds,
+                        fill: None,
                     },
                 );
             }
@@ -276,7 +311,20 @@ fn draw_items(
             [cx + 0.5 * w, cy + 0.5 * h],
         ));
     }
-    if let Some((id, [x0, x1, y0, y1])) = image {
+    let exact_fills = capturing && !plot.fills.is_empty();
+    for k in 0..plot.fills.len() {
+        if exact_fills {
+            // A stand-in the vector writer swaps for the filled region, here in the paint order.
+            let tag = vector::tag_color(FILL_TAGS + k);
+            pui.line(
+                Line::new("", vec![[x0, y0], [x0, y0]])
+                    .color(tag)
+                    .allow_hover(false)
+                    .allow_band(false),
+            );
+        }
+    }
+    if let Some((id, [x0, x1, y0, y1])) = image.filter(|_| !exact_fills) {
         let c = PlotPoint::new(0.5 * (x0 + x1), 0.5 * (y0 + y1));
         pui.image(PlotImage::new(
             "",

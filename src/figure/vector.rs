@@ -59,6 +59,9 @@ pub(crate) struct TaggedArcs {
     pub frame: Rect,
     /// `[x_min, x_max, y_min, y_max]` shown in the frame.
     pub bounds: [f64; 4],
+    /// A filled region (`color` its fill, the arcs closed into loops) of this class mask,
+    /// rather than a stroked curve.
+    pub fill: Option<u8>,
 }
 
 /// The egui memory slot of the tagged curves of the pass being captured.
@@ -410,15 +413,27 @@ impl SvgWriter<'_> {
             return true;
         }
         self.done_tags.push(color);
+        if let Some(mask) = t.fill {
+            let (c, o) = unmultiply(t.color);
+            let _ = writeln!(
+                self.out,
+                "<path class=\"{}\" data-mask=\"{mask}\" d=\"{}\" fill=\"{c}\" fill-opacity=\"{o:.3}\" \
+                 fill-rule=\"nonzero\" stroke=\"none\"/>",
+                t.class,
+                loops_path(t, self.ppp)
+            );
+            return true;
+        }
         let d = arcs_path(t, self.ppp);
         let dash = if t.dashed {
             format!(
                 " stroke-dasharray=\"{} {}\"",
                 self.px(10.0),
-                self.px(10.0 * 1.618_034)
-            )
+                // egui_plot's `dashed_loose`: 10 px dashes, gaps of 10 px times 0.618.
+                self.px(10.0 * 0.618_034)
+            ) + " stroke-linecap=\"butt\""
         } else {
-            String::new()
+            " stroke-linecap=\"round\"".to_owned()
         };
         let paint = paint_attrs(Color32::TRANSPARENT, t.color, self.px(t.width));
         // The plot's frame (px) and the data bounds shown in it, so that a reader can take the
@@ -427,7 +442,7 @@ impl SvgWriter<'_> {
         let ppp = f64::from(self.ppp);
         let _ = writeln!(
             self.out,
-            "<path class=\"{}\" d=\"{d}\"{paint}{dash} stroke-linecap=\"round\" \
+            "<path class=\"{}\" d=\"{d}\"{paint}{dash} \
              data-frame=\"{} {} {} {}\" data-bounds=\"{} {} {} {}\"/>",
             t.class,
             f64::from(f.min.x) * ppp,
@@ -627,6 +642,102 @@ impl SvgWriter<'_> {
             escape(&text)
         );
     }
+}
+
+/// The SVG path of a filled region whose boundary arcs come in any order: the arcs chained into
+/// closed loops (each arc continued by an unused one starting where it ends, a loop closed when
+/// none does), each loop one subpath ending in `Z`. The region is where the arcs' winding
+/// numbers sum to 1, and the sum is the same however the arcs are grouped into closed loops, so
+/// `fill-rule="nonzero"` fills exactly the region whichever arc continues a junction of several. Loops that do not close (the arcs' ends more than
+/// `tol` apart) are reported by `None`.
+fn chain_loops(arcs: &[PlotArc], tol: f64) -> Option<Vec<Vec<PlotArc>>> {
+    let dist = |p: [f64; 2], q: [f64; 2]| (p[0] - q[0]).hypot(p[1] - q[1]);
+    let at = |a: &PlotArc, t: f64| {
+        [
+            a.centre[0] + a.radius * t.cos(),
+            a.centre[1] + a.radius * t.sin(),
+        ]
+    };
+    let first = |a: &PlotArc| at(a, a.start);
+    let last = |a: &PlotArc| at(a, a.start + a.sweep);
+    // Arcs shorter than the tolerance (where two boundaries cross at a point) only join others.
+    let arcs: Vec<PlotArc> = arcs
+        .iter()
+        .filter(|a| (a.radius * a.sweep).abs() >= tol)
+        .copied()
+        .collect();
+    let mut used = vec![false; arcs.len()];
+    let mut loops = Vec::new();
+    while let Some(i0) = used.iter().position(|u| !u) {
+        used[i0] = true;
+        let mut chain = vec![arcs[i0]];
+        let origin = first(&arcs[i0]);
+        loop {
+            let end = chain.last().map_or(origin, last);
+            // The nearest unused arc starting at this end.
+            let next = (0..arcs.len())
+                .filter(|&i| !used[i])
+                .map(|i| (i, dist(first(&arcs[i]), end)))
+                .filter(|&(_, d)| d < tol)
+                .min_by(|a, b| a.1.total_cmp(&b.1));
+            match next {
+                Some((i, _)) => {
+                    used[i] = true;
+                    chain.push(arcs[i]);
+                }
+                None if dist(end, origin) < tol => break,
+                None => return None,
+            }
+        }
+        loops.push(chain);
+    }
+    Some(loops)
+}
+
+/// The SVG path of a filled region (see [`chain_loops`]): one `Z`-closed subpath per loop. Arcs
+/// that do not close into loops (not seen on the exact planar regions) fall back to one fan
+/// `M 0 0 L start A ... end Z` per arc from the page's corner, whose winding numbers also sum to
+/// the region's, though some PDF rasterizers show the cancelling sides as hairlines.
+fn loops_path(t: &TaggedArcs, ppp: f32) -> String {
+    let span = (t.bounds[1] - t.bounds[0])
+        .abs()
+        .max((t.bounds[3] - t.bounds[2]).abs());
+    let mut d = String::new();
+    if let Some(loops) = chain_loops(&t.arcs, 1e-7 * span.max(1e-9)) {
+        for arcs in loops {
+            // Each arc continues the subpath (its own `M` dropped after the first: ends within
+            // the tolerance but not within `arcs_path`'s would otherwise start a new subpath,
+            // which a filler closes with a chord).
+            for (k, a) in arcs.iter().enumerate() {
+                let piece = arcs_path(
+                    &TaggedArcs {
+                        arcs: vec![*a],
+                        ..t.clone()
+                    },
+                    ppp,
+                );
+                let cut = if k == 0 {
+                    0
+                } else {
+                    piece.find('A').unwrap_or(0)
+                };
+                d.push_str(&piece[cut..]);
+            }
+            d.push('Z');
+        }
+        return d;
+    }
+    for a in &t.arcs {
+        let piece = TaggedArcs {
+            arcs: vec![*a],
+            ..t.clone()
+        };
+        let arc = arcs_path(&piece, ppp);
+        d.push_str("M0 0L");
+        d.push_str(arc.trim_start_matches('M'));
+        d.push('Z');
+    }
+    d
 }
 
 /// The SVG path of a tagged curve: each arc as an `A` command (split at half turns), in pixels.

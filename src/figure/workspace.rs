@@ -187,6 +187,7 @@ pub fn paint(
             {
                 add_plane_marks(&mut plot, marks);
             }
+            add_exact_fills(&mut plot, map, opts.color_by);
             let raster = paint_map(map, opts.color_by);
             let (image, frame) =
                 figs.plot_at(opts.size, opts.theme, &plot, Some((raster, frame.bounds)))?;
@@ -557,6 +558,27 @@ fn class_color(mask: u8, classes: usize, color_by: ColorBy) -> [u8; 3] {
         1 => CLASS_COLORS[(mask.trailing_zeros() as usize).min(CLASS_COLORS.len() - 1)],
         _ => SEVERAL,
     }
+}
+
+/// The map's exact regions (planar arms), in the raster's class colours, for a vector figure
+/// to fill instead of the raster; none when the map shows values (a colour map stays an image).
+fn add_exact_fills(plot: &mut Plot2d, map: &WorkspaceMap, color_by: ColorBy) {
+    if map.values.is_some() {
+        return;
+    }
+    let classes = map.class_names.len();
+    plot.fills = map
+        .fills
+        .iter()
+        .map(|f| {
+            let c = class_color(f.mask, classes, color_by);
+            super::plot2d::ArcFill {
+                arcs: f.arcs.iter().map(|a| (*a).into()).collect(),
+                color: Color32::from_rgba_unmultiplied(c[0], c[1], c[2], 235),
+                mask: f.mask,
+            }
+        })
+        .collect();
 }
 
 /// The map's pixels: class colours (or the values' colour map), edge cells blended by their

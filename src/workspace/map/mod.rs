@@ -144,6 +144,17 @@ pub struct MapCurve {
     pub arc: Option<crate::workspace::exact::Arc>,
 }
 
+/// A region of an exact map as its exact boundary: the points whose class mask is `mask`, the
+/// points where the circular arcs' winding numbers sum to 1 (0 elsewhere; each closed loop of
+/// arcs has its inside on its left).
+#[derive(Debug, Clone, PartialEq)]
+pub struct MapFill {
+    /// Class bits the region's points all have (e.g. 1 for class 0, 3 for both classes).
+    pub mask: u8,
+    /// Its boundary (view coordinates, m).
+    pub arcs: Vec<crate::workspace::exact::Arc>,
+}
+
 /// A workspace map (see the module documentation).
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 #[must_use]
@@ -170,6 +181,11 @@ pub struct WorkspaceMap {
     pub method: String,
     /// Whether the regions are exact (decided by an exact test at each cell) rather than sampled.
     pub exact: bool,
+    /// The regions as exact boundaries where known (planar arms): the reachable set with one
+    /// class, else each class alone and the region both classes reach, disjoint. Vector figures
+    /// fill these instead of the cells. Not serialized.
+    #[serde(skip)]
+    pub fills: Vec<MapFill>,
 }
 
 impl WorkspaceMap {

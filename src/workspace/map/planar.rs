@@ -1,7 +1,9 @@
 //! Maps and statistics of two- and three-link planar arms from [`ExactPlanar`].
 
 use super::raster;
-use super::{CellValues, CurveRole, MapCurve, MapRequest, MapValues, MapView, WorkspaceMap};
+use super::{
+    CellValues, CurveRole, MapCurve, MapFill, MapRequest, MapValues, MapView, WorkspaceMap,
+};
 use crate::workspace::exact::{Arc, ExactPlanar, RegionSet};
 use crate::workspace::{Aabb, ClassMeasure, GridMethod, WorkspaceStats};
 use std::f64::consts::TAU;
@@ -32,6 +34,7 @@ pub(super) fn map(e: &ExactPlanar, req: &MapRequest, bounds: [f64; 4]) -> Worksp
         class_names: e.class_names().to_vec(),
         values,
         curves: curves(e, step),
+        fills: fills(e),
         method: if e.orientation_free() {
             "exact: closed-form IK with the orientation phi free (Sect. 2.12.1), decided between \
              the closed-form values of phi where a joint meets a limit"
@@ -40,6 +43,47 @@ pub(super) fn map(e: &ExactPlanar, req: &MapRequest, bounds: [f64; 4]) -> Worksp
             "exact: closed-form IK (Sect. 2.12.1) at each cell".into()
         },
         exact: true,
+    }
+}
+
+/// The exact regions to fill, each point in exactly one: the reachable set (one class); with two
+/// classes, each class alone (its boundary plus the reversed boundary of the region both reach,
+/// which lies inside it, so that the winding numbers are 1 only where the class alone reaches)
+/// and the region both reach. With more classes the regions of several but not all classes have
+/// no boundary here: none (a figure keeps the raster).
+fn fills(e: &ExactPlanar) -> Vec<MapFill> {
+    let arcs = |set: RegionSet| e.region(set).map(|r| r.arcs.clone());
+    match e.class_names().len() {
+        0 | 1 => arcs(RegionSet::Reachable)
+            .map(|arcs| MapFill { mask: 1, arcs })
+            .into_iter()
+            .collect(),
+        2 => {
+            let both = arcs(RegionSet::AllClasses).unwrap_or_default();
+            let reversed = both.iter().map(|a| Arc {
+                start: a.start + a.sweep,
+                sweep: -a.sweep,
+                ..*a
+            });
+            let mut out: Vec<MapFill> = (0..2u8)
+                .filter_map(|c| {
+                    let mut own = arcs(RegionSet::Class(c))?;
+                    own.extend(reversed.clone());
+                    Some(MapFill {
+                        mask: 1 << c,
+                        arcs: own,
+                    })
+                })
+                .collect();
+            if !both.is_empty() {
+                out.push(MapFill {
+                    mask: 3,
+                    arcs: both,
+                });
+            }
+            out
+        }
+        _ => Vec::new(),
     }
 }
 

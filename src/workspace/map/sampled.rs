@@ -117,6 +117,7 @@ pub(super) fn map(
         edges: Vec::new(),
         class_names: vec!["all".into()],
         values,
+        fills: Vec::new(),
         curves: Vec::new(),
         method: format!(
             "sampled: {} joint-space samples (seed {}), the rim refined by numerical IK",

@@ -516,6 +516,7 @@ impl Section {
             edges,
             class_names: self.class_names().to_vec(),
             values,
+            fills: Vec::new(),
             curves,
             method: match self.mode {
                 Mode::Position | Mode::Scara => format!(
