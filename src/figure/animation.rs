@@ -14,10 +14,11 @@ use crate::scene::{ArmStyle, Label, Line, Scene, arm_scene, point32};
 use egui::Color32;
 use rayon::prelude::*;
 
-/// Share of the height the 3D view keeps when a plot stands under it.
-const VIEW_SHARE: f32 = 0.62;
+/// Share of the page the 3D view keeps beside (or, on a portrait page, over) a plot.
+const VIEW_SHARE: f32 = 0.58;
 
-/// Every frame of `anim` at `size` pixels (a tool path's joint-rate plot under its view).
+/// Every frame of `anim` at `size` pixels (a tool path's joint-rate plot beside its view on a
+/// landscape page, under it on a portrait one).
 pub fn frames(
     figs: &mut Figures,
     robot: &Robot,
@@ -25,7 +26,9 @@ pub fn frames(
     size: [u32; 2],
     theme: Theme,
 ) -> Result<Vec<image::RgbaImage>, FigureError> {
+    let beside = size[0] >= size[1];
     let view = match anim.rates {
+        Some(_) if beside => [((size[0] as f32 * VIEW_SHARE) as u32).max(64), size[1]],
         Some(_) => [size[0], ((size[1] as f32 * VIEW_SHARE) as u32).max(64)],
         None => size,
     };
@@ -51,11 +54,15 @@ pub fn frames(
             continue;
         };
         let plot = rate_plot(robot, rates, shot.time);
-        let below = [size[0], size[1] - view[1]];
-        let chart = figs.plot(below, theme, &plot, None)?;
+        let (rest, at) = if beside {
+            ([size[0] - view[0], size[1]], [i64::from(view[0]), 0])
+        } else {
+            ([size[0], size[1] - view[1]], [0, i64::from(view[1])])
+        };
+        let chart = figs.plot(rest, theme, &plot, None)?;
         let mut page = image::RgbaImage::new(size[0], size[1]);
         image::imageops::overlay(&mut page, &img, 0, 0);
-        image::imageops::overlay(&mut page, &chart, 0, i64::from(view[1]));
+        image::imageops::overlay(&mut page, &chart, at[0], at[1]);
         out.push(page);
     }
     Ok(out)
