@@ -135,17 +135,7 @@ fn boundary_area(svg: &str) -> f64 {
         );
         assert!(d.contains('A'), "{d}");
         px2 += green_of_path(d);
-        let f: Vec<f64> = attr(p, "data-frame")
-            .unwrap()
-            .split(' ')
-            .map(|v| v.parse().unwrap())
-            .collect();
-        let b: Vec<f64> = attr(p, "data-bounds")
-            .unwrap()
-            .split(' ')
-            .map(|v| v.parse().unwrap())
-            .collect();
-        scale = (f[2] - f[0]) / (b[1] - b[0]) * (f[3] - f[1]) / (b[3] - b[2]);
+        scale = area_scale(p);
     }
     // The page's y axis points down: a boundary with the region on its left in the plane has
     // it on its right on the page, so the page integral is minus the area.
@@ -307,19 +297,21 @@ fn region_area(svg: &str, mask: u8) -> f64 {
     // Closed loops of arcs (or, failing that, fans from the page's corner whose radial sides
     // cancel): Green's integral over them is the region's area (on the page, y down, with the
     // opposite sign); the scale is the boundary paths' frame and bounds.
-    let b = paths_of_class(svg, "boundary")[0];
-    let f: Vec<f64> = attr(b, "data-frame")
-        .unwrap()
-        .split(' ')
-        .map(|v| v.parse().unwrap())
-        .collect();
-    let bb: Vec<f64> = attr(b, "data-bounds")
-        .unwrap()
-        .split(' ')
-        .map(|v| v.parse().unwrap())
-        .collect();
-    let scale = (f[2] - f[0]) / (bb[1] - bb[0]) * (f[3] - f[1]) / (bb[3] - bb[2]);
+    let scale = area_scale(paths_of_class(svg, "boundary")[0]);
     -green_of_path(&d.replace('Z', "")) / scale
+}
+
+/// Page px^2 per plot unit^2 of a tagged path, from its `data-frame` (px) and `data-bounds`.
+fn area_scale(path: &str) -> f64 {
+    let nums = |key: &str| -> Vec<f64> {
+        attr(path, key)
+            .unwrap()
+            .split(' ')
+            .map(|v| v.parse().unwrap())
+            .collect()
+    };
+    let (f, b) = (nums("data-frame"), nums("data-bounds"));
+    (f[2] - f[0]) / (b[1] - b[0]) * (f[3] - f[1]) / (b[3] - b[2])
 }
 
 /// The posture regions of an exact map are disjoint filled paths bounded by the exact arcs (no
