@@ -224,42 +224,48 @@ pub fn show_at(
         bounds: [b.min()[0], b.max()[0], b.min()[1], b.max()[1]],
     };
     if capturing {
-        for (k, f) in plot.fills.iter().enumerate() {
+        register_exact(ui.ctx(), plot, &frame);
+    }
+    frame
+}
+
+/// Registers a capture's exact pieces (the fills' and curves' arcs, in plot units, and the frame
+/// they are drawn in) for the vector writer to swap for their tag-coloured stand-ins.
+fn register_exact(ctx: &egui::Context, plot: &Plot2d, frame: &PlotFrame) {
+    for (k, f) in plot.fills.iter().enumerate() {
+        vector::register(
+            ctx,
+            TaggedArcs {
+                tag: vector::tag_color(FILL_TAGS + k),
+                arcs: f.arcs.clone(),
+                color: f.color,
+                width: 0.0,
+                dashed: false,
+                class: "region",
+                frame: frame.rect,
+                bounds: frame.bounds,
+                fill: Some(f.mask),
+            },
+        );
+    }
+    for (k, c) in plot.curves.iter().enumerate() {
+        if !c.arcs.is_empty() {
             vector::register(
-                ui.ctx(),
+                ctx,
                 TaggedArcs {
-                    tag: vector::tag_color(FILL_TAGS + k),
-                    arcs: f.arcs.clone(),
-                    color: f.color,
-                    width: 0.0,
-                    dashed: false,
-                    class: "region",
+                    tag: vector::tag_color(k),
+                    arcs: c.arcs.clone(),
+                    color: c.color,
+                    width: c.width,
+                    dashed: c.dashed,
+                    class: c.class,
                     frame: frame.rect,
                     bounds: frame.bounds,
-                    fill: Some(f.mask),
+                    fill: None,
                 },
             );
         }
-        for (k, c) in plot.curves.iter().enumerate() {
-            if !c.arcs.is_empty() {
-                vector::register(
-                    ui.ctx(),
-                    TaggedArcs {
-                        tag: vector::tag_color(k),
-                        arcs: c.arcs.clone(),
-                        color: c.color,
-                        width: c.width,
-                        dashed: c.dashed,
-                        class: c.class,
-                        frame: frame.rect,
-                        bounds: frame.bounds,
-                        fill: None,
-                    },
-                );
-            }
-        }
     }
-    frame
 }
 
 /// Bounds egui_plot can show: finite, each side at least a millimetre-scale width wide (a
