@@ -129,6 +129,22 @@ fn maps(c: &mut Criterion) {
             TrackedPoint::WristCentre,
         ),
         (
+            "arm+wrist flange top 1200x900 (exact, wrist-centre workspace + sphere)",
+            &arm,
+            MapView::Top,
+            MapValues::Classes,
+            [1200, 900],
+            TrackedPoint::Flange,
+        ),
+        (
+            "arm+wrist flange side 1200x900 (exact, wrist-centre workspace + sphere)",
+            &arm,
+            MapView::Side,
+            MapValues::Classes,
+            [1200, 900],
+            TrackedPoint::Flange,
+        ),
+        (
             "arm+wrist dexterity side 128x128",
             &arm,
             MapView::Side,
@@ -152,6 +168,14 @@ fn maps(c: &mut Criterion) {
     g.bench_function("planar3 exact workspace (boundary arcs, areas)", |b| {
         b.iter(|| ExactPlanar::new(black_box(&planar3)).unwrap())
     });
+    g.bench_function(
+        "arm+wrist flange statistics (Pappus volume, exact reach)",
+        |b| {
+            b.iter(|| {
+                map_statistics(black_box(&arm), TrackedPoint::Flange, &Default::default()).unwrap()
+            })
+        },
+    );
     g.bench_function("puma560 statistics (Pappus volume)", |b| {
         b.iter(|| {
             map_statistics(

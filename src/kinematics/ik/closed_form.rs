@@ -387,6 +387,16 @@ impl ClosedForm {
         self.dof
     }
 
+    /// The wrist centre in the tool frame (m) of a six-DOF arm with a spherical wrist (`None`
+    /// for other families): the point the wrist turns the tool about, so that the tool point
+    /// lies on a sphere of radius `|c|` about the wrist centre whatever the wrist joints.
+    pub fn wrist_centre_in_tool(&self) -> Option<Vector3<f64>> {
+        match &self.geometry {
+            Geometry::Decoupled { w6, .. } => Some((self.tool_inv * Point3::from(*w6)).coords),
+            _ => None,
+        }
+    }
+
     /// Every solution for the target, each labelled with its posture, revolute angles wrapped
     /// modulo 2 pi into the limits where possible (otherwise into (-pi, pi]), with
     /// `within_limits`, `position_error` and `orientation_error` computed by forward kinematics

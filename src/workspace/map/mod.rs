@@ -10,13 +10,16 @@
 //!   spherical, cylindrical; alone or with a spherical wrist, whose wrist centre is the tracked
 //!   point): the side view from the closed form of the arm with joint 1 free (the position
 //!   problem is planar in (r, z) after joint 1), the top view from the side view's radial extent
-//!   and joint 1's range, the volume by Pappus from the section ([`Section`]);
+//!   and joint 1's range, the volume by Pappus from the section ([`Section`]); the flange of
+//!   such an arm whose full-range wrist turns the tool in every direction is the wrist-centre
+//!   workspace grown by a sphere, decided on the section's boundary arcs (`arcs`);
 //! - any other arm: occupancy of joint-space samples.
 //!
 //! Cells along a region's edge are supersampled (4 x 4 exact tests) so that the painted edge is
 //! antialiased and lies on the exact boundary. Continuous values (the fraction of orientations,
 //! manipulability) come per cell with their name, unit and range.
 
+mod arcs;
 mod contour;
 mod planar;
 mod query;

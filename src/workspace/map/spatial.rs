@@ -10,11 +10,15 @@
 //! point (x, y) at radius r reached with a posture when some (r, z) is and q1 fits the azimuth;
 //! the volume is Pappus's integral of r times the azimuth measure over the section.
 //!
-//! Tracked point: the wrist centre (exact, position of the arm alone) or the flange. The
-//! flange of an arm with a spherical wrist and a flange offset is decided over the 64 approach
+//! Tracked point: the wrist centre (exact, position of the arm alone) or the flange. With no
+//! flange offset the flange is the wrist centre. The flange of an arm whose full-range spherical
+//! wrist turns the tool in every direction, with joint 1 full-range and the arm in a plane through
+//! its axis, is the wrist-centre workspace grown by a sphere, decided exactly on the section's
+//! boundary arcs ([`super::arcs`]). Any other flange offset is decided over the 64 approach
 //! directions of [`crate::workspace::approach_bin_centre`] (one roll each), which is not exact
-//! and is said so; with no offset the flange is the wrist centre.
+//! and is said so.
 
+use super::arcs::SectionArcs;
 use super::raster;
 use super::{CellValues, CurveRole, MapRequest, MapValues, MapView, TrackedPoint, WorkspaceMap};
 use crate::kinematics::ik::closed_form::{
@@ -36,6 +40,10 @@ enum Mode {
     Position,
     /// The flange of a 6-DOF arm with a flange offset: approach directions scanned.
     FlangeScan,
+    /// The flange of a 6-DOF arm whose full-range wrist turns the tool in every direction, joint
+    /// 1 full-range and the arm in a plane through its axis: the wrist-centre workspace grown by
+    /// the sphere of radius d (exact, [`SectionArcs::sphere_mask`]).
+    FlangeSphere,
     /// A SCARA whose tool point lies on the last (roll) axis: the closed form at a vertical
     /// tool orientation; the roll joint does not move the point.
     Scara,
@@ -61,6 +69,12 @@ pub struct Section {
     side_extent: std::sync::OnceLock<Aabb>,
     /// World rotation of the tool at q = 0 (SCARA targets).
     tool_rot0: Rotation3<f64>,
+    /// The section's boundary arcs, for an arm in a plane through joint 1's axis.
+    arcs: Option<SectionArcs>,
+    /// Distance from the wrist centre to the flange (m), [`Mode::FlangeSphere`].
+    sphere_radius: f64,
+    /// Bits of every posture class.
+    all_classes: u8,
 }
 
 /// One posture reaching a side-view point: its class bits and q1 at azimuth 0 (rad).
@@ -78,7 +92,7 @@ impl Section {
             return None;
         }
         let cf = ClosedForm::detect(robot).ok()?;
-        let mode = match (cf.family(), point) {
+        let mut mode = match (cf.family(), point) {
             (Family::Anthropomorphic | Family::SphericalArm | Family::Cylindrical, _) => {
                 Mode::Position
             }
@@ -100,8 +114,26 @@ impl Section {
         let limits = robot.limits();
         let q1_full = !(limits[0][0].is_finite() && limits[0][1].is_finite())
             || limits[0][1] - limits[0][0] >= TAU - 1e-12;
+        let classifier = PostureClassifier::new(robot);
+        let wrist_centre = cf.wrist_centre_in_tool();
+        let arcs = match cf.family() {
+            Family::Anthropomorphic | Family::Decoupled6 { .. } => SectionArcs::new(
+                robot,
+                &cf,
+                &classifier,
+                wrist_centre.unwrap_or_else(nalgebra::Vector3::zeros),
+            ),
+            _ => None,
+        };
+        if mode == Mode::FlangeScan && q1_full && arcs.is_some() && wrist_is_full(robot) {
+            mode = Mode::FlangeSphere;
+        }
+        let all_classes = ((1u16 << classifier.class_names().len().min(8)) - 1) as u8;
         Some(Self {
-            classifier: PostureClassifier::new(robot),
+            arcs,
+            sphere_radius: wrist_centre.map_or(0.0, |c| c.norm()),
+            all_classes,
+            classifier,
             mode,
             base: robot.base,
             revolute: (0..robot.dof())
@@ -124,7 +156,8 @@ impl Section {
         self.classifier.class_names()
     }
 
-    /// Whether the side view is exact (the positioning arm), not an approach scan.
+    /// Whether the side view is exact (the positioning arm, or the flange of a full-range wrist
+    /// as a Minkowski sum), not an approach scan.
     pub fn exact(&self) -> bool {
         self.mode != Mode::FlangeScan
     }
@@ -149,6 +182,17 @@ impl Section {
         let mut raw = RawSolutions::default();
         let mut n = 0;
         match self.mode {
+            Mode::FlangeSphere => {
+                let Some(arcs) = &self.arcs else { return 0 };
+                let d = self.sphere_radius;
+                let inside = self.position_mask(r + d, z);
+                let mask = arcs.sphere_mask(r, z, d, inside, self.all_classes);
+                if mask != 0 {
+                    // Joint 1 is full-range: its value does not matter.
+                    out[0] = Hit { mask, q1: 0.0 };
+                    n = 1;
+                }
+            }
             Mode::Position | Mode::Scara => {
                 let solved = if self.mode == Mode::Scara {
                     let pose = Pose::from_parts(Translation3::from(w.coords), self.tool_rot0);
@@ -196,6 +240,19 @@ impl Section {
             }
         }
         n
+    }
+
+    /// Class mask of the positioning arm's tracked point (the wrist centre) at the side-view
+    /// point (r >= 0, z), base frame (m), joint 1 free.
+    fn position_mask(&self, r: f64, z: f64) -> u8 {
+        let w = self.base * Point3::new(r, 0.0, z);
+        let mut raw = RawSolutions::default();
+        if self.cf.solve_position_raw(&w.coords, &mut raw).is_err() {
+            return 0;
+        }
+        (0..raw.len)
+            .filter(|&k| self.within(&raw.q[k], 1, 3))
+            .fold(0, |m, k| m | self.classifier.posture_mask(&raw.postures[k]))
     }
 
     /// Class mask of a side-view point (r >= 0, z), base frame (m).
@@ -304,7 +361,19 @@ impl Section {
     /// `[0, L] x [-L, L]` (L the arm's characteristic length) grown by a cell, or the disk of
     /// the largest radius for the top view.
     pub fn extent(&self, view: MapView) -> Aabb {
-        let b = *self.side_extent.get_or_init(|| self.scan_extent());
+        let b = *self
+            .side_extent
+            .get_or_init(|| match (self.mode, &self.arcs) {
+                (Mode::FlangeSphere, Some(arcs)) => {
+                    // Exact: the section's radii and heights widened by the sphere.
+                    let ([r, lo, hi], d) = (arcs.extent(), self.sphere_radius);
+                    Aabb {
+                        min: [0.0, lo - d, 0.0],
+                        max: [r + d, hi + d, 0.0],
+                    }
+                }
+                _ => self.scan_extent(),
+            });
         match view {
             MapView::Side | MapView::Plane => b,
             MapView::Top => Aabb {
@@ -468,8 +537,16 @@ impl Section {
             return super::sampled::map(robot, req, bounds);
         }
         let dims = req.cells;
-        let (masks, edges, curves) = match req.view {
-            MapView::Top => {
+        let (masks, edges, curves) = match (req.view, &self.arcs) {
+            (MapView::Top, Some(arcs)) if self.mode == Mode::FlangeSphere => {
+                let d = self.sphere_radius;
+                let test = |p: [f64; 2]| arcs.radius_mask(p[0].hypot(p[1]), d);
+                let masks = raster::fill(bounds, dims, &test);
+                let edges = raster::edges(&masks, bounds, dims, &test);
+                let curves = self.curves(&masks, bounds, dims, &test);
+                (masks, edges, curves)
+            }
+            (MapView::Top, _) => {
                 let side = self.extent(MapView::Side);
                 let side = [0.0, side.max[0], side.min[1], side.max[1]];
                 let cell = (bounds[1] - bounds[0]) / dims[0] as f64;
@@ -503,7 +580,7 @@ impl Section {
             _ => None,
         };
         let point = match (self.mode, self.point) {
-            (Mode::FlangeScan, _) => "flange",
+            (Mode::FlangeScan | Mode::FlangeSphere, _) => "flange",
             (_, TrackedPoint::WristCentre) => "wrist centre",
             _ => "end-effector",
         };
@@ -528,6 +605,12 @@ impl Section {
                     "closed-form IK of the {} for the flange over {APPROACHES} approach \
                      directions at each cell (not exact: orientations between them are not tried)",
                     self.family
+                ),
+                Mode::FlangeSphere => format!(
+                    "exact: the wrist-centre workspace of the {} grown by the sphere of radius \
+                     {:.4} m that its full-range wrist sweeps the flange over (a Minkowski sum, \
+                     decided at each cell on the section's boundary arcs in closed form)",
+                    self.family, self.sphere_radius
                 ),
             },
             exact: self.exact(),
@@ -632,7 +715,8 @@ impl Section {
                 only: if names.len() > 1 { only[k] } else { v },
             })
             .collect();
-        let reach = self.reach_range(&e);
+        let exact_reach = self.exact_reach();
+        let reach = exact_reach.unwrap_or_else(|| self.reach_range(&e));
         let r = e.max[0];
         let base = self.base.translation.vector;
         let bounds = Aabb {
@@ -650,7 +734,7 @@ impl Section {
             bounds,
             min_reach: reach[0],
             max_reach: reach[1],
-            reach_exact: false,
+            reach_exact: exact_reach.is_some(),
             cell_size: [0.0; 3],
             resolution: n,
             samples: 0,
@@ -666,6 +750,34 @@ impl Section {
             ),
             measure_error: Some((v - v_half).abs()),
         }
+    }
+
+    /// Smallest and largest distance (m) from the base origin to the workspace, exact from the
+    /// section's arcs: the wrist centre's distances fill [m, M] (the workspace is connected, the
+    /// image of a connected joint box), M the largest distance to an arc, m 0 when the origin is
+    /// reached and otherwise the smallest distance to an arc; the flange's fill the union over
+    /// s in [m, M] of [|s - d|, s + d]. `None` without arcs or for the approach scan.
+    fn exact_reach(&self) -> Option<[f64; 2]> {
+        let arcs = self.arcs.as_ref()?;
+        let d = match self.mode {
+            Mode::FlangeSphere => self.sphere_radius,
+            Mode::Position => 0.0,
+            _ => return None,
+        };
+        let [lo, hi] = arcs.distance_range([0.0, 0.0]);
+        let m = if self.position_mask(1e-12 * self.scale, 0.0) != 0 {
+            0.0
+        } else {
+            lo
+        };
+        let min = if d < m {
+            m - d
+        } else if d > hi {
+            d - hi
+        } else {
+            0.0
+        };
+        Some([min, hi + d])
     }
 
     /// Smallest and largest distance (m) from the base origin over the reached points of a
@@ -850,4 +962,27 @@ impl Dexterity {
         let _ = PI;
         Self { data }
     }
+}
+
+/// Whether the spherical wrist (joints 4 to 6) reaches every orientation: three full-range
+/// revolute joints with consecutive axes orthogonal (then they are ZYZ Euler angles, Sect.
+/// 2.4.1, which cover every rotation).
+fn wrist_is_full(robot: &Robot) -> bool {
+    if robot.dof() != 6 {
+        return false;
+    }
+    let limits = robot.limits();
+    let full = |k: usize| {
+        robot.dof_joint(k).kind == JointKind::Revolute
+            && (!(limits[k][0].is_finite() && limits[k][1].is_finite())
+                || limits[k][1] - limits[k][0] >= TAU - 1e-12)
+    };
+    if !(3..6).all(full) {
+        return false;
+    }
+    let Ok(j) = robot.jacobian(&[0.3, -0.4, 0.5, 0.7, -0.6, 0.2], 0) else {
+        return false;
+    };
+    let axis = |k: usize| j.fixed_view::<3, 1>(3, k).into_owned();
+    axis(3).dot(&axis(4)).abs() < 1e-9 && axis(4).dot(&axis(5)).abs() < 1e-9
 }

@@ -1,0 +1,372 @@
+//! The flange workspace of arms whose full-range spherical wrist turns the tool in every
+//! direction: the wrist-centre workspace grown by a sphere (exact), checked against computations
+//! written here: closed-form balls and shells, dense forward kinematics of the tool point (never
+//! outside the claimed region, and every claimed interior cell hit), and the reach.
+
+use armlab::kinematics::pose::{rot_x, rot_y, rot_z};
+use armlab::kinematics::{Convention, DhJoint, DhRow, JointKind, Pose, Robot, models::built_in};
+use armlab::workspace::{
+    MapRequest, MapValues, MapView, PostureClassifier, Section, TrackedPoint, UNCLASSIFIED,
+    compute_map, map_statistics,
+};
+use std::f64::consts::{FRAC_PI_2, PI};
+
+fn row(a: f64, alpha: f64, d: f64) -> DhRow {
+    DhRow {
+        a,
+        alpha,
+        d,
+        theta: 0.0,
+    }
+}
+
+/// An anthropomorphic arm with spherical wrist, a2, the elbow-to-wrist length d4 and a flange
+/// offset d6; joints 2 and 3 limited when `limits` is given, every other joint full-range.
+fn arm(a2: f64, a3: f64, d4: f64, d6: f64, limits: Option<[[f64; 2]; 2]>, tool: Pose) -> Robot {
+    arm_q1(a2, a3, d4, d6, limits, None, tool)
+}
+
+/// [`arm`] with joint 1 limited to `q1` when given.
+fn arm_q1(
+    a2: f64,
+    a3: f64,
+    d4: f64,
+    d6: f64,
+    limits: Option<[[f64; 2]; 2]>,
+    q1: Option<[f64; 2]>,
+    tool: Pose,
+) -> Robot {
+    let full = |r: DhRow| DhJoint::new(JointKind::Revolute, r).unbounded();
+    let mut j2 = full(row(a2, 0.0, 0.0));
+    let mut j3 = full(row(a3, FRAC_PI_2, 0.0));
+    if let Some([l2, l3]) = limits {
+        j2 = j2.limits(l2[0], l2[1]);
+        j3 = j3.limits(l3[0], l3[1]);
+    }
+    let mut j1 = full(row(0.0, FRAC_PI_2, 0.0));
+    if let Some(l) = q1 {
+        j1 = j1.limits(l[0], l[1]);
+    }
+    let rows = [
+        j1,
+        j2,
+        j3,
+        full(row(0.0, -FRAC_PI_2, d4)),
+        full(row(0.0, FRAC_PI_2, 0.0)),
+        full(row(0.0, 0.0, d6)),
+    ];
+    let base = Pose::translation(0.1, -0.2, 0.3) * rot_z(0.7);
+    Robot::from_dh("test arm", Convention::Standard, &rows, base, tool).unwrap()
+}
+
+/// The limited arm: a2 = 0.5, a3 = 0.05, d4 = 0.35, d6 = 0.12 and a tool offset off the last
+/// axis, q2 in [-0.5, 2.2], q3 in [-2.4, 0.9].
+fn limited_arm() -> Robot {
+    let tool = Pose::translation(0.03, -0.02, 0.04) * rot_y(0.3) * rot_x(-0.2);
+    arm(
+        0.5,
+        0.05,
+        0.35,
+        0.12,
+        Some([[-0.5, 2.2], [-2.4, 0.9]]),
+        tool,
+    )
+}
+
+/// A deterministic uniform generator on [0, 1).
+fn rng(seed: u64) -> impl FnMut() -> f64 {
+    let mut state = seed;
+    move || {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// The default robot's flange: the ball of radius a2 + d4 = 1 m about the shoulder grown by
+/// d6 = 0.1 m is the ball of radius 1.1 m; exact reach 0-1.1 m, volume 4/3 pi 1.1^3.
+#[test]
+fn default_robot_flange_is_the_ball_of_radius_1_1() {
+    let r = built_in("anthropomorphic_spherical_wrist").unwrap();
+    let s = Section::new(&r, TrackedPoint::Flange).unwrap();
+    assert!(s.exact(), "the full-range wrist must give the exact method");
+    let stats = map_statistics(&r, TrackedPoint::Flange, &Default::default()).unwrap();
+    assert!(stats.reach_exact);
+    assert!(stats.min_reach.abs() < 1e-12, "{}", stats.min_reach);
+    assert!((stats.max_reach - 1.1).abs() < 1e-12, "{}", stats.max_reach);
+    let ball = 4.0 / 3.0 * PI * 1.1f64.powi(3);
+    let v = stats.volume.unwrap();
+    assert!((v - ball).abs() / ball < 2e-4, "{v} vs {ball}");
+    // Membership against |p| <= 1.1 on a grid of the side view.
+    for i in 0..60 {
+        for j in 0..120 {
+            let (rr, z) = (i as f64 * 0.02 + 0.005, j as f64 * 0.02 - 1.2 + 0.005);
+            let d = rr.hypot(z);
+            if (d - 1.1).abs() < 1e-9 {
+                continue;
+            }
+            assert_eq!(s.side_mask(rr, z) != 0, d < 1.1, "({rr}, {z})");
+        }
+    }
+    let map = compute_map(
+        &r,
+        &MapRequest {
+            view: MapView::Top,
+            point: TrackedPoint::Flange,
+            values: MapValues::Classes,
+            cells: [200, 200],
+            bounds: Some([-1.2, 1.2, -1.2, 1.2]),
+            samples: 0,
+            seed: 1,
+            end_effector: 0,
+        },
+    )
+    .unwrap();
+    assert!(map.exact);
+    assert!(map.method.starts_with("exact"), "{}", map.method);
+}
+
+/// A shell: a2 = 0.5, d4 = 0.3 reach the shell 0.2-0.8 m about the shoulder (at the base
+/// origin); d6 = 0.1 makes it 0.1-0.9 m (the hole stays), d6 = 0.3 fills it (0-1.1 m).
+#[test]
+fn shells_grow_by_the_flange_offset_and_holes_close() {
+    for (d6, inner, outer) in [(0.1, 0.1, 0.9), (0.3, 0.0, 1.1)] {
+        let r = arm(0.5, 0.0, 0.3, d6, None, Pose::identity());
+        let s = Section::new(&r, TrackedPoint::Flange).unwrap();
+        assert!(s.exact());
+        let stats = s.statistics();
+        assert!(stats.reach_exact);
+        assert!(
+            (stats.min_reach - inner).abs() < 1e-12,
+            "{}",
+            stats.min_reach
+        );
+        assert!(
+            (stats.max_reach - outer).abs() < 1e-12,
+            "{}",
+            stats.max_reach
+        );
+        let v = stats.volume.unwrap();
+        let shell = 4.0 / 3.0 * PI * (outer.powi(3) - f64::powi(inner, 3));
+        assert!((v - shell).abs() / shell < 1e-3, "d6 {d6}: {v} vs {shell}");
+        // Side view in the base frame (the base is at (0.1, -0.2, 0.3), turned about z).
+        for i in 0..50 {
+            for j in 0..100 {
+                let (rr, z) = (i as f64 * 0.023 + 0.004, j as f64 * 0.023 - 1.15 + 0.004);
+                let d = rr.hypot(z);
+                if (d - inner).abs() < 1e-9 || (d - outer).abs() < 1e-9 {
+                    continue;
+                }
+                let want = d > inner && d < outer;
+                assert_eq!(
+                    s.side_mask(rr, z) != 0,
+                    want,
+                    "d6 {d6}: ({rr}, {z}), |p| {d}"
+                );
+            }
+        }
+    }
+}
+
+/// The limited arm: the tool points of dense random configurations always lie in the claimed
+/// region with their own posture class; the reach brackets the samples.
+#[test]
+fn limited_arm_flange_against_dense_forward_kinematics() {
+    let r = limited_arm();
+    let s = Section::new(&r, TrackedPoint::Flange).unwrap();
+    assert!(s.exact(), "joints 2-3 limited, the wrist full: still exact");
+    let classifier = PostureClassifier::new(&r);
+    let lim = r.limits();
+    let mut next = rng(7);
+    let mut far: f64 = 0.0;
+    for _ in 0..60_000 {
+        let q: Vec<f64> = lim
+            .iter()
+            .map(|l| {
+                let (lo, hi) = if l[0].is_finite() {
+                    (l[0], l[1])
+                } else {
+                    (-PI, PI)
+                };
+                lo + (hi - lo) * next()
+            })
+            .collect();
+        let t = r.fk(&q).unwrap();
+        let p = r.base.inverse_transform_point(&t.translation.vector.into());
+        let (rr, z) = (p.x.hypot(p.y), p.z);
+        far = far.max(p.coords.norm());
+        let class = classifier.classify(&q, &t);
+        let mask = s.side_mask(rr, z);
+        assert_ne!(
+            mask, 0,
+            "q {q:?}: tool point ({rr}, {z}) outside the claimed region"
+        );
+        if class != UNCLASSIFIED {
+            assert_ne!(
+                mask & (1 << class),
+                0,
+                "q {q:?}: class {class} not claimed, mask {mask:b}"
+            );
+        }
+    }
+    let stats = s.statistics();
+    assert!(stats.reach_exact);
+    assert!(
+        far <= stats.max_reach + 1e-12,
+        "{far} > {}",
+        stats.max_reach
+    );
+    assert!(far > stats.max_reach - 0.02, "{far} vs {}", stats.max_reach);
+}
+
+/// The top view is the side view turned about the axis: a radius is reached with a class exactly
+/// when some height is (checked on a fine column of heights).
+#[test]
+fn limited_arm_top_view_is_the_side_view_turned() {
+    let r = limited_arm();
+    let s = Section::new(&r, TrackedPoint::Flange).unwrap();
+    let map = compute_map(
+        &r,
+        &MapRequest {
+            view: MapView::Top,
+            point: TrackedPoint::Flange,
+            values: MapValues::Classes,
+            cells: [120, 1],
+            bounds: Some([0.0, 1.2, -0.001, 0.001]),
+            samples: 0,
+            seed: 1,
+            end_effector: 0,
+        },
+    )
+    .unwrap();
+    assert!(map.exact);
+    for i in 0..120 {
+        let rr = (i as f64 + 0.5) * 0.01;
+        let column = (0..2000).fold(0u8, |m, k| {
+            m | s.side_mask(rr.hypot(0.0), -0.9 + k as f64 * 0.0011)
+        });
+        let top = map.masks[i];
+        // The column may miss a sliver the exact radii catch, never the reverse.
+        assert_eq!(column & !top, 0, "r {rr}: column {column:b}, top {top:b}");
+        if top != column {
+            let near = [-0.004, 0.004].iter().any(|dr| {
+                let m = (0..2000).fold(0u8, |m, k| {
+                    m | s.side_mask(rr + dr, -0.9 + k as f64 * 0.0011)
+                });
+                m == top
+            });
+            assert!(near, "r {rr}: column {column:b}, top {top:b}");
+        }
+    }
+}
+
+/// Arms outside the exact method keep the approach scan and say so: a limited wrist (Stanford),
+/// and joint 1 limited.
+#[test]
+fn limited_wrists_keep_the_approach_scan() {
+    let stanford = built_in("stanford").unwrap();
+    let s = Section::new(&stanford, TrackedPoint::Flange).unwrap();
+    assert!(!s.exact());
+    let r = arm_q1(
+        0.5,
+        0.05,
+        0.35,
+        0.12,
+        Some([[-0.5, 2.2], [-2.4, 0.9]]),
+        Some([-2.0, 2.0]),
+        Pose::identity(),
+    );
+    assert!(!Section::new(&r, TrackedPoint::Flange).unwrap().exact());
+}
+
+/// Classes reaching the side-view point (rr, z) (base frame) found by brute force: the wrist
+/// centre put at distance d from it along `n` x `2n` directions, each solved by the positioning
+/// arm's closed form and kept within the limits of joints 2 and 3.
+fn brute_mask(r: &Robot, rr: f64, z: f64, n: usize) -> u8 {
+    use armlab::kinematics::ik::closed_form::{ClosedForm, RawSolutions};
+    let cf = ClosedForm::detect(r).unwrap();
+    let classifier = PostureClassifier::new(r);
+    let d = cf.wrist_centre_in_tool().unwrap().norm();
+    let lim = r.limits();
+    let p = r.base * nalgebra::Point3::new(rr, 0.0, z);
+    let mut raw = RawSolutions::default();
+    let mut m = 0u8;
+    for i in 0..n {
+        let th = PI * (i as f64 + 0.5) / n as f64;
+        for j in 0..2 * n {
+            let ph = PI * j as f64 / n as f64;
+            let dir = nalgebra::Vector3::new(th.sin() * ph.cos(), th.sin() * ph.sin(), th.cos());
+            if cf
+                .solve_position_raw(&(p.coords - d * dir), &mut raw)
+                .is_err()
+            {
+                continue;
+            }
+            for k in 0..raw.len {
+                let fits = (1..3).all(|j| {
+                    let v = raw.q[k][j];
+                    let v = v + ((lim[j][0] - v) / (2.0 * PI)).ceil() * 2.0 * PI;
+                    v <= lim[j][1]
+                });
+                if fits {
+                    m |= classifier.posture_mask(&raw.postures[k]);
+                }
+            }
+        }
+    }
+    m
+}
+
+/// The limited arm against a brute-force search over the sphere of directions: the classes
+/// found are always claimed, and at points whose 8 neighbours a cell away carry the same claim
+/// (away from every edge) the search finds every class claimed.
+#[test]
+fn limited_arm_flange_against_a_brute_force_search() {
+    let r = limited_arm();
+    let s = Section::new(&r, TrackedPoint::Flange).unwrap();
+    let n = 24;
+    let (r_max, z_lo, z_hi) = (1.2, -0.9, 1.3);
+    let h = [r_max / n as f64, (z_hi - z_lo) / n as f64];
+    let (mut interior, mut outside) = (0, 0);
+    for j in 0..n {
+        for i in 0..n {
+            let c = [(i as f64 + 0.5) * h[0], z_lo + (j as f64 + 0.5) * h[1]];
+            let claimed = s.side_mask(c[0], c[1]);
+            let found = brute_mask(&r, c[0], c[1], 60);
+            assert_eq!(
+                found & !claimed,
+                0,
+                "{c:?}: found {found:b}, claimed {claimed:b}"
+            );
+            let same = [
+                (-1, -1),
+                (-1, 0),
+                (-1, 1),
+                (0, -1),
+                (0, 1),
+                (1, -1),
+                (1, 0),
+                (1, 1),
+            ]
+            .iter()
+            .all(|&(di, dj)| {
+                let p = [c[0] + di as f64 * h[0], c[1] + dj as f64 * h[1]];
+                p[0] >= 0.0 && s.side_mask(p[0], p[1]) == claimed
+            });
+            if same {
+                assert_eq!(
+                    found, claimed,
+                    "{c:?}: found {found:b}, claimed {claimed:b}"
+                );
+                if claimed != 0 {
+                    interior += 1;
+                } else {
+                    outside += 1;
+                }
+            }
+        }
+    }
+    println!("{interior} interior and {outside} outside points agree");
+    assert!(interior > 100 && outside > 50, "{interior} {outside}");
+}
