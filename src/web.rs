@@ -91,7 +91,7 @@ impl WebHandle {
 
     /// The app's state as JSON: `{"started", "model", "dof", "q" (rad, m), "position" (m),
     /// "rpy_deg", "solutions", "within_limits", "gizmo" ([x, y] in CSS pixels of a translation
-    /// handle), "workspace_progress" (0..1), "workspace_figure" ([w, h] px), "workspace_dots",
+    /// handle), "backend" ("BrowserWebGpu" or "Gl" for WebGL2), "workspace_progress" (0..1), "workspace_figure" ([w, h] px), "workspace_dots",
     /// "workspace_error", "messages", "frames", "panicked"}`.
     pub fn status(&self) -> String {
         let panicked = self.runner.has_panicked();
@@ -101,6 +101,7 @@ impl WebHandle {
         let mut v = status_json(app.app_ui());
         v["panicked"] = panicked.into();
         v["frames"] = app.frames().into();
+        v["backend"] = app.graphics_backend().into();
         v.to_string()
     }
 

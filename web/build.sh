@@ -7,11 +7,14 @@
 # * rustup with the target (`rustup target add wasm32-unknown-unknown`): used as is;
 # * else Debian's rustc-web (packages rustc-web cargo-web rust-web-src rust-web-llvm lld-22): its
 #   standard library is built from source for wasm32 (-Zbuild-std, allowed by RUSTC_BOOTSTRAP=1).
-# and wasm-bindgen-cli at the version of the wasm-bindgen in Cargo.lock (installed if missing).
+# and wasm-bindgen-cli at the version of the wasm-bindgen in Cargo.lock (installed if missing),
+# then wasm-opt from binaryen (the npm registry's package, pinned; installed under the target
+# folder if missing) on the module wasm-bindgen writes. ARMLAB_WASM_OPT=0 skips it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out="${1:-web/dist}"
 target=wasm32-unknown-unknown
+BINARYEN_VERSION=132.0.0
 export CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$PWD/target}/web"
 args=(rustc --lib --crate-type cdylib --profile web --target "$target" --no-default-features --features gui)
 
@@ -39,6 +42,23 @@ rm -rf "$out"
 mkdir -p "$out"
 wasm-bindgen --target web --no-typescript --out-dir "$out" --out-name armlab \
   "$CARGO_TARGET_DIR/$target/web/armlab.wasm"
+if [ "${ARMLAB_WASM_OPT:-1}" != 0 ]; then
+  binaryen="$CARGO_TARGET_DIR/binaryen-$BINARYEN_VERSION"
+  if [ ! -x "$binaryen/node_modules/.bin/wasm-opt" ]; then
+    command -v npm >/dev/null || { echo "web/build.sh: npm is needed for wasm-opt (apt-get install npm, or ARMLAB_WASM_OPT=0)" >&2; exit 1; }
+    echo "installing binaryen $BINARYEN_VERSION (wasm-opt) from the npm registry"
+    npm install --silent --no-audit --no-fund --prefix "$binaryen" "binaryen@$BINARYEN_VERSION"
+  fi
+  before=$(stat -c %s "$out/armlab_bg.wasm")
+  # -O2 for speed (the workspace is computed in the page); the features are those rustc's
+  # wasm32 target enables by default.
+  "$binaryen/node_modules/.bin/wasm-opt" -O2 --strip-debug --strip-producers \
+    --enable-bulk-memory --enable-nontrapping-float-to-int --enable-sign-ext \
+    --enable-mutable-globals --enable-reference-types --enable-multivalue \
+    "$out/armlab_bg.wasm" -o "$out/armlab_bg.opt.wasm"
+  mv "$out/armlab_bg.opt.wasm" "$out/armlab_bg.wasm"
+  echo "wasm-opt -O2: $((before / 1024)) KiB -> $(( $(stat -c %s "$out/armlab_bg.wasm") / 1024 )) KiB"
+fi
 cp web/index.html web/worker.js "$out/"
 # the shipped lessons, for ?lesson=lessons/NAME.toml
 mkdir -p "$out/lessons" && cp assets/lessons/*.toml "$out/lessons/"

@@ -180,6 +180,14 @@ impl ArmlabApp {
         &self.ui
     }
 
+    /// The graphics backend the window draws with (`"BrowserWebGpu"`, `"Gl"` for WebGL2,
+    /// `"Vulkan"`, ...), `None` without a wgpu device.
+    pub fn graphics_backend(&self) -> Option<String> {
+        self.gpu
+            .as_ref()
+            .map(|g| format!("{:?}", g.adapter_info.backend))
+    }
+
     /// Frames drawn so far.
     pub fn frames(&self) -> u64 {
         self.frames

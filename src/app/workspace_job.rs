@@ -197,13 +197,32 @@ impl WorkspaceJob {
     /// data computed by `offload` (a web worker) while frames go on, or here when there is
     /// none. Returns whether it worked here (then the next frame should come at once); `false`
     /// for a threaded or finished job, or while the worker computes.
-    pub fn step(&self, gpu: Option<&Gpu>, offload: Option<&mut (dyn Offload + 'static)>) -> bool {
+    pub fn step(
+        &self,
+        gpu: Option<&Gpu>,
+        mut offload: Option<&mut (dyn Offload + 'static)>,
+    ) -> bool {
         let Ok(mut guard) = self.slices.lock() else {
             return false;
         };
         let Some(s) = guard.as_mut() else {
             return false;
         };
+        // With a worker, the figure is asked for first, so that the worker computes it while
+        // the page draws the overlay a slice at a time.
+        if s.figure.is_none()
+            && s.drawn == 0
+            && matches!(self.figure, JobFigure::Workspace(_))
+            && let (Some(gpu), Some(offload)) = (gpu, offload.as_deref_mut())
+        {
+            if let Some(Err(e)) = s.figure_step(gpu, &self.figure, Some(offload), &self.progress) {
+                let _ = self.done.set(Err(e));
+                *guard = None;
+                return false;
+            }
+            self.progress.store(0, Ordering::Relaxed);
+            return true;
+        }
         if s.drawn < OVERLAY_SAMPLES {
             let n = SLICE.min(OVERLAY_SAMPLES - s.drawn);
             // Each slice its own seed: the same distribution as the threaded job's one draw.

@@ -92,3 +92,25 @@ pub enum RenderError {
         source: wgpu::MapRangeError,
     },
 }
+
+/// The error an error scope caught, from the future its `pop` returns. On the desktop the scope's
+/// verdict is waited for. A browser's WebGPU answers with a promise that the page's one thread
+/// cannot wait for: there the verdict is taken only if it is already known (WebGL2's is), and
+/// otherwise the scope is left unchecked (`None`; an error then reaches the console as an
+/// uncaptured error).
+pub(crate) fn scope_error<F>(pop: F) -> Option<wgpu::Error>
+where
+    F: std::future::Future<Output = Option<wgpu::Error>>,
+{
+    #[cfg(target_arch = "wasm32")]
+    {
+        let mut pop = std::pin::pin!(pop);
+        let mut cx = std::task::Context::from_waker(std::task::Waker::noop());
+        match pop.as_mut().poll(&mut cx) {
+            std::task::Poll::Ready(e) => e,
+            std::task::Poll::Pending => None,
+        }
+    }
+    #[cfg(not(target_arch = "wasm32"))]
+    pollster::block_on(pop)
+}

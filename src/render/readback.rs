@@ -91,7 +91,7 @@ impl PendingRead {
             },
         );
         queue.submit([encoder.finish()]);
-        if let Some(e) = pollster::block_on(scope.pop()) {
+        if let Some(e) = super::error::scope_error(scope.pop()) {
             return Err(e.into());
         }
         let mapped = std::sync::Arc::new(std::sync::Mutex::new(None));

@@ -140,7 +140,7 @@ impl Renderer {
             contents: bytemuck::cast_slice(&shapes.indices),
             usage: wgpu::BufferUsages::INDEX,
         });
-        if let Some(e) = pollster::block_on(scope.pop()) {
+        if let Some(e) = super::error::scope_error(scope.pop()) {
             return Err(e.into());
         }
         Ok(Self {
@@ -210,7 +210,7 @@ impl Renderer {
         if encoded.is_ok() {
             gpu.queue.submit([encoder.finish()]);
         }
-        let gpu_error = pollster::block_on(scope.pop());
+        let gpu_error = super::error::scope_error(scope.pop());
         encoded?;
         match gpu_error {
             Some(e) => Err(e.into()),

@@ -84,7 +84,7 @@ impl RenderTarget {
         )
         .create_view(&wgpu::TextureViewDescriptor::default());
         for scope in [invalid, oom] {
-            if let Some(e) = pollster::block_on(scope.pop()) {
+            if let Some(e) = super::error::scope_error(scope.pop()) {
                 return Err(e.into());
             }
         }
@@ -240,7 +240,7 @@ fn color_textures(
     };
     let alias = device.push_error_scope(wgpu::ErrorFilter::Validation);
     let aliased = colour(&[EGUI_FORMAT]);
-    match pollster::block_on(alias.pop()) {
+    match super::error::scope_error(alias.pop()) {
         None if !copy => (aliased, None),
         _ => {
             let label = "armlab colour (encoded)";
