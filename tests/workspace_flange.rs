@@ -370,3 +370,38 @@ fn limited_arm_flange_against_a_brute_force_search() {
     println!("{interior} interior and {outside} outside points agree");
     assert!(interior > 100 && outside > 50, "{interior} {outside}");
 }
+
+/// An arm whose elbow at q3 = 0 folds the wrist centre back onto joint 2's axis (a2 = d4, joint 3
+/// offset by -90 degrees): the section's arcs are still found (the shoulder's circle from another
+/// q3), and the flange is exact: the default robot's ball of radius 1.1 m.
+#[test]
+fn an_arm_folded_at_zero_still_has_its_arcs() {
+    let full = |r: DhRow| DhJoint::new(JointKind::Revolute, r).unbounded();
+    let rows = [
+        full(row(0.0, FRAC_PI_2, 0.0)),
+        full(row(0.5, 0.0, 0.0)),
+        full(row(0.0, FRAC_PI_2, 0.0)).offset(-FRAC_PI_2),
+        full(row(0.0, -FRAC_PI_2, 0.5)),
+        full(row(0.0, FRAC_PI_2, 0.0)),
+        full(row(0.0, 0.0, 0.1)),
+    ];
+    let r = Robot::from_dh(
+        "folded at zero",
+        Convention::Standard,
+        &rows,
+        Pose::identity(),
+        Pose::identity(),
+    )
+    .unwrap();
+    // q3 = 0 puts the wrist centre on the shoulder.
+    let mut q = [0.0; 6];
+    q[1] = 0.7;
+    let t = r.fk(&q).unwrap();
+    let w = t.translation.vector - (t.rotation * nalgebra::Vector3::z()) * 0.1;
+    assert!(w.norm() < 1e-12, "{w:?}");
+    let s = Section::new(&r, TrackedPoint::Flange).unwrap();
+    assert!(s.exact());
+    let stats = s.statistics();
+    assert!(stats.reach_exact);
+    assert!(stats.min_reach.abs() < 1e-12 && (stats.max_reach - 1.1).abs() < 1e-12);
+}

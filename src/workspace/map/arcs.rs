@@ -78,13 +78,14 @@ fn wrapped(a: f64) -> f64 {
     if w > PI { w - TAU } else { w }
 }
 
-/// Centre and radius of the circle through three points (`None` when they are collinear).
-fn circumcircle(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> Option<([f64; 2], f64)> {
+/// Centre and radius of the circle through three points (`None` when they are collinear, or
+/// within `tol` (m) of one point: a joint that does not move the point).
+fn circumcircle(a: [f64; 2], b: [f64; 2], c: [f64; 2], tol: f64) -> Option<([f64; 2], f64)> {
     let (bx, by) = (b[0] - a[0], b[1] - a[1]);
     let (cx, cy) = (c[0] - a[0], c[1] - a[1]);
     let det = 2.0 * (bx * cy - by * cx);
     let scale = (bx * bx + by * by).max(cx * cx + cy * cy);
-    if det.abs() <= 1e-12 * scale {
+    if scale <= tol * tol || det.abs() <= 1e-12 * scale {
         return None;
     }
     let (b2, c2) = (bx * bx + by * by, cx * cx + cy * cy);
@@ -201,9 +202,11 @@ impl SectionArcs {
         // shoulder (the centre of its circle as q2 turns), |w - S|^2 = A + B cos q3 + C sin q3.
         let shoulder = |q3: f64| -> Option<[f64; 2]> {
             let p = |q2: f64| arm.plane(q2, q3);
-            circumcircle(p(0.0)?, p(TAU / 3.0)?, p(2.0 * TAU / 3.0)?).map(|(c, _)| c)
+            circumcircle(p(0.0)?, p(TAU / 3.0)?, p(2.0 * TAU / 3.0)?, 1e-9 * scale).map(|(c, _)| c)
         };
-        let s = shoulder(0.0)?;
+        // (At a q3 that puts the tracked point on joint 2's axis the circle is a point: the
+        // next q3 is tried.)
+        let s = [0.0, 1.0, 2.0].into_iter().find_map(shoulder)?;
         let dist2 = |q3: f64| -> Option<f64> {
             let w = arm.plane(0.0, q3)?;
             Some((w[0] - s[0]).powi(2) + (w[1] - s[1]).powi(2))
@@ -274,7 +277,7 @@ impl SectionArcs {
         };
         let (p0, p1, p2) = (at(0.0)?, at(TAU / 3.0)?, at(2.0 * TAU / 3.0)?);
         // theta(q) = th0 + sense * q about the centre; a point when the joint does not move it.
-        let (c, r, th0, sense) = match circumcircle(p0, p1, p2) {
+        let (c, r, th0, sense) = match circumcircle(p0, p1, p2, 1e-9 * scale) {
             Some((c, r)) => {
                 let th = |p: [f64; 2]| (p[1] - c[1]).atan2(p[0] - c[0]);
                 let sense = wrapped(th(p1) - th(p0)).signum();
@@ -510,7 +513,8 @@ mod tests {
         assert!(root_in((-0.5, 1.0, 0.0), [5.0, 5.5]));
         assert!(angle_in(-0.1, [6.0, 6.3]));
         assert!(!angle_in(0.1, [6.0, 6.3]));
-        let (c, r) = circumcircle([1.0, 0.0], [0.0, 1.0], [-1.0, 0.0]).unwrap();
+        let (c, r) = circumcircle([1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], 1e-9).unwrap();
+        assert!(circumcircle([1e-17, 0.0], [0.0, 2e-17], [-1e-17, 0.0], 1e-9).is_none());
         assert!(c[0].abs() < 1e-15 && c[1].abs() < 1e-15 && (r - 1.0).abs() < 1e-15);
     }
 
