@@ -318,31 +318,42 @@ impl SectionArcs {
             if b - a < 1e-12 {
                 continue;
             }
-            let mut mask = 0;
-            for f in [0.25, 0.5, 0.75] {
-                let q = a + f * (b - a);
-                let (q2, q3) = if sw.joint == 1 {
-                    (q, sw.fixed)
-                } else {
-                    (sw.fixed, q)
-                };
-                if sw.fold {
-                    // The fold borders the classes on either side that the limits allow.
-                    for dv in [-1e-4, 1e-4] {
-                        let v = q3 + dv;
-                        if (r3[1] - r3[0] >= TAU - 1e-9) || (v >= r3[0] && v <= r3[1]) {
-                            mask |= arm.classes(q2, v);
-                        }
-                    }
-                } else {
-                    mask |= arm.classes(q2, q3);
-                }
-            }
             let (ta, tb) = (th0 + sense * a, th0 + sense * b);
             let th = if ta <= tb { [ta, tb] } else { [tb, ta] };
-            out.push(Piece::new(c, r, th, mask));
+            out.push(Piece::new(
+                c,
+                r,
+                th,
+                Self::sweep_classes(arm, sw, [a, b], r3),
+            ));
         }
         Some(())
+    }
+
+    /// Classes of the configurations of a sweep's joint values `[a, b]` (constant between the
+    /// cuts): those at three inner points; a fold borders the classes on either side of it that
+    /// the limits of joint 3 allow.
+    fn sweep_classes(arm: &Arm, sw: Sweep, [a, b]: [f64; 2], r3: [f64; 2]) -> u8 {
+        let mut mask = 0;
+        for f in [0.25, 0.5, 0.75] {
+            let q = a + f * (b - a);
+            let (q2, q3) = if sw.joint == 1 {
+                (q, sw.fixed)
+            } else {
+                (sw.fixed, q)
+            };
+            if sw.fold {
+                for dv in [-1e-4, 1e-4] {
+                    let v = q3 + dv;
+                    if (r3[1] - r3[0] >= TAU - 1e-9) || (v >= r3[0] && v <= r3[1]) {
+                        mask |= arm.classes(q2, v);
+                    }
+                }
+            } else {
+                mask |= arm.classes(q2, q3);
+            }
+        }
+        mask
     }
 
     /// The largest |rho| of the section and the range of its heights (m).

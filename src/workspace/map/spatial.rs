@@ -617,11 +617,6 @@ impl Section {
             MapValues::Dexterity => Some(self.dexterity(req.view, bounds, dims)?),
             _ => None,
         };
-        let point = match (self.mode, self.point) {
-            (Mode::FlangeScan | Mode::FlangeSphere, _) => "flange",
-            (_, TrackedPoint::WristCentre) => "wrist centre",
-            _ => "end-effector",
-        };
         Ok(WorkspaceMap {
             view: req.view,
             bounds,
@@ -633,26 +628,36 @@ impl Section {
             values,
             fills: Vec::new(),
             curves,
-            method: match self.mode {
-                Mode::Position | Mode::Scara => format!(
-                    "exact: closed-form IK of the {} for the {point} at each cell, joint 1 \
-                     from the azimuth",
-                    self.family
-                ),
-                Mode::FlangeScan => format!(
-                    "closed-form IK of the {} for the flange over {APPROACHES} approach \
-                     directions at each cell (not exact: orientations between them are not tried)",
-                    self.family
-                ),
-                Mode::FlangeSphere => format!(
-                    "exact: the wrist-centre workspace of the {} grown by the sphere of radius \
-                     {:.4} m that its full-range wrist sweeps the flange over (a Minkowski sum, \
-                     decided at each cell on the section's boundary arcs in closed form)",
-                    self.family, self.sphere_radius
-                ),
-            },
+            method: self.method(),
             exact: self.exact(),
         })
+    }
+
+    /// How the map's classes were decided, in words.
+    fn method(&self) -> String {
+        let point = match (self.mode, self.point) {
+            (Mode::FlangeScan | Mode::FlangeSphere, _) => "flange",
+            (_, TrackedPoint::WristCentre) => "wrist centre",
+            _ => "end-effector",
+        };
+        match self.mode {
+            Mode::Position | Mode::Scara => format!(
+                "exact: closed-form IK of the {} for the {point} at each cell, joint 1 \
+                 from the azimuth",
+                self.family
+            ),
+            Mode::FlangeScan => format!(
+                "closed-form IK of the {} for the flange over {APPROACHES} approach \
+                 directions at each cell (not exact: orientations between them are not tried)",
+                self.family
+            ),
+            Mode::FlangeSphere => format!(
+                "exact: the wrist-centre workspace of the {} grown by the sphere of radius \
+                 {:.4} m that its full-range wrist sweeps the flange over (a Minkowski sum, \
+                 decided at each cell on the section's boundary arcs in closed form)",
+                self.family, self.sphere_radius
+            ),
+        }
     }
 
     /// The edge cells, supersampled 4 x 4 on the exact test; none for the approach scan (64
