@@ -1,0 +1,64 @@
+"""Figures (PNG, SVG, PDF; the same pixels as the command line) and calibration (the same report
+as `armlab calibrate`)."""
+
+import numpy as np
+import pytest
+
+import armlab
+
+
+def test_robot_figure_png_svg_pdf(tmp_path, cli):
+    r = armlab.Robot.builtin("puma560")
+    f = r.figure(size=(640, 480))
+    assert f.png[:8] == b"\x89PNG\r\n\x1a\n" and f.size == (640, 480)
+    assert "<svg" in f.svg[:400]
+    assert f._repr_png_() == f.png and f._repr_svg_() == f.svg
+    pdf = f.save(tmp_path / "arm.pdf").read_bytes()
+    assert pdf.startswith(b"%PDF")
+    assert f.save(tmp_path / "arm.svg").read_text().startswith(f.svg[:50])
+    with pytest.raises(ValueError, match=".png, .svg or .pdf"):
+        f.save(tmp_path / "arm.jpg")
+    # The same pixels as `armlab render` at the same configuration.
+    cli("render", "puma560", "--config", "ready", "--size", "640x480", "--out", tmp_path / "cli.png",
+        json_out=False)
+    assert f.png == (tmp_path / "cli.png").read_bytes()
+
+
+def test_textbook_figure_equals_the_command_line(tmp_path, cli):
+    f = armlab.textbook_figure("2.30", size=(600, 450))
+    cli("figure", "2.30", "--size", "600x450", "--out", tmp_path / "f.png", json_out=False)
+    assert f.png == (tmp_path / "f.png").read_bytes()
+
+
+def test_self_motion_figure():
+    r = armlab.Robot.builtin("dlr")
+    T = r.fk(np.array([0.3, 0.5, -0.2, 1.1, 0.4, -0.6, 0.2]))
+    m = r.self_motion(T, samples=60, branch=None)
+    assert m.figure is not None and m.figure.size[0] > 100
+    assert len(m.branches) == 8
+
+
+def test_calibrate_simulated_equals_the_command_line(cli):
+    puma = armlab.Robot.builtin("puma560")
+    rep = armlab.calibrate(puma, simulate=True, poses=40, seed=3)
+    theirs = cli("calibrate", "puma560", "--simulate", "--poses", "40", "--seed", "3", "--format", "json")
+    assert rep.data == theirs
+    assert rep.converged and rep.rank == 24
+    assert "identifiability" in rep.summary
+    assert rep.estimate.shape == (len(rep.parameters),)
+
+
+def test_calibrate_from_a_cell_file_and_from_arrays(root):
+    puma = armlab.Robot.builtin("puma560")
+    rep = armlab.calibrate(puma, root / "tests/data/calibration/cell_puma_fit.csv",
+                           validate=root / "tests/data/calibration/cell_puma_check.csv")
+    assert rep.converged and rep["validation"]["after"]["position_rms"] < 1e-4
+    assert any("note" in w for w in rep["warnings"])
+    # Perfect positions of the nominal arm: the estimate stays nominal; a position-only setup
+    # cannot see everything, and the report says what.
+    Q = np.random.default_rng(2).uniform(-1.5, 1.5, (60, 6))
+    Y = puma.fk(Q)[:, :3, 3]
+    rep = armlab.calibrate(puma, (Q, Y), setup="position", noise_mm=0.01)
+    nominal = np.array([p["nominal"] for p in rep.parameters])
+    assert np.abs(rep.estimate - nominal).max() < 1e-6
+    assert rep.data["setup_cannot_see"]
