@@ -282,6 +282,11 @@ class IkBatch:
     posture: np.ndarray
     #: code -> label for every code in ``posture``.
     labels: Dict[int, str]
+    #: (N,) position errors (m) of the numerical solver's answers (None for the closed form,
+    #: whose solutions are exact).
+    position_error: Optional[np.ndarray] = None
+    #: (N,) orientation errors (rad) of the numerical solver's answers.
+    orientation_error: Optional[np.ndarray] = None
 
     def counts(self) -> np.ndarray:
         """(N,) number of solutions per pose."""
@@ -675,14 +680,20 @@ class Robot:
         otherwise. Without it, the one with ``posture``, or the one closest to ``seed`` (default
         the first); None when the target is unreachable.
 
-        ``Ts`` of shape (N, 4, 4) solves every pose by the closed form at once and returns an
-        :class:`IkBatch` (every core, the GIL released).
+        ``Ts`` of shape (N, 4, 4) solves every pose at once and returns an :class:`IkBatch`
+        (every core, the GIL released): every closed-form solution, or, for an arm without a
+        closed form (or ``solver="numerical"``), the numerical solver's answer from ``seed``
+        (one q, or one row per pose; default "ready"), ``valid`` where it converged.
         """
         a = _floats(T, "T")
-        if a.ndim == 3:
-            q, valid, within, codes, labels = _core.ik_batch(self._core, a)
-            return IkBatch(q, valid, within, codes, dict(labels))
         s = None if seed is None else _floats(seed, "seed")
+        if a.ndim == 3:
+            numerical = solver == "numerical" or (solver == "auto" and self.closed_form is None)
+            if not numerical:
+                q, valid, within, codes, labels = _core.ik_batch(self._core, a)
+                return IkBatch(q, valid, within, codes, dict(labels))
+            q, valid, within, codes, labels, pe, oe = _core.ik_batch_numerical(self._core, a, s, ee)
+            return IkBatch(q, valid, within, codes, dict(labels), pe, oe)
         status, distance, used, found = self._core.ik(a, ee, s, solver)
         sols = IkSolutions(
             [IkSolution(np.array(q, dtype=float), p, w, pe, oe, list(fr)) for q, p, w, pe, oe, fr in found],

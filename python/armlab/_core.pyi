@@ -92,6 +92,18 @@ def ik_batch(
 ) -> Tuple[F64, npt.NDArray[np.bool_], npt.NDArray[np.bool_], npt.NDArray[np.int32], List[Tuple[int, str]]]:
     """(q (N, k, dof), valid (N, k), within_limits (N, k), posture codes (N, k), labels)."""
 
+def ik_batch_numerical(
+    robot: CoreRobot,
+    ts: F64,
+    seeds: Optional[F64] = None,
+    ee: int = 0,
+    tolerance: float = 1e-10,
+    max_iterations: int = 100,
+    restarts: int = 50,
+) -> Tuple[F64, npt.NDArray[np.bool_], npt.NDArray[np.bool_], npt.NDArray[np.int32], List[Tuple[int, str]], F64, F64]:
+    """(q (N, 1, dof), converged (N, 1), within_limits (N, 1), codes (N, 1), labels,
+    position errors (N,), orientation errors (N,))."""
+
 def render(
     robot: CoreRobot,
     q: F64,

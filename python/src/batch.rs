@@ -5,10 +5,12 @@ use crate::arrays::{checked, to_numpy, write_pose};
 use crate::errors::{IkError, IntoPy, value_error};
 use crate::robot::CoreRobot;
 use armlab::kinematics::Pose;
+use armlab::kinematics::ik::Target;
 use armlab::kinematics::ik::closed_form::{
     ArmKind, Elbow, Extension, Family, LIMIT_TOL, Posture, RawSolutions, Shoulder, WristFlip,
     wrap_into_limits,
 };
+use armlab::kinematics::ik::numerical::{self, NumericalOptions};
 use armlab::kinematics::pose::{NotRigid, pose_from_matrix};
 use armlab::nalgebra::{Matrix3, Matrix4, Rotation3, Translation3};
 use numpy::{PyArrayDyn, PyArrayMethods, PyReadonlyArrayDyn, PyUntypedArrayMethods};
@@ -283,5 +285,104 @@ pub fn ik_batch<'py>(
         to_numpy(py, within, &[rows, k])?,
         to_numpy(py, codes, &[rows, k])?,
         labels,
+    ))
+}
+
+/// The numerical solver on every pose of `Ts` (N, 4, 4), for arms without a closed form: one
+/// slot per pose, `(q (N, 1, dof), converged (N, 1), within_limits (N, 1), posture codes (N, 1),
+/// labels, position errors (N,), orientation errors (N,))`. Each pose starts from `seeds` (one
+/// row per pose, or one q for all; default the "ready" configuration, else zero) and the
+/// solver's random restarts (seeded, so the same call gives the same answer).
+#[pyfunction]
+#[pyo3(signature = (robot, ts, seeds=None, ee=0, tolerance=1e-10, max_iterations=100, restarts=50))]
+#[allow(clippy::type_complexity, clippy::too_many_arguments)]
+pub fn ik_batch_numerical<'py>(
+    py: Python<'py>,
+    robot: &Bound<'py, CoreRobot>,
+    ts: PyReadonlyArrayDyn<'py, f64>,
+    seeds: Option<PyReadonlyArrayDyn<'py, f64>>,
+    ee: usize,
+    tolerance: f64,
+    max_iterations: usize,
+    restarts: usize,
+) -> PyResult<(
+    Bound<'py, PyAny>,
+    Bound<'py, PyAny>,
+    Bound<'py, PyAny>,
+    Bound<'py, PyAny>,
+    Vec<(i32, String)>,
+    Bound<'py, PyAny>,
+    Bound<'py, PyAny>,
+)> {
+    let r = robot.get();
+    let ee = r.ee(ee)?;
+    let n = r.robot.dof();
+    let data = checked(&ts, "Ts", &[None, Some(4), Some(4)], "one pose per row")?;
+    let rows = ts.shape()[0];
+    let seeds: Vec<f64> = match &seeds {
+        None => r.robot.ready_or_zero(),
+        Some(s) if s.shape().len() == 1 => {
+            checked(s, "seed", &[Some(n)], "one q for all")?.into_owned()
+        }
+        Some(s) => checked(s, "seed", &[Some(rows), Some(n)], "one q per pose")?.into_owned(),
+    };
+    if !(tolerance > 0.0 && tolerance.is_finite()) || max_iterations == 0 {
+        return Err(value_error(
+            "tolerance must be positive and max_iterations at least 1",
+        ));
+    }
+    let opts = NumericalOptions {
+        tolerance,
+        max_iterations,
+        restarts,
+        ..NumericalOptions::default()
+    };
+    let targets: Vec<Pose> = data
+        .chunks_exact(16)
+        .enumerate()
+        // As the single call reads its target (the numerical solver costs far more than this).
+        .map(|(i, t)| {
+            pose_from_matrix(&Matrix4::from_row_slice(t)).map_err(|e| not_a_pose(i, &e.to_string()))
+        })
+        .collect::<PyResult<_>>()?;
+    let limits: Vec<[f64; 2]> = (0..n).map(|j| r.robot.dof_joint(j).limits).collect();
+    let reports: Vec<_> = py
+        .detach(|| {
+            targets
+                .par_iter()
+                .enumerate()
+                .map(|(i, t)| {
+                    let seed = if seeds.len() == n {
+                        &seeds[..]
+                    } else {
+                        &seeds[i * n..(i + 1) * n]
+                    };
+                    numerical::solve(&r.robot, ee, &Target::Pose(*t), seed, &opts)
+                })
+                .collect::<Result<Vec<_>, _>>()
+        })
+        .py_err()?;
+    let mut q = Vec::with_capacity(rows * n);
+    let (mut valid, mut within, mut pe, mut oe) = (vec![], vec![], vec![], vec![]);
+    for rep in &reports {
+        q.extend_from_slice(&rep.q);
+        valid.push(rep.converged);
+        within.push(
+            rep.q
+                .iter()
+                .zip(&limits)
+                .all(|(w, l)| *w >= l[0] - LIMIT_TOL && *w <= l[1] + LIMIT_TOL),
+        );
+        pe.push(rep.position_error);
+        oe.push(rep.orientation_error);
+    }
+    Ok((
+        to_numpy(py, q, &[rows, 1, n])?,
+        to_numpy(py, valid, &[rows, 1])?,
+        to_numpy(py, within, &[rows, 1])?,
+        to_numpy(py, vec![0i32; rows], &[rows, 1])?,
+        vec![(0, "numerical".to_string())],
+        to_numpy(py, pe, &[rows])?,
+        to_numpy(py, oe, &[rows])?,
     ))
 }

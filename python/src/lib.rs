@@ -35,6 +35,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<robot::CoreRobot>()?;
     m.add_function(wrap_pyfunction!(batch::fk_batch, m)?)?;
     m.add_function(wrap_pyfunction!(batch::ik_batch, m)?)?;
+    m.add_function(wrap_pyfunction!(batch::ik_batch_numerical, m)?)?;
     m.add_function(wrap_pyfunction!(figures::render, m)?)?;
     m.add_function(wrap_pyfunction!(reports::workspace, m)?)?;
     m.add_function(wrap_pyfunction!(reports::reach, m)?)?;

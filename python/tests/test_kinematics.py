@@ -153,6 +153,19 @@ def test_ur5_urdf_gives_8_labelled_solutions(root, cli):
     assert int(b.counts()[0]) == 8
 
 
+def test_batch_ik_of_an_arm_without_closed_form_is_numerical_and_equals_single_calls():
+    r = armlab.Robot.builtin("panda")
+    Q = np.random.default_rng(8).uniform(r.limits[:, 0], r.limits[:, 1], (40, 7))
+    Ts = r.fk(Q)
+    b = r.ik(Ts, seed=Q + 0.05)
+    assert b.q.shape == (40, 1, 7) and b.labels == {0: "numerical"}
+    assert b.valid.all() and (b.position_error < 1e-10).all()
+    assert np.abs(r.fk(b.q[:, 0]) - Ts).max() < 1e-9
+    for i in (0, 13, 39):
+        single = r.ik_numerical(Ts[i], q0=Q[i] + 0.05)
+        assert np.array_equal(single.q, b.q[i, 0])
+
+
 def test_numerical_ik_converges_and_reports():
     r = armlab.Robot.builtin("panda")
     q = np.array([0.2, -0.4, 0.1, -2.0, 0.3, 1.8, 0.5])
