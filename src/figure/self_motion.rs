@@ -27,6 +27,11 @@ pub fn figure(
     robot: &Robot,
     motion: &SelfMotionSamples,
 ) -> Result<image::RgbaImage, FigureError> {
+    figs.plot([1200, 800], Theme::Light, &plot_of(robot, motion), None)
+}
+
+/// The figure's plot: curves, limit lines and feasible bars.
+fn plot_of(robot: &Robot, motion: &SelfMotionSamples) -> Plot2d {
     let SelfMotionSamples {
         parameter,
         samples,
@@ -47,11 +52,30 @@ pub fn figure(
     };
     let dof = robot.dof().min(JOINT_COLORS.len());
     for (b, name) in names.iter().enumerate() {
-        add_branch(&mut plot, b, name, samples, dof);
+        // One branch: each joint's entry names it. Several: the joints once (their colours are
+        // the same in every branch) and each branch by its feasible bar, so that the legend of
+        // an SRS arm's eight branches is 15 entries, not 63 that run off the figure.
+        let legend = match (names.len(), b) {
+            (1, _) => Legend::JointAndBranch,
+            (_, 0) => Legend::Joint,
+            _ => Legend::None,
+        };
+        add_branch(&mut plot, b, name, samples, dof, legend);
         add_feasible_bars(&mut plot, b, name, &feasible[b]);
     }
     add_limit_lines(&mut plot, robot, dof);
-    figs.plot([1200, 800], Theme::Light, &plot, None)
+    plot
+}
+
+/// How a branch's curves appear in the legend.
+#[derive(Clone, Copy, PartialEq)]
+enum Legend {
+    /// "q1 (elbow up)".
+    JointAndBranch,
+    /// "q1".
+    Joint,
+    /// Not at all.
+    None,
 }
 
 /// Branch `b`'s joint curves (the first `dof` joints), broken where a branch has no solution or
@@ -62,14 +86,18 @@ fn add_branch(
     name: &str,
     samples: &[(f64, Vec<crate::redundancy::BranchSolution>)],
     dof: usize,
+    legend: Legend,
 ) {
     for (j, c) in JOINT_COLORS.iter().copied().enumerate().take(dof) {
         let mut run: Vec<[f64; 2]> = Vec::new();
-        let mut labelled = false;
+        let mut labelled = legend == Legend::None;
         let mut flush = |run: &mut Vec<[f64; 2]>| {
             if run.len() > 1 {
                 plot.curves.push(Curve {
-                    name: (!labelled).then(|| format!("q{} ({name})", j + 1)),
+                    name: (!labelled).then(|| match legend {
+                        Legend::JointAndBranch => format!("q{} ({name})", j + 1),
+                        _ => format!("q{}", j + 1),
+                    }),
                     points: std::mem::take(run),
                     color: Color32::from_rgb(c[0], c[1], c[2]),
                     width: 1.8,
@@ -128,5 +156,39 @@ fn add_limit_lines(plot: &mut Plot2d, robot: &Robot, dof: usize) {
                 ..Curve::default()
             });
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The legend entries of a plot: named curves and distinct area names.
+    fn legend(plot: &Plot2d) -> Vec<String> {
+        let mut names: Vec<String> = plot.curves.iter().filter_map(|c| c.name.clone()).collect();
+        for a in &plot.areas {
+            if !names.contains(&a.name) {
+                names.push(a.name.clone());
+            }
+        }
+        names
+    }
+
+    #[test]
+    fn the_legend_of_eight_branches_fits_and_one_branch_names_its_joints() {
+        let dlr = crate::kinematics::models::built_in("dlr").expect("built-in");
+        let q = [0.3, 0.5, -0.2, 1.1, 0.4, -0.6, 0.2];
+        let pose = dlr.fk(&q).expect("fk");
+        let mut m = crate::redundancy::sampler::sample_self_motion_locked(&dlr, 0, &pose, 36, None)
+            .expect("an exact self-motion");
+        assert_eq!(m.names.len(), 8);
+        let all = legend(&plot_of(&dlr, &m));
+        // Seven joints and eight branches' bars (63 entries before, off the figure's edge).
+        assert_eq!(all.len(), 15, "{all:?}");
+        assert!(all.contains(&"q1".to_string()));
+        let first = m.names[0].clone();
+        m.keep_branch(&first).expect("a branch");
+        let one = legend(&plot_of(&dlr, &m));
+        assert!(one.contains(&format!("q1 ({first})")), "{one:?}");
     }
 }
