@@ -129,6 +129,11 @@ impl Parallel3 {
     }
 
     /// The wrist and elbow solutions for shoulder angle `th1`.
+    ///
+    /// Allocation-free and with few transcendental calls (this is the UR5's hot path, issue 27):
+    /// `A1^-1 T` and the products with `(A5 A6)^-1` are written out entry by entry for the
+    /// twists +-pi/2 and 0 the family has, and the sines and cosines of the angles found are
+    /// read off their own atan2 arguments instead of being recomputed.
     fn after_shoulder(
         &self,
         th1: f64,
@@ -136,29 +141,33 @@ impl Parallel3 {
         m: &Matrix4<f64>,
         out: &mut [Sol6],
     ) -> Result<usize, f64> {
-        // M = A1^-1 T: the flange in frame 1.
-        let a1 = dh(th1, self.d1, 0.0, self.s1);
-        let m1 = rigid_inverse(&a1) * m;
+        let m1 = self.in_frame1(th1, m);
         // Third row of R_6^1 = s4 (sin t5 cos t6, -sin t5 sin t6, -s5 cos t5):
         // cos theta5 = -s4 s5 m22.
-        let c5 = (-self.s4 * self.s5 * m1[(2, 2)]).clamp(-1.0, 1.0);
+        let c5 = (-self.s4 * self.s5 * m1[2][2]).clamp(-1.0, 1.0);
+        let base5 = c5.acos();
+        let sin5 = ((1.0 - c5) * (1.0 + c5)).sqrt();
         let mut n = 0;
         let mut gap: f64 = f64::INFINITY;
-        let base5 = c5.acos();
-        for (w, th5) in [base5, -base5].into_iter().enumerate() {
-            let s5 = th5.sin();
-            let singular = s5.abs() < 1e-10;
+        for (w, (th5, st5)) in [(base5, sin5), (-base5, -sin5)].into_iter().enumerate() {
+            let singular = st5.abs() < 1e-10;
             // theta6 from (s4 m20, -s4 m21) = sin theta5 (cos theta6, sin theta6).
-            let th6 = if singular {
-                0.0
+            let (th6, ct6, st6) = if singular {
+                (0.0, 1.0, 0.0)
             } else {
-                (-self.s4 * m1[(2, 1)] / s5).atan2(self.s4 * m1[(2, 0)] / s5)
+                let (x6, y6) = (self.s4 * m1[2][0] / st5, -self.s4 * m1[2][1] / st5);
+                let h = x6.hypot(y6);
+                (y6.atan2(x6), x6 / h, y6 / h)
             };
-            // Frame 4 in frame 1: M (A5 A6)^-1 = A2 A3 A4.
-            let a56 = dh(th5, self.d5, 0.0, self.s5) * dh(th6, self.d6, 0.0, 0.0);
-            let q = m1 * rigid_inverse(&a56);
-            let th234 = q[(1, 0)].atan2(q[(0, 0)]);
-            let (x, y) = (q[(0, 3)], q[(1, 3)]);
+            // Frame 4 in frame 1: M (A5 A6)^-1 = A2 A3 A4. Only its x axis and origin in the
+            // plane of axes 2-4 are needed: (A5 A6)^-1 has rotation R56^T, whose first column is
+            // R56's first row (cos t5 cos t6, -cos t5 sin t6, sin t5 s5), and origin
+            // -R56^T p56 = -(sin t6 s5 d5, cos t6 s5 d5, d6) (A5 A6 from (2.52), a5 = a6 = 0).
+            let r0 = [c5 * ct6, -c5 * st6, st5 * self.s5];
+            let v = [st6 * self.s5 * self.d5, ct6 * self.s5 * self.d5, self.d6];
+            let dot = |row: &[f64; 4], u: &[f64; 3]| row[0] * u[0] + row[1] * u[1] + row[2] * u[2];
+            let th234 = dot(&m1[1], &r0).atan2(dot(&m1[0], &r0));
+            let (x, y) = (m1[0][3] - dot(&m1[0], &v), m1[1][3] - dot(&m1[1], &v));
             let c3 =
                 (x * x + y * y - self.a2 * self.a2 - self.a3 * self.a3) / (2.0 * self.a2 * self.a3);
             if c3.abs() > 1.0 + 1e-12 {
@@ -191,6 +200,22 @@ impl Parallel3 {
         }
         if n == 0 { Err(gap) } else { Ok(n) }
     }
+
+    /// `A1^-1 T`, rows 0-2 (the flange in frame 1): `Rx(-alpha1) Tz(-d1) Rz(-theta1) T` with
+    /// sin(alpha1) = s1, cos(alpha1) = 0, a1 = 0 (2.52), so row 0 = c1 r0 + s1' r1,
+    /// row 1 = s1 (r2 - d1 on the origin), row 2 = s1 (sin t1 r0 - cos t1 r1).
+    fn in_frame1(&self, th1: f64, m: &Matrix4<f64>) -> [[f64; 4]; 3] {
+        let (s, c) = th1.sin_cos();
+        let mut m1 = [[0.0; 4]; 3];
+        for j in 0..4 {
+            let (a, b, z) = (m[(0, j)], m[(1, j)], m[(2, j)]);
+            m1[0][j] = c * a + s * b;
+            m1[1][j] = self.s1 * z;
+            m1[2][j] = self.s1 * (s * a - c * b);
+        }
+        m1[1][3] = self.s1 * (m[(2, 3)] - self.d1);
+        m1
+    }
 }
 
 /// What the elbow solutions of one shoulder and wrist branch need.
@@ -211,13 +236,18 @@ impl Parallel3 {
     fn elbows(&self, e: &Elbows, out: &mut [Sol6]) -> usize {
         let [th1, th234, th5, th6] = e.th;
         let [x, y] = e.xy;
-        let c3 = e.c3;
+        let c3 = e.c3.clamp(-1.0, 1.0);
         let mut n = 0;
-        let base3 = c3.clamp(-1.0, 1.0).acos();
-        let stretched = (c3.abs() - 1.0).abs() < 1e-12;
+        let base3 = c3.acos();
+        let sin3 = ((1.0 - c3) * (1.0 + c3)).sqrt();
+        let stretched = (e.c3.abs() - 1.0).abs() < 1e-12;
         let count = if stretched { 1 } else { 2 };
-        for th3 in [base3, -base3].into_iter().take(count) {
-            let th2 = y.atan2(x) - (self.a3 * th3.sin()).atan2(self.a2 + self.a3 * th3.cos());
+        let towards = y.atan2(x);
+        for (th3, s3) in [(base3, sin3), (-base3, -sin3)].into_iter().take(count) {
+            // theta2 = Atan2(y, x) - Atan2(a3 s3, a2 + a3 c3) (Sect. 2.12.1); its cosine and
+            // sine from the same two vectors, for the elbow's side.
+            let (k1, k2) = (self.a2 + self.a3 * c3, self.a3 * s3);
+            let th2 = towards - k2.atan2(k1);
             let th4 = th234 - th2 - th3;
             let mut posture = Posture {
                 shoulder: Some(e.shoulder),
@@ -227,7 +257,7 @@ impl Parallel3 {
                     } else {
                         Elbow::Folded
                     }
-                } else if self.elbow_above(th2, x, y) {
+                } else if self.elbow_above([x * k1 + y * k2, y * k1 - x * k2], x, y) {
                     Elbow::Up
                 } else {
                     Elbow::Down
@@ -248,49 +278,14 @@ impl Parallel3 {
 }
 
 impl Parallel3 {
-    /// Whether the elbow (origin of frame 2) lies above the line from the shoulder to the wrist
-    /// point (x, y) in the arm's plane (frame 1), "above" meaning along the base's z axis, which
-    /// is s1 y1 in frame 1 (`Rx(-alpha1) z0`).
-    fn elbow_above(&self, th2: f64, x: f64, y: f64) -> bool {
-        let e = [self.a2 * th2.cos(), self.a2 * th2.sin()];
+    /// Whether the elbow (origin of frame 2, along `dir2`, a positive multiple of
+    /// (cos theta2, sin theta2)) lies above the line from the shoulder to the wrist point (x, y)
+    /// in the arm's plane (frame 1), "above" meaning along the base's z axis, which is s1 y1 in
+    /// frame 1 (`Rx(-alpha1) z0`).
+    fn elbow_above(&self, dir2: [f64; 2], x: f64, y: f64) -> bool {
         let len = x.hypot(y).max(f64::MIN_POSITIVE);
         let u = [x / len, y / len];
-        let along = e[0] * u[0] + e[1] * u[1];
-        (e[1] - along * u[1]) * self.s1 > 0.0
+        let along = dir2[0] * u[0] + dir2[1] * u[1];
+        (dir2[1] - along * u[1]) * self.a2.signum() * self.s1 > 0.0
     }
-}
-
-/// The inverse of a rigid transform `[R p; 0 1]`: `[R^T, -R^T p; 0 1]`.
-fn rigid_inverse(t: &Matrix4<f64>) -> Matrix4<f64> {
-    let r = t.fixed_view::<3, 3>(0, 0).transpose();
-    let p = -(r * t.fixed_view::<3, 1>(0, 3));
-    let mut out = Matrix4::identity();
-    out.fixed_view_mut::<3, 3>(0, 0).copy_from(&r);
-    out.fixed_view_mut::<3, 1>(0, 3).copy_from(&p);
-    out
-}
-
-/// `Rz(theta) Tz(d) Tx(a) Rx(alpha)` with sin(alpha) = `sa` in {-1, 0, 1} (cos alpha = 1 - |sa|):
-/// one standard DH row, (2.52).
-fn dh(theta: f64, d: f64, a: f64, sa: f64) -> Matrix4<f64> {
-    let (st, ct) = theta.sin_cos();
-    let ca = 1.0 - sa.abs();
-    Matrix4::new(
-        ct,
-        -st * ca,
-        st * sa,
-        a * ct,
-        st,
-        ct * ca,
-        -ct * sa,
-        a * st,
-        0.0,
-        sa,
-        ca,
-        d,
-        0.0,
-        0.0,
-        0.0,
-        1.0,
-    )
 }
