@@ -156,7 +156,8 @@ fn panda_self_motion_tab() {
 }
 
 /// "Show the construction" on the default robot (anthropomorphic arm with spherical wrist) at its
-/// last step (every mark drawn, the wrist's in red) and on the two-link arm (the triangle).
+/// last step (every mark drawn, the wrist's in red), on the two-link arm (the triangle), and on
+/// the other families' arms at their last steps.
 #[test]
 fn construction_overlay() {
     for (model, step, name) in [
@@ -168,6 +169,12 @@ fn construction_overlay() {
         ("planar2", 1, "app_construction_planar2"),
         ("stanford", 9, "app_construction_stanford"),
         ("scara", 9, "app_construction_scara"),
+        // The UR family (issue 27): the planar three-link problem after joint 1, theta4 last.
+        (
+            "tests/data/urdf_corpus/ur5_robot.urdf",
+            7,
+            "app_construction_ur5",
+        ),
     ] {
         let mut state = AppState::from_spec(model).unwrap();
         // The construction alone: no frames, no ghosts.

@@ -348,3 +348,134 @@ fn construction_lengths_carry_the_dh_tables_names_and_values() {
     );
     assert!(!all_text(&steps).contains("-0.000"));
 }
+
+/// The vendor's UR5 DH table (d1, a2, a3, d4, d5, d6), alpha = (pi/2, 0, 0, pi/2, -pi/2, 0).
+const UR5: [f64; 6] = [0.089159, -0.425, -0.39225, 0.10915, 0.09465, 0.0823];
+
+/// The UR5 table as (a, alpha, d) rows.
+fn ur5_rows() -> [(f64, f64, f64); 6] {
+    let h = PI / 2.0;
+    [
+        (0.0, h, UR5[0]),
+        (UR5[1], 0.0, 0.0),
+        (UR5[2], 0.0, 0.0),
+        (0.0, h, UR5[3]),
+        (0.0, -h, UR5[4]),
+        (0.0, 0.0, UR5[5]),
+    ]
+}
+
+/// The origins of frames 1..6 of the UR5 table at q, by the product of (2.52) written here.
+fn ur5_origins(q: &[f64]) -> Vec<nalgebra::Vector3<f64>> {
+    let mut t = nalgebra::Matrix4::<f64>::identity();
+    let mut out = Vec::new();
+    for (k, (a, alpha, d)) in ur5_rows().into_iter().enumerate() {
+        let (st, ct) = q[k].sin_cos();
+        let (sa, ca) = alpha.sin_cos();
+        #[rustfmt::skip]
+        let a_k = nalgebra::Matrix4::new(
+            ct, -st * ca, st * sa, a * ct,
+            st, ct * ca, -ct * sa, a * st,
+            0.0, sa, ca, d,
+            0.0, 0.0, 0.0, 1.0,
+        );
+        t *= a_k;
+        out.push(nalgebra::Vector3::new(t[(0, 3)], t[(1, 3)], t[(2, 3)]));
+    }
+    out
+}
+
+/// The point labelled `name`.
+fn point(steps: &[armlab::construction::steps::Step], name: &str) -> nalgebra::Vector3<f64> {
+    use armlab::construction::steps::Mark;
+    steps
+        .iter()
+        .flat_map(|s| &s.marks)
+        .find_map(|m| match m {
+            Mark::Point { p, label } if label == name => Some(*p),
+            _ => None,
+        })
+        .unwrap_or_else(|| panic!("no point {name}"))
+}
+
+/// The UR family (issue 27): the construction after joint 1. On the vendor's UR5 table and on
+/// the corpus URDF, at random configurations, every drawn angle is its joint up to the constant
+/// it has at q = 0, and its label prints the joint. On the table, checked against a forward
+/// kinematics written here: o5 and W are the origins of frames 5 and 4, the segments are the
+/// table's lengths (d6, d5, D = d4, |a2|, |a3|), and the other shoulder's theta1 is the other root
+/// of r sin(theta1 - Atan2(o5y, o5x)) = d4.
+#[test]
+fn the_ur_construction_reduces_to_the_planar_arm_after_joint_1() {
+    use armlab::construction::steps::construction;
+    use armlab::kinematics::{Convention, DhJoint, DhRow, Pose, Robot};
+    let joints: Vec<DhJoint> = ur5_rows()
+        .iter()
+        .map(|&(a, alpha, d)| {
+            DhJoint::revolute(DhRow {
+                a,
+                alpha,
+                d,
+                theta: 0.0,
+            })
+            .limits(-2.0 * PI, 2.0 * PI)
+        })
+        .collect();
+    let table = Robot::from_dh(
+        "ur5",
+        Convention::Standard,
+        &joints,
+        Pose::identity(),
+        Pose::identity(),
+    )
+    .unwrap();
+    let urdf = armlab::model_file::load_model("tests/data/urdf_corpus/ur5_robot.urdf").unwrap();
+    let names = ["θ1", "θ2", "θ3", "θ4", "θ5", "θ6"];
+    let mut s = 27u64;
+    for robot in [&table, &urdf] {
+        let zero = construction(robot, &[0.0; 6]).unwrap();
+        for _ in 0..200 {
+            let q: Vec<f64> = (0..6).map(|_| -PI + 2.0 * PI * lcg(&mut s)).collect();
+            let steps = construction(robot, &q).unwrap();
+            assert_eq!(steps.len(), 8);
+            for (k, name) in names.iter().enumerate() {
+                let (drawn, label) = arc(&steps, name);
+                let (drawn0, _) = arc(&zero, name);
+                assert!(
+                    same_angle(drawn - drawn0, q[k]),
+                    "{name}: drawn {drawn} - {drawn0} at q = {q:?}"
+                );
+                let d = (label_value(&label).to_radians() - q[k]).rem_euclid(2.0 * PI);
+                assert!(d.min(2.0 * PI - d) < 1e-3, "{label} for q = {q:?}");
+            }
+            if std::ptr::eq(robot, &table) {
+                let o = ur5_origins(&q);
+                assert!((point(&steps, "o5") - o[4]).norm() < 1e-12);
+                assert!((point(&steps, "W (axis 4)") - o[3]).norm() < 1e-12);
+                for (name, want) in [
+                    ("-d6 z6", UR5[5]),
+                    ("d5 = ", UR5[4]),
+                    ("D = ", UR5[3]),
+                    ("a2 = ", -UR5[1]),
+                    ("a3 = ", -UR5[2]),
+                ] {
+                    let (len, label) = segment(&steps, name);
+                    assert!((len - want).abs() < 1e-12, "{label}: {len} for {want}");
+                }
+                // The two shoulders, from o5 written here.
+                let (r, phi) = (o[4].x.hypot(o[4].y), o[4].y.atan2(o[4].x));
+                let asin = (UR5[3] / r).asin();
+                let roots = [phi + asin, phi + PI - asin];
+                let mine = roots.iter().position(|t| same_angle(*t, q[0])).unwrap();
+                let formula = &steps[1].formula;
+                let other: f64 = formula
+                    .rsplit(" or ")
+                    .next()
+                    .and_then(|t| t.split('°').next())
+                    .and_then(|t| t.parse().ok())
+                    .unwrap_or_else(|| panic!("{formula}"));
+                let d = (other.to_radians() - roots[1 - mine]).rem_euclid(2.0 * PI);
+                assert!(d.min(2.0 * PI - d) < 1e-3, "{formula}: {roots:?}");
+            }
+        }
+    }
+}

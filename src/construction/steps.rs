@@ -5,6 +5,7 @@
 //! on screen; the steps follow Sects. 2.12.1, 2.12.2, 2.12.4 and 2.12.5.
 
 mod arms;
+mod parallel3;
 
 use super::{ConstructionError, TwoLinkConstruction, WristPoint};
 use crate::kinematics::Robot;
@@ -158,9 +159,8 @@ fn family_steps(robot: &Robot, q: &[f64]) -> Result<Vec<Step>, ConstructionError
         } => arms::cylindrical(robot, q, Some(WristPoint::of(robot, q)?)),
         Family::Scara => arms::scara(robot, q),
         Family::SphericalWrist => arms::wrist_alone(robot, q),
-        Family::ThreeParallel | Family::General6 => {
-            Err(ConstructionError::NotDrawn { family: cf.name() })
-        }
+        Family::ThreeParallel => parallel3::steps(robot, q),
+        Family::General6 => Err(ConstructionError::NotDrawn { family: cf.name() }),
     }
 }
 
