@@ -32,6 +32,7 @@
 
 mod arm;
 mod chain;
+mod eigen;
 mod family;
 mod general6;
 mod locked;

@@ -583,24 +583,30 @@ fn roots(aug: &[[f64; COLS]; NEQ], shift: f64) -> Option<([Root; 24], bool, Penc
         return None;
     }
     balance(&mut c);
-    // nalgebra's uncapped iteration can cycle on a special arm's companion matrix: cap it, and
-    // a failure sends the solver to the next shift or order.
-    let eig = nalgebra::Schur::try_new(c, f64::EPSILON, 40 * 24)?.complex_eigenvalues();
+    // Eigenvalues only (no Schur vectors), with a capped iteration: one that cycles on a special
+    // arm's companion matrix sends the solver to the next shift or order.
+    let mut rows = [[0.0; 24]; 24];
+    for (i, row) in rows.iter_mut().enumerate() {
+        for (j, v) in row.iter_mut().enumerate() {
+            *v = c[(i, j)];
+        }
+    }
+    let eig = super::eigen::eigenvalues(&mut rows)?;
     // Health check: the determinant of a sound eliminant has the factor (1 + x^2)^4 (the
     // half-angle of t3), so 8 eigenvalues at +-i. A special arm's eliminant may lose them (and
     // real roots with them): then the other orders of the loop are solved too.
     let at_i = eig
         .iter()
-        .filter(|e| e.re.abs() < 1e-3 && (e.im.abs() - 1.0).abs() < 1e-3)
+        .filter(|&&(re, im)| re.abs() < 1e-3 && (im.abs() - 1.0).abs() < 1e-3)
         .count();
     let healthy = at_i == 8;
     let mut roots = [None; 24];
-    for (r, e) in roots.iter_mut().zip(eig.iter()) {
+    for (r, &(re, im)) in roots.iter_mut().zip(eig.iter()) {
         // Loose: a near-double root, or a root of an ill-conditioned eliminant (a nearly special
         // arm), may come out as a complex pair; Newton and the FK check decide.
-        let spurious = e.re.abs() < 1e-3 && (e.im.abs() - 1.0).abs() < 1e-3;
-        if !spurious && e.im.abs() <= 0.1 * (1.0 + e.re.abs()) {
-            *r = Some((e.re, e.im.abs() <= 1e-7 * (1.0 + e.re.abs())));
+        let spurious = re.abs() < 1e-3 && (im.abs() - 1.0).abs() < 1e-3;
+        if !spurious && im.abs() <= 0.1 * (1.0 + re.abs()) {
+            *r = Some((re, im.abs() <= 1e-7 * (1.0 + re.abs())));
         }
     }
     Some((roots, healthy, [mm0, mm1, mm2]))
