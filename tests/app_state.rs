@@ -662,8 +662,8 @@ fn a_tree_whose_arm_has_a_closed_form_is_dragged_in_closed_form() {
 }
 
 /// Issue 27: a general six-revolute arm (the Unitree Z1, no named family) is dragged with every
-/// solution; under the posture lock its branch is the one that continues from the current q,
-/// whatever number the sorted list gives it, and the hand follows the target exactly.
+/// solution; under the posture lock its branch is the one that continues from the current q and
+/// keeps its number, and the hand follows the target exactly.
 #[test]
 fn a_general_arm_under_the_posture_lock_keeps_its_branch_by_continuity() {
     let mut s = state("tests/data/urdf_corpus/unitree_z1.urdf");
@@ -672,6 +672,7 @@ fn a_general_arm_under_the_posture_lock_keeps_its_branch_by_continuity() {
     s.set_lock(true);
     let start = s.robot().fk_ee(s.q(), ee).unwrap();
     let mut prev = s.q().to_vec();
+    let mut first_label: Option<Option<String>> = None;
     for k in 1..=20 {
         let moved =
             Translation3::new(0.004 * k as f64, -0.003 * k as f64, 0.002 * k as f64) * start;
@@ -690,6 +691,13 @@ fn a_general_arm_under_the_posture_lock_keeps_its_branch_by_continuity() {
             step < 0.1,
             "step {k}: the branch continues (largest joint step {step} rad)"
         );
+        // The branch keeps its number (the lock's label) while the target moves.
+        let label = s.targets()[ee].posture.clone();
+        assert!(label.as_deref().is_some_and(|l| l.starts_with("branch ")));
+        if let Some(first) = &first_label {
+            assert_eq!(&label, first, "step {k}: the branch was renumbered");
+        }
+        first_label.get_or_insert(label);
         prev = s.q().to_vec();
     }
 }

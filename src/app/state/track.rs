@@ -6,8 +6,9 @@
 //! - **unlocked**: the within-limits solution closest in joint space to the current q
 //!   ([`joint_distance`]: revolute differences wrapped into (-pi, pi]);
 //! - **locked**: the solution with the locked posture label (for a general six-revolute arm,
-//!   whose "branch k" is only a place in a sorted list, the solution that continues from the
-//!   current q, the label following it). Labels change meaning only at
+//!   whose "branch k" has no geometric meaning, the solution that continues from the current q;
+//!   its number stays with it while the target moves, [`continue_numbers`]). Labels change
+//!   meaning only at
 //!   singularities (the wrist passing through sin(theta5) = 0 continues as the "flip" branch, for
 //!   instance), so when the previous q is near a singularity (a singularity measure below
 //!   [`BRANCH_SWITCH_MEASURE`], the conditioning ratio below [`NEAR_RATIO`], or a degenerate
@@ -34,6 +35,7 @@
 use super::{AppState, Level, Reach};
 use crate::kinematics::Robot;
 use crate::kinematics::hold::{Held, hold_joints, hold_other_chains};
+use crate::kinematics::ik::branches::continue_numbers;
 use crate::kinematics::ik::closed_form::Family;
 use crate::kinematics::ik::numerical::{self, NumericalOptions};
 use crate::kinematics::ik::solver::{self, SolverChoice, by_posture, joint_distance};
@@ -141,6 +143,12 @@ impl AppState {
             }
             self.shift_towards_q(&mut s.q);
         }
+        // A general arm's branches keep their numbers while the target moves.
+        if self.family_of(ee) == Some(Family::General6)
+            && let Some(previous) = &self.targets[ee].result
+        {
+            continue_numbers(&self.robot, &previous.solutions, &mut result.solutions);
+        }
         Ok(result)
     }
 
@@ -188,8 +196,8 @@ impl AppState {
         let Some(label) = locked else {
             return closest_in.map_or_else(|| outside(None), pick);
         };
-        // A general arm's "branch k" is a place in a sorted list, not a geometric posture: its
-        // branch is the one that continues from the current q (the label follows it).
+        // A general arm's "branch k" is not a geometric posture: its branch is the one that
+        // continues from the current q (numbered by continuity in `closed_form_solutions`).
         if self.family_of(ee) == Some(Family::General6) {
             let closest =
                 (0..sols.len()).min_by(|&a, &b| dist(&sols[a]).total_cmp(&dist(&sols[b])));

@@ -46,8 +46,8 @@ mod wrist;
 pub use family::{ArmKind, Family};
 pub use locked::{EXACT_CHECK, LockedArm, MAX_LOCKED_SOLUTIONS};
 pub use posture::{
-    Elbow, Extension, FreeReason, Posture, SHORT_LEGEND, SHORT_LEGEND_UR, Shoulder, WristFlip,
-    short_label,
+    BRANCH_LABELS, Elbow, Extension, FreeReason, Posture, SHORT_LEGEND, SHORT_LEGEND_UR, Shoulder,
+    WristFlip, short_label,
 };
 pub use solutions::{Solution, SolutionErrors, Solutions, Verify};
 pub use why::NoClosedForm;

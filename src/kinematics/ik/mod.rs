@@ -1,6 +1,7 @@
 //! Inverse kinematics (Sect. 2.12): closed-form solvers chosen from the structure of the DH table,
 //! returning every solution labelled with its posture, and a numerical solver for any chain.
 
+pub mod branches;
 pub mod closed_form;
 pub mod numerical;
 pub mod solver;

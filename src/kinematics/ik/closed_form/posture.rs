@@ -127,7 +127,7 @@ pub struct Posture {
 }
 
 /// The labels "branch 1" to "branch 16" of a general six-revolute arm's solutions.
-const BRANCHES: [&str; 16] = [
+pub const BRANCH_LABELS: [&str; 16] = [
     "branch 1",
     "branch 2",
     "branch 3",
@@ -181,7 +181,7 @@ impl Posture {
         });
         let branch = self
             .branch
-            .and_then(|b| BRANCHES.get(usize::from(b).wrapping_sub(1)).copied());
+            .and_then(|b| BRANCH_LABELS.get(usize::from(b).wrapping_sub(1)).copied());
         [shoulder, elbow, extension, wrist, branch]
             .into_iter()
             .flatten()
