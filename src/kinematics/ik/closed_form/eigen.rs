@@ -71,10 +71,6 @@ fn hessenberg<const N: usize>(a: &mut [[f64; N]; N]) {
 
 /// The eigenvalues of the upper Hessenberg matrix `a` (destroyed) by Francis' double-shift QR
 /// iteration with deflation (`hqr`), written to `out`; false on no convergence.
-///
-/// Over 80 lines: the deflation checks, the shift, the search for two small subdiagonal entries
-/// and the double step share their running variables, as in the reference algorithm; split up,
-/// they would pass a dozen of them around.
 fn hqr<const N: usize>(a: &mut [[f64; N]; N], out: &mut [(f64, f64); N]) -> bool {
     let mut norm = 0.0;
     for (i, row) in a.iter().enumerate() {
@@ -153,93 +149,112 @@ fn hqr<const N: usize>(a: &mut [[f64; N]; N], out: &mut [(f64, f64); N]) -> bool
             w = -0.4375 * s * s;
         }
         its += 1;
-        // The shift's first column (p, q, r), from row m, the highest m >= l after which two
-        // consecutive subdiagonal entries are small.
-        let (mut p, mut q, mut r);
-        let mut m = nn - 2;
-        loop {
-            let z = a[m][m];
-            let (r0, s0) = (x - z, y - z);
-            p = (r0 * s0 - w) / a[m + 1][m] + a[m][m + 1];
-            q = a[m + 1][m + 1] - z - r0 - s0;
-            r = a[m + 2][m + 1];
-            let s = p.abs() + q.abs() + r.abs();
-            p /= s;
-            q /= s;
-            r /= s;
-            if m == l {
-                break;
-            }
-            let u = a[m][m - 1].abs() * (q.abs() + r.abs());
-            let v = p.abs() * (a[m - 1][m - 1].abs() + z.abs() + a[m + 1][m + 1].abs());
-            if u + v == v {
-                break;
-            }
-            m -= 1;
+        let (m, pqr) = shift_start(a, l, nn, [x, y, w]);
+        double_step(a, l, m, nn, pqr);
+    }
+}
+
+/// The first column (p, q, r) of the double shift with the trailing block's x, y, w, from row
+/// m: the highest m >= l below which two consecutive subdiagonal entries are negligible (the
+/// step starts there); m and (p, q, r), scaled.
+fn shift_start<const N: usize>(
+    a: &[[f64; N]; N],
+    l: usize,
+    nn: usize,
+    [x, y, w]: [f64; 3],
+) -> (usize, [f64; 3]) {
+    let mut m = nn - 2;
+    loop {
+        let z = a[m][m];
+        let (r0, s0) = (x - z, y - z);
+        let p = (r0 * s0 - w) / a[m + 1][m] + a[m][m + 1];
+        let q = a[m + 1][m + 1] - z - r0 - s0;
+        let r = a[m + 2][m + 1];
+        let s = p.abs() + q.abs() + r.abs();
+        let (p, q, r) = (p / s, q / s, r / s);
+        if m == l {
+            return (m, [p, q, r]);
         }
-        for i in m + 2..=nn {
-            a[i][i - 2] = 0.0;
-            if i != m + 2 {
-                a[i][i - 3] = 0.0;
+        let u = a[m][m - 1].abs() * (q.abs() + r.abs());
+        let v = p.abs() * (a[m - 1][m - 1].abs() + z.abs() + a[m + 1][m + 1].abs());
+        if u + v == v {
+            return (m, [p, q, r]);
+        }
+        m -= 1;
+    }
+}
+
+/// One Francis double step on rows and columns l..=nn from row m, the shift's first column
+/// (p, q, r) given: Householder reflections of size 3 chase the bulge down.
+fn double_step<const N: usize>(
+    a: &mut [[f64; N]; N],
+    l: usize,
+    m: usize,
+    nn: usize,
+    [mut p, mut q, mut r]: [f64; 3],
+) {
+    for i in m + 2..=nn {
+        a[i][i - 2] = 0.0;
+        if i != m + 2 {
+            a[i][i - 3] = 0.0;
+        }
+    }
+    let mut x = 0.0;
+    for k in m..nn {
+        if k != m {
+            p = a[k][k - 1];
+            q = a[k + 1][k - 1];
+            r = if k != nn - 1 { a[k + 2][k - 1] } else { 0.0 };
+            x = p.abs() + q.abs() + r.abs();
+            if x != 0.0 {
+                p /= x;
+                q /= x;
+                r /= x;
             }
         }
-        // The double step: Householder reflections of size 3 chase the bulge down.
-        for k in m..nn {
-            if k != m {
-                p = a[k][k - 1];
-                q = a[k + 1][k - 1];
-                r = if k != nn - 1 { a[k + 2][k - 1] } else { 0.0 };
-                x = p.abs() + q.abs() + r.abs();
-                if x != 0.0 {
-                    p /= x;
-                    q /= x;
-                    r /= x;
-                }
+        let s = (p * p + q * q + r * r).sqrt().copysign(p);
+        if s == 0.0 {
+            continue;
+        }
+        if k == m {
+            if l != m {
+                a[k][k - 1] = -a[k][k - 1];
             }
-            let s = (p * p + q * q + r * r).sqrt().copysign(p);
-            if s == 0.0 {
-                continue;
+        } else {
+            a[k][k - 1] = -s * x;
+        }
+        p += s;
+        let (xx, yy, zz) = (p / s, q / s, r / s);
+        q /= p;
+        r /= p;
+        // Rows k, k + 1, k + 2 (the third only below the last step).
+        let (top, below) = a.split_at_mut(k + 1);
+        let (next, further) = below.split_at_mut(1);
+        let (rk, rk1) = (&mut top[k], &mut next[0]);
+        if k != nn - 1 {
+            let rk2 = &mut further[0];
+            for j in k..=nn {
+                let pp = rk[j] + q * rk1[j] + r * rk2[j];
+                rk2[j] -= pp * zz;
+                rk1[j] -= pp * yy;
+                rk[j] -= pp * xx;
             }
-            if k == m {
-                if l != m {
-                    a[k][k - 1] = -a[k][k - 1];
-                }
-            } else {
-                a[k][k - 1] = -s * x;
+        } else {
+            for j in k..=nn {
+                let pp = rk[j] + q * rk1[j];
+                rk1[j] -= pp * yy;
+                rk[j] -= pp * xx;
             }
-            p += s;
-            let (xx, yy, zz) = (p / s, q / s, r / s);
-            q /= p;
-            r /= p;
-            // Rows k, k + 1, k + 2 (the third only below the last step).
-            let (top, below) = a.split_at_mut(k + 1);
-            let (next, further) = below.split_at_mut(1);
-            let (rk, rk1) = (&mut top[k], &mut next[0]);
+        }
+        // Columns k, k + 1, k + 2.
+        for row in a.iter_mut().take(nn.min(k + 3) + 1).skip(l) {
+            let mut pp = xx * row[k] + yy * row[k + 1];
             if k != nn - 1 {
-                let rk2 = &mut further[0];
-                for j in k..=nn {
-                    let pp = rk[j] + q * rk1[j] + r * rk2[j];
-                    rk2[j] -= pp * zz;
-                    rk1[j] -= pp * yy;
-                    rk[j] -= pp * xx;
-                }
-            } else {
-                for j in k..=nn {
-                    let pp = rk[j] + q * rk1[j];
-                    rk1[j] -= pp * yy;
-                    rk[j] -= pp * xx;
-                }
+                pp += zz * row[k + 2];
+                row[k + 2] -= pp * r;
             }
-            // Columns k, k + 1, k + 2.
-            for row in a.iter_mut().take(nn.min(k + 3) + 1).skip(l) {
-                let mut pp = xx * row[k] + yy * row[k + 1];
-                if k != nn - 1 {
-                    pp += zz * row[k + 2];
-                    row[k + 2] -= pp * r;
-                }
-                row[k + 1] -= pp * q;
-                row[k] -= pp;
-            }
+            row[k + 1] -= pp * q;
+            row[k] -= pp;
         }
     }
 }
