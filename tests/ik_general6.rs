@@ -13,7 +13,7 @@
 use armlab::kinematics::ik::solver::{SolverChoice, solve};
 use armlab::kinematics::ik::{ClosedForm, Family, Target, numerical::NumericalOptions};
 use armlab::kinematics::{Convention, DhJoint, DhRow, Pose, Robot};
-use nalgebra::{Matrix3, Matrix4, Matrix6, Vector3, Vector6};
+use nalgebra::{Matrix3, Matrix4, Matrix6, Translation3, Vector3, Vector6};
 use std::f64::consts::PI;
 
 /// One arm: (a, alpha, d) per joint (standard DH, (2.52)).
@@ -395,5 +395,84 @@ fn special_arms_outside_the_named_families_get_all_their_solutions() {
             }
         }
         assert!(found > 300, "{name}: only {found} starts converged");
+    }
+}
+
+/// The Unitree Z1 at its home pose and eight poses with q5 = 0, where every root of the
+/// eliminant is fourfold (no null
+/// vector picks the other joints, so the elimination alone returns nothing and used to report the
+/// pose "out of reach by inf", its home pose included): the solver's search from several starts
+/// (from the elimination's solutions at slightly turned poses) returns solutions that meet the
+/// target, the joint vector that made it among them, and a brute-force search (400 starts per
+/// pose, written here) finds no other. A pose out of reach
+/// is reported so with a finite distance.
+#[test]
+fn the_z1_at_q5_zero_gets_its_solutions_and_a_far_pose_a_finite_distance() {
+    let robot = armlab::model_file::load_model("tests/data/urdf_corpus/unitree_z1.urdf").unwrap();
+    let arm = armlab::kinematics::arm::arm_of(&robot, 0, &robot.ready_or_zero()).unwrap();
+    let r = arm.robot;
+    let mut rng = Lcg(41);
+    let mut poses: Vec<Vec<f64>> = vec![vec![0.0; 6]];
+    for _ in 0..8 {
+        let mut q: Vec<f64> = rng.angles().iter().map(|a| a * 0.8).collect();
+        q[4] = 0.0;
+        poses.push(q);
+    }
+    let solve_pose = |t: &Pose| {
+        solve(
+            &r,
+            0,
+            &Target::Pose(*t),
+            None,
+            SolverChoice::ClosedForm,
+            &NumericalOptions::default(),
+        )
+        .unwrap()
+        .0
+    };
+    let mut found = 0;
+    for q0 in &poses {
+        let t = r.fk(q0).unwrap();
+        let res = solve_pose(&t);
+        assert!(
+            !matches!(
+                res.status,
+                armlab::kinematics::ik::IkStatus::Unreachable { .. }
+            ),
+            "{q0:?}: {:?}",
+            res.status
+        );
+        let sols: Vec<Vec<f64>> = res.solutions.iter().map(|s| s.q.clone()).collect();
+        for s in &sols {
+            let p = r.fk(s).unwrap();
+            let dp = (p.translation.vector - t.translation.vector).norm();
+            let dr = (p.rotation.matrix() - t.rotation.matrix()).norm();
+            assert!(
+                dp < 1e-10 && dr < 1e-10,
+                "{q0:?}: {s:?} misses by {dp:e} m, {dr:e}"
+            );
+        }
+        assert!(
+            sols.iter().any(|q| same(q, q0, 1e-7)),
+            "{q0:?} not among {sols:?}"
+        );
+        for _ in 0..400 {
+            if let Some(q) = newton_fd(&r, &t, rng.angles().to_vec()) {
+                assert!(
+                    sols.iter().any(|s| same(s, &q, 1e-4)),
+                    "{q0:?}: Newton found {q:?}, not among {sols:?}"
+                );
+                found += 1;
+            }
+        }
+    }
+    assert!(found > 100, "only {found} starts converged");
+    // Far out of reach: unreachable, by a finite distance.
+    let far = Translation3::new(3.0, 0.0, 0.0) * r.fk(&[0.0; 6]).unwrap();
+    match solve_pose(&far).status {
+        armlab::kinematics::ik::IkStatus::Unreachable { distance } => {
+            assert!(distance.is_finite() && distance > 2.0, "{distance}")
+        }
+        s => panic!("{s:?}"),
     }
 }

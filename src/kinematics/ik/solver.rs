@@ -2,9 +2,9 @@
 //! polished numerically where that helps), the numerical solver otherwise (seeded with the
 //! caller's q); plus picking a solution by posture or by closeness to a configuration.
 
-use super::closed_form::{ClosedForm, NoClosedForm};
+use super::closed_form::{ClosedForm, Family, NoClosedForm};
 use super::numerical::{self, NumericalOptions};
-use super::{IkError, IkResult, IkSolution, IkStatus, Target};
+use super::{FreeJoint, IkError, IkResult, IkSolution, IkStatus, Target};
 use crate::kinematics::orientation::wrap_angle;
 use crate::kinematics::robot::{JointKind, Robot};
 
@@ -69,6 +69,9 @@ pub fn solve(
         (SolverChoice::ClosedForm, Err(why)) => Err(IkError::NoClosedForm(why)),
         (SolverChoice::Auto | SolverChoice::ClosedForm, Ok(cf)) => {
             let mut result = cf.solve(robot, target)?;
+            if *cf.family() == Family::General6 && result.solutions.is_empty() {
+                return singular_general(robot, &cf, target, seed_q, opts);
+            }
             if cf.near_miss().is_some() {
                 polish_near_miss(robot, target, &mut result, opts)?;
             } else {
@@ -118,6 +121,199 @@ pub fn solve(
             ))
         }
     }
+}
+
+/// Starts of the search at a pose where the general elimination finds no solution.
+const SINGULAR_STARTS: usize = 24;
+
+/// How the solutions of [`singular_general`] are found.
+const SINGULAR_SOLVER: &str = "Levenberg-Marquardt from several starts: the elimination found \
+                               no solution at this pose (its roots are multiple, the pose is \
+                               singular, or out of reach)";
+
+/// Why a joint of a [`singular_general`] solution is free.
+const SINGULAR_FREE: &str = "a singular pose of a general arm: this joint and the ones it \
+                             couples with move together without moving the hand";
+
+/// A general six-revolute arm at a pose where the elimination finds no solution: its roots are
+/// multiple, so that no null vector picks the other joints (the Unitree Z1 at every pose with
+/// q5 = 0: each root of the eliminant is fourfold), the solutions form a continuum (a singular
+/// pose), or the pose is out of reach. Levenberg-Marquardt tells them apart, started from the
+/// elimination's solutions at slightly turned poses (a regular solution persists under a small
+/// change of the pose, and there the roots are simple) and from spread configurations: its
+/// converged solutions, one per family (two belong to one family when they differ along the
+/// Jacobian's null direction), each singular one with the
+/// joint that moves most along that direction marked free and the status
+/// [`IkStatus::Singular`]; or, when none converges, out of reach by the least error found
+/// (not the infinite distance the elimination alone would report).
+fn singular_general(
+    robot: &Robot,
+    cf: &ClosedForm,
+    target: &Target,
+    seed_q: Option<&[f64]>,
+    opts: &NumericalOptions,
+) -> Result<(IkResult, SolverUsed), IkError> {
+    let local = NumericalOptions {
+        restarts: 0,
+        max_iterations: 100,
+        enforce_limits: false,
+        tolerance: 1e-12,
+        ..*opts
+    };
+    let n = robot.dof();
+    let starts = singular_starts(robot, cf, target, seed_q);
+    let mut found: Vec<(IkSolution, Option<Vec<f64>>)> = Vec::new();
+    let mut least = f64::INFINITY;
+    for start in &starts {
+        let rep = numerical::solve(robot, 0, target, start, &local)?;
+        let (pe, oe) = numerical::pose_errors(robot, 0, &rep.q, target)?;
+        least = least.min(pe.max(oe));
+        if pe.max(oe) > 1e-10 {
+            continue;
+        }
+        let null = null_direction(robot, &rep.q)?;
+        if found
+            .iter()
+            .any(|(s, dir)| same_family(&s.q, &rep.q, dir.as_deref()))
+        {
+            continue;
+        }
+        let free_joints = null
+            .as_ref()
+            .and_then(|u| (0..n).max_by(|&a, &b| u[a].abs().total_cmp(&u[b].abs())))
+            .map(|index| FreeJoint {
+                index,
+                reason: SINGULAR_FREE,
+            })
+            .into_iter()
+            .collect();
+        let within_limits = robot.within_limits(&rep.q, 1e-12);
+        found.push((
+            IkSolution {
+                q: rep.q,
+                posture: String::new(),
+                within_limits,
+                position_error: pe,
+                orientation_error: oe,
+                free_joints,
+            },
+            null,
+        ));
+    }
+    let singular = found.iter().any(|(_, dir)| dir.is_some());
+    let solutions = labelled_branches(found.into_iter().map(|(s, _)| s).collect());
+    let status = if solutions.is_empty() {
+        IkStatus::Unreachable { distance: least }
+    } else if singular {
+        IkStatus::Singular
+    } else {
+        IkStatus::Ok
+    };
+    Ok((
+        IkResult { status, solutions },
+        SolverUsed::Numerical(SINGULAR_SOLVER),
+    ))
+}
+
+/// The starts of the singular search: the elimination's solutions at three slightly nudged
+/// poses (where its roots separate), the seed, the ready pose and a fixed spread of
+/// configurations within the limits (at most ±π), in joint space (rad or m).
+fn singular_starts(
+    robot: &Robot,
+    cf: &ClosedForm,
+    target: &Target,
+    seed_q: Option<&[f64]>,
+) -> Vec<Vec<f64>> {
+    let n = robot.dof();
+    let limits = robot.limits();
+    let mut starts: Vec<Vec<f64>> = Vec::new();
+    if let Target::Pose(t) = target {
+        // Turned by 1e-5 and 3e-5 rad about two axes and moved by as many metres.
+        for (k, e) in [1e-5, -3e-5, 2e-5].into_iter().enumerate() {
+            let axis = nalgebra::Unit::new_normalize(nalgebra::Vector3::new(1.0, k as f64, 0.5));
+            let nudge = crate::kinematics::Pose::from_parts(
+                nalgebra::Translation3::new(e, -e, e),
+                nalgebra::Rotation3::from_axis_angle(&axis, e),
+            );
+            if let Ok(near) = cf.solve(robot, &Target::Pose(nudge * t)) {
+                starts.extend(near.solutions.into_iter().map(|s| s.q));
+            }
+        }
+    }
+    starts.extend(seed_q.map(<[f64]>::to_vec));
+    starts.push(robot.ready_or_zero());
+    let spread_end = starts.len() + SINGULAR_STARTS;
+    // Spread starts, the same every time (a small linear congruential sequence).
+    let mut state = 0x2545_f491_4f6c_dd1d_u64;
+    while starts.len() < spread_end {
+        starts.push(
+            (0..n)
+                .map(|k| {
+                    state = state
+                        .wrapping_mul(6_364_136_223_846_793_005)
+                        .wrapping_add(1_442_695_040_888_963_407);
+                    let u = (state >> 11) as f64 / (1u64 << 53) as f64;
+                    let [lo, hi] = limits[k];
+                    let (lo, hi) = (lo.max(-std::f64::consts::PI), hi.min(std::f64::consts::PI));
+                    lo + (hi - lo) * u
+                })
+                .collect(),
+        );
+    }
+    starts
+}
+
+/// Whether configuration `b` lies on the same solution as `a`: equal up to angle wrapping, or
+/// differing only along `dir`, the unit joint-space direction in which a singular solution's
+/// hand stays still (to 1e-6).
+fn same_family(a: &[f64], b: &[f64], dir: Option<&[f64]>) -> bool {
+    let d: Vec<f64> = a.iter().zip(b).map(|(x, y)| wrap_angle(y - x)).collect();
+    let along = dir.map_or(0.0, |u| d.iter().zip(u).map(|(x, y)| x * y).sum::<f64>());
+    let off = d
+        .iter()
+        .enumerate()
+        .map(|(k, x)| x - along * dir.map_or(0.0, |u| u[k]))
+        .map(|x| x * x)
+        .sum::<f64>();
+    off.sqrt() < 1e-6
+}
+
+/// Sorts solutions by their wrapped joint values and names them "branch k" in that order.
+fn labelled_branches(mut solutions: Vec<IkSolution>) -> Vec<IkSolution> {
+    solutions.sort_by(|a, b| {
+        let key = |s: &IkSolution| s.q.iter().map(|v| wrap_angle(*v)).collect::<Vec<_>>();
+        key(a)
+            .partial_cmp(&key(b))
+            .unwrap_or(std::cmp::Ordering::Equal)
+    });
+    for (k, s) in solutions.iter_mut().enumerate() {
+        s.posture = super::closed_form::BRANCH_LABELS
+            .get(k)
+            .map_or_else(|| format!("branch {}", k + 1), |l| (*l).to_string());
+    }
+    solutions
+}
+
+/// The unit direction in joint space along which the hand does not move at q (the Jacobian's
+/// right singular vector of its least singular value), where that value is below 1e-6 of the
+/// largest; `None` at a regular configuration.
+fn null_direction(robot: &Robot, q: &[f64]) -> Result<Option<Vec<f64>>, IkError> {
+    let jac = robot.jacobian(q, 0)?;
+    let svd = jac.svd(false, true);
+    let sv = &svd.singular_values;
+    let Some(v_t) = svd.v_t.as_ref() else {
+        return Ok(None);
+    };
+    let (k, least) = sv
+        .iter()
+        .enumerate()
+        .min_by(|a, b| a.1.total_cmp(b.1))
+        .map(|(k, v)| (k, *v))
+        .unwrap_or((0, f64::INFINITY));
+    if least > 1e-6 * sv.max() {
+        return Ok(None);
+    }
+    Ok(Some(v_t.row(k).iter().copied().collect()))
 }
 
 /// [`solve`] for end-effector `ee` of a robot with several: the arm to it is solved alone
