@@ -405,3 +405,44 @@ fn an_arm_folded_at_zero_still_has_its_arcs() {
     assert!(stats.reach_exact);
     assert!(stats.min_reach.abs() < 1e-12 && (stats.max_reach - 1.1).abs() < 1e-12);
 }
+
+/// The scan's pruned solve (`solve_raw_where`, the wrist solved only for the positioning
+/// solutions a predicate keeps) gives exactly the solutions of the full `solve_raw` whose first
+/// three joints the predicate keeps, in the same order, on Stanford and the Puma over poses made
+/// by the forward kinematics and poses out of reach.
+#[test]
+fn the_pruned_solve_is_the_full_solve_filtered() {
+    use armlab::kinematics::ik::closed_form::{ClosedForm, RawSolutions};
+    for name in ["stanford", "puma560"] {
+        let robot = built_in(name).unwrap();
+        let cf = ClosedForm::detect(&robot).unwrap();
+        let keep = |a: &[f64; 3]| a[1] > -0.5 && a[2] < 0.6;
+        let (mut full, mut pruned) = (RawSolutions::default(), RawSolutions::default());
+        let mut kept_some = 0;
+        for i in 0..200 {
+            let t = i as f64;
+            let q: Vec<f64> = (0..6)
+                .map(|j| (0.37 * t + 1.3 * j as f64).sin() * 1.5)
+                .collect();
+            let mut pose = robot.fk(&q).unwrap();
+            if i % 10 == 0 {
+                pose.translation.vector *= 5.0;
+            }
+            let n_full = cf.solve_raw(&pose, &mut full).unwrap();
+            let n = cf.solve_raw_where(&pose, &mut pruned, keep).unwrap();
+            let expected: Vec<_> = (0..n_full)
+                .filter(|&k| keep(&[full.q[k][0], full.q[k][1], full.q[k][2]]))
+                .collect();
+            assert_eq!(n, expected.len(), "{name} pose {i}");
+            for (m, &k) in expected.iter().enumerate() {
+                assert_eq!(pruned.q[m], full.q[k], "{name} pose {i}");
+                assert_eq!(pruned.postures[m], full.postures[k], "{name} pose {i}");
+            }
+            kept_some += usize::from(n > 0 && n < n_full);
+        }
+        assert!(
+            kept_some > 10,
+            "{name}: the predicate never cut: {kept_some}"
+        );
+    }
+}

@@ -564,6 +564,21 @@ impl ClosedForm {
         Ok(out.len)
     }
 
+    /// [`Self::solve_raw`] that goes on to the wrist only for the positioning solutions `keep`
+    /// accepts (q1..q3 in rad or m, joint offsets removed, as in `out`): a workspace scan skips
+    /// the wrist's trigonometry where the arm is already outside its limits. Families without a
+    /// separate positioning arm give every solution and do not call `keep`.
+    pub fn solve_raw_where(
+        &self,
+        world_from_tool: &Pose,
+        out: &mut RawSolutions,
+        keep: impl Fn(&[f64; 3]) -> bool,
+    ) -> Result<usize, IkError> {
+        let goal = self.goal_of_pose(world_from_tool);
+        self.core_where(&goal, out, keep)?;
+        Ok(out.len)
+    }
+
     /// Solves the positioning arm alone for a world position: the tool point of a 3-DOF
     /// position family (anthropomorphic, spherical, cylindrical arm), or the **wrist centre** of a
     /// six-DOF arm with a spherical wrist (Sect. 2.12.2: the wrist centre depends on the first
@@ -682,6 +697,17 @@ impl ClosedForm {
     }
 
     fn core(&self, goal: &Goal, out: &mut RawSolutions) -> Result<(), IkError> {
+        self.core_where(goal, out, |_| true)
+    }
+
+    /// [`Self::core`], the wrist solved only for the positioning solutions `keep` accepts (see
+    /// [`Self::solve_raw_where`]).
+    fn core_where(
+        &self,
+        goal: &Goal,
+        out: &mut RawSolutions,
+        keep: impl Fn(&[f64; 3]) -> bool,
+    ) -> Result<(), IkError> {
         out.len = 0;
         out.unreachable = None;
         match (&self.geometry, goal) {
@@ -715,6 +741,10 @@ impl ClosedForm {
                     }
                 };
                 for a in &arms[..na] {
+                    let o = &self.offsets;
+                    if !keep(&[a.v[0] - o[0], a.v[1] - o[1], a.v[2] - o[2]]) {
+                        continue;
+                    }
                     // R_6^3 = (R_3^0)^T R_e
                     let r36 = arm.rotation(&a.v).transpose() * r6;
                     let mut ws = [[0.0; 3]; 2];

@@ -217,7 +217,7 @@ impl Section {
                 let dof = self.limits.len();
                 for b in 0..APPROACHES {
                     let pose = Pose::from_parts(Translation3::from(w.coords), approach(b));
-                    if self.cf.solve_raw(&pose, &mut raw).is_err() {
+                    if self.solve_arm_within(&pose, &mut raw).is_err() {
                         continue;
                     }
                     for k in 0..raw.len {
@@ -235,6 +235,10 @@ impl Section {
                             out[n] = Hit { mask, q1 };
                             n += 1;
                         }
+                    }
+                    // Full: a later hit could only OR a mask into the same (mask, q1), a no-op.
+                    if n == 8 {
+                        break;
                     }
                 }
             }
@@ -274,7 +278,7 @@ impl Section {
         let mut mask = 0;
         for b in 0..APPROACHES {
             let pose = Pose::from_parts(Translation3::from(w.coords), approach(b));
-            if self.cf.solve_raw(&pose, &mut raw).is_err() {
+            if self.solve_arm_within(&pose, &mut raw).is_err() {
                 continue;
             }
             for k in 0..raw.len {
@@ -287,6 +291,21 @@ impl Section {
             }
         }
         mask
+    }
+
+    /// The solutions at a world pose whose positioning joints 2 and 3 are within their limits
+    /// (the wrist is solved only for those: the others would be dropped anyway).
+    #[inline]
+    fn solve_arm_within(
+        &self,
+        pose: &Pose,
+        raw: &mut RawSolutions,
+    ) -> Result<usize, crate::kinematics::ik::IkError> {
+        self.cf.solve_raw_where(pose, raw, |a| {
+            let mut q = [0.0; MAX_DOF];
+            q[..3].copy_from_slice(a);
+            self.within(&q, 1, 3)
+        })
     }
 
     /// Base-frame coordinates of a world point (m).
@@ -907,7 +926,7 @@ impl Section {
         let mut out = [(f64::NAN, 0u64); 4];
         for b in 0..APPROACHES {
             let pose = Pose::from_parts(Translation3::from(w.coords), approach(b));
-            if self.cf.solve_raw(&pose, &mut raw).is_err() {
+            if self.solve_arm_within(&pose, &mut raw).is_err() {
                 continue;
             }
             for k in 0..raw.len {
