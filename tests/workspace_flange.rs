@@ -446,3 +446,111 @@ fn the_pruned_solve_is_the_full_solve_filtered() {
         );
     }
 }
+
+/// Classes reaching the base-frame point (x, y) at any height in [-1.2, 1.2] m, by brute force:
+/// 41 heights times 40 x 80 approach directions, each solved in closed form, joints 1 to 5
+/// within their limits (the last joint rolls the tool about its approach, which leaves the
+/// flange in place: any value in its range serves).
+fn brute_top_mask(r: &Robot, x: f64, y: f64) -> u8 {
+    use armlab::kinematics::ik::closed_form::{ClosedForm, RawSolutions};
+    use nalgebra::{Rotation3, Translation3, Vector3};
+    let cf = ClosedForm::detect(r).unwrap();
+    let classifier = PostureClassifier::new(r);
+    let lim = r.limits();
+    let revolute: Vec<bool> = (0..6)
+        .map(|j| r.dof_joint(j).kind == JointKind::Revolute)
+        .collect();
+    let fits = |q: &[f64; 6]| {
+        (0..5).all(|j| {
+            let v = q[j];
+            if !revolute[j] {
+                return v >= lim[j][0] - 1e-9 && v <= lim[j][1] + 1e-9;
+            }
+            let v = v + ((lim[j][0] - v) / (2.0 * PI)).ceil() * 2.0 * PI;
+            v <= lim[j][1] + 1e-9
+        })
+    };
+    let mut raw = RawSolutions::default();
+    let mut m = 0u8;
+    let n = 40;
+    for k in 0..41 {
+        let p = r.base * nalgebra::Point3::new(x, y, -1.2 + 0.06 * k as f64);
+        for i in 0..n {
+            let th = PI * (i as f64 + 0.5) / n as f64;
+            for j in 0..2 * n {
+                let ph = PI * j as f64 / n as f64;
+                let a = Vector3::new(th.sin() * ph.cos(), th.sin() * ph.sin(), th.cos());
+                let rot = Rotation3::rotation_between(&Vector3::z(), &a).unwrap();
+                let pose = Pose::from_parts(Translation3::from(p.coords), rot);
+                if cf.solve_raw(&pose, &mut raw).is_err() {
+                    continue;
+                }
+                for s in 0..raw.len {
+                    if fits(&raw.q[s]) {
+                        m |= classifier.posture_mask(&raw.postures[s]);
+                    }
+                }
+            }
+        }
+    }
+    m
+}
+
+/// Stanford's top view (the approach scan: its wrist is limited) against the brute force above:
+/// every class claimed at a cell is found there, and inside the rim every class found is
+/// claimed. The scan once kept only the first eight (class, q1) pairs of a radius and height,
+/// and checked the roll joint against its limits at an arbitrary roll: it claimed "shoulder
+/// left only" and "shoulder right only" patches at (-0.39, 0.09) and (0.39, -0.03) where both
+/// shoulders reach.
+#[test]
+fn stanford_top_view_against_a_brute_force_search() {
+    let r = built_in("stanford").unwrap();
+    // Cells of 4 mm, about the size of the 1200 x 900 figure's pixels, where the patches were.
+    let (cells, half) = (600usize, 1.2);
+    let map = compute_map(
+        &r,
+        &MapRequest {
+            view: MapView::Top,
+            point: TrackedPoint::Flange,
+            values: MapValues::Classes,
+            cells: [cells, cells],
+            bounds: Some([-half, half, -half, half]),
+            samples: 0,
+            seed: 1,
+            end_effector: 0,
+        },
+    )
+    .unwrap();
+    assert!(!map.exact);
+    let cell = 2.0 * half / cells as f64;
+    let at = |x: f64, y: f64| {
+        let i = ((x + half) / cell).floor() as usize;
+        let j = ((half - y) / cell).floor() as usize;
+        let centre = (-half + (i as f64 + 0.5) * cell, half - (j as f64 + 0.5) * cell);
+        (map.masks[j * cells + i], centre)
+    };
+    let points = [
+        (-0.4, 0.08),
+        (0.4, -0.02),
+        (0.0, 0.6),
+        (0.6, 0.6),
+        (-0.6, -0.6),
+        (0.21, -0.33),
+        (-0.85, 0.2),
+        (0.1, 0.95),
+        (1.09, -0.17),
+        (-1.0, 0.5),
+    ];
+    for (x, y) in points {
+        let (claimed, (cx, cy)) = at(x, y);
+        let found = brute_top_mask(&r, cx, cy);
+        assert_eq!(
+            claimed & !found,
+            0,
+            "({cx}, {cy}): claimed {claimed:b}, found {found:b}"
+        );
+        if cx.hypot(cy) < 1.0 {
+            assert_eq!(claimed, found, "({cx}, {cy}): claimed {claimed:b}, found {found:b}");
+        }
+    }
+}

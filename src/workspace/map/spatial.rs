@@ -75,6 +75,10 @@ pub struct Section {
     sphere_radius: f64,
     /// Bits of every posture class.
     all_classes: u8,
+    /// Joints the approach scan checks against their limits: all, or all but the last where
+    /// turning it leaves the flange in place (a roll about the approach axis: the scan's
+    /// approach directions fix the roll arbitrarily, and any value in its range serves).
+    scan_dof: usize,
 }
 
 /// One posture reaching a side-view point: its class bits and q1 at azimuth 0 (rad).
@@ -129,7 +133,12 @@ impl Section {
             mode = Mode::FlangeSphere;
         }
         let all_classes = ((1u16 << classifier.class_names().len().min(8)) - 1) as u8;
+        let n = robot.dof();
+        let rolls = robot.dof_joint(n - 1).kind == JointKind::Revolute
+            && limits[n - 1][0] <= limits[n - 1][1]
+            && roll_keeps_position(robot);
         Some(Self {
+            scan_dof: n - usize::from(rolls),
             arcs,
             sphere_radius: wrist_centre.map_or(0.0, |c| c.norm()),
             all_classes,
@@ -214,7 +223,7 @@ impl Section {
                 }
             }
             Mode::FlangeScan => {
-                let dof = self.limits.len();
+                let dof = self.scan_dof;
                 for b in 0..APPROACHES {
                     let pose = Pose::from_parts(Translation3::from(w.coords), approach(b));
                     if self.solve_arm_within(&pose, &mut raw).is_err() {
@@ -273,7 +282,7 @@ impl Section {
     /// stops as soon as every class is found (joint 1's values do not matter here).
     fn scan_mask(&self, r: f64, z: f64) -> u8 {
         let w = self.base * Point3::new(r, 0.0, z);
-        let dof = self.limits.len();
+        let dof = self.scan_dof;
         let mut raw = RawSolutions::default();
         let mut mask = 0;
         for b in 0..APPROACHES {
@@ -306,6 +315,40 @@ impl Section {
             q[..3].copy_from_slice(a);
             self.within(&q, 1, 3)
         })
+    }
+
+    /// The approach scan's class mask at radius r, height z and azimuth psi (base frame; m,
+    /// rad), every joint within its limits (joint 1 included); the approach directions turned
+    /// with the azimuth about the base z axis, as the side view's are at azimuth 0. Stops once
+    /// every class is found.
+    fn scan_mask_3d(&self, r: f64, z: f64, psi: f64) -> u8 {
+        let w = self.base * Point3::new(r * psi.cos(), r * psi.sin(), z);
+        let turn = self.base.rotation
+            * Rotation3::from_axis_angle(&nalgebra::Vector3::z_axis(), psi)
+            * self.base.rotation.inverse();
+        let dof = self.scan_dof;
+        let mut raw = RawSolutions::default();
+        let mut mask = 0;
+        for b in 0..APPROACHES {
+            let pose = Pose::from_parts(Translation3::from(w.coords), turn * approach(b));
+            let kept = self.cf.solve_raw_where(&pose, &mut raw, |a| {
+                let mut q = [0.0; MAX_DOF];
+                q[..3].copy_from_slice(a);
+                self.within(&q, 0, 3)
+            });
+            if kept.is_err() {
+                continue;
+            }
+            for k in 0..raw.len {
+                if self.within(&raw.q[k], 0, dof) {
+                    mask |= self.classifier.posture_mask(&raw.postures[k]);
+                }
+            }
+            if mask == self.all_classes {
+                break;
+            }
+        }
+        mask
     }
 
     /// Base-frame coordinates of a world point (m).
@@ -393,10 +436,31 @@ impl Section {
                 continue;
             }
             tried[k.min(11)] = z;
+            if self.mode == Mode::FlangeScan {
+                // The scan solves at the point itself, joint 1 checked with the others: the
+                // side view's hits keep only the first eight (class, q1) pairs and so miss
+                // azimuths that other approach directions reach.
+                out |= self.scan_mask_3d(r, z, psi);
+                if out == self.all_classes {
+                    return out;
+                }
+                continue;
+            }
             let n = self.hits(r, z, &mut h);
             for hit in &h[..n] {
                 if self.q1_fits(hit.q1, psi) {
                     out |= hit.mask;
+                }
+            }
+        }
+        if self.mode == Mode::FlangeScan && out != 0 {
+            // A class missing at the bins' heights may reach this azimuth at another height
+            // (joint 1's limit cuts each height differently): eight more across the side view.
+            let [lo, hi] = radial.z_span;
+            for j in 0..8 {
+                out |= self.scan_mask_3d(r, lo + (j as f64 + 0.5) / 8.0 * (hi - lo), psi);
+                if out == self.all_classes {
+                    break;
                 }
             }
         }
@@ -514,6 +578,8 @@ fn approach(k: usize) -> Rotation3<f64> {
 /// (NaN if none): the radial extent of the section, for the top view.
 struct Radial {
     r_max: f64,
+    /// The side view's heights (m), lowest and highest.
+    z_span: [f64; 2],
     bins: usize,
     z: Vec<[f64; 4]>,
 }
@@ -558,7 +624,12 @@ impl Radial {
                 best.map(|b| b.1)
             })
             .collect();
-        Self { r_max, bins, z }
+        Self {
+            r_max,
+            z_span: [side[2], side[3]],
+            bins,
+            z,
+        }
     }
 
     /// The heights of the bin of radius `r` and of the two bins beside it.
@@ -930,7 +1001,7 @@ impl Section {
                 continue;
             }
             for k in 0..raw.len {
-                if !self.within(&raw.q[k], 1, self.limits.len()) {
+                if !self.within(&raw.q[k], 1, self.scan_dof) {
                     continue;
                 }
                 let q1 = raw.q[k][0];
