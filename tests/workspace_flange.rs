@@ -447,11 +447,11 @@ fn the_pruned_solve_is_the_full_solve_filtered() {
     }
 }
 
-/// Classes reaching the base-frame point (x, y) at any height in [-1.2, 1.2] m, by brute force:
-/// 41 heights times 40 x 80 approach directions, each solved in closed form, joints 1 to 5
+/// Classes reaching the base-frame point (x, y) at any of `heights` (m), by brute force: 40 x 80
+/// approach directions at each, each solved in closed form, joints 1 to 5
 /// within their limits (the last joint rolls the tool about its approach, which leaves the
 /// flange in place: any value in its range serves).
-fn brute_top_mask(r: &Robot, x: f64, y: f64) -> u8 {
+fn brute_top_mask(r: &Robot, x: f64, y: f64, heights: &[f64]) -> u8 {
     use armlab::kinematics::ik::closed_form::{ClosedForm, RawSolutions};
     use nalgebra::{Rotation3, Translation3, Vector3};
     let cf = ClosedForm::detect(r).unwrap();
@@ -473,8 +473,8 @@ fn brute_top_mask(r: &Robot, x: f64, y: f64) -> u8 {
     let mut raw = RawSolutions::default();
     let mut m = 0u8;
     let n = 40;
-    for k in 0..41 {
-        let p = r.base * nalgebra::Point3::new(x, y, -1.2 + 0.06 * k as f64);
+    for &z in heights {
+        let p = r.base * nalgebra::Point3::new(x, y, z);
         for i in 0..n {
             let th = PI * (i as f64 + 0.5) / n as f64;
             for j in 0..2 * n {
@@ -526,7 +526,10 @@ fn stanford_top_view_against_a_brute_force_search() {
     let at = |x: f64, y: f64| {
         let i = ((x + half) / cell).floor() as usize;
         let j = ((half - y) / cell).floor() as usize;
-        let centre = (-half + (i as f64 + 0.5) * cell, half - (j as f64 + 0.5) * cell);
+        let centre = (
+            -half + (i as f64 + 0.5) * cell,
+            half - (j as f64 + 0.5) * cell,
+        );
         (map.masks[j * cells + i], centre)
     };
     let points = [
@@ -543,14 +546,48 @@ fn stanford_top_view_against_a_brute_force_search() {
     ];
     for (x, y) in points {
         let (claimed, (cx, cy)) = at(x, y);
-        let found = brute_top_mask(&r, cx, cy);
+        let heights: Vec<f64> = (0..41).map(|k| -1.2 + 0.06 * k as f64).collect();
+        let found = brute_top_mask(&r, cx, cy, &heights);
         assert_eq!(
             claimed & !found,
             0,
             "({cx}, {cy}): claimed {claimed:b}, found {found:b}"
         );
         if cx.hypot(cy) < 1.0 {
-            assert_eq!(claimed, found, "({cx}, {cy}): claimed {claimed:b}, found {found:b}");
+            assert_eq!(
+                claimed, found,
+                "({cx}, {cy}): claimed {claimed:b}, found {found:b}"
+            );
         }
     }
+}
+
+/// Stanford's point query (`Section::point_mask`, the approach scan at the point) against the
+/// brute force above at single points: what it claims is found (its 64 directions may miss a
+/// class that a narrow set of approaches reaches: at (-0.4, 0.08, 0) the right shoulder, which
+/// the top view finds at other heights), and most points get every class found.
+#[test]
+fn stanford_point_query_against_a_brute_force_search() {
+    let r = built_in("stanford").unwrap();
+    let s = Section::new(&r, TrackedPoint::Flange).unwrap();
+    let mut same = 0;
+    for (x, y, z) in [
+        (-0.4, 0.08, 0.0),
+        (0.4, -0.02, 0.0),
+        (0.3, 0.5, 0.4),
+        (-0.7, -0.2, -0.3),
+        (0.05, -0.9, 0.2),
+    ] {
+        let w = r.base * nalgebra::Point3::new(x, y, z);
+        let claimed = s.point_mask([w.x, w.y, w.z]);
+        let found = brute_top_mask(&r, x, y, &[z]);
+        assert_eq!(
+            claimed & !found,
+            0,
+            "({x}, {y}, {z}): claimed {claimed:b}, found {found:b}"
+        );
+        assert_ne!(claimed, 0, "({x}, {y}, {z}): found {found:b}");
+        same += usize::from(claimed == found);
+    }
+    assert!(same >= 4, "only {same} of 5 points complete");
 }

@@ -361,6 +361,10 @@ impl Section {
 
     /// Class mask at radius r, height z and azimuth psi (base frame; m, rad).
     pub(super) fn mask_at(&self, r: f64, z: f64, psi: f64) -> u8 {
+        if self.mode == Mode::FlangeScan {
+            // The scan at the point itself (the hits keep only eight (class, q1) pairs).
+            return self.scan_mask_3d(r, z, psi);
+        }
         let mut h = [Hit::default(); 8];
         let n = self.hits(r, z, &mut h);
         h[..n]
