@@ -281,17 +281,29 @@ impl Section {
     /// [`Self::side_mask`] of the approach scan: the classes over the approach directions, which
     /// stops as soon as every class is found (joint 1's values do not matter here).
     fn scan_mask(&self, r: f64, z: f64) -> u8 {
-        let w = self.base * Point3::new(r, 0.0, z);
+        self.scan_classes(self.base * Point3::new(r, 0.0, z), None, 1)
+    }
+
+    /// The classes reaching the world point `w` over the approach directions (each turned by
+    /// `turn`, a world rotation, if given) with joints `from..` within their limits (the roll
+    /// joint aside, see `scan_dof`); stops as soon as every class is found.
+    fn scan_classes(&self, w: Point3<f64>, turn: Option<Rotation3<f64>>, from: usize) -> u8 {
         let dof = self.scan_dof;
         let mut raw = RawSolutions::default();
         let mut mask = 0;
         for b in 0..APPROACHES {
-            let pose = Pose::from_parts(Translation3::from(w.coords), approach(b));
-            if self.solve_arm_within(&pose, &mut raw).is_err() {
+            let rot = turn.map_or_else(|| approach(b), |t| t * approach(b));
+            let pose = Pose::from_parts(Translation3::from(w.coords), rot);
+            let kept = self.cf.solve_raw_where(&pose, &mut raw, |a| {
+                let mut q = [0.0; MAX_DOF];
+                q[..3].copy_from_slice(a);
+                self.within(&q, from, 3)
+            });
+            if kept.is_err() {
                 continue;
             }
             for k in 0..raw.len {
-                if self.within(&raw.q[k], 1, dof) {
+                if self.within(&raw.q[k], from, dof) {
                     mask |= self.classifier.posture_mask(&raw.postures[k]);
                 }
             }
@@ -326,29 +338,7 @@ impl Section {
         let turn = self.base.rotation
             * Rotation3::from_axis_angle(&nalgebra::Vector3::z_axis(), psi)
             * self.base.rotation.inverse();
-        let dof = self.scan_dof;
-        let mut raw = RawSolutions::default();
-        let mut mask = 0;
-        for b in 0..APPROACHES {
-            let pose = Pose::from_parts(Translation3::from(w.coords), turn * approach(b));
-            let kept = self.cf.solve_raw_where(&pose, &mut raw, |a| {
-                let mut q = [0.0; MAX_DOF];
-                q[..3].copy_from_slice(a);
-                self.within(&q, 0, 3)
-            });
-            if kept.is_err() {
-                continue;
-            }
-            for k in 0..raw.len {
-                if self.within(&raw.q[k], 0, dof) {
-                    mask |= self.classifier.posture_mask(&raw.postures[k]);
-                }
-            }
-            if mask == self.all_classes {
-                break;
-            }
-        }
-        mask
+        self.scan_classes(w, Some(turn), 0)
     }
 
     /// Base-frame coordinates of a world point (m).
