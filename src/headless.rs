@@ -3,11 +3,13 @@
 //! (same pixels, same bytes) and, with the command line, a progress bar shown only when standard
 //! output is a terminal.
 
-use crate::figure::figures::Figures;
-use crate::figure::workspace::{WsFigure, WsFigureOptions, paint, plan};
+use crate::figure::figures::{Figures, PlotFrame};
+use crate::figure::workspace::{WsFigure, WsFigureOptions, WsPlan, paint, paint_forming, plan};
 use crate::figure::{FigureError, Theme};
 use crate::kinematics::Robot;
-use crate::workspace::compute_figure_data;
+use crate::workspace::{
+    MapForming, WorkspaceMap, compute_figure_data, compute_figure_data_forming,
+};
 use std::path::Path;
 use thiserror::Error;
 
@@ -25,6 +27,57 @@ pub fn workspace_figure(
     let figure = paint(figs, robot, &plan, &data)?;
     progress(1.0);
     Ok(figure)
+}
+
+/// [`workspace_figure`], showing the figure as it forms: the map's coarse first look and then,
+/// at most one every `every`, the map refined so far, each painted and handed to `shown` with
+/// its plot frame (a 3D or joint-space figure shows nothing before it is done). The figure
+/// returned is the one [`workspace_figure`] makes.
+pub fn workspace_figure_forming(
+    figs: &mut Figures,
+    robot: &Robot,
+    title: &str,
+    opts: &WsFigureOptions,
+    progress: &(dyn Fn(f32) + Sync),
+    every: std::time::Duration,
+    shown: &mut dyn FnMut(image::RgbaImage, PlotFrame),
+) -> Result<WsFigure, FigureError> {
+    let plan = plan(figs, robot, title, opts)?;
+    let mut painter = Painter {
+        figs,
+        plan: &plan,
+        every,
+        last: None,
+        shown,
+    };
+    let data = compute_figure_data_forming(robot, &plan.request, progress, &mut painter)?;
+    let figure = paint(figs, robot, &plan, &data)?;
+    progress(1.0);
+    Ok(figure)
+}
+
+/// Paints the partial maps of a forming figure, throttled.
+struct Painter<'a> {
+    figs: &'a mut Figures,
+    plan: &'a WsPlan,
+    every: std::time::Duration,
+    /// When the last partial map was painted.
+    last: Option<std::time::Instant>,
+    shown: &'a mut dyn FnMut(image::RgbaImage, PlotFrame),
+}
+
+impl MapForming for Painter<'_> {
+    fn wants(&mut self) -> bool {
+        self.last.is_none_or(|t| t.elapsed() >= self.every)
+    }
+
+    fn partial(&mut self, map: &WorkspaceMap, rows_done: usize) {
+        // A preview that cannot be painted is skipped: the finished figure reports the error.
+        if let Ok((image, frame)) = paint_forming(self.figs, self.plan, map, rows_done) {
+            (self.shown)(image, frame);
+        }
+        self.last = Some(std::time::Instant::now());
+    }
 }
 
 /// Figure `name` of the excerpt ([`crate::construction::textbook::FIGURES`]) at `size` pixels.

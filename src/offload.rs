@@ -5,7 +5,9 @@
 
 use crate::kinematics::Robot;
 use crate::urdf::UrdfExportError;
-use crate::workspace::{FigureData, FigureRequest, compute_figure_data};
+use crate::workspace::{
+    FigureData, FigureRequest, MapForming, OneShot, WorkspaceMap, compute_figure_data_forming,
+};
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
@@ -45,6 +47,13 @@ pub enum Model {
 pub enum Answer {
     /// What the figure paints.
     Data(Box<FigureData>),
+    /// The map while it forms, before the data ([`crate::workspace::MapForming::partial`]).
+    Partial {
+        /// The map so far.
+        map: Box<WorkspaceMap>,
+        /// Rows decided from the top (the rest is the coarse look).
+        rows_done: usize,
+    },
     /// Why not (the model did not load, the computation failed).
     Error(String),
 }
@@ -91,8 +100,14 @@ impl Model {
 
 /// Computes the answer to `request`.
 pub fn run(request: &Request) -> Answer {
+    run_forming(request, &mut OneShot)
+}
+
+/// Computes the answer to `request`, handing `forming` the map as it forms.
+pub fn run_forming(request: &Request, forming: &mut dyn MapForming) -> Answer {
     let answer = request.model.robot().and_then(|robot| {
-        compute_figure_data(&robot, &request.task, &|_| {}).map_err(|e| e.to_string())
+        compute_figure_data_forming(&robot, &request.task, &|_| {}, forming)
+            .map_err(|e| e.to_string())
     });
     match answer {
         Ok(data) => Answer::Data(Box::new(data)),
@@ -103,8 +118,37 @@ pub fn run(request: &Request) -> Answer {
 /// Computes the answer to `request` (JSON in, JSON out): what the worker runs.
 #[cfg(feature = "gui")]
 pub fn answer(request: &str) -> String {
+    answer_forming(request, &mut || false, &mut |_| {})
+}
+
+/// [`answer`], handing `partial` each partial map as an [`Answer::Partial`] in JSON whenever
+/// `wants()` (asked after each tile) says it wants one (a worker throttles there).
+#[cfg(feature = "gui")]
+pub fn answer_forming(
+    request: &str,
+    wants: &mut dyn FnMut() -> bool,
+    partial: &mut dyn FnMut(String),
+) -> String {
+    struct Sink<'a> {
+        wants: &'a mut dyn FnMut() -> bool,
+        partial: &'a mut dyn FnMut(String),
+    }
+    impl MapForming for Sink<'_> {
+        fn wants(&mut self) -> bool {
+            (self.wants)()
+        }
+        fn partial(&mut self, map: &WorkspaceMap, rows_done: usize) {
+            let answer = Answer::Partial {
+                map: Box::new(map.clone()),
+                rows_done,
+            };
+            if let Ok(json) = serde_json::to_string(&answer) {
+                (self.partial)(json);
+            }
+        }
+    }
     let answer = match serde_json::from_str::<Request>(request) {
-        Ok(r) => run(&r),
+        Ok(r) => run_forming(&r, &mut Sink { wants, partial }),
         Err(e) => Answer::Error(format!("bad request: {e}")),
     };
     serde_json::to_string(&answer).unwrap_or_else(|e| format!("{{\"Error\":\"{e}\"}}"))

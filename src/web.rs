@@ -121,12 +121,31 @@ impl WebHandle {
     }
 }
 
-/// What the web worker (`worker.js`) runs: one [`crate::offload::Request`] as JSON in,
-/// its answer as JSON out.
+/// What the web worker (`worker.js`) runs: one [`crate::offload::Request`] as JSON in, its
+/// answer as JSON out; on the way, the map as it forms ([`crate::offload::Answer::Partial`] in
+/// JSON) handed to `partial`: the coarse first look, then at most one every
+/// [`PARTIAL_EVERY_MS`].
 #[wasm_bindgen]
-pub fn worker_compute(request: &str) -> String {
-    crate::offload::answer(request)
+pub fn worker_compute(request: &str, partial: &js_sys::Function) -> String {
+    let mut last: Option<f64> = None;
+    crate::offload::answer_forming(
+        request,
+        &mut || {
+            let now = js_sys::Date::now();
+            let wanted = last.is_none_or(|t| now - t >= PARTIAL_EVERY_MS);
+            if wanted {
+                last = Some(now);
+            }
+            wanted
+        },
+        &mut |json| {
+            let _ = partial.call1(&JsValue::NULL, &JsValue::from_str(&json));
+        },
+    )
 }
+
+/// Milliseconds between two partial maps a worker sends.
+pub const PARTIAL_EVERY_MS: f64 = 400.0;
 
 /// The page's web worker, for the workspace's heavy computations.
 struct WorkerOffload {

@@ -7,28 +7,33 @@
 use armlab::app::workspace_job::{JobFigure, OVERLAY_SAMPLES, WorkspaceJob};
 use armlab::figure::workspace::WsView;
 use armlab::kinematics::models::built_in;
-use armlab::offload::{Answer, Offload, Request, answer};
+use armlab::offload::{Answer, Offload, Request, answer, answer_forming};
 use armlab::render::Gpu;
 use armlab::workspace::{
     Content, ContentRequest, FigureRequest, MapRequest, MapValues, MapView, StatsOptions,
     TrackedPoint, compute_map, map_statistics,
 };
 
-/// The worker, run in place: each request answered by the next poll, as `worker.js` would.
+/// The worker, run in place: each request answered over the next polls, as `worker.js` would:
+/// every partial map (the figure as it forms), then the answer.
 #[derive(Default)]
 struct InPlace {
-    pending: Option<String>,
+    pending: std::collections::VecDeque<String>,
     requests: usize,
+    partials: usize,
 }
 
 impl Offload for InPlace {
     fn submit(&mut self, request: String) -> bool {
         self.requests += 1;
-        self.pending = Some(answer(&request));
+        let mut partials = Vec::new();
+        let last = answer_forming(&request, &mut || true, &mut |p| partials.push(p));
+        self.partials += partials.len();
+        self.pending = partials.into_iter().chain([last]).collect();
         true
     }
     fn poll(&mut self) -> Option<String> {
-        self.pending.take()
+        self.pending.pop_front()
     }
 }
 
@@ -85,9 +90,10 @@ fn the_sliced_job_with_a_worker_makes_the_desktops_figure() {
         threaded.wait();
         let sliced = WorkspaceJob::start_sliced(robot, name.to_string(), title, figure);
         let mut worker = InPlace::default();
-        let mut frames = 0;
+        let (mut frames, mut previews) = (0, 0);
         while sliced.progress().is_some() {
             sliced.step(Some(&gpu), Some(&mut worker));
+            previews += usize::from(sliced.take_preview().is_some());
             frames += 1;
             std::thread::sleep(std::time::Duration::from_millis(2));
             assert!(
@@ -107,6 +113,9 @@ fn the_sliced_job_with_a_worker_makes_the_desktops_figure() {
             "{name}: the statistics and the map go to the worker in one request"
         );
         assert_eq!(sliced.dots().map(<[_]>::len), Some(OVERLAY_SAMPLES));
+        // The figure formed on the page: the coarse look and, for the tiled map, tiles.
+        assert!(worker.partials >= 1, "{name}: no partial map");
+        assert!(previews >= 1, "{name}: the page painted no partial map");
         let (a, b) = (threaded.figure().unwrap(), sliced.figure().unwrap());
         assert_eq!(a.dimensions(), b.dimensions());
         // The same results painted: planned once, computed once, painted once, as the desktop
@@ -223,5 +232,61 @@ fn a_cancelled_job_stops_computing_at_once() {
     println!(
         "stopped {:.0} ms after the cancel",
         t.elapsed().as_secs_f64() * 1e3
+    );
+}
+
+/// The desktop's job shows the figure as it forms (the coarse look, then tiles of the approach
+/// scan) and ends with the one-shot figure, pixel for pixel.
+#[test]
+fn the_desktop_job_shows_the_figure_forming_and_ends_with_the_one_shot_figure() {
+    let robot = built_in("stanford").unwrap();
+    let opts = WorkspaceJob::options_for(&robot, WsView::Top, [1200, 900], None);
+    let job = WorkspaceJob::start(
+        robot.clone(),
+        "stanford".into(),
+        "stanford".into(),
+        JobFigure::Workspace(opts.clone()),
+    );
+    let mut previews = Vec::new();
+    while job.progress().is_some() {
+        if let Some(img) = job.take_preview() {
+            previews.push(img);
+        }
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+    assert!(job.error().is_none(), "{:?}", job.error());
+    let mut figs = armlab::figure::figures::Figures::new().unwrap_or_else(|e| panic!("{e}"));
+    let one_shot =
+        armlab::headless::workspace_figure(&mut figs, &robot, "stanford", &opts, &|_| {})
+            .unwrap()
+            .image;
+    let formed = job.figure().expect("a figure");
+    if formed != &one_shot {
+        let dir = std::env::temp_dir();
+        formed.save(dir.join("forming_formed.png")).unwrap();
+        one_shot.save(dir.join("forming_one_shot.png")).unwrap();
+        for (k, p) in previews.iter().enumerate() {
+            p.save(dir.join(format!("forming_preview_{k}.png"))).unwrap();
+        }
+        let differ = formed.pixels().zip(one_shot.pixels()).filter(|(p, q)| p != q);
+        panic!(
+            "the formed figure differs from the one-shot figure in {} pixels (both in {})",
+            differ.count(),
+            dir.display()
+        );
+    }
+    assert!(
+        previews.len() >= 2,
+        "{} pictures while it formed (the coarse look and at least one tile)",
+        previews.len()
+    );
+    assert!(
+        previews
+            .iter()
+            .all(|p| p.dimensions() == one_shot.dimensions())
+    );
+    assert!(
+        previews[0] != one_shot,
+        "the first picture is the coarse look"
     );
 }

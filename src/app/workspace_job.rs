@@ -7,14 +7,16 @@
 
 use crate::figure::Theme;
 use crate::figure::figures::{Figures, PlotFrame};
-use crate::figure::workspace::{ColorBy, WsFigure, WsFigureOptions, WsPlan, WsView, paint, plan};
+use crate::figure::workspace::{
+    ColorBy, WsFigure, WsFigureOptions, WsPlan, WsView, paint, paint_forming, plan,
+};
 use crate::kinematics::Robot;
 use crate::offload::{Answer, Offload, Request};
 use crate::render::{Gpu, PendingRead};
 use crate::scene::Dot;
 use crate::workspace::{SampleOptions, TrackedPoint, compute_figure_data, point_cloud, sample};
 use std::sync::atomic::{AtomicBool, AtomicU32, Ordering};
-use std::sync::{Arc, OnceLock};
+use std::sync::{Arc, Mutex, OnceLock};
 
 /// Samples drawn for the overlay.
 pub const OVERLAY_SAMPLES: usize = 100_000;
@@ -50,7 +52,12 @@ pub struct WorkspaceJob {
     figure: JobFigure,
     /// The slices still to compute (browser only; `None` with a thread, or once done).
     slices: std::sync::Mutex<Option<Slices>>,
+    /// The figure as it forms: the latest picture not taken yet ([`Self::take_preview`]).
+    preview: Arc<Mutex<Option<image::RgbaImage>>>,
 }
+
+/// How often a forming figure is painted again (the coarse first look at once).
+pub const PREVIEW_EVERY: std::time::Duration = std::time::Duration::from_millis(250);
 
 /// What a sliced job still has to do (the browser's way: one slice per frame).
 struct Slices {
@@ -74,6 +81,8 @@ struct FigureSlices {
     asked: bool,
     /// The painted figure's pixels on their way back from the GPU, and its frame.
     readback: Option<(PendingRead, Option<PlotFrame>)>,
+    /// A picture of the figure as it forms on its way back.
+    forming: Option<PendingRead>,
 }
 
 /// Overlay samples per slice (a few milliseconds of work).
@@ -132,17 +141,19 @@ impl WorkspaceJob {
         let done = Arc::new(OnceLock::new());
         let cancelled = Arc::new(AtomicBool::new(false));
         let running = Arc::new(AtomicBool::new(true));
-        let (p, d, c, f, r) = (
+        let preview = Arc::new(Mutex::new(None));
+        let (p, d, c, f, r, v) = (
             progress.clone(),
             done.clone(),
             cancelled.clone(),
             figure.clone(),
             running.clone(),
+            preview.clone(),
         );
         std::thread::spawn(move || {
             // A cancelled computation unwinds out of the progress callback (see
             // [`stop_if_cancelled`]); it is caught here and reported as cancelled.
-            let run = std::panic::AssertUnwindSafe(|| compute(&robot, &title, &f, &p, &c));
+            let run = std::panic::AssertUnwindSafe(|| compute(&robot, &title, &f, &p, &c, &v));
             let result = match std::panic::catch_unwind(run) {
                 Ok(r) => r,
                 Err(payload) if payload.is::<Cancelled>() => Err(CANCELLED.into()),
@@ -158,6 +169,7 @@ impl WorkspaceJob {
             running,
             figure,
             slices: std::sync::Mutex::new(None),
+            preview,
         }
     }
 
@@ -179,6 +191,7 @@ impl WorkspaceJob {
             running: Arc::new(AtomicBool::new(false)),
             figure,
             slices: std::sync::Mutex::new(Some(slices)),
+            preview: Arc::default(),
         }
     }
 
@@ -215,7 +228,13 @@ impl WorkspaceJob {
             && matches!(self.figure, JobFigure::Workspace(_))
             && let (Some(gpu), Some(offload)) = (gpu, offload.as_deref_mut())
         {
-            if let Some(Err(e)) = s.figure_step(gpu, &self.figure, Some(offload), &self.progress) {
+            if let Some(Err(e)) = s.figure_step(
+                gpu,
+                &self.figure,
+                Some(offload),
+                &self.progress,
+                &self.preview,
+            ) {
                 let _ = self.done.set(Err(e));
                 *guard = None;
                 return false;
@@ -241,7 +260,7 @@ impl WorkspaceJob {
         }
         let waiting = s.figure.as_ref().is_some_and(|f| f.asked);
         let finished = match gpu {
-            Some(gpu) => s.figure_step(gpu, &self.figure, offload, &self.progress),
+            Some(gpu) => s.figure_step(gpu, &self.figure, offload, &self.progress, &self.preview),
             None => Some(Err("no graphics device for the figure".into())),
         };
         if let Some(figure) = finished {
@@ -269,6 +288,15 @@ impl WorkspaceJob {
         } else {
             Some(self.progress.load(Ordering::Relaxed) as f32 / 1000.0)
         }
+    }
+
+    /// The figure as it forms, while the job runs: the latest picture painted since the last
+    /// call (`None` if there is no new one, or once the job is done).
+    pub fn take_preview(&self) -> Option<image::RgbaImage> {
+        if self.done.get().is_some() {
+            return None;
+        }
+        self.preview.lock().ok()?.take()
     }
 
     /// The finished data.
@@ -353,6 +381,7 @@ impl Slices {
         which: &JobFigure,
         offload: Option<&mut (dyn Offload + 'static)>,
         progress: &AtomicU32,
+        preview: &Mutex<Option<image::RgbaImage>>,
     ) -> Option<Result<Figure, String>> {
         if self.figure.is_none() {
             match self.plan_figure(gpu, which) {
@@ -379,8 +408,25 @@ impl Slices {
         };
         let data = match (f.asked, offload) {
             (true, Some(offload)) => {
+                // The figure as it forms: a picture on its way back is shown before the next
+                // answer is taken, then the latest map is painted.
+                if let Some(read) = &f.forming {
+                    let r = read.poll(&gpu.device)?;
+                    f.forming = None;
+                    if let (Ok(img), Ok(mut slot)) = (r, preview.lock()) {
+                        *slot = Some(img);
+                    }
+                }
                 let answer = offload.poll()?;
                 match serde_json::from_str::<Answer>(&answer) {
+                    Ok(Answer::Partial { map, rows_done }) => {
+                        if f.forming.is_none()
+                            && paint_forming(&mut f.figs, plan, &map, rows_done).is_ok()
+                        {
+                            f.forming = f.figs.take_deferred();
+                        }
+                        return None;
+                    }
                     Ok(Answer::Data(d)) => *d,
                     Ok(Answer::Error(e)) => return Some(Err(e)),
                     Err(e) => return Some(Err(format!("unreadable answer: {e}"))),
@@ -432,6 +478,7 @@ impl Slices {
             plan,
             asked: false,
             readback: None,
+            forming: None,
         })
     }
 }
@@ -442,6 +489,7 @@ fn compute(
     which: &JobFigure,
     progress: &AtomicU32,
     cancelled: &AtomicBool,
+    preview: &Mutex<Option<image::RgbaImage>>,
 ) -> Result<WorkspaceData, String> {
     let n = OVERLAY_SAMPLES;
     let dots = overlay_dots(robot, n, 1, &|k| {
@@ -459,11 +507,21 @@ fn compute(
                 progress.store(500 + (x * 500.0) as u32, Ordering::Relaxed)
             };
             match which {
-                JobFigure::Workspace(o) => {
-                    crate::headless::workspace_figure(&mut figs, robot, title, o, &on_progress)
-                        .map(|WsFigure { image, frame, .. }| (image, frame))
-                        .map_err(|e| e.to_string())
-                }
+                JobFigure::Workspace(o) => crate::headless::workspace_figure_forming(
+                    &mut figs,
+                    robot,
+                    title,
+                    o,
+                    &on_progress,
+                    PREVIEW_EVERY,
+                    &mut |image, _| {
+                        if let Ok(mut slot) = preview.lock() {
+                            *slot = Some(image);
+                        }
+                    },
+                )
+                .map(|WsFigure { image, frame, .. }| (image, frame))
+                .map_err(|e| e.to_string()),
                 JobFigure::Textbook(name) => {
                     crate::headless::textbook_figure(&mut figs, name, [1200, 900], Theme::Light)
                         .map(|img| (img, None))

@@ -170,6 +170,16 @@ impl Figures {
         Ok(PlotFrame::of(&frame, ppp))
     }
 
+    /// Runs `f`, then puts the figure context's memory back as it was, so that what `f` painted
+    /// (a forming figure's preview) leaves no trace in the next figure: egui_plot keeps each
+    /// plot's bounds and layout between frames, which would shift the finished figure's frame.
+    pub fn leaving_no_trace<R>(&mut self, f: impl FnOnce(&mut Self) -> R) -> R {
+        let saved = self.offscreen.ctx.memory(|m| m.clone());
+        let out = f(self);
+        self.offscreen.ctx.memory_mut(|m| *m = saved);
+        out
+    }
+
     /// A plot with `raster` laid under its curves over the data bounds it was made for (those of
     /// [`Self::plot_frame`]), and where its frame was drawn.
     pub fn plot_at(

@@ -15,8 +15,9 @@ use crate::kinematics::Robot;
 use crate::scene::{ArmStyle, Dot, arm_scene};
 use crate::workspace::figure_data::PlaneMarks;
 use crate::workspace::{
-    self, Content, ContentRequest, CurveKind, CurveRole, FigureData, FigureRequest, MapRequest,
-    MapValues, MapView, SampleOptions, StatsOptions, TrackedPoint, WorkspaceMap, WorkspaceStats,
+    self, COARSE, Content, ContentRequest, CurveKind, CurveRole, FigureData, FigureRequest,
+    MapRequest, MapValues, MapView, SampleOptions, StatsOptions, TrackedPoint, WorkspaceMap,
+    WorkspaceStats,
 };
 use egui::Color32;
 
@@ -181,7 +182,13 @@ pub fn paint(
         }
         (PlanBody::Map { view, plot, frame }, Content::Map(map)) => {
             let mut plot = (**plot).clone();
-            decorate(&mut plot, map, stats, opts, text_color(opts.theme));
+            let numbers = format!(
+                "{}, reach {:.3}-{:.3} m",
+                measure_text(stats),
+                stats.min_reach,
+                stats.max_reach
+            );
+            decorate(&mut plot, map, &numbers, opts, text_color(opts.theme));
             if *view == MapView::Plane
                 && let Some(marks) = &data.plane_marks
             {
@@ -212,6 +219,40 @@ pub fn paint(
         image,
         stats: stats.clone(),
         frame,
+    })
+}
+
+/// Paints a planned map figure with a map that is still forming (handed over by
+/// [`crate::workspace::compute_figure_data_forming`]; the rows from `rows_done` down are the
+/// coarse look): the subtitle says how far it is instead of the statistics, which come last.
+pub fn paint_forming(
+    figs: &mut Figures,
+    plan: &WsPlan,
+    map: &WorkspaceMap,
+    rows_done: usize,
+) -> Result<(image::RgbaImage, PlotFrame), FigureError> {
+    let PlanBody::Map { plot, frame, .. } = &plan.body else {
+        return Err(FigureError::WrongData {
+            wanted: "a map figure",
+            got: "a map",
+        });
+    };
+    let opts = &plan.opts;
+    let mut plot = (**plot).clone();
+    let stage = if rows_done == 0 {
+        format!("forming: a coarse first look (1 cell in {COARSE} per side)")
+    } else if rows_done < map.height {
+        format!(
+            "forming: {rows_done} of {} rows decided, the rest coarse",
+            map.height
+        )
+    } else {
+        "forming: refining the rim".to_string()
+    };
+    decorate(&mut plot, map, &stage, opts, text_color(opts.theme));
+    let raster = paint_map(map, opts.color_by);
+    figs.leaving_no_trace(|figs| {
+        figs.plot_at(opts.size, opts.theme, &plot, Some((raster, frame.bounds)))
     })
 }
 
@@ -458,11 +499,12 @@ fn map_plot(
     Ok(((plot, frame), req))
 }
 
-/// Subtitle, legend or colour bar, and the map's curves.
+/// Subtitle (the method, then `numbers`: the measure and reach, or how far a forming map is),
+/// legend or colour bar, and the map's curves.
 fn decorate(
     plot: &mut Plot2d,
     map: &WorkspaceMap,
-    stats: &WorkspaceStats,
+    numbers: &str,
     opts: &WsFigureOptions,
     text: Color32,
 ) {
@@ -473,12 +515,7 @@ fn decorate(
     } else {
         "regions from a 64-direction approach scan"
     };
-    plot.subtitle = format!(
-        "{how}, {}, reach {:.3}-{:.3} m",
-        measure_text(stats),
-        stats.min_reach,
-        stats.max_reach
-    );
+    plot.subtitle = format!("{how}, {numbers}");
     match &map.values {
         Some(v) => {
             let unit = if v.unit.is_empty() {

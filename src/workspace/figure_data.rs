@@ -4,7 +4,10 @@
 //! worker ([`compute_figure_data`]), and the figure paints the [`FigureData`] it is handed. Both
 //! travel as JSON to a browser's worker.
 
-use super::map::{MapRequest, MapView, WorkspaceMap, compute_map, map_statistics};
+use super::map::{
+    MapForming, MapRequest, MapView, OneShot, WorkspaceMap, compute_map, compute_map_forming,
+    map_statistics,
+};
 use super::planar::{CurveKind, planar_boundary};
 use super::rectangle::{JointRectangle, joint_rectangle};
 use super::sample::{SampleOptions, sample};
@@ -134,15 +137,55 @@ pub fn compute_figure_data(
     request: &FigureRequest,
     progress: &(dyn Fn(f32) + Sync),
 ) -> Result<FigureData, WorkspaceError> {
+    compute_figure_data_forming(robot, request, progress, &mut OneShot)
+}
+
+/// Cells of a map's coarse first look: one in `COARSE` per side.
+pub const COARSE: usize = 8;
+
+/// [`compute_figure_data`], handing `forming` the map while it forms: a coarse first look (one
+/// cell in [`COARSE`] per side, one joint-space sample in [`COARSE`], upsampled to the map's
+/// cells; `rows_done` 0), then the map refined tile by tile (the rows not decided yet from the
+/// coarse look), all before the statistics. The data returned are the one-shot data, whatever
+/// `forming` wants.
+pub fn compute_figure_data_forming(
+    robot: &Robot,
+    request: &FigureRequest,
+    progress: &(dyn Fn(f32) + Sync),
+    forming: &mut dyn MapForming,
+) -> Result<FigureData, WorkspaceError> {
+    let mut map = None;
+    if let ContentRequest::Map(req) = &request.content
+        && forming.wants()
+    {
+        let coarse = MapRequest {
+            cells: [req.cells[0].div_ceil(COARSE), req.cells[1].div_ceil(COARSE)],
+            samples: (req.samples / COARSE).max(1),
+            ..req.clone()
+        };
+        let coarse = upsampled(&compute_map(robot, &coarse)?, req.cells);
+        forming.partial(&coarse, 0);
+        progress(0.1);
+        let mut merge = Merge {
+            coarse: &coarse,
+            to: forming,
+            progress,
+            tiles: 0,
+        };
+        map = Some(compute_map_forming(robot, req, &mut merge)?);
+    }
     let stats = map_statistics(robot, request.point, &request.fallback)?;
-    progress(0.3);
+    progress(if map.is_some() { 0.8 } else { 0.3 });
     let mut plane = None;
     let content = match &request.content {
         ContentRequest::Map(req) => {
             if req.view == MapView::Plane {
                 plane = plane_marks(robot);
             }
-            Content::Map(compute_map(robot, req)?)
+            match map {
+                Some(map) => Content::Map(map),
+                None => Content::Map(compute_map(robot, req)?),
+            }
         }
         ContentRequest::Cloud(opts) => {
             let n = opts.samples.max(1);
@@ -159,4 +202,59 @@ pub fn compute_figure_data(
         content,
         plane_marks: plane,
     })
+}
+
+/// A map at `cells` (the same bounds) whose every cell takes the mask of the cell of `coarse`
+/// that holds its centre: the coarse look at the figure's own cells.
+fn upsampled(coarse: &WorkspaceMap, cells: [usize; 2]) -> WorkspaceMap {
+    let ([w, h], [cw, ch]) = (cells, [coarse.width, coarse.height]);
+    let masks = (0..w * h)
+        .map(|k| {
+            // The coarse cell holding the centre of fine cell (i, j).
+            let (i, j) = (
+                (2 * (k % w) + 1) * cw / (2 * w),
+                (2 * (k / w) + 1) * ch / (2 * h),
+            );
+            coarse.masks[j * cw + i]
+        })
+        .collect();
+    WorkspaceMap {
+        width: w,
+        height: h,
+        masks,
+        edges: Vec::new(),
+        values: None,
+        curves: Vec::new(),
+        fills: Vec::new(),
+        ..coarse.clone()
+    }
+}
+
+/// Hands partial maps on with the rows not decided yet taken from the coarse look, and reports
+/// progress after each tile.
+struct Merge<'a> {
+    coarse: &'a WorkspaceMap,
+    to: &'a mut dyn MapForming,
+    progress: &'a (dyn Fn(f32) + Sync),
+    /// Tiles done so far.
+    tiles: usize,
+}
+
+impl MapForming for Merge<'_> {
+    fn wants(&mut self) -> bool {
+        self.tiles += 1;
+        let done = (self.tiles * super::TILE_ROWS) as f32 / self.coarse.height.max(1) as f32;
+        (self.progress)(0.1 + 0.6 * done.min(1.0));
+        self.to.wants()
+    }
+
+    fn partial(&mut self, map: &WorkspaceMap, rows_done: usize) {
+        if rows_done >= map.height || self.coarse.masks.len() != map.masks.len() {
+            return self.to.partial(map, rows_done);
+        }
+        let mut merged = map.clone();
+        let k = rows_done * map.width;
+        merged.masks[k..].copy_from_slice(&self.coarse.masks[k..]);
+        self.to.partial(&merged, rows_done);
+    }
 }

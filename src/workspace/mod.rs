@@ -36,13 +36,17 @@ pub mod stats;
 pub mod views;
 
 pub use exact::{Arc, ExactPlanar, ExactRegion, Membership, RegionSet};
-pub use figure_data::{Content, ContentRequest, FigureData, FigureRequest, compute_figure_data};
+pub use figure_data::{
+    COARSE, Content, ContentRequest, FigureData, FigureRequest, compute_figure_data,
+    compute_figure_data_forming,
+};
 pub use grid::{
     DexterousSet, GridAnalysis, GridMethod, GridOptions, GridSpec, MethodChoice, analyze_grid,
 };
 pub use map::{
-    CellValues, CurveRole, MapCurve, MapRequest, MapValues, MapView, PointQuery, ReachAnswer,
-    Section, TrackedPoint, WorkspaceMap, compute_map, map_extent, map_statistics,
+    CellValues, CurveRole, MapCurve, MapForming, MapRequest, MapValues, MapView, OneShot,
+    PointQuery, ReachAnswer, Section, TILE_ROWS, TrackedPoint, WorkspaceMap, compute_map,
+    compute_map_forming, map_extent, map_statistics,
 };
 pub use planar::{
     BoundaryCurve, BoundaryOptions, CurveKind, PlanarBoundary, PostureLoop, planar_boundary,

@@ -93,6 +93,8 @@ pub struct WorkspaceTab {
     texture: Option<egui::TextureHandle>,
     /// `texture` shows `previous`'s figure.
     texture_is_previous: bool,
+    /// `texture` shows the job's figure as it forms.
+    texture_is_preview: bool,
     /// The figure's pixel size the job was started for.
     size: [u32; 2],
 }
@@ -105,6 +107,7 @@ impl Default for WorkspaceTab {
             previous: None,
             texture: None,
             texture_is_previous: false,
+            texture_is_preview: false,
             size: [1200, 900],
         }
     }
@@ -119,6 +122,7 @@ impl WorkspaceTab {
         self.previous = None;
         self.texture = None;
         self.texture_is_previous = false;
+        self.texture_is_preview = false;
         let title = state.robot().name.to_lowercase();
         let figure = match self.preset {
             Preset::Textbook {
@@ -345,19 +349,22 @@ impl Tab for WorkspaceTab {
             let text = format!("no figure: {err}");
             ui.colored_label(egui::Color32::from_rgb(190, 0, 0), text);
         }
+        // The figure as it forms (not over the finished figure of another size).
+        if !self.texture_is_previous
+            && let Some(img) = job.take_preview()
+        {
+            self.texture = Some(figure_texture(ui, &img));
+            self.texture_is_preview = true;
+        }
+        if self.texture_is_preview && job.figure().is_some() {
+            self.texture = None;
+            self.texture_is_preview = false;
+        }
         let shown = self.shown_job();
         if self.texture.is_none()
             && let Some(img) = shown.and_then(|j| j.figure())
         {
-            let color = egui::ColorImage::from_rgba_unmultiplied(
-                [img.width() as usize, img.height() as usize],
-                img.as_raw(),
-            );
-            self.texture = Some(ui.ctx().load_texture(
-                "workspace figure",
-                color,
-                egui::TextureOptions::LINEAR,
-            ));
+            self.texture = Some(figure_texture(ui, img));
         }
         if let Some(t) = &self.texture {
             let r = ui
@@ -384,5 +391,16 @@ impl Tab for WorkspaceTab {
         self.previous = None;
         self.texture = None;
         self.texture_is_previous = false;
+        self.texture_is_preview = false;
     }
+}
+
+/// A figure's pixels as a texture.
+fn figure_texture(ui: &egui::Ui, img: &image::RgbaImage) -> egui::TextureHandle {
+    let color = egui::ColorImage::from_rgba_unmultiplied(
+        [img.width() as usize, img.height() as usize],
+        img.as_raw(),
+    );
+    ui.ctx()
+        .load_texture("workspace figure", color, egui::TextureOptions::LINEAR)
 }

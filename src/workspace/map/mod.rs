@@ -30,7 +30,7 @@ mod spatial;
 pub use query::{PointQuery, ReachAnswer};
 pub use spatial::Section;
 
-pub use raster::EdgeCell;
+pub use raster::{EdgeCell, TILE_ROWS};
 
 use super::{Aabb, WorkspaceError, WorkspaceStats};
 use crate::kinematics::Robot;
@@ -243,8 +243,40 @@ pub fn padded(b: &Aabb, pad: f64) -> [f64; 4] {
     [x0 - m, x1 + m, y0 - m, y1 + m]
 }
 
+/// Receives a map while it forms, before [`compute_map_forming`] returns the finished one.
+pub trait MapForming {
+    /// Whether to build and hand over a partial map now (a receiver that paints throttles here;
+    /// asked after each tile).
+    fn wants(&mut self) -> bool;
+    /// A partial map: the rows above `rows_done` (from the top) are decided, the others are not
+    /// yet (mask 0), or all of them when `rows_done` is the height but a later pass still
+    /// refines them; no edge cells, no curves, no values.
+    fn partial(&mut self, map: &WorkspaceMap, rows_done: usize);
+}
+
+/// A [`MapForming`] that wants nothing: the one-shot map.
+pub struct OneShot;
+
+impl MapForming for OneShot {
+    fn wants(&mut self) -> bool {
+        false
+    }
+    fn partial(&mut self, _: &WorkspaceMap, _: usize) {}
+}
+
 /// Computes a map.
 pub fn compute_map(robot: &Robot, req: &MapRequest) -> Result<WorkspaceMap, WorkspaceError> {
+    compute_map_forming(robot, req, &mut OneShot)
+}
+
+/// Computes a map, handing `forming` partial maps as its tiles are decided (side and top views
+/// of the closed-form arms: [`TILE_ROWS`] rows at a time; sampled maps: the rim refinement tile
+/// by tile). The finished map is the one [`compute_map`] returns, whatever `forming` wants.
+pub fn compute_map_forming(
+    robot: &Robot,
+    req: &MapRequest,
+    forming: &mut dyn MapForming,
+) -> Result<WorkspaceMap, WorkspaceError> {
     if req.cells[0] == 0 || req.cells[1] == 0 || req.cells[0] * req.cells[1] > 64_000_000 {
         return Err(WorkspaceError::InvalidOption {
             option: "map size",
@@ -273,10 +305,10 @@ pub fn compute_map(robot: &Robot, req: &MapRequest) -> Result<WorkspaceMap, Work
                 return Ok(planar::map(&e, req, bounds));
             }
         } else if let Some(s) = spatial::Section::new(robot, req.point) {
-            return s.map(robot, req, bounds);
+            return s.map(robot, req, bounds, forming);
         }
     }
-    sampled::map(robot, req, bounds)
+    sampled::map(robot, req, bounds, forming)
 }
 
 /// Statistics of the workspace with the exact method where there is one: exact areas for planar

@@ -33,14 +33,47 @@ pub(crate) fn fill(
     dims: [usize; 2],
     test: &(dyn Fn([f64; 2]) -> u8 + Sync),
 ) -> Vec<u8> {
+    fill_tiled(bounds, dims, test, Fill::Cells, &mut |_, _| {})
+}
+
+/// How [`fill_tiled`] decides the cells.
+#[derive(Clone, Copy)]
+pub(crate) enum Fill<'a> {
+    /// Every cell by its own test.
+    Cells,
+    /// By blocks, as [`fill_blocks`] does.
+    Blocks(Option<&'a (dyn Fn([f64; 2], f64) -> bool + Sync)>),
+}
+
+/// Rows of a tile of a map that forms progressively (a multiple of the block side).
+pub const TILE_ROWS: usize = 8 * BLOCK;
+
+/// Masks at every cell centre, [`TILE_ROWS`] rows at a time from the top, `tile(masks,
+/// rows_done)` after each tile (the rows below `rows_done` are still 0). Each cell is decided
+/// exactly as in one pass (a block never straddles two tiles), so the result does not depend on
+/// the tiles.
+pub(crate) fn fill_tiled(
+    bounds: [f64; 4],
+    dims: [usize; 2],
+    test: &(dyn Fn([f64; 2]) -> u8 + Sync),
+    how: Fill<'_>,
+    tile: &mut dyn FnMut(&[u8], usize),
+) -> Vec<u8> {
     let [w, h] = dims;
     let mut masks = vec![0u8; w * h];
-    masks.par_chunks_mut(w).enumerate().for_each(|(j, row)| {
-        for (i, m) in row.iter_mut().enumerate() {
-            *m = test(centre(bounds, dims, i, j));
+    for j0 in (0..h).step_by(TILE_ROWS) {
+        let j1 = (j0 + TILE_ROWS).min(h);
+        let rows = &mut masks[j0 * w..j1 * w];
+        match how {
+            Fill::Cells => rows.par_chunks_mut(w).enumerate().for_each(|(dj, row)| {
+                for (i, m) in row.iter_mut().enumerate() {
+                    *m = test(centre(bounds, dims, i, j0 + dj));
+                }
+            }),
+            Fill::Blocks(uniform) => fill_blocks_rows(bounds, dims, test, uniform, j0, rows),
         }
-    });
-    let _ = h;
+        tile(&masks, j1);
+    }
     masks
 }
 
@@ -108,16 +141,29 @@ pub(crate) fn fill_blocks(
     test: &(dyn Fn([f64; 2]) -> u8 + Sync),
     uniform: Option<&(dyn Fn([f64; 2], f64) -> bool + Sync)>,
 ) -> Vec<u8> {
-    let [w, h] = dims;
-    let (bw, bh) = (w.div_ceil(BLOCK), h.div_ceil(BLOCK));
+    fill_tiled(bounds, dims, test, Fill::Blocks(uniform), &mut |_, _| {})
+}
+
+/// [`fill_blocks`] on the rows from `j0` (a multiple of the block side) that `rows` holds.
+fn fill_blocks_rows(
+    bounds: [f64; 4],
+    dims: [usize; 2],
+    test: &(dyn Fn([f64; 2]) -> u8 + Sync),
+    uniform: Option<&(dyn Fn([f64; 2], f64) -> bool + Sync)>,
+    j0: usize,
+    rows: &mut [u8],
+) {
+    let w = dims[0];
+    let h = j0 + rows.len() / w;
+    let (bw, bh) = (w.div_ceil(BLOCK), (h - j0).div_ceil(BLOCK));
     let cell = [
         (bounds[1] - bounds[0]) / w as f64,
-        (bounds[3] - bounds[2]) / h as f64,
+        (bounds[3] - bounds[2]) / dims[1] as f64,
     ];
     let blocks: Vec<(usize, Vec<u8>)> = (0..bw * bh)
         .into_par_iter()
         .map(|b| {
-            let (i0, j0) = ((b % bw) * BLOCK, (b / bw) * BLOCK);
+            let (i0, j0) = ((b % bw) * BLOCK, j0 + (b / bw) * BLOCK);
             let (i1, j1) = ((i0 + BLOCK).min(w), (j0 + BLOCK).min(h));
             let (ic, jc) = ((i0 + i1) / 2, (j0 + j1) / 2);
             let c = centre(bounds, dims, ic, jc);
@@ -147,13 +193,11 @@ pub(crate) fn fill_blocks(
             (b, cells)
         })
         .collect();
-    let mut masks = vec![0u8; w * h];
     for (b, cells) in blocks {
-        let (i0, j0) = ((b % bw) * BLOCK, (b / bw) * BLOCK);
+        let (i0, dj0) = ((b % bw) * BLOCK, (b / bw) * BLOCK);
         let iw = (i0 + BLOCK).min(w) - i0;
         for (k, m) in cells.into_iter().enumerate() {
-            masks[(j0 + k / iw) * w + i0 + k % iw] = m;
+            rows[(dj0 + k / iw) * w + i0 + k % iw] = m;
         }
     }
-    masks
 }

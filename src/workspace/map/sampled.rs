@@ -59,6 +59,7 @@ pub(super) fn map(
     robot: &Robot,
     req: &MapRequest,
     bounds: [f64; 4],
+    forming: &mut dyn super::MapForming,
 ) -> Result<WorkspaceMap, WorkspaceError> {
     let [w, h] = req.cells;
     let s = samples(
@@ -87,12 +88,37 @@ pub(super) fn map(
             }
         }
     }
-    let refined = refine(robot, req, &s, &owner, bounds);
-    let masks: Vec<u8> = owner
-        .iter()
-        .zip(&refined)
-        .map(|(&o, &r)| u8::from(o != u32::MAX || r))
-        .collect();
+    let method = format!(
+        "sampled: {} joint-space samples (seed {}), the rim refined by numerical IK",
+        s.len(),
+        req.seed
+    );
+    let partial = |masks: Vec<u8>| WorkspaceMap {
+        view: req.view,
+        bounds,
+        width: w,
+        height: h,
+        masks,
+        edges: Vec::new(),
+        class_names: vec!["all".into()],
+        values: None,
+        fills: Vec::new(),
+        curves: Vec::new(),
+        method: method.clone(),
+        exact: false,
+    };
+    let mut masks: Vec<u8> = owner.iter().map(|&o| u8::from(o != u32::MAX)).collect();
+    // The rim refined a tile at a time, the occupancy showing the rows not refined yet.
+    for j0 in (0..h).step_by(super::TILE_ROWS) {
+        let cells = j0 * w..(j0 + super::TILE_ROWS).min(h) * w;
+        let refined = refine(robot, req, &s, &owner, bounds, cells.clone());
+        for (m, r) in masks[cells.clone()].iter_mut().zip(refined) {
+            *m |= u8::from(r);
+        }
+        if cells.end < w * h && forming.wants() {
+            forming.partial(&partial(masks.clone()), h);
+        }
+    }
     let values = (req.values != MapValues::Classes).then(|| {
         let hi = best
             .iter()
@@ -109,32 +135,20 @@ pub(super) fn map(
         }
     });
     Ok(WorkspaceMap {
-        view: req.view,
-        bounds,
-        width: w,
-        height: h,
-        masks,
-        edges: Vec::new(),
-        class_names: vec!["all".into()],
         values,
-        fills: Vec::new(),
-        curves: Vec::new(),
-        method: format!(
-            "sampled: {} joint-space samples (seed {}), the rim refined by numerical IK",
-            s.len(),
-            req.seed
-        ),
-        exact: false,
+        ..partial(masks)
     })
 }
 
-/// Empty cells with a reached 8-neighbour, tried by position IK from that neighbour's sample.
+/// Of the cells `cells`: the empty ones with a reached 8-neighbour, tried by position IK from
+/// that neighbour's sample.
 fn refine(
     robot: &Robot,
     req: &MapRequest,
     s: &Samples,
     owner: &[u32],
     bounds: [f64; 4],
+    cells: std::ops::Range<usize>,
 ) -> Vec<bool> {
     let (view, [w, h]) = (req.view, req.cells);
     let opts = NumericalOptions {
@@ -147,7 +161,7 @@ fn refine(
         },
         ..NumericalOptions::default()
     };
-    (0..w * h)
+    cells
         .into_par_iter()
         .map(|c| {
             if owner[c] != u32::MAX {

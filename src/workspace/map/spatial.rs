@@ -643,19 +643,17 @@ impl Section {
         robot: &Robot,
         req: &MapRequest,
         bounds: [f64; 4],
+        forming: &mut dyn super::MapForming,
     ) -> Result<WorkspaceMap, WorkspaceError> {
         if req.values == MapValues::Manipulability {
-            return super::sampled::map(robot, req, bounds);
+            return super::sampled::map(robot, req, bounds, forming);
         }
         let dims = req.cells;
-        let (masks, edges, curves) = match (req.view, &self.arcs) {
+        let radial;
+        let test: Box<dyn Fn([f64; 2]) -> u8 + Sync + '_> = match (req.view, &self.arcs) {
             (MapView::Top, Some(arcs)) if self.mode == Mode::FlangeSphere => {
                 let d = self.sphere_radius;
-                let test = |p: [f64; 2]| arcs.radius_mask(p[0].hypot(p[1]), d);
-                let masks = raster::fill(bounds, dims, &test);
-                let edges = self.edges(&masks, bounds, dims, &test);
-                let curves = self.curves(&masks, bounds, dims, &test);
-                (masks, edges, curves)
+                Box::new(move |p: [f64; 2]| arcs.radius_mask(p[0].hypot(p[1]), d))
             }
             (MapView::Top, _) => {
                 let side = self.extent(MapView::Side);
@@ -670,50 +668,54 @@ impl Section {
                     (0.5, 256)
                 };
                 let bins = ((side[1] / cell * per_cell).ceil() as usize).clamp(64, 8192);
-                let radial = Radial::new(self, side, bins, heights);
-                let test = |p: [f64; 2]| self.top_mask(&radial, p[0], p[1]);
-                let masks = match self.mode {
-                    Mode::FlangeScan => raster::fill_blocks(bounds, dims, &test, None),
-                    _ => raster::fill(bounds, dims, &test),
-                };
-                let edges = self.edges(&masks, bounds, dims, &test);
-                let curves = self.curves(&masks, bounds, dims, &test);
-                (masks, edges, curves)
+                radial = Radial::new(self, side, bins, heights);
+                let radial = &radial;
+                Box::new(move |p: [f64; 2]| self.top_mask(radial, p[0], p[1]))
             }
-            _ => {
-                let test = |p: [f64; 2]| {
-                    if p[0] < 0.0 {
-                        0
-                    } else {
-                        self.side_mask(p[0], p[1])
-                    }
-                };
-                let masks = match self.mode {
-                    Mode::FlangeScan => raster::fill_blocks(bounds, dims, &test, None),
-                    _ => raster::fill(bounds, dims, &test),
-                };
-                let edges = self.edges(&masks, bounds, dims, &test);
-                let curves = self.curves(&masks, bounds, dims, &test);
-                (masks, edges, curves)
-            }
+            _ => Box::new(|p: [f64; 2]| {
+                if p[0] < 0.0 {
+                    0
+                } else {
+                    self.side_mask(p[0], p[1])
+                }
+            }),
         };
+        let how = if self.mode == Mode::FlangeScan {
+            raster::Fill::Blocks(None)
+        } else {
+            raster::Fill::Cells
+        };
+        let partial = |masks: &[u8]| WorkspaceMap {
+            view: req.view,
+            bounds,
+            width: dims[0],
+            height: dims[1],
+            masks: masks.to_vec(),
+            edges: Vec::new(),
+            class_names: self.class_names().to_vec(),
+            values: None,
+            fills: Vec::new(),
+            curves: Vec::new(),
+            method: self.method(),
+            exact: self.exact(),
+        };
+        let masks = raster::fill_tiled(bounds, dims, &test, how, &mut |masks, rows| {
+            if rows < dims[1] && forming.wants() {
+                forming.partial(&partial(masks), rows);
+            }
+        });
+        let edges = self.edges(&masks, bounds, dims, &test);
+        let curves = self.curves(&masks, bounds, dims, &test);
         let values = match req.values {
             MapValues::Dexterity => Some(self.dexterity(req.view, bounds, dims)?),
             _ => None,
         };
         Ok(WorkspaceMap {
-            view: req.view,
-            bounds,
-            width: dims[0],
-            height: dims[1],
             masks,
             edges,
-            class_names: self.class_names().to_vec(),
             values,
-            fills: Vec::new(),
             curves,
-            method: self.method(),
-            exact: self.exact(),
+            ..partial(&[])
         })
     }
 
@@ -814,11 +816,19 @@ impl Section {
         };
         let zero = (0.0, [0.0; 4], [0.0; 4]);
         let edge_set: std::collections::HashSet<u32> = edges.iter().map(|e| e.index).collect();
-        let inner = (0..n * n)
+        // Sums per row in parallel, then in order: the same sum every run (a parallel reduce
+        // adds in the order the threads happen to finish).
+        let inner = (0..n)
             .into_par_iter()
-            .filter(|k| masks[*k] != 0 && !edge_set.contains(&(*k as u32)))
-            .map(|k| at(raster::centre(bounds, dims, k % n, k / n), 1.0))
-            .reduce(|| zero, add);
+            .map(|j| {
+                (j * n..(j + 1) * n)
+                    .filter(|k| masks[*k] != 0 && !edge_set.contains(&(*k as u32)))
+                    .map(|k| at(raster::centre(bounds, dims, k % n, k / n), 1.0))
+                    .fold(zero, add)
+            })
+            .collect::<Vec<_>>()
+            .into_iter()
+            .fold(zero, add);
         let rim = edges
             .par_iter()
             .map(|e| {
@@ -838,7 +848,9 @@ impl Section {
                     })
                     .fold(zero, add)
             })
-            .reduce(|| zero, add);
+            .collect::<Vec<_>>()
+            .into_iter()
+            .fold(zero, add);
         add(inner, rim)
     }
 
@@ -1040,6 +1052,8 @@ impl Section {
                     .collect();
                 self.azimuths(&hits, 1).0 * c[0] * da
             })
+            .collect::<Vec<f64>>()
+            .iter()
             .sum()
     }
 }
