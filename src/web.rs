@@ -11,6 +11,7 @@
 use crate::app::AppUi;
 use crate::app::file_picker::{FileKind, FilePicker};
 use crate::app::state::{AppState, Level};
+use crate::app::workspace_job::WorkspaceJob;
 use crate::app::{APP_ID, ArmlabApp};
 use std::cell::RefCell;
 use std::path::PathBuf;
@@ -79,9 +80,11 @@ impl WebHandle {
                             .push_message(Level::Error, format!("?lesson=: {e}")),
                         None => {}
                     }
-                    match WorkerOffload::new() {
-                        Ok(w) => ui.offload = Some(Box::new(w)),
-                        Err(e) => web_sys::console::warn_1(&e),
+                    for _ in 0..pool_size() {
+                        match WorkerOffload::new() {
+                            Ok(w) => ui.offload.push(Box::new(w)),
+                            Err(e) => web_sys::console::warn_1(&e),
+                        }
                     }
                     Ok(Box::new(ArmlabApp::new(cc, ui, None, true, model_given)))
                 }),
@@ -91,7 +94,7 @@ impl WebHandle {
 
     /// The app's state as JSON: `{"started", "model", "dof", "q" (rad, m), "position" (m),
     /// "rpy_deg", "solutions", "within_limits", "gizmo" ([x, y] in CSS pixels of a translation
-    /// handle), "backend" ("BrowserWebGpu" or "Gl" for WebGL2), "workspace_progress" (0..1), "workspace_figure" ([w, h] px), "workspace_dots",
+    /// handle), "backend" ("BrowserWebGpu" or "Gl" for WebGL2), "workspace_progress" (0..1), "workspace_figure" ([w, h] px), "workspace_dots", "workspace_previews" (pictures of the figure as it formed), "workers" (the pool of web workers),
     /// "workspace_error", "messages", "frames", "panicked"}`.
     pub fn status(&self) -> String {
         let panicked = self.runner.has_panicked();
@@ -147,7 +150,22 @@ pub fn worker_compute(request: &str, partial: &js_sys::Function) -> String {
 /// Milliseconds between two partial maps a worker sends.
 pub const PARTIAL_EVERY_MS: f64 = 400.0;
 
-/// The page's web worker, for the workspace's heavy computations.
+/// Web workers in the pool: one per logical core the browser reports
+/// (`navigator.hardwareConcurrency`) but one, which the page keeps (it draws the overlay and,
+/// without a GPU, rasterizes), at least 1, at most [`MAX_WORKERS`]; `?workers=N` in the URL
+/// sets it.
+fn pool_size() -> usize {
+    let cores = web_sys::window().map_or(1.0, |w| w.navigator().hardware_concurrency());
+    url_parameter("workers")
+        .and_then(|n| n.trim().parse::<usize>().ok())
+        .unwrap_or((cores as usize).saturating_sub(1))
+        .clamp(1, MAX_WORKERS)
+}
+
+/// Most web workers in the pool (each holds an instance of the module).
+pub const MAX_WORKERS: usize = 8;
+
+/// One of the page's web workers, for the workspace's heavy computations.
 struct WorkerOffload {
     worker: web_sys::Worker,
     answer: Rc<RefCell<Option<String>>>,
@@ -267,6 +285,8 @@ fn status_json(app: &AppUi) -> serde_json::Value {
         "workspace_progress": app.tabs.workspace.job.as_ref().map(|w| w.progress().unwrap_or(1.0)),
         "workspace_figure": app.tabs.workspace.job.as_ref().and_then(|w| w.figure()).map(|f| [f.width(), f.height()]),
         "workspace_dots": app.tabs.workspace.job.as_ref().and_then(|w| w.dots()).map(<[_]>::len),
+        "workspace_previews": app.tabs.workspace.job.as_ref().map(WorkspaceJob::previews),
+        "workers": app.offload.len(),
         "workspace_error": app.tabs.workspace.job.as_ref().and_then(|w| w.error()),
         "messages": s.messages().iter().map(|m| m.text.clone()).collect::<Vec<_>>(),
         "lesson": app.lesson.as_ref().map(|p| serde_json::json!({

@@ -510,3 +510,17 @@ fn the_record_button_starts_and_stops_a_recording() {
     assert!(h.state().recorder.is_some());
     assert!(h.query_by_label("Stop (0)").is_some());
 }
+
+/// The workspace overlay remembered as on from the last session (or set by a lesson) computes
+/// the workspace at once: it showed nothing, and W then turned it off (found by the web test,
+/// whose second page remembered the first one's overlay).
+#[test]
+fn a_remembered_workspace_overlay_computes_the_workspace() {
+    let mut app = AppUi::new(AppState::from_spec("planar2").unwrap());
+    app.state.display.workspace = true;
+    let h = harness(app);
+    assert!(
+        h.state().tabs.workspace.job.is_some(),
+        "the overlay is on but no workspace is computed"
+    );
+}

@@ -7,34 +7,59 @@
 use armlab::app::workspace_job::{JobFigure, OVERLAY_SAMPLES, WorkspaceJob};
 use armlab::figure::workspace::WsView;
 use armlab::kinematics::models::built_in;
-use armlab::offload::{Answer, Offload, Request, answer, answer_forming};
+use armlab::offload::{Answer, Offload, Part, Request, Spread, SpreadStep, answer, answer_forming};
 use armlab::render::Gpu;
 use armlab::workspace::{
     Content, ContentRequest, FigureRequest, MapRequest, MapValues, MapView, StatsOptions,
     TrackedPoint, compute_map, map_statistics,
 };
+use std::cell::RefCell;
+use std::rc::Rc;
 
-/// The worker, run in place: each request answered over the next polls, as `worker.js` would:
-/// every partial map (the figure as it forms), then the answer.
+/// What a pool of in-place workers was asked and answered.
 #[derive(Default)]
-struct InPlace {
-    pending: std::collections::VecDeque<String>,
+struct Counts {
     requests: usize,
     partials: usize,
+    parts: Vec<String>,
+}
+
+/// A worker, run in place: each request answered over the next polls, as `worker.js` would:
+/// every partial map (the figure as it forms), then the answer.
+struct InPlace {
+    pending: std::collections::VecDeque<String>,
+    counts: Rc<RefCell<Counts>>,
 }
 
 impl Offload for InPlace {
     fn submit(&mut self, request: String) -> bool {
-        self.requests += 1;
         let mut partials = Vec::new();
         let last = answer_forming(&request, &mut || true, &mut |p| partials.push(p));
-        self.partials += partials.len();
+        let mut c = self.counts.borrow_mut();
+        c.requests += 1;
+        c.partials += partials.len();
+        let part = serde_json::from_str::<Request>(&request).unwrap().part;
+        c.parts.push(format!("{part:?}").chars().take(12).collect());
         self.pending = partials.into_iter().chain([last]).collect();
         true
     }
     fn poll(&mut self) -> Option<String> {
         self.pending.pop_front()
     }
+}
+
+/// A pool of `n` in-place workers and what they are asked.
+fn pool(n: usize) -> (Vec<Box<dyn Offload>>, Rc<RefCell<Counts>>) {
+    let counts = Rc::new(RefCell::new(Counts::default()));
+    let pool = (0..n)
+        .map(|_| {
+            Box::new(InPlace {
+                pending: Default::default(),
+                counts: counts.clone(),
+            }) as Box<dyn Offload>
+        })
+        .collect();
+    (pool, counts)
 }
 
 fn json(v: &impl serde::Serialize) -> serde_json::Value {
@@ -71,7 +96,12 @@ fn assert_close(a: &serde_json::Value, b: &serde_json::Value, at: &str) {
 #[test]
 fn the_sliced_job_with_a_worker_makes_the_desktops_figure() {
     let gpu = Gpu::new_headless().unwrap_or_else(|e| panic!("{e}"));
-    for name in ["planar2", "puma560"] {
+    for (name, workers) in [
+        ("planar2", 1),
+        ("puma560", 1),
+        ("planar2", 3),
+        ("puma560", 3),
+    ] {
         let robot = built_in(name).unwrap();
         let view = if name == "planar2" {
             WsView::Plane
@@ -89,10 +119,10 @@ fn the_sliced_job_with_a_worker_makes_the_desktops_figure() {
         );
         threaded.wait();
         let sliced = WorkspaceJob::start_sliced(robot, name.to_string(), title, figure);
-        let mut worker = InPlace::default();
+        let (mut workers, counts) = pool(workers);
         let (mut frames, mut previews) = (0, 0);
         while sliced.progress().is_some() {
-            sliced.step(Some(&gpu), Some(&mut worker));
+            sliced.step(Some(&gpu), &mut workers, frames as f64 * 0.6);
             previews += usize::from(sliced.take_preview().is_some());
             frames += 1;
             std::thread::sleep(std::time::Duration::from_millis(2));
@@ -108,14 +138,30 @@ fn the_sliced_job_with_a_worker_makes_the_desktops_figure() {
             "{name}: {:?}",
             sliced.figure_error()
         );
-        assert_eq!(
-            worker.requests, 1,
-            "{name}: the statistics and the map go to the worker in one request"
-        );
+        let counts = counts.borrow();
+        if workers.len() == 1 || name == "planar2" {
+            assert_eq!(
+                counts.requests, 1,
+                "{name}: the statistics and the map go to one worker in one request"
+            );
+            assert!(counts.partials >= 1, "{name}: no partial map");
+        } else {
+            // The coarse look, the statistics, three tiles per worker (of 64-row multiples),
+            // the finish.
+            let parts = &counts.parts;
+            assert_eq!(parts[..2], ["Coarse", "Stats"], "{name}: {parts:?}");
+            let tiles = parts.iter().filter(|p| p.starts_with("Tile")).count();
+            assert!(tiles >= 3, "{name}: {parts:?}");
+            assert_eq!(parts.len(), tiles + 3, "{name}: {parts:?}");
+            assert!(
+                parts.last().unwrap().starts_with("Finish"),
+                "{name}: {parts:?}"
+            );
+        }
         assert_eq!(sliced.dots().map(<[_]>::len), Some(OVERLAY_SAMPLES));
         // The figure formed on the page: the coarse look and, for the tiled map, tiles.
-        assert!(worker.partials >= 1, "{name}: no partial map");
         assert!(previews >= 1, "{name}: the page painted no partial map");
+        assert_eq!(sliced.previews() as usize, previews, "{name}");
         let (a, b) = (threaded.figure().unwrap(), sliced.figure().unwrap());
         assert_eq!(a.dimensions(), b.dimensions());
         // The same results painted: planned once, computed once, painted once, as the desktop
@@ -266,9 +312,13 @@ fn the_desktop_job_shows_the_figure_forming_and_ends_with_the_one_shot_figure() 
         formed.save(dir.join("forming_formed.png")).unwrap();
         one_shot.save(dir.join("forming_one_shot.png")).unwrap();
         for (k, p) in previews.iter().enumerate() {
-            p.save(dir.join(format!("forming_preview_{k}.png"))).unwrap();
+            p.save(dir.join(format!("forming_preview_{k}.png")))
+                .unwrap();
         }
-        let differ = formed.pixels().zip(one_shot.pixels()).filter(|(p, q)| p != q);
+        let differ = formed
+            .pixels()
+            .zip(one_shot.pixels())
+            .filter(|(p, q)| p != q);
         panic!(
             "the formed figure differs from the one-shot figure in {} pixels (both in {})",
             differ.count(),
@@ -289,4 +339,86 @@ fn the_desktop_job_shows_the_figure_forming_and_ends_with_the_one_shot_figure() 
         previews[0] != one_shot,
         "the first picture is the coarse look"
     );
+}
+
+/// A figure spread over a pool (the coarse look, the statistics, tiles answered in reverse
+/// order, the finish), its parts travelling as JSON, ends with the one-shot data exactly; the
+/// partial maps on the way hold the decided tiles' final cells.
+#[test]
+fn a_figure_spread_over_a_pool_ends_with_the_one_shot_data() {
+    for (name, view, point) in [
+        ("stanford", MapView::Top, TrackedPoint::Flange),
+        (
+            "anthropomorphic_spherical_wrist",
+            MapView::Top,
+            TrackedPoint::Flange,
+        ),
+        ("puma560", MapView::Side, TrackedPoint::WristCentre),
+    ] {
+        let robot = built_in(name).unwrap();
+        let map = MapRequest {
+            view,
+            point,
+            cells: [300, 260],
+            bounds: Some([-1.4, 1.4, -1.2, 1.2]),
+            samples: 20_000,
+            ..MapRequest::default()
+        };
+        let task = FigureRequest {
+            point,
+            fallback: StatsOptions::for_figure(false, 20_000, 1, 0),
+            content: ContentRequest::Map(map),
+        };
+        let one_shot = armlab::workspace::compute_figure_data(&robot, &task, &|_| {}).unwrap();
+        let request = Request::new(&robot, name, task).unwrap();
+        assert!(
+            Spread::new(&robot, &request, 1).is_none(),
+            "one worker: whole"
+        );
+        let mut spread = Spread::new(&robot, &request, 2).expect("a tiled map");
+        let mut parts = Vec::new();
+        while let Some(r) = spread.next_part() {
+            parts.push(r);
+        }
+        // The coarse look and the statistics first, then the tiles (the finish waits).
+        assert_eq!(parts[0].part, Part::Coarse);
+        assert_eq!(parts[1].part, Part::Stats);
+        let tiles = parts.len() - 2;
+        assert!(tiles >= 5, "{name}: {tiles} tiles for two workers");
+        let reply = |r: &Request| -> Answer {
+            serde_json::from_str(&answer(&serde_json::to_string(r).unwrap())).unwrap()
+        };
+        let Content::Map(last) = &one_shot.content else {
+            panic!()
+        };
+        let mut order: Vec<&Request> = parts.iter().collect();
+        order[2..].reverse();
+        let mut done = None;
+        for r in order {
+            match spread.take(reply(r)).unwrap() {
+                SpreadStep::Partial(m, rows) => {
+                    assert_eq!(m.masks.len(), last.masks.len());
+                    if let Part::Tile([a, b]) = r.part {
+                        let w = last.width;
+                        assert_eq!(m.masks[a * w..b * w], last.masks[a * w..b * w], "{name}");
+                        assert!(rows >= b - a);
+                    }
+                }
+                SpreadStep::Done(_) => panic!("{name}: done before the finish"),
+                SpreadStep::Working => {}
+            }
+        }
+        let finish = spread
+            .next_part()
+            .expect("the finish once every tile is in");
+        assert!(matches!(finish.part, Part::Finish(_)), "{name}");
+        if let SpreadStep::Done(d) = spread.take(reply(&finish)).unwrap() {
+            done = Some(d);
+        }
+        let done = done.expect("the data after the finish");
+        assert!(
+            *done == one_shot,
+            "{name}: the spread data differ from the one-shot data"
+        );
+    }
 }

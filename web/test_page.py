@@ -292,9 +292,11 @@ def click(d, x, y):
     d.s("/actions", method="DELETE")
 
 
-def check_workspace(d):
-    """W computes the workspace in slices across frames (no threads in a browser): the page
-    keeps drawing meanwhile, and the overlay's dots and the 2D figure arrive."""
+def check_workspace(d, forms=True, workers=None):
+    """W computes the workspace in slices across frames (no threads in a browser), its figure on
+    the pool of web workers (one per core but the page's, or `workers` from the URL): the page
+    keeps drawing meanwhile, the figure shows as it forms (`forms`: at least the coarse first
+    look), and the overlay's dots and the 2D figure arrive."""
     press(d, "w")
     t0, frames0, worst, last = time.time(), status(d)["frames"], 0.0, time.time()
     while True:
@@ -310,7 +312,14 @@ def check_workspace(d):
         time.sleep(0.05)
     frames = st["frames"] - frames0
     print(f"  workspace (W): {now - t0:.1f} s, {frames} frames meanwhile, longest wait for the "
-          f"page {worst * 1000:.0f} ms; {st['workspace_dots']} dots, figure {st['workspace_figure']}")
+          f"page {worst * 1000:.0f} ms; {st['workspace_dots']} dots, figure {st['workspace_figure']}"
+          f", {st['workspace_previews']} pictures while it formed, {st['workers']} web workers")
+    cores = d.js("return navigator.hardwareConcurrency || 1")
+    wanted = workers or max(1, min(cores - 1, 8))
+    if st["workers"] != wanted:
+        fail(f"{st['workers']} web workers for {cores} cores (wanted {wanted})")
+    if forms and not st["workspace_previews"]:
+        fail("the figure did not show as it formed (no coarse look)")
     if not st["workspace_dots"] or not st["workspace_figure"]:
         fail(f"the workspace has no dots or no figure: {st}")
     if frames < 2 or worst > 1.0:
@@ -450,9 +459,14 @@ def main():
         st = wait_for(d, "the lesson's next step", lambda s: s["lesson"]["step"] == 1, 10)
         print(f"  ?lesson=...: {st['lesson']['title']}, step {st['lesson']['step'] + 1} of "
               f"{st['lesson']['steps']}, {st['solutions']} solutions")
+        st, ms = open_page(d, url + "?model=stanford&workers=2")
+        print(f"  ?model=stanford&workers=2 (the approach scan, spread over two workers):")
+        check_workspace(d, workers=2)
         st, ms = open_page(d, url + "?model=planar2")
         print(f"  ?model=planar2: first frame {ms / 1000:.2f} s after navigation")
-        check_workspace(d)
+        # Its exact figure is done in a fraction of a second, before the page looks for the
+        # coarse look (a worker's latest message wins).
+        check_workspace(d, forms=False)
         errors = d.js("return window.__errors || []")
         severe = [e for e in d.browser_log() if e.get("level") == "SEVERE"]
         if errors or severe:

@@ -116,7 +116,8 @@ impl eframe::App for ArmlabApp {
         }
         self.poll_screenshot(ui.ctx());
         if let Some(w) = &self.ui.tabs.workspace.job {
-            let worked = w.step(self.gpu.as_ref(), self.ui.offload.as_deref_mut());
+            let now = ui.ctx().input(|i| i.time);
+            let worked = w.step(self.gpu.as_ref(), &mut self.ui.offload, now);
             if worked {
                 ui.ctx().request_repaint();
             } else if w.progress().is_some() {

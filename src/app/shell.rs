@@ -45,8 +45,9 @@ pub struct AppUi {
     pub file_picker: Box<dyn FilePicker>,
     /// The in-app file browser (where the desktop has no file dialog).
     pub browser: FileBrowser,
-    /// Where heavy computations go where the app has no threads (a browser's web worker).
-    pub offload: Option<Box<dyn crate::offload::Offload>>,
+    /// Where heavy computations go where the app has no threads: a browser's pool of web
+    /// workers (empty on the desktop, which has threads).
+    pub offload: Vec<Box<dyn crate::offload::Offload>>,
     /// The panel rectangles of the last layout (points): left, right, central, toolbar,
     /// status bar (tests check them).
     pub rects: PanelRects,
@@ -100,7 +101,7 @@ impl AppUi {
             window_points: [1280.0, 800.0],
             file_picker: Box::new(NoDialogs),
             browser: FileBrowser::default(),
-            offload: None,
+            offload: Vec::new(),
             rects: PanelRects::default(),
             lesson: None,
             message_seen: (0, 0.0),
@@ -653,6 +654,11 @@ impl AppUi {
         ui.set_style(ctx.global_style());
         let mut out = Actions::default();
         self.shortcuts(&ctx, &mut out);
+        // The overlay on (remembered from the last session, or set by a lesson) computes the
+        // workspace although W was not pressed in this one.
+        if self.state.display.workspace {
+            self.tabs.workspace.ensure_started(&self.state);
+        }
         let dropped: Vec<String> = ctx.input(|i| {
             i.raw
                 .dropped_files

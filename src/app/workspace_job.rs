@@ -11,7 +11,7 @@ use crate::figure::workspace::{
     ColorBy, WsFigure, WsFigureOptions, WsPlan, WsView, paint, paint_forming, plan,
 };
 use crate::kinematics::Robot;
-use crate::offload::{Answer, Offload, Request};
+use crate::offload::{Answer, Offload, Request, Spread, SpreadStep};
 use crate::render::{Gpu, PendingRead};
 use crate::scene::Dot;
 use crate::workspace::{SampleOptions, TrackedPoint, compute_figure_data, point_cloud, sample};
@@ -53,7 +53,26 @@ pub struct WorkspaceJob {
     /// The slices still to compute (browser only; `None` with a thread, or once done).
     slices: std::sync::Mutex<Option<Slices>>,
     /// The figure as it forms: the latest picture not taken yet ([`Self::take_preview`]).
-    preview: Arc<Mutex<Option<image::RgbaImage>>>,
+    preview: Arc<Preview>,
+}
+
+/// The pictures of a figure as it forms.
+#[derive(Default)]
+struct Preview {
+    /// The latest one not taken yet.
+    latest: Mutex<Option<image::RgbaImage>>,
+    /// How many were painted.
+    count: AtomicU32,
+}
+
+impl Preview {
+    /// Puts a newly painted picture up.
+    fn put(&self, image: image::RgbaImage) {
+        if let Ok(mut slot) = self.latest.lock() {
+            *slot = Some(image);
+            self.count.fetch_add(1, Ordering::Relaxed);
+        }
+    }
 }
 
 /// How often a forming figure is painted again (the coarse first look at once).
@@ -67,8 +86,10 @@ struct Slices {
     /// Overlay samples drawn so far, and their dots.
     drawn: usize,
     dots: Vec<Dot>,
-    /// Once the overlay is drawn: the figure.
+    /// The figure, planned (with workers at once, else once the overlay is drawn).
     figure: Option<FigureSlices>,
+    /// The finished figure (or why not), waiting for the overlay.
+    ready: Option<Result<Figure, String>>,
 }
 
 /// The figure of a sliced job: planned on the window's device, its data computed by the
@@ -77,12 +98,74 @@ struct Slices {
 struct FigureSlices {
     figs: Figures,
     plan: Option<WsPlan>,
-    /// A request is with the worker.
-    asked: bool,
+    /// Where the figure's data are being computed.
+    asked: Asked,
     /// The painted figure's pixels on their way back from the GPU, and its frame.
     readback: Option<(PendingRead, Option<PlotFrame>)>,
     /// A picture of the figure as it forms on its way back.
     forming: Option<PendingRead>,
+    /// When the last one was painted (s, the caller's clock).
+    last_preview: Option<f64>,
+}
+
+/// Seconds between two pictures of a figure as it forms that a sliced job paints.
+pub const PAGE_PREVIEW_EVERY: f64 = 0.5;
+
+/// Where a sliced job's figure data are being computed.
+enum Asked {
+    /// Nowhere yet.
+    No,
+    /// All of it by the first web worker.
+    Whole,
+    /// Spread over the pool; which workers are busy.
+    Spread {
+        spread: Box<Spread>,
+        busy: Vec<bool>,
+    },
+}
+
+/// Hands `request` to `worker`.
+fn submit(worker: &mut dyn Offload, request: &Request) -> Result<(), String> {
+    let json = serde_json::to_string(request).map_err(|e| e.to_string())?;
+    if worker.submit(json) {
+        Ok(())
+    } else {
+        Err("the web worker took no request".into())
+    }
+}
+
+/// A worker's answer, read.
+fn read_answer(json: &str) -> Result<Answer, String> {
+    serde_json::from_str(json).map_err(|e| format!("unreadable answer: {e}"))
+}
+
+/// Takes the answers of the busy workers of the pool and hands the idle ones the next parts;
+/// the figure's data once all of it is in, else the latest map as it forms (`None`: nothing
+/// new).
+fn spread_step(
+    spread: &mut Spread,
+    busy: &mut [bool],
+    pool: &mut [Box<dyn Offload>],
+) -> Option<Result<SpreadStep, String>> {
+    let mut latest = None;
+    for (worker, busy) in pool.iter_mut().zip(busy.iter_mut()) {
+        if *busy && let Some(answer) = worker.poll() {
+            *busy = false;
+            match read_answer(&answer).and_then(|a| spread.take(a)) {
+                Ok(SpreadStep::Working) => {}
+                Ok(step @ SpreadStep::Partial(..)) => latest = Some(step),
+                Ok(done @ SpreadStep::Done(_)) => return Some(Ok(done)),
+                Err(e) => return Some(Err(e)),
+            }
+        }
+        if !*busy && let Some(part) = spread.next_part() {
+            if let Err(e) = submit(&mut **worker, &part) {
+                return Some(Err(e));
+            }
+            *busy = true;
+        }
+    }
+    latest.map(Ok)
 }
 
 /// Overlay samples per slice (a few milliseconds of work).
@@ -141,7 +224,7 @@ impl WorkspaceJob {
         let done = Arc::new(OnceLock::new());
         let cancelled = Arc::new(AtomicBool::new(false));
         let running = Arc::new(AtomicBool::new(true));
-        let preview = Arc::new(Mutex::new(None));
+        let preview = Arc::new(Preview::default());
         let (p, d, c, f, r, v) = (
             progress.clone(),
             done.clone(),
@@ -183,6 +266,7 @@ impl WorkspaceJob {
             drawn: 0,
             dots: Vec::with_capacity(OVERLAY_SAMPLES),
             figure: None,
+            ready: None,
         };
         Self {
             progress: Arc::new(AtomicU32::new(0)),
@@ -205,42 +289,32 @@ impl WorkspaceJob {
         let _ = self.done.set(Err(CANCELLED.into()));
     }
 
-    /// Computes the next slice of a sliced job (nothing for a threaded or finished one): a
+    /// Computes the next slice of a sliced job (`now`: the caller's clock, seconds) (nothing for a threaded or finished one): a
     /// chunk of overlay samples; then the figure, drawn on `gpu` (the window's device), its
     /// data computed by `offload` (a web worker) while frames go on, or here when there is
     /// none. Returns whether it worked here (then the next frame should come at once); `false`
     /// for a threaded or finished job, or while the worker computes.
-    pub fn step(
-        &self,
-        gpu: Option<&Gpu>,
-        mut offload: Option<&mut (dyn Offload + 'static)>,
-    ) -> bool {
+    pub fn step(&self, gpu: Option<&Gpu>, pool: &mut [Box<dyn Offload>], now: f64) -> bool {
         let Ok(mut guard) = self.slices.lock() else {
             return false;
         };
         let Some(s) = guard.as_mut() else {
             return false;
         };
-        // With a worker, the figure is asked for first, so that the worker computes it while
-        // the page draws the overlay a slice at a time.
-        if s.figure.is_none()
-            && s.drawn == 0
-            && matches!(self.figure, JobFigure::Workspace(_))
-            && let (Some(gpu), Some(offload)) = (gpu, offload.as_deref_mut())
+        // With workers, the figure is asked for first, so that they compute it while the page
+        // draws the overlay a slice at a time (and paints the figure as it forms).
+        let with_workers = !pool.is_empty() && matches!(self.figure, JobFigure::Workspace(_));
+        if with_workers
+            && s.ready.is_none()
+            && let Some(gpu) = gpu
+            && (s.figure.is_none() || s.drawn < OVERLAY_SAMPLES)
         {
-            if let Some(Err(e)) = s.figure_step(
-                gpu,
-                &self.figure,
-                Some(offload),
-                &self.progress,
-                &self.preview,
-            ) {
-                let _ = self.done.set(Err(e));
-                *guard = None;
-                return false;
+            let asked = s.figure.is_some();
+            s.ready = s.figure_step(gpu, &self.figure, pool, &self.progress, &self.preview, now);
+            if !asked {
+                self.progress.store(0, Ordering::Relaxed);
+                return true;
             }
-            self.progress.store(0, Ordering::Relaxed);
-            return true;
         }
         if s.drawn < OVERLAY_SAMPLES {
             let n = SLICE.min(OVERLAY_SAMPLES - s.drawn);
@@ -254,14 +328,22 @@ impl WorkspaceJob {
                 }
             }
             s.drawn += n;
-            let f = s.drawn as f32 / OVERLAY_SAMPLES as f32 * 500.0;
-            self.progress.store(f as u32, Ordering::Relaxed);
+            if s.figure.is_none() {
+                let f = s.drawn as f32 / OVERLAY_SAMPLES as f32 * 500.0;
+                self.progress.store(f as u32, Ordering::Relaxed);
+            }
             return true;
         }
-        let waiting = s.figure.as_ref().is_some_and(|f| f.asked);
-        let finished = match gpu {
-            Some(gpu) => s.figure_step(gpu, &self.figure, offload, &self.progress, &self.preview),
-            None => Some(Err("no graphics device for the figure".into())),
+        let waiting = s
+            .figure
+            .as_ref()
+            .is_some_and(|f| !matches!(f.asked, Asked::No));
+        let finished = match (s.ready.take(), gpu) {
+            (Some(ready), _) => Some(ready),
+            (None, Some(gpu)) => {
+                s.figure_step(gpu, &self.figure, pool, &self.progress, &self.preview, now)
+            }
+            (None, None) => Some(Err("no graphics device for the figure".into())),
         };
         if let Some(figure) = finished {
             let dots = std::mem::take(&mut s.dots);
@@ -296,7 +378,12 @@ impl WorkspaceJob {
         if self.done.get().is_some() {
             return None;
         }
-        self.preview.lock().ok()?.take()
+        self.preview.latest.lock().ok()?.take()
+    }
+
+    /// How many pictures of the figure as it formed were painted so far.
+    pub fn previews(&self) -> u32 {
+        self.preview.count.load(Ordering::Relaxed)
     }
 
     /// The finished data.
@@ -355,7 +442,7 @@ impl WorkspaceJob {
     pub fn wait(&self) {
         while self.done.get().is_none() {
             if self.slices.lock().is_ok_and(|s| s.is_some()) {
-                self.step(None, None);
+                self.step(None, &mut [], 0.0);
             } else {
                 std::thread::sleep(std::time::Duration::from_millis(5));
             }
@@ -379,9 +466,10 @@ impl Slices {
         &mut self,
         gpu: &Gpu,
         which: &JobFigure,
-        offload: Option<&mut (dyn Offload + 'static)>,
+        pool: &mut [Box<dyn Offload>],
         progress: &AtomicU32,
-        preview: &Mutex<Option<image::RgbaImage>>,
+        preview: &Preview,
+        now: f64,
     ) -> Option<Result<Figure, String>> {
         if self.figure.is_none() {
             match self.plan_figure(gpu, which) {
@@ -406,51 +494,67 @@ impl Slices {
                     .map_err(|e| e.to_string()),
             );
         };
-        let data = match (f.asked, offload) {
-            (true, Some(offload)) => {
-                // The figure as it forms: a picture on its way back is shown before the next
-                // answer is taken, then the latest map is painted.
-                if let Some(read) = &f.forming {
-                    let r = read.poll(&gpu.device)?;
-                    f.forming = None;
-                    if let (Ok(img), Ok(mut slot)) = (r, preview.lock()) {
-                        *slot = Some(img);
+        // The figure as it forms: a picture on its way back is shown before the next answers
+        // are taken.
+        if let Some(read) = &f.forming {
+            let r = read.poll(&gpu.device)?;
+            f.forming = None;
+            if let Ok(img) = r {
+                preview.put(img);
+            }
+        }
+        let answers = match &mut f.asked {
+            Asked::No => {
+                let request = Request::new(&self.robot, &self.spec, plan.request.clone());
+                match request {
+                    // A pool of web workers: the work spread over it, or all of it to one.
+                    Ok(r) if !pool.is_empty() => {
+                        f.asked = match Spread::new(&self.robot, &r, pool.len()) {
+                            Some(spread) => Asked::Spread {
+                                spread: Box::new(spread),
+                                busy: vec![false; pool.len()],
+                            },
+                            None => match submit(&mut *pool[0], &r) {
+                                Ok(()) => Asked::Whole,
+                                Err(e) => return Some(Err(e)),
+                            },
+                        };
+                        progress.store(600, Ordering::Relaxed);
+                        None
                     }
-                }
-                let answer = offload.poll()?;
-                match serde_json::from_str::<Answer>(&answer) {
-                    Ok(Answer::Partial { map, rows_done }) => {
-                        if f.forming.is_none()
-                            && paint_forming(&mut f.figs, plan, &map, rows_done).is_ok()
-                        {
-                            f.forming = f.figs.take_deferred();
-                        }
-                        return None;
-                    }
-                    Ok(Answer::Data(d)) => *d,
-                    Ok(Answer::Error(e)) => return Some(Err(e)),
-                    Err(e) => return Some(Err(format!("unreadable answer: {e}"))),
+                    // No worker, or a robot that cannot travel: here, in one slice.
+                    _ => Some(
+                        compute_figure_data(&self.robot, &plan.request, &|_| {})
+                            .map(|d| SpreadStep::Done(Box::new(d)))
+                            .map_err(|e| e.to_string()),
+                    ),
                 }
             }
-            (true, None) => return Some(Err("the web worker went away".into())),
-            (false, Some(offload))
-                if let Ok(r) = Request::new(&self.robot, &self.spec, plan.request.clone()) =>
-            {
-                let json = serde_json::to_string(&r).map_err(|e| e.to_string());
-                match json.map(|j| offload.submit(j)) {
-                    Ok(true) => {}
-                    Ok(false) => return Some(Err("the web worker took no request".into())),
-                    Err(e) => return Some(Err(e)),
+            Asked::Whole => match pool.first_mut() {
+                None => Some(Err("the web worker went away".into())),
+                Some(worker) => worker.poll().map(|a| match read_answer(&a)? {
+                    Answer::Partial { map, rows_done } => Ok(SpreadStep::Partial(map, rows_done)),
+                    Answer::Data(d) => Ok(SpreadStep::Done(d)),
+                    Answer::Error(e) => Err(e),
+                    _ => Err("an answer that fits no request".into()),
+                }),
+            },
+            Asked::Spread { spread, busy } => spread_step(spread, busy, pool),
+        };
+        let data = match answers? {
+            Ok(SpreadStep::Done(d)) => *d,
+            Ok(SpreadStep::Partial(map, rows_done)) => {
+                // At most one picture every PAGE_PREVIEW_EVERY seconds: each is painted by the
+                // page (on a software rasterizer, the CPU the workers compute on).
+                let due = f.last_preview.is_none_or(|t| now - t >= PAGE_PREVIEW_EVERY);
+                if due && paint_forming(&mut f.figs, plan, &map, rows_done).is_ok() {
+                    f.forming = f.figs.take_deferred();
+                    f.last_preview = Some(now);
                 }
-                f.asked = true;
-                progress.store(600, Ordering::Relaxed);
                 return None;
             }
-            // No worker, or a robot that cannot travel: here, in one slice.
-            (false, _) => match compute_figure_data(&self.robot, &plan.request, &|_| {}) {
-                Ok(d) => d,
-                Err(e) => return Some(Err(e.to_string())),
-            },
+            Ok(SpreadStep::Working) => return None,
+            Err(e) => return Some(Err(e)),
         };
         let frame = match paint(&mut f.figs, &self.robot, plan, &data) {
             Ok(w) => w.frame,
@@ -476,9 +580,10 @@ impl Slices {
         Ok(FigureSlices {
             figs,
             plan,
-            asked: false,
+            asked: Asked::No,
             readback: None,
             forming: None,
+            last_preview: None,
         })
     }
 }
@@ -489,7 +594,7 @@ fn compute(
     which: &JobFigure,
     progress: &AtomicU32,
     cancelled: &AtomicBool,
-    preview: &Mutex<Option<image::RgbaImage>>,
+    preview: &Preview,
 ) -> Result<WorkspaceData, String> {
     let n = OVERLAY_SAMPLES;
     let dots = overlay_dots(robot, n, 1, &|k| {
@@ -514,11 +619,7 @@ fn compute(
                     o,
                     &on_progress,
                     PREVIEW_EVERY,
-                    &mut |image, _| {
-                        if let Ok(mut slot) = preview.lock() {
-                            *slot = Some(image);
-                        }
-                    },
+                    &mut |image, _| preview.put(image),
                 )
                 .map(|WsFigure { image, frame, .. }| (image, frame))
                 .map_err(|e| e.to_string()),

@@ -158,12 +158,7 @@ pub fn compute_figure_data_forming(
     if let ContentRequest::Map(req) = &request.content
         && forming.wants()
     {
-        let coarse = MapRequest {
-            cells: [req.cells[0].div_ceil(COARSE), req.cells[1].div_ceil(COARSE)],
-            samples: (req.samples / COARSE).max(1),
-            ..req.clone()
-        };
-        let coarse = upsampled(&compute_map(robot, &coarse)?, req.cells);
+        let coarse = coarse_map(robot, req)?;
         forming.partial(&coarse, 0);
         progress(0.1);
         let mut merge = Merge {
@@ -174,19 +169,13 @@ pub fn compute_figure_data_forming(
         };
         map = Some(compute_map_forming(robot, req, &mut merge)?);
     }
-    let stats = map_statistics(robot, request.point, &request.fallback)?;
+    let (stats, plane) = figure_stats(robot, request)?;
     progress(if map.is_some() { 0.8 } else { 0.3 });
-    let mut plane = None;
     let content = match &request.content {
-        ContentRequest::Map(req) => {
-            if req.view == MapView::Plane {
-                plane = plane_marks(robot);
-            }
-            match map {
-                Some(map) => Content::Map(map),
-                None => Content::Map(compute_map(robot, req)?),
-            }
-        }
+        ContentRequest::Map(req) => match map {
+            Some(map) => Content::Map(map),
+            None => Content::Map(compute_map(robot, req)?),
+        },
         ContentRequest::Cloud(opts) => {
             let n = opts.samples.max(1);
             let samples = sample(robot, opts, &|done| {
@@ -202,6 +191,31 @@ pub fn compute_figure_data_forming(
         content,
         plane_marks: plane,
     })
+}
+
+/// The statistics a figure shows and, for the plane of a two-link arm with joint limits, Fig.
+/// 2.30's marks.
+pub fn figure_stats(
+    robot: &Robot,
+    request: &FigureRequest,
+) -> Result<(WorkspaceStats, Option<PlaneMarks>), WorkspaceError> {
+    let stats = map_statistics(robot, request.point, &request.fallback)?;
+    let plane = match &request.content {
+        ContentRequest::Map(req) if req.view == MapView::Plane => plane_marks(robot),
+        _ => None,
+    };
+    Ok((stats, plane))
+}
+
+/// The coarse first look at the map `req`: computed at one cell in [`COARSE`] per side (one
+/// joint-space sample in [`COARSE`]) and upsampled to its cells.
+pub fn coarse_map(robot: &Robot, req: &MapRequest) -> Result<WorkspaceMap, WorkspaceError> {
+    let coarse = MapRequest {
+        cells: [req.cells[0].div_ceil(COARSE), req.cells[1].div_ceil(COARSE)],
+        samples: (req.samples / COARSE).max(1),
+        ..req.clone()
+    };
+    Ok(upsampled(&compute_map(robot, &coarse)?, req.cells))
 }
 
 /// A map at `cells` (the same bounds) whose every cell takes the mask of the cell of `coarse`

@@ -45,7 +45,7 @@ pub use grid::{
 };
 pub use map::{
     CellValues, CurveRole, MapCurve, MapForming, MapRequest, MapValues, MapView, OneShot,
-    PointQuery, ReachAnswer, Section, TILE_ROWS, TrackedPoint, WorkspaceMap, compute_map,
+    PointQuery, ReachAnswer, Section, TILE_ROWS, TiledMap, TrackedPoint, WorkspaceMap, compute_map,
     compute_map_forming, map_extent, map_statistics,
 };
 pub use planar::{

@@ -277,6 +277,91 @@ pub fn compute_map_forming(
     req: &MapRequest,
     forming: &mut dyn MapForming,
 ) -> Result<WorkspaceMap, WorkspaceError> {
+    let bounds = checked_bounds(robot, req)?;
+    if req.end_effector == 0 {
+        if req.view == MapView::Plane {
+            if let Ok(e) = super::ExactPlanar::new(robot) {
+                return Ok(planar::map(&e, req, bounds));
+            }
+        } else if let Some(s) = spatial::Section::new(robot, req.point) {
+            return s.map(robot, req, bounds, forming);
+        }
+    }
+    sampled::map(robot, req, bounds, forming)
+}
+
+/// A map made in tiles by several workers (a browser's pool of web workers): prepared by each
+/// ([`Self::new`]), its rows decided in tiles in any order and anywhere ([`Self::rows`]), then
+/// finished from all the masks ([`Self::finish`]): the map [`compute_map`] returns. For the side
+/// and top views of the closed-form arms.
+pub struct TiledMap {
+    section: spatial::Section,
+    prepared: spatial::Prepared,
+    req: MapRequest,
+    bounds: [f64; 4],
+}
+
+impl TiledMap {
+    /// The map of `req` prepared for tiles; `None` where it is not made that way (the exact
+    /// maps of planar arms, sampled maps, manipulability values, end-effectors other than 0).
+    pub fn new(robot: &Robot, req: &MapRequest) -> Result<Option<Self>, WorkspaceError> {
+        let bounds = checked_bounds(robot, req)?;
+        if !Self::applies(robot, req) {
+            return Ok(None);
+        }
+        Ok(spatial::Section::new(robot, req.point).map(|section| {
+            let prepared = section.prepare(req, bounds);
+            Self {
+                section,
+                prepared,
+                req: req.clone(),
+                bounds,
+            }
+        }))
+    }
+
+    /// Whether the map of `req` is made in tiles (cheap: nothing is prepared).
+    pub fn applies(robot: &Robot, req: &MapRequest) -> bool {
+        req.end_effector == 0
+            && req.view != MapView::Plane
+            && req.values != MapValues::Manipulability
+            && spatial::Section::new(robot, req.point).is_some()
+    }
+
+    /// The masks of the rows `rows` (from the top; the first a multiple of [`TILE_ROWS`]),
+    /// row-major.
+    pub fn rows(&self, rows: std::ops::Range<usize>) -> Result<Vec<u8>, WorkspaceError> {
+        if !rows.start.is_multiple_of(TILE_ROWS)
+            || rows.start > rows.end
+            || rows.end > self.req.cells[1]
+        {
+            return Err(WorkspaceError::InvalidOption {
+                option: "map tile",
+                value: format!("rows {}..{} of {}", rows.start, rows.end, self.req.cells[1]),
+                expected: "rows within the map, starting at a multiple of the tile height",
+            });
+        }
+        Ok(self
+            .section
+            .rows(&self.req, self.bounds, &self.prepared, rows))
+    }
+
+    /// The finished map from the masks of all its rows (row-major from the top).
+    pub fn finish(&self, masks: Vec<u8>) -> Result<WorkspaceMap, WorkspaceError> {
+        if masks.len() != self.req.cells[0] * self.req.cells[1] {
+            return Err(WorkspaceError::InvalidOption {
+                option: "map masks",
+                value: format!("{} masks", masks.len()),
+                expected: "one per cell of the map",
+            });
+        }
+        self.section
+            .finish(&self.req, self.bounds, &self.prepared, masks)
+    }
+}
+
+/// The bounds of a map request (its own, or the padded extent), checked with its cells.
+fn checked_bounds(robot: &Robot, req: &MapRequest) -> Result<[f64; 4], WorkspaceError> {
     if req.cells[0] == 0 || req.cells[1] == 0 || req.cells[0] * req.cells[1] > 64_000_000 {
         return Err(WorkspaceError::InvalidOption {
             option: "map size",
@@ -299,16 +384,7 @@ pub fn compute_map_forming(
         });
     }
     super::check_ee(robot, req.end_effector)?;
-    if req.end_effector == 0 {
-        if req.view == MapView::Plane {
-            if let Ok(e) = super::ExactPlanar::new(robot) {
-                return Ok(planar::map(&e, req, bounds));
-            }
-        } else if let Some(s) = spatial::Section::new(robot, req.point) {
-            return s.map(robot, req, bounds, forming);
-        }
-    }
-    sampled::map(robot, req, bounds, forming)
+    Ok(bounds)
 }
 
 /// Statistics of the workspace with the exact method where there is one: exact areas for planar

@@ -63,18 +63,46 @@ pub(crate) fn fill_tiled(
     let mut masks = vec![0u8; w * h];
     for j0 in (0..h).step_by(TILE_ROWS) {
         let j1 = (j0 + TILE_ROWS).min(h);
-        let rows = &mut masks[j0 * w..j1 * w];
-        match how {
-            Fill::Cells => rows.par_chunks_mut(w).enumerate().for_each(|(dj, row)| {
+        fill_into(bounds, dims, test, how, j0, &mut masks[j0 * w..j1 * w]);
+        tile(&masks, j1);
+    }
+    masks
+}
+
+/// The masks of rows `rows` of [`fill_tiled`]'s raster (the first a multiple of the block side),
+/// decided as it decides them.
+pub(crate) fn fill_rows(
+    bounds: [f64; 4],
+    dims: [usize; 2],
+    test: &(dyn Fn([f64; 2]) -> u8 + Sync),
+    how: Fill<'_>,
+    rows: std::ops::Range<usize>,
+) -> Vec<u8> {
+    let mut masks = vec![0u8; dims[0] * rows.len()];
+    fill_into(bounds, dims, test, how, rows.start, &mut masks);
+    masks
+}
+
+/// Fills `rows` (whole rows from `j0`, a multiple of the block side) of the raster.
+fn fill_into(
+    bounds: [f64; 4],
+    dims: [usize; 2],
+    test: &(dyn Fn([f64; 2]) -> u8 + Sync),
+    how: Fill<'_>,
+    j0: usize,
+    rows: &mut [u8],
+) {
+    match how {
+        Fill::Cells => rows
+            .par_chunks_mut(dims[0])
+            .enumerate()
+            .for_each(|(dj, row)| {
                 for (i, m) in row.iter_mut().enumerate() {
                     *m = test(centre(bounds, dims, i, j0 + dj));
                 }
             }),
-            Fill::Blocks(uniform) => fill_blocks_rows(bounds, dims, test, uniform, j0, rows),
-        }
-        tile(&masks, j1);
+        Fill::Blocks(uniform) => fill_blocks_rows(bounds, dims, test, uniform, j0, rows),
     }
-    masks
 }
 
 /// The cells whose mask differs from a 4-neighbour's, each supersampled 4 x 4 with `test`.

@@ -570,7 +570,15 @@ fn approach(k: usize) -> Rotation3<f64> {
 
 /// Per radius bin and class, a height z at which the class reaches (r, z) with joint 1 free
 /// (NaN if none): the radial extent of the section, for the top view.
-struct Radial {
+/// A map's point test: view coordinates (m) to class mask.
+type PointTest<'a> = Box<dyn Fn([f64; 2]) -> u8 + Sync + 'a>;
+
+/// What a map's point test needs computed first ([`Section::prepare`]).
+pub(super) struct Prepared {
+    radial: Option<Radial>,
+}
+
+pub(super) struct Radial {
     r_max: f64,
     /// The side view's heights (m), lowest and highest.
     z_span: [f64; 2],
@@ -648,17 +656,25 @@ impl Section {
         if req.values == MapValues::Manipulability {
             return super::sampled::map(robot, req, bounds, forming);
         }
-        let dims = req.cells;
-        let radial;
-        let test: Box<dyn Fn([f64; 2]) -> u8 + Sync + '_> = match (req.view, &self.arcs) {
-            (MapView::Top, Some(arcs)) if self.mode == Mode::FlangeSphere => {
-                let d = self.sphere_radius;
-                Box::new(move |p: [f64; 2]| arcs.radius_mask(p[0].hypot(p[1]), d))
+        let prepared = self.prepare(req, bounds);
+        let (test, how) = self.test(req, &prepared);
+        let masks = raster::fill_tiled(bounds, req.cells, &test, how, &mut |masks, rows| {
+            if rows < req.cells[1] && forming.wants() {
+                forming.partial(&self.bare_map(req, bounds, masks.to_vec()), rows);
             }
+        });
+        self.finish(req, bounds, &prepared, masks)
+    }
+
+    /// What a map's point test needs computed first: for a top view decided through the side
+    /// view, the side view's heights per radius.
+    pub(super) fn prepare(&self, req: &MapRequest, bounds: [f64; 4]) -> Prepared {
+        let radial = match (req.view, &self.arcs) {
+            (MapView::Top, Some(_)) if self.mode == Mode::FlangeSphere => None,
             (MapView::Top, _) => {
                 let side = self.extent(MapView::Side);
                 let side = [0.0, side.max[0], side.min[1], side.max[1]];
-                let cell = (bounds[1] - bounds[0]) / dims[0] as f64;
+                let cell = (bounds[1] - bounds[0]) / req.cells[0] as f64;
                 // The approach scan costs 64 solves per test: a quarter of the radii and of the
                 // heights (it is not exact anyway; each top cell is still tested at its own
                 // radius), which keeps its figure within seconds.
@@ -668,10 +684,28 @@ impl Section {
                     (0.5, 256)
                 };
                 let bins = ((side[1] / cell * per_cell).ceil() as usize).clamp(64, 8192);
-                radial = Radial::new(self, side, bins, heights);
-                let radial = &radial;
-                Box::new(move |p: [f64; 2]| self.top_mask(radial, p[0], p[1]))
+                Some(Radial::new(self, side, bins, heights))
             }
+            _ => None,
+        };
+        Prepared { radial }
+    }
+
+    /// The map's point test (view coordinates to class mask) and how its cells are filled.
+    fn test<'a>(
+        &'a self,
+        req: &MapRequest,
+        prepared: &'a Prepared,
+    ) -> (PointTest<'a>, raster::Fill<'a>) {
+        let test: PointTest<'a> = match (req.view, &self.arcs) {
+            (MapView::Top, Some(arcs)) if self.mode == Mode::FlangeSphere => {
+                let d = self.sphere_radius;
+                Box::new(move |p: [f64; 2]| arcs.radius_mask(p[0].hypot(p[1]), d))
+            }
+            (MapView::Top, _) => match &prepared.radial {
+                Some(radial) => Box::new(move |p: [f64; 2]| self.top_mask(radial, p[0], p[1])),
+                None => Box::new(|_| 0),
+            },
             _ => Box::new(|p: [f64; 2]| {
                 if p[0] < 0.0 {
                     0
@@ -685,25 +719,32 @@ impl Section {
         } else {
             raster::Fill::Cells
         };
-        let partial = |masks: &[u8]| WorkspaceMap {
-            view: req.view,
-            bounds,
-            width: dims[0],
-            height: dims[1],
-            masks: masks.to_vec(),
-            edges: Vec::new(),
-            class_names: self.class_names().to_vec(),
-            values: None,
-            fills: Vec::new(),
-            curves: Vec::new(),
-            method: self.method(),
-            exact: self.exact(),
-        };
-        let masks = raster::fill_tiled(bounds, dims, &test, how, &mut |masks, rows| {
-            if rows < dims[1] && forming.wants() {
-                forming.partial(&partial(masks), rows);
-            }
-        });
+        (test, how)
+    }
+
+    /// The masks of rows `rows` (from the top; the first a multiple of [`super::TILE_ROWS`]) of
+    /// the map: the cells [`Self::map`] decides there, the same way.
+    pub(super) fn rows(
+        &self,
+        req: &MapRequest,
+        bounds: [f64; 4],
+        prepared: &Prepared,
+        rows: std::ops::Range<usize>,
+    ) -> Vec<u8> {
+        let (test, how) = self.test(req, prepared);
+        raster::fill_rows(bounds, req.cells, &test, how, rows)
+    }
+
+    /// The map from all its masks: the edge cells, the curves and the values.
+    pub(super) fn finish(
+        &self,
+        req: &MapRequest,
+        bounds: [f64; 4],
+        prepared: &Prepared,
+        masks: Vec<u8>,
+    ) -> Result<WorkspaceMap, WorkspaceError> {
+        let (test, _) = self.test(req, prepared);
+        let dims = req.cells;
         let edges = self.edges(&masks, bounds, dims, &test);
         let curves = self.curves(&masks, bounds, dims, &test);
         let values = match req.values {
@@ -711,12 +752,29 @@ impl Section {
             _ => None,
         };
         Ok(WorkspaceMap {
-            masks,
             edges,
             values,
             curves,
-            ..partial(&[])
+            ..self.bare_map(req, bounds, masks)
         })
+    }
+
+    /// A map with these masks and nothing else computed (no edge cells, curves or values).
+    fn bare_map(&self, req: &MapRequest, bounds: [f64; 4], masks: Vec<u8>) -> WorkspaceMap {
+        WorkspaceMap {
+            view: req.view,
+            bounds,
+            width: req.cells[0],
+            height: req.cells[1],
+            masks,
+            edges: Vec::new(),
+            class_names: self.class_names().to_vec(),
+            values: None,
+            fills: Vec::new(),
+            curves: Vec::new(),
+            method: self.method(),
+            exact: self.exact(),
+        }
     }
 
     /// How the map's classes were decided, in words.

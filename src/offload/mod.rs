@@ -1,14 +1,21 @@
 //! Heavy computations handed to another worker (a browser's web worker, where the page has no
 //! threads): the request (a robot that travels as a built-in model's name or a model file's text,
 //! and what to compute), the answer, and the function the worker runs. Graphics-free; the app
-//! sends them as JSON ([`answer`] is the worker's entry point).
+//! sends them as JSON ([`answer`] is the worker's entry point). A figure's work can be spread
+//! over a pool of workers in parts ([`Spread`]).
+
+mod spread;
+pub use spread::{Spread, SpreadStep};
 
 use crate::kinematics::Robot;
 use crate::urdf::UrdfExportError;
+use crate::workspace::figure_data::{PlaneMarks, coarse_map, figure_stats};
 use crate::workspace::{
-    FigureData, FigureRequest, MapForming, OneShot, WorkspaceMap, compute_figure_data_forming,
+    ContentRequest, FigureData, FigureRequest, MapForming, OneShot, TiledMap, WorkspaceMap,
+    WorkspaceStats, compute_figure_data_forming,
 };
 use serde::{Deserialize, Serialize};
+use std::sync::{Arc, Mutex};
 use thiserror::Error;
 
 /// Runs requests somewhere else and hands the answers back, one at a time.
@@ -26,10 +33,30 @@ pub struct Request {
     pub model: Model,
     /// What to compute: everything a workspace figure paints.
     pub task: FigureRequest,
+    /// Which part of it (all of it unless the work is spread over several workers).
+    #[serde(default)]
+    pub part: Part,
+}
+
+/// A part of a figure's work ([`Spread`]).
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub enum Part {
+    /// All of it, the map handed over as it forms ([`Answer::Partial`], then [`Answer::Data`]).
+    #[default]
+    Whole,
+    /// The map's coarse first look ([`Answer::Partial`] with `rows_done` 0).
+    Coarse,
+    /// The statistics and the plane's marks ([`Answer::Stats`]).
+    Stats,
+    /// The masks of the map's rows `[start, end)` ([`Answer::Tile`]; a map that
+    /// [`TiledMap`] makes).
+    Tile([usize; 2]),
+    /// The map finished from the masks of all its rows ([`Answer::Map`]).
+    Finish(Vec<u8>),
 }
 
 /// A robot as it travels to the worker.
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub enum Model {
     /// An unedited built-in model, by name.
     BuiltIn(String),
@@ -54,6 +81,22 @@ pub enum Answer {
         /// Rows decided from the top (the rest is the coarse look).
         rows_done: usize,
     },
+    /// The statistics ([`Part::Stats`]).
+    Stats {
+        /// Area or volume, bounds and reach.
+        stats: Box<WorkspaceStats>,
+        /// Fig. 2.30's marks, where they apply.
+        plane_marks: Option<PlaneMarks>,
+    },
+    /// A tile's masks ([`Part::Tile`]).
+    Tile {
+        /// Its rows, `[start, end)`.
+        rows: [usize; 2],
+        /// Their masks, row-major.
+        masks: Vec<u8>,
+    },
+    /// The finished map ([`Part::Finish`]).
+    Map(Box<WorkspaceMap>),
     /// Why not (the model did not load, the computation failed).
     Error(String),
 }
@@ -81,7 +124,19 @@ impl Request {
                 text: crate::urdf::to_urdf(robot)?,
             }
         };
-        Ok(Self { model, task })
+        Ok(Self {
+            model,
+            task,
+            part: Part::Whole,
+        })
+    }
+
+    /// The same request for part `part`.
+    pub fn for_part(&self, part: Part) -> Self {
+        Self {
+            part,
+            ..self.clone()
+        }
     }
 }
 
@@ -103,16 +158,66 @@ pub fn run(request: &Request) -> Answer {
     run_forming(request, &mut OneShot)
 }
 
-/// Computes the answer to `request`, handing `forming` the map as it forms.
+/// Computes the answer to `request`, handing `forming` the map as it forms (a whole figure).
 pub fn run_forming(request: &Request, forming: &mut dyn MapForming) -> Answer {
     let answer = request.model.robot().and_then(|robot| {
-        compute_figure_data_forming(&robot, &request.task, &|_| {}, forming)
-            .map_err(|e| e.to_string())
+        let task = &request.task;
+        let failed = |e: crate::workspace::WorkspaceError| e.to_string();
+        let map_request = match &task.content {
+            ContentRequest::Map(m) => Some(m),
+            _ => None,
+        };
+        let no_map = || "this figure has no map".to_string();
+        Ok(match &request.part {
+            Part::Whole => Answer::Data(Box::new(
+                compute_figure_data_forming(&robot, task, &|_| {}, forming).map_err(failed)?,
+            )),
+            Part::Coarse => Answer::Partial {
+                map: Box::new(coarse_map(&robot, map_request.ok_or_else(no_map)?).map_err(failed)?),
+                rows_done: 0,
+            },
+            Part::Stats => {
+                let (stats, plane_marks) = figure_stats(&robot, task).map_err(failed)?;
+                Answer::Stats {
+                    stats: Box::new(stats),
+                    plane_marks,
+                }
+            }
+            Part::Tile([a, b]) => Answer::Tile {
+                rows: [*a, *b],
+                masks: tiled(request, &robot)?.rows(*a..*b).map_err(failed)?,
+            },
+            Part::Finish(masks) => Answer::Map(Box::new(
+                tiled(request, &robot)?
+                    .finish(masks.clone())
+                    .map_err(failed)?,
+            )),
+        })
     });
-    match answer {
-        Ok(data) => Answer::Data(Box::new(data)),
-        Err(e) => Answer::Error(e),
+    answer.unwrap_or_else(Answer::Error)
+}
+
+/// The tiled map of a request, prepared once per worker: kept for the next tile of the same
+/// figure (a top view's preparation solves the side view at every radius).
+fn tiled(request: &Request, robot: &Robot) -> Result<Arc<TiledMap>, String> {
+    type Key = (Model, FigureRequest);
+    static LAST: Mutex<Option<(Key, Arc<TiledMap>)>> = Mutex::new(None);
+    let ContentRequest::Map(req) = &request.task.content else {
+        return Err("this figure has no map".into());
+    };
+    let key = (request.model.clone(), request.task.clone());
+    let mut last = LAST.lock().map_err(|e| e.to_string())?;
+    if let Some((k, map)) = last.as_ref()
+        && *k == key
+    {
+        return Ok(map.clone());
     }
+    let map = TiledMap::new(robot, req)
+        .map_err(|e| e.to_string())?
+        .ok_or("this map is not made in tiles")?;
+    let map = Arc::new(map);
+    *last = Some((key, map.clone()));
+    Ok(map)
 }
 
 /// Computes the answer to `request` (JSON in, JSON out): what the worker runs.
