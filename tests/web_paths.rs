@@ -293,19 +293,32 @@ fn the_desktop_job_shows_the_figure_forming_and_ends_with_the_one_shot_figure() 
         "stanford".into(),
         JobFigure::Workspace(opts.clone()),
     );
-    let mut previews = Vec::new();
+    let t = std::time::Instant::now();
+    let (mut previews, mut first) = (Vec::new(), None);
     while job.progress().is_some() {
         if let Some(img) = job.take_preview() {
+            first.get_or_insert(t.elapsed());
             previews.push(img);
         }
         std::thread::sleep(std::time::Duration::from_millis(5));
     }
+    let formed_in = t.elapsed();
     assert!(job.error().is_none(), "{:?}", job.error());
+    let t = std::time::Instant::now();
     let mut figs = armlab::figure::figures::Figures::new().unwrap_or_else(|e| panic!("{e}"));
     let one_shot =
         armlab::headless::workspace_figure(&mut figs, &robot, "stanford", &opts, &|_| {})
             .unwrap()
             .image;
+    // The job also draws the overlay's 100,000 samples first.
+    println!(
+        "Stanford's top view: the job's first picture after {:.2} s, {} pictures, the finished \
+         figure after {:.2} s; the one-shot figure alone {:.2} s",
+        first.unwrap_or_default().as_secs_f64(),
+        previews.len(),
+        formed_in.as_secs_f64(),
+        t.elapsed().as_secs_f64()
+    );
     let formed = job.figure().expect("a figure");
     if formed != &one_shot {
         let dir = std::env::temp_dir();

@@ -596,20 +596,13 @@ fn compute(
     cancelled: &AtomicBool,
     preview: &Preview,
 ) -> Result<WorkspaceData, String> {
-    let n = OVERLAY_SAMPLES;
-    let dots = overlay_dots(robot, n, 1, &|k| {
-        stop_if_cancelled(cancelled);
-        progress.store((k as f32 / n as f32 * 500.0) as u32, Ordering::Relaxed)
-    })?;
-    if cancelled.load(Ordering::Relaxed) {
-        return Err(CANCELLED.into());
-    }
+    // The figure first, so that it starts forming at once; the overlay's dots show with it.
     let figure = Figures::new()
         .map_err(|e| e.to_string())
         .and_then(|mut figs| {
             let on_progress = |x: f32| {
                 stop_if_cancelled(cancelled);
-                progress.store(500 + (x * 500.0) as u32, Ordering::Relaxed)
+                progress.store((x * 500.0) as u32, Ordering::Relaxed)
             };
             match which {
                 JobFigure::Workspace(o) => crate::headless::workspace_figure_forming(
@@ -633,6 +626,14 @@ fn compute(
     if cancelled.load(Ordering::Relaxed) {
         return Err(CANCELLED.into());
     }
+    let n = OVERLAY_SAMPLES;
+    let dots = overlay_dots(robot, n, 1, &|k| {
+        stop_if_cancelled(cancelled);
+        progress.store(
+            500 + (k as f32 / n as f32 * 500.0) as u32,
+            Ordering::Relaxed,
+        )
+    })?;
     let (figure, frame, figure_error) = match figure {
         Ok((f, frame)) => (Some(f), frame, None),
         Err(e) => (None, None, Some(e)),
