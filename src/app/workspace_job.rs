@@ -139,6 +139,52 @@ fn read_answer(json: &str) -> Result<Answer, String> {
     serde_json::from_str(json).map_err(|e| format!("unreadable answer: {e}"))
 }
 
+/// Asks the pool for a figure's data (spread over it, or whole to one worker; here in one slice
+/// without workers or for a robot that cannot travel), or takes what the workers answered:
+/// `None` while nothing new came.
+fn answers(
+    asked: &mut Asked,
+    (robot, spec, request): (&Robot, &str, &crate::workspace::FigureRequest),
+    pool: &mut [Box<dyn Offload>],
+    progress: &AtomicU32,
+) -> Option<Result<SpreadStep, String>> {
+    match asked {
+        Asked::No => match Request::new(robot, spec, request.clone()) {
+            // A pool of web workers: the work spread over it, or all of it to one.
+            Ok(r) if !pool.is_empty() => {
+                *asked = match Spread::new(robot, &r, pool.len()) {
+                    Some(spread) => Asked::Spread {
+                        spread: Box::new(spread),
+                        busy: vec![false; pool.len()],
+                    },
+                    None => match submit(&mut *pool[0], &r) {
+                        Ok(()) => Asked::Whole,
+                        Err(e) => return Some(Err(e)),
+                    },
+                };
+                progress.store(600, Ordering::Relaxed);
+                None
+            }
+            // No worker, or a robot that cannot travel: here, in one slice.
+            _ => Some(
+                compute_figure_data(robot, request, &|_| {})
+                    .map(|d| SpreadStep::Done(Box::new(d)))
+                    .map_err(|e| e.to_string()),
+            ),
+        },
+        Asked::Whole => match pool.first_mut() {
+            None => Some(Err("the web worker went away".into())),
+            Some(worker) => worker.poll().map(|a| match read_answer(&a)? {
+                Answer::Partial { map, rows_done } => Ok(SpreadStep::Partial(map, rows_done)),
+                Answer::Data(d) => Ok(SpreadStep::Done(d)),
+                Answer::Error(e) => Err(e),
+                _ => Err("an answer that fits no request".into()),
+            }),
+        },
+        Asked::Spread { spread, busy } => spread_step(spread, busy, pool),
+    }
+}
+
 /// Takes the answers of the busy workers of the pool and hands the idle ones the next parts;
 /// the figure's data once all of it is in, else the latest map as it forms (`None`: nothing
 /// new).
@@ -503,44 +549,12 @@ impl Slices {
                 preview.put(img);
             }
         }
-        let answers = match &mut f.asked {
-            Asked::No => {
-                let request = Request::new(&self.robot, &self.spec, plan.request.clone());
-                match request {
-                    // A pool of web workers: the work spread over it, or all of it to one.
-                    Ok(r) if !pool.is_empty() => {
-                        f.asked = match Spread::new(&self.robot, &r, pool.len()) {
-                            Some(spread) => Asked::Spread {
-                                spread: Box::new(spread),
-                                busy: vec![false; pool.len()],
-                            },
-                            None => match submit(&mut *pool[0], &r) {
-                                Ok(()) => Asked::Whole,
-                                Err(e) => return Some(Err(e)),
-                            },
-                        };
-                        progress.store(600, Ordering::Relaxed);
-                        None
-                    }
-                    // No worker, or a robot that cannot travel: here, in one slice.
-                    _ => Some(
-                        compute_figure_data(&self.robot, &plan.request, &|_| {})
-                            .map(|d| SpreadStep::Done(Box::new(d)))
-                            .map_err(|e| e.to_string()),
-                    ),
-                }
-            }
-            Asked::Whole => match pool.first_mut() {
-                None => Some(Err("the web worker went away".into())),
-                Some(worker) => worker.poll().map(|a| match read_answer(&a)? {
-                    Answer::Partial { map, rows_done } => Ok(SpreadStep::Partial(map, rows_done)),
-                    Answer::Data(d) => Ok(SpreadStep::Done(d)),
-                    Answer::Error(e) => Err(e),
-                    _ => Err("an answer that fits no request".into()),
-                }),
-            },
-            Asked::Spread { spread, busy } => spread_step(spread, busy, pool),
-        };
+        let answers = answers(
+            &mut f.asked,
+            (&self.robot, &self.spec, &plan.request),
+            pool,
+            progress,
+        );
         let data = match answers? {
             Ok(SpreadStep::Done(d)) => *d,
             Ok(SpreadStep::Partial(map, rows_done)) => {

@@ -69,25 +69,7 @@ pub(super) fn map(
         req.values == MapValues::Manipulability,
         req.end_effector,
     )?;
-    let cell_of = |v: [f64; 2]| -> Option<usize> {
-        let u = (v[0] - bounds[0]) / (bounds[1] - bounds[0]) * w as f64;
-        let t = (bounds[3] - v[1]) / (bounds[3] - bounds[2]) * h as f64;
-        (u >= 0.0 && t >= 0.0 && u < w as f64 && t < h as f64).then(|| t as usize * w + u as usize)
-    };
-    let mut owner = vec![u32::MAX; w * h];
-    let mut best = vec![f32::NAN; w * h];
-    for (k, p) in s.positions.iter().enumerate() {
-        if let Some(c) = cell_of(to_view(robot, req.view, *p)) {
-            owner[c] = k as u32;
-            if let Some(m) = &s.manipulability {
-                best[c] = if best[c].is_nan() {
-                    m[k]
-                } else {
-                    best[c].max(m[k])
-                };
-            }
-        }
-    }
+    let (owner, best) = occupancy(robot, req, &s, bounds);
     let method = format!(
         "sampled: {} joint-space samples (seed {}), the rim refined by numerical IK",
         s.len(),
@@ -138,6 +120,37 @@ pub(super) fn map(
         values,
         ..partial(masks)
     })
+}
+
+/// Per cell, the last sample in it (`u32::MAX` for none) and the largest manipulability of its
+/// samples (NaN for none, or when not sampled).
+fn occupancy(
+    robot: &Robot,
+    req: &MapRequest,
+    s: &Samples,
+    bounds: [f64; 4],
+) -> (Vec<u32>, Vec<f32>) {
+    let [w, h] = req.cells;
+    let cell_of = |v: [f64; 2]| -> Option<usize> {
+        let u = (v[0] - bounds[0]) / (bounds[1] - bounds[0]) * w as f64;
+        let t = (bounds[3] - v[1]) / (bounds[3] - bounds[2]) * h as f64;
+        (u >= 0.0 && t >= 0.0 && u < w as f64 && t < h as f64).then(|| t as usize * w + u as usize)
+    };
+    let mut owner = vec![u32::MAX; w * h];
+    let mut best = vec![f32::NAN; w * h];
+    for (k, p) in s.positions.iter().enumerate() {
+        if let Some(c) = cell_of(to_view(robot, req.view, *p)) {
+            owner[c] = k as u32;
+            if let Some(m) = &s.manipulability {
+                best[c] = if best[c].is_nan() {
+                    m[k]
+                } else {
+                    best[c].max(m[k])
+                };
+            }
+        }
+    }
+    (owner, best)
 }
 
 /// Of the cells `cells`: the empty ones with a reached 8-neighbour, tried by position IK from
