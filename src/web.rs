@@ -80,6 +80,7 @@ impl WebHandle {
                             .push_message(Level::Error, format!("?lesson=: {e}")),
                         None => {}
                     }
+                    ui.clock = Some(|| js_sys::Date::now() / 1000.0);
                     for _ in 0..pool_size() {
                         match WorkerOffload::new() {
                             Ok(w) => ui.offload.push(Box::new(w)),

@@ -122,7 +122,10 @@ fn the_sliced_job_with_a_worker_makes_the_desktops_figure() {
         let (mut workers, counts) = pool(workers);
         let (mut frames, mut previews) = (0, 0);
         while sliced.progress().is_some() {
-            sliced.step(Some(&gpu), &mut workers, frames as f64 * 0.6);
+            // A clock that runs 0.6 s per frame between frames (each picture of the figure as
+            // it forms is due) and not within one (the overlay's chunks stop only when done).
+            let at = frames as f64 * 0.6;
+            sliced.step(Some(&gpu), &mut workers, &|| at);
             previews += usize::from(sliced.take_preview().is_some());
             frames += 1;
             std::thread::sleep(std::time::Duration::from_millis(2));
@@ -186,7 +189,7 @@ fn the_sliced_job_with_a_worker_makes_the_desktops_figure() {
                 dir.display()
             );
         }
-        assert!(frames > OVERLAY_SAMPLES / 4096, "{name}: {frames} frames");
+        assert!(frames >= 2, "{name}: {frames} frames");
     }
 }
 

@@ -116,8 +116,8 @@ impl eframe::App for ArmlabApp {
         }
         self.poll_screenshot(ui.ctx());
         if let Some(w) = &self.ui.tabs.workspace.job {
-            let now = ui.ctx().input(|i| i.time);
-            let worked = w.step(self.gpu.as_ref(), &mut self.ui.offload, now);
+            let clock = self.ui.clock.unwrap_or(workspace_job::native_clock);
+            let worked = w.step(self.gpu.as_ref(), &mut self.ui.offload, &clock);
             if worked {
                 ui.ctx().request_repaint();
             } else if w.progress().is_some() {

@@ -121,7 +121,7 @@ pub fn lesson_frames(
         if let Some(w) = &copy.tabs.workspace.job {
             // the workspace overlay: computed to the end before the picture is taken
             while w.progress().is_some() {
-                w.step(Some(&gpu), &mut [], 0.0);
+                w.step(Some(&gpu), &mut [], &super::workspace_job::native_clock);
             }
         }
         let explicit = copy

@@ -48,6 +48,9 @@ pub struct AppUi {
     /// Where heavy computations go where the app has no threads: a browser's pool of web
     /// workers (empty on the desktop, which has threads).
     pub offload: Vec<Box<dyn crate::offload::Offload>>,
+    /// Seconds on a clock that runs where the app does (a browser's; `None`: the standard
+    /// library's), for the sliced workspace job's budget per frame.
+    pub clock: Option<fn() -> f64>,
     /// The panel rectangles of the last layout (points): left, right, central, toolbar,
     /// status bar (tests check them).
     pub rects: PanelRects,
@@ -102,6 +105,7 @@ impl AppUi {
             file_picker: Box::new(NoDialogs),
             browser: FileBrowser::default(),
             offload: Vec::new(),
+            clock: None,
             rects: PanelRects::default(),
             lesson: None,
             message_seen: (0, 0.0),

@@ -214,7 +214,10 @@ fn spread_step(
     latest.map(Ok)
 }
 
-/// Overlay samples per slice (a few milliseconds of work).
+/// Seconds of overlay samples a sliced job computes per frame (at least one chunk).
+pub const SLICE_BUDGET: f64 = 0.03;
+
+/// Overlay samples per chunk (a few milliseconds of work).
 const SLICE: usize = crate::workspace::SAMPLE_CHUNK;
 
 const CLASS_COLORS: [[f32; 4]; 4] = [
@@ -335,12 +338,19 @@ impl WorkspaceJob {
         let _ = self.done.set(Err(CANCELLED.into()));
     }
 
-    /// Computes the next slice of a sliced job (`now`: the caller's clock, seconds) (nothing for a threaded or finished one): a
-    /// chunk of overlay samples; then the figure, drawn on `gpu` (the window's device), its
-    /// data computed by `offload` (a web worker) while frames go on, or here when there is
-    /// none. Returns whether it worked here (then the next frame should come at once); `false`
-    /// for a threaded or finished job, or while the worker computes.
-    pub fn step(&self, gpu: Option<&Gpu>, pool: &mut [Box<dyn Offload>], now: f64) -> bool {
+    /// Computes the next slice of a sliced job (nothing for a threaded or finished one): chunks
+    /// of overlay samples for at most [`SLICE_BUDGET`] seconds of `clock` (seconds); then the
+    /// figure, drawn on `gpu` (the window's device), its data computed by the `pool` of web
+    /// workers while frames go on, or here when there is none. Returns whether it worked here
+    /// (then the next frame should come at once); `false` for a threaded or finished job, or
+    /// while the workers compute.
+    pub fn step(
+        &self,
+        gpu: Option<&Gpu>,
+        pool: &mut [Box<dyn Offload>],
+        clock: &dyn Fn() -> f64,
+    ) -> bool {
+        let now = clock();
         let Ok(mut guard) = self.slices.lock() else {
             return false;
         };
@@ -363,17 +373,24 @@ impl WorkspaceJob {
             }
         }
         if s.drawn < OVERLAY_SAMPLES {
-            let n = SLICE.min(OVERLAY_SAMPLES - s.drawn);
-            // Each slice its own seed: the same distribution as the threaded job's one draw.
-            match overlay_dots(&s.robot, n, 1 + (s.drawn / SLICE) as u64, &|_| {}) {
-                Ok(d) => s.dots.extend(d),
-                Err(e) => {
-                    let _ = self.done.set(Err(e));
-                    *guard = None;
-                    return false;
+            // Chunks until the frame's budget is spent: a frame costs more than a chunk of a
+            // simple arm's samples (on a software rasterizer, 50-100 ms against a few).
+            while s.drawn < OVERLAY_SAMPLES {
+                let n = SLICE.min(OVERLAY_SAMPLES - s.drawn);
+                // Each chunk its own seed: the same distribution as the threaded job's one draw.
+                match overlay_dots(&s.robot, n, 1 + (s.drawn / SLICE) as u64, &|_| {}) {
+                    Ok(d) => s.dots.extend(d),
+                    Err(e) => {
+                        let _ = self.done.set(Err(e));
+                        *guard = None;
+                        return false;
+                    }
+                }
+                s.drawn += n;
+                if clock() - now >= SLICE_BUDGET {
+                    break;
                 }
             }
-            s.drawn += n;
             if s.figure.is_none() {
                 let f = s.drawn as f32 / OVERLAY_SAMPLES as f32 * 500.0;
                 self.progress.store(f as u32, Ordering::Relaxed);
@@ -488,7 +505,7 @@ impl WorkspaceJob {
     pub fn wait(&self) {
         while self.done.get().is_none() {
             if self.slices.lock().is_ok_and(|s| s.is_some()) {
-                self.step(None, &mut [], 0.0);
+                self.step(None, &mut [], &native_clock);
             } else {
                 std::thread::sleep(std::time::Duration::from_millis(5));
             }
@@ -658,6 +675,16 @@ fn compute(
         frame,
         figure_error,
     })
+}
+
+/// Seconds since the first call: the clock of a sliced job run natively (tests, screenshots;
+/// a browser hands in its own).
+pub fn native_clock() -> f64 {
+    static START: OnceLock<std::time::Instant> = OnceLock::new();
+    START
+        .get_or_init(std::time::Instant::now)
+        .elapsed()
+        .as_secs_f64()
 }
 
 /// The payload a cancelled threaded job unwinds with.
