@@ -373,23 +373,10 @@ impl WorkspaceJob {
             }
         }
         if s.drawn < OVERLAY_SAMPLES {
-            // Chunks until the frame's budget is spent: a frame costs more than a chunk of a
-            // simple arm's samples (on a software rasterizer, 50-100 ms against a few).
-            while s.drawn < OVERLAY_SAMPLES {
-                let n = SLICE.min(OVERLAY_SAMPLES - s.drawn);
-                // Each chunk its own seed: the same distribution as the threaded job's one draw.
-                match overlay_dots(&s.robot, n, 1 + (s.drawn / SLICE) as u64, &|_| {}) {
-                    Ok(d) => s.dots.extend(d),
-                    Err(e) => {
-                        let _ = self.done.set(Err(e));
-                        *guard = None;
-                        return false;
-                    }
-                }
-                s.drawn += n;
-                if clock() - now >= SLICE_BUDGET {
-                    break;
-                }
+            if let Err(e) = s.draw_overlay(clock, now) {
+                let _ = self.done.set(Err(e));
+                *guard = None;
+                return false;
             }
             if s.figure.is_none() {
                 let f = s.drawn as f32 / OVERLAY_SAMPLES as f32 * 500.0;
@@ -524,6 +511,24 @@ impl Drop for WorkspaceJob {
 type Figure = (image::RgbaImage, Option<PlotFrame>);
 
 impl Slices {
+    /// Overlay samples in chunks until the frame's budget is spent (`clock` in seconds, the
+    /// frame begun at `now`): a frame costs more than a chunk of a simple arm's samples (on a
+    /// software rasterizer, 50-100 ms against a few).
+    fn draw_overlay(&mut self, clock: &dyn Fn() -> f64, now: f64) -> Result<(), String> {
+        while self.drawn < OVERLAY_SAMPLES {
+            let n = SLICE.min(OVERLAY_SAMPLES - self.drawn);
+            // Each chunk its own seed: the same distribution as the threaded job's one draw.
+            let seed = 1 + (self.drawn / SLICE) as u64;
+            self.dots
+                .extend(overlay_dots(&self.robot, n, seed, &|_| {})?);
+            self.drawn += n;
+            if clock() - now >= SLICE_BUDGET {
+                break;
+            }
+        }
+        Ok(())
+    }
+
     /// One slice of the figure; `Some(figure or why not)` once it is finished.
     fn figure_step(
         &mut self,
