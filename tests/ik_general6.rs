@@ -289,17 +289,25 @@ fn newton_fd(r: &Robot, t: &Pose, mut q: Vec<f64>) -> Option<Vec<f64>> {
     let resid = |q: &[f64]| -> Vector6<f64> {
         let p = r.fk(q).unwrap();
         let dp = t.translation.vector - p.translation.vector;
-        // sin(angle) times the axis, from the skew part: `scaled_axis` goes through acos and
-        // cannot see below 3e-8 rad.
+        // Angle times axis: the angle by atan2 of the skew part (sin(angle) times the axis) and
+        // the trace, exact near zero where `scaled_axis` (acos) cannot see below 3e-8 rad, and
+        // zero nowhere else. (Adding 1 to the skew part where the trace is negative, as this once
+        // did to tell a half turn apart, vanishes at a 120-degree turn about (1, 1, 1).)
         let d = (t.rotation * p.rotation.inverse()).into_inner();
-        let dr = Vector3::new(
+        let skew = Vector3::new(
             d[(2, 1)] - d[(1, 2)],
             d[(0, 2)] - d[(2, 0)],
             d[(1, 0)] - d[(0, 1)],
         ) * 0.5;
-        // The skew part also vanishes at a half turn: the trace tells that apart.
-        let flip = if d.trace() < 0.0 { 1.0 } else { 0.0 };
-        Vector6::new(dp.x, dp.y, dp.z, dr.x + flip, dr.y + flip, dr.z + flip)
+        let (sin, cos) = (skew.norm(), (d.trace() - 1.0) * 0.5);
+        let dr = if sin > 0.0 {
+            skew * (sin.atan2(cos) / sin)
+        } else if cos > 0.0 {
+            Vector3::zeros()
+        } else {
+            Vector3::new(std::f64::consts::PI, 0.0, 0.0)
+        };
+        Vector6::new(dp.x, dp.y, dp.z, dr.x, dr.y, dr.z)
     };
     for _ in 0..60 {
         let e = resid(&q);

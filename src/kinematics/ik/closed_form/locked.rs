@@ -24,6 +24,8 @@ pub struct LockedArm {
     base_inv: Pose,
     tool_inv: Pose,
     locked: usize,
+    /// The order of the elimination's loop solved first (see [`General6::starting_at`]).
+    first: usize,
 }
 
 impl LockedArm {
@@ -38,13 +40,26 @@ impl LockedArm {
         if rows.len() != 7 || rows.iter().any(|r| !r.revolute) {
             return None;
         }
-        Some(Self {
+        let mut arm = Self {
             links: std::array::from_fn(|i| Link::dh(rows[i].a, rows[i].d, rows[i].sa, rows[i].ca)),
             offsets: std::array::from_fn(|i| rows[i].offset),
             base_inv: chain.base.inverse(),
             tool_inv: chain.tool.inverse(),
             locked,
-        })
+            first: 0,
+        };
+        // The first sound order at a generic value and pose (angles well away from 0 and from
+        // each other: an arm stretched out is singular).
+        const THETA: [f64; 6] = [0.61, -1.13, 0.87, 1.42, -0.53, 0.97];
+        let six = arm.six_links(0.74);
+        let goal = six
+            .iter()
+            .zip(THETA)
+            .fold(Link::rz(1.0, 0.0), |acc, (l, t)| {
+                acc.then(&Link::rz(t.cos(), t.sin()).then(l))
+            });
+        arm.first = General6::from_links(six).sound_order(&goal).unwrap_or(0);
+        Some(arm)
     }
 
     /// The locked joint (0-based).
@@ -63,38 +78,11 @@ impl LockedArm {
         value: f64,
         out: &mut [[f64; 7]; MAX_LOCKED_SOLUTIONS],
     ) -> Result<usize, IkError> {
-        let g = self.base_inv * world_from_tool * self.tool_inv;
-        let goal = Link {
-            r: *g.rotation.matrix(),
-            t: g.translation.vector,
-        };
+        let (six, goal6) = self.six_at(world_from_tool, value);
         let k = self.locked;
-        let (s, c) = (value + self.offsets[k]).sin_cos();
-        let ak = Link::rz(c, s).then(&self.links[k]);
-        let mut six = [self.links[0]; 6];
-        let goal6 = match k {
-            0 => {
-                six.copy_from_slice(&self.links[1..]);
-                ak.inverse().then(&goal)
-            }
-            6 => {
-                six.copy_from_slice(&self.links[..6]);
-                goal.then(&ak.inverse())
-            }
-            _ => {
-                let mut j = 0;
-                for (i, l) in self.links.iter().enumerate() {
-                    if i == k {
-                        continue;
-                    }
-                    six[j] = if i == k - 1 { l.then(&ak) } else { *l };
-                    j += 1;
-                }
-                goal
-            }
-        };
         let mut sols = [[0.0; 6]; MAX_BRANCHES];
         let n = General6::from_links(six)
+            .starting_at(self.first)
             .solve_goal(&goal6, &mut sols)
             .map_err(|why| IkError::Degenerate { reason: why.text() })?;
         for (o, th) in out.iter_mut().zip(&sols[..n]) {
@@ -105,6 +93,53 @@ impl LockedArm {
             }
         }
         Ok(n)
+    }
+
+    /// The six-joint arm left with the locked joint at `value` (rad): its links and the goal
+    /// `A1 ... A6 = goal` of its frame 6 in its frame 0.
+    pub(crate) fn six_at(&self, world_from_tool: &Pose, value: f64) -> ([Link; 6], Link) {
+        let g = self.base_inv * world_from_tool * self.tool_inv;
+        let goal = Link {
+            r: *g.rotation.matrix(),
+            t: g.translation.vector,
+        };
+        let ak = self.locked_link(value);
+        let goal6 = match self.locked {
+            0 => ak.inverse().then(&goal),
+            6 => goal.then(&ak.inverse()),
+            _ => goal,
+        };
+        (self.six_links(value), goal6)
+    }
+
+    /// The locked joint's link `Rz(theta) L` at `value` (rad).
+    fn locked_link(&self, value: f64) -> Link {
+        let k = self.locked;
+        let (s, c) = (value + self.offsets[k]).sin_cos();
+        Link::rz(c, s).then(&self.links[k])
+    }
+
+    /// The six links left with the locked joint at `value` (rad): the locked joint merged into
+    /// the link before it, `L_(k-1) Rz(theta_k) L_k`; locked first or last, it moves into the
+    /// goal instead.
+    fn six_links(&self, value: f64) -> [Link; 6] {
+        let k = self.locked;
+        let ak = self.locked_link(value);
+        let mut six = [self.links[0]; 6];
+        for (j, (i, l)) in self
+            .links
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| *i != k)
+            .enumerate()
+        {
+            six[j] = if k > 0 && k < 6 && i + 1 == k {
+                l.then(&ak)
+            } else {
+                *l
+            };
+        }
+        six
     }
 
     /// [`Self::solve`], then each solution checked by `robot`'s own forward kinematics and
