@@ -1417,3 +1417,35 @@ fn ee_works_in_every_command() {
     assert!(err.contains("no end-effector \"no_such_frame\"") && err.contains("left_gripper"));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A pose as `armlab info` prints it (six decimals) is a target `armlab ik` takes: it was refused
+/// as not orthonormal (|R^T R - I| = 1.08e-6 > 1e-6). Here the gantry's pose at its ready
+/// configuration, with its two wrist postures (the Cartesian family, issue 27).
+#[test]
+fn ik_takes_a_pose_printed_to_six_decimals() {
+    let out = armlab(&[
+        "ik",
+        "assets/robots/gantry_wrist.toml",
+        "--pose",
+        "-0.660729,-0.279352,0.696707,0.469671,0.182387,-0.960101,-0.211993,0.478801,\
+         0.728129,-0.012999,0.685316,0.768532,0,0,0,1",
+        "--all",
+    ]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{text}{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(
+        text.contains(
+            "closed form (Cartesian arm with spherical wrist (gantry type)); 2 solution(s)"
+        ),
+        "{text}"
+    );
+    assert!(
+        text.contains("wrist no flip") && text.contains("wrist flip"),
+        "{text}"
+    );
+    assert!(text.contains("q = [0.700000, 0.500000, 0.400000, 0.300000, 0.800000, -0.400000]"));
+}

@@ -479,3 +479,38 @@ fn the_ur_construction_reduces_to_the_planar_arm_after_joint_1() {
         }
     }
 }
+
+/// The Cartesian arm with a spherical wrist (the gantry of `assets/robots/gantry_wrist.toml`,
+/// issue 27): d1, d2, d3 drawn along the three prismatic axes as long as the joints, labelled
+/// with their values, then the wrist's angles as for the other decoupled arms.
+#[test]
+fn the_gantry_draws_its_three_extensions_and_its_wrist() {
+    use armlab::construction::steps::construction;
+    let robot = armlab::model_file::load_model("assets/robots/gantry_wrist.toml").unwrap();
+    let lim = robot.limits();
+    let mut s = 9u64;
+    for _ in 0..200 {
+        let q: Vec<f64> = lim
+            .iter()
+            .map(|l| l[0].max(-PI) + (l[1].min(PI) - l[0].max(-PI)) * lcg(&mut s))
+            .collect();
+        let steps = construction(&robot, &q).unwrap();
+        assert_eq!(steps.len(), 3, "wrist point, extensions, wrist");
+        for (name, j) in [("d1", 0), ("d2", 1), ("d3", 2)] {
+            let (len, label) = segment(&steps, name);
+            assert!((len - q[j]).abs() < 1e-9, "{name}: {len} vs {q:?}");
+            assert!(
+                (label_value(&label) - q[j]).abs() < 5.1e-4,
+                "{label} vs {q:?}"
+            );
+        }
+        for (name, j) in [("θ4", 3), ("θ6", 5)] {
+            let (_, label) = arc(&steps, name);
+            let d = (label_value(&label).to_radians() - q[j]).rem_euclid(2.0 * PI);
+            assert!(
+                d.min(2.0 * PI - d) < 0.051_f64.to_radians(),
+                "{name}: {label}, {q:?}"
+            );
+        }
+    }
+}

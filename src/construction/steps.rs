@@ -157,6 +157,10 @@ fn family_steps(robot: &Robot, q: &[f64]) -> Result<Vec<Step>, ConstructionError
         Family::Decoupled6 {
             arm: ArmKind::Cylindrical,
         } => arms::cylindrical(robot, q, Some(WristPoint::of(robot, q)?)),
+        Family::Cartesian => arms::cartesian(robot, q, None),
+        Family::Decoupled6 {
+            arm: ArmKind::Cartesian,
+        } => arms::cartesian(robot, q, Some(WristPoint::of(robot, q)?)),
         Family::Scara => arms::scara(robot, q),
         Family::SphericalWrist => arms::wrist_alone(robot, q),
         Family::ThreeParallel => parallel3::steps(robot, q),

@@ -47,8 +47,11 @@ pub fn trans_z(d: f64) -> Pose {
     Pose::translation(0.0, 0.0, d)
 }
 
-/// Tolerance on orthonormality used when a 4x4 matrix is accepted as a rigid transform.
-pub const RIGID_TOLERANCE: f64 = 1e-6;
+/// Tolerance on orthonormality (the largest entry of `R^T R - I`) used when a 4x4 matrix is
+/// accepted as a rigid transform. Entries rounded to six decimals are off by up to 5e-7 each,
+/// which puts `R^T R - I` up to 1.7e-6: 1e-6 refused poses that `armlab info` itself printed
+/// (found pasting one into `armlab ik`), so the tolerance is 1e-5.
+pub const RIGID_TOLERANCE: f64 = 1e-5;
 
 /// Why a 4x4 matrix is not a rigid transform.
 #[derive(Debug, Clone, PartialEq)]

@@ -259,9 +259,12 @@ impl SingularityAnalyzer {
             Some(Family::Planar2) => &[0, 1],
             Some(Family::Planar3) => &[0, 1, 5],
             Some(Family::Scara) => &[0, 1, 2, 5],
-            Some(Family::Anthropomorphic | Family::SphericalArm | Family::Cylindrical) => {
-                &[0, 1, 2]
-            }
+            Some(
+                Family::Anthropomorphic
+                | Family::SphericalArm
+                | Family::Cylindrical
+                | Family::Cartesian,
+            ) => &[0, 1, 2],
             Some(Family::SphericalWrist) => &[3, 4, 5],
             Some(Family::Decoupled6 { .. } | Family::ThreeParallel | Family::General6) | None => {
                 &[0, 1, 2, 3, 4, 5]
@@ -405,7 +408,9 @@ impl SingularityAnalyzer {
             Family::SphericalWrist => (Some((0, 2)), None, None),
             Family::Anthropomorphic => (None, Some(*pe), Some(ArmKind::Anthropomorphic)),
             Family::SphericalArm => (None, Some(*pe), Some(ArmKind::Spherical)),
-            Family::Cylindrical | Family::ThreeParallel | Family::General6 => (None, None, None),
+            Family::Cylindrical | Family::Cartesian | Family::ThreeParallel | Family::General6 => {
+                (None, None, None)
+            }
             Family::Planar2 | Family::Planar3 | Family::Scara => {
                 out.extend(planar_elbow(family, pe, ax));
                 return out;
@@ -425,7 +430,9 @@ impl SingularityAnalyzer {
         if arm == ArmKind::Anthropomorphic {
             out.extend(elbow_condition(ax, &p, what));
         }
-        if arm != ArmKind::Cylindrical {
+        // A Cartesian arm's prismatic axes are not in one plane (else it is not detected): no
+        // arm singularity.
+        if matches!(arm, ArmKind::Anthropomorphic | ArmKind::Spherical) {
             out.extend(self.shoulder_condition(ax, &p, what));
         }
         out

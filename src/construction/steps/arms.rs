@@ -300,6 +300,62 @@ pub(super) fn cylindrical(
     Ok(steps)
 }
 
+/// The displacements along the three prismatic axes of a Cartesian arm (m): frame i's origin
+/// from frame i - 1's, along z_(i-1).
+fn cartesian_drawn(g: &ArmFrames) -> Drawn {
+    let [f1, f2, f3] = g.f;
+    [
+        (f1.o - g.base.o).dot(&g.base.z),
+        (f2.o - f1.o).dot(&f1.z),
+        (f3.o - f2.o).dot(&f2.z),
+    ]
+}
+
+/// The Cartesian (gantry) arm: every rotation is constant, so `p_W = c + d1 z0 + d2 z1 + d3 z2`
+/// with c the point at d = 0, a 3 x 3 linear system; each d drawn along its axis. With a
+/// spherical wrist, the wrist point first and the wrist last.
+pub(super) fn cartesian(
+    robot: &Robot,
+    q: &[f64],
+    wrist: Option<WristPoint>,
+) -> Result<Vec<Step>, ConstructionError> {
+    let g = ArmFrames::at(robot, q, wrist.is_some())?;
+    let off = offsets(robot, wrist.is_some(), cartesian_drawn)?;
+    let drawn = cartesian_drawn(&g);
+    let label = |k: usize| drawn[k] - off[k];
+    let p = g.p_base(robot);
+    let [f1, f2, f3] = g.f;
+    let mut steps = Vec::new();
+    if let Some(w) = &wrist {
+        steps.push(wrist_point_step(w));
+    }
+    steps.push(Step {
+        title: "d1, d2, d3: p_W along the three fixed prismatic axes".into(),
+        equation: "a linear system: no rotation depends on the joints".into(),
+        formula: format!(
+            "p_W = c + d1 z0 + d2 z1 + d3 z2 = ({:.3}, {:.3}, {:.3}) m: d1 = {:.3} m, d2 = {:.3} \
+             m, d3 = {:.3} m",
+            p.x,
+            p.y,
+            p.z,
+            label(0),
+            label(1),
+            label(2)
+        ),
+        marks: vec![
+            seg(g.base.o, f1.o, format!("d1 = {:.3} m", label(0)), false),
+            seg(f1.o, f2.o, format!("d2 = {:.3} m", label(1)), false),
+            seg(f2.o, f3.o, format!("d3 = {:.3} m", label(2)), false),
+            Mark::Point {
+                p: g.p_w,
+                label: "p_W".into(),
+            },
+        ],
+    });
+    wrist_steps(robot, q, wrist.as_ref(), &mut steps)?;
+    Ok(steps)
+}
+
 /// Problem 2.20: theta1 and theta2 by the two-link triangle in the horizontal plane of the links
 /// (Sect. 2.12.1), d3 from the height, theta4 from the rotation about the vertical.
 pub(super) fn scara(robot: &Robot, q: &[f64]) -> Result<Vec<Step>, ConstructionError> {

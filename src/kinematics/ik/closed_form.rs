@@ -16,7 +16,8 @@
 //! | [`Family::SphericalArm`] | R-R-P, alpha1, alpha2 = +-pi/2 | 2 (shoulder right/left, d3 >= 0) |
 //! | [`Family::Cylindrical`] | R-P-P, alpha1 = 0 or pi, alpha2 = +-pi/2 | 1 (d3 >= 0) |
 //! | [`Family::SphericalWrist`] | R-R-R, a1 = a2 = d2 = 0, alpha1, alpha2 = +-pi/2 | 2 (wrist no flip/flip) |
-//! | [`Family::Decoupled6`] | one of the three arms + a spherical wrist | arm count x 2 (8 for the Puma 560) |
+//! | [`Family::Cartesian`] | P-P-P, the three prismatic axes not in one plane (a gantry) | 1 (a linear system) |
+//! | [`Family::Decoupled6`] | one of the four arms + a spherical wrist | arm count x 2 (8 for the Puma 560, 2 for a gantry) |
 //! | [`Family::ThreeParallel`] | R x 6, axes 2, 3, 4 parallel, a1 = a4 = a5 = a6 = 0, alpha1, alpha4, alpha5 = +-pi/2 (Universal Robots) | 8 (shoulder right/left x elbow up/down x wrist up/down) |
 //!
 //! The spherical and cylindrical arms also have the mirror solution with the opposite extension
@@ -307,6 +308,7 @@ impl ClosedForm {
                         ArmKind::Anthropomorphic => Family::Anthropomorphic,
                         ArmKind::Spherical => Family::SphericalArm,
                         ArmKind::Cylindrical => Family::Cylindrical,
+                        ArmKind::Cartesian => Family::Cartesian,
                     };
                     (family, Geometry::Arm(a))
                 } else {
@@ -330,7 +332,7 @@ impl ClosedForm {
         };
         let mirror_joint = match &geometry {
             Geometry::Arm(a) | Geometry::Decoupled { arm: a, .. }
-                if a.kind != ArmKind::Anthropomorphic =>
+                if matches!(a.kind, ArmKind::Spherical | ArmKind::Cylindrical) =>
             {
                 Some(2)
             }

@@ -233,7 +233,31 @@ pub fn map_extent(
     if let Some(s) = spatial::Section::new(robot, point) {
         return Ok(s.extent(view));
     }
-    sampled::extent(robot, view, 0)
+    sampled::extent(&tracking(robot, point), view, 0)
+}
+
+/// The robot whose flange is the tracked point, for the sampled maps (which sample the flange):
+/// asked for the wrist centre of an arm with a spherical wrist but no closed-form section (a
+/// gantry, whose joint 1 is prismatic), the robot with its tool moved to the wrist centre;
+/// otherwise the robot itself. (Before, such a figure was titled "wrist centre" and showed the
+/// flange.)
+fn tracking(robot: &Robot, point: TrackedPoint) -> std::borrow::Cow<'_, Robot> {
+    use std::borrow::Cow;
+    if point != TrackedPoint::WristCentre || robot.end_effectors().len() != 1 {
+        return Cow::Borrowed(robot);
+    }
+    let centre = crate::kinematics::ik::ClosedForm::detect(robot)
+        .ok()
+        .and_then(|cf| cf.wrist_centre_in_tool());
+    let Some(c) = centre else {
+        return Cow::Borrowed(robot);
+    };
+    let mut r = robot.clone();
+    let tool = r.end_effectors()[0].tool * nalgebra::Translation3::from(c);
+    match r.set_tool(0, tool) {
+        Ok(()) => Cow::Owned(r),
+        Err(_) => Cow::Borrowed(robot),
+    }
 }
 
 /// Pads `[x0, x1, y0, y1]` of a box by `pad` times its larger side.
@@ -286,6 +310,7 @@ pub fn compute_map_forming(
         } else if let Some(s) = spatial::Section::new(robot, req.point) {
             return s.map(robot, req, bounds, forming);
         }
+        return sampled::map(&tracking(robot, req.point), req, bounds, forming);
     }
     sampled::map(robot, req, bounds, forming)
 }
@@ -402,6 +427,7 @@ pub fn map_statistics(
         if let Some(s) = spatial::Section::new(robot, point) {
             return Ok(s.statistics());
         }
+        return super::statistics(&tracking(robot, point), fallback, &|_| {});
     }
     super::statistics(robot, fallback, &|_| {})
 }

@@ -19,7 +19,11 @@
 //!   extension along z2, which is (2.94) for e = 0; rho = +-sqrt(x1^2 + y1^2 - e^2) (the textbook
 //!   keeps d3 >= 0);
 //! - cylindrical arm (alpha1 = 0 or pi, alpha2 = +-pi/2): the height gives d2 directly, and the
-//!   horizontal point is `Rz(theta1) (g + rho n)` with constant g and unit n, a quadratic in rho.
+//!   horizontal point is `Rz(theta1) (g + rho n)` with constant g and unit n, a quadratic in rho;
+//! - Cartesian arm (three prismatic joints): every rotation is constant and
+//!   `A_i = Rz(theta_i) Tz(d_i) Tx(a_i) Rx(alpha_i)` moves the point by d_i along z_(i-1), so
+//!   `p = c + d1 z0 + d2 z1 + d3 z2` (c the point at d = 0): a 3 x 3 linear system, one solution
+//!   when the axes are not in one plane.
 
 use super::chain::Row;
 use super::planar::{TwoLinkSol, elbow_of, two_link};
@@ -44,6 +48,16 @@ enum Geom {
     Spherical(Spherical),
     /// Horizontal point = Rz(theta1) (g + rho n), d2 = f1 (pz - d1) - zoff, d3 = rho - vz.
     Cylindrical(Cylindrical),
+    /// p = c + [z0 z1 z2] (d1, d2, d3).
+    Cartesian(Cartesian),
+}
+
+/// The Cartesian arm's numbers: the point at d = 0 (frame 0, m) and the inverse of the matrix
+/// whose columns are the prismatic axes z0, z1, z2.
+#[derive(Debug, Clone, Copy)]
+struct Cartesian {
+    c: Vector3<f64>,
+    inv: Matrix3<f64>,
 }
 
 /// The anthropomorphic arm's numbers: (x1, y1) = L1 e^{i(theta2 + beta1)} +
@@ -165,6 +179,10 @@ impl SpatialArm {
                 });
                 (ArmKind::Cylindrical, 1.0, 0.0, geom)
             }
+            (false, false, false) => {
+                let geom = Geom::Cartesian(Cartesian::detect(&[r1, r2, r3], w)?);
+                (ArmKind::Cartesian, 1.0, 0.0, geom)
+            }
             _ => return None,
         };
         Some(SpatialArm {
@@ -258,6 +276,14 @@ impl SpatialArm {
             Geom::Anthropomorphic(g) => self.solve_anthropomorphic(g, p, out),
             Geom::Spherical(g) => self.solve_spherical(g, p, out),
             Geom::Cylindrical(g) => self.solve_cylindrical(g, p, out),
+            Geom::Cartesian(g) => {
+                // Always reachable: the joint limits decide (the caller checks them).
+                out[0] = ArmSol {
+                    v: (g.inv * (p - g.c)).into(),
+                    posture: Posture::default(),
+                };
+                Ok(1)
+            }
         }
     }
 
@@ -402,6 +428,31 @@ impl SpatialArm {
             };
         }
         Ok(k)
+    }
+}
+
+impl Cartesian {
+    /// The numbers of three prismatic rows moving the point `w` (frame 3); `None` when the
+    /// three axes are in one plane (or nearly: the volume they span below 1e-6).
+    fn detect(rows: &[Row; 3], w: &Vector3<f64>) -> Option<Self> {
+        let mut r = Matrix3::identity();
+        let mut c = Vector3::zeros();
+        let mut axes = Matrix3::zeros();
+        for (i, row) in rows.iter().enumerate() {
+            axes.set_column(i, &r.column(2));
+            // A_i at d_i = 0 (its offset included in d_i): Rz(theta) Tx(a) Rx(alpha).
+            let (s, co) = row.theta.sin_cos();
+            c += r * Vector3::new(row.a * co, row.a * s, 0.0);
+            r *= row.rotation(row.theta);
+        }
+        c += r * w;
+        if axes.determinant().abs() < 1e-6 {
+            return None;
+        }
+        Some(Cartesian {
+            c,
+            inv: axes.try_inverse()?,
+        })
     }
 }
 

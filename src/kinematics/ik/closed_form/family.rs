@@ -9,6 +9,9 @@ pub enum ArmKind {
     Spherical,
     /// Cylindrical arm R-P-P (Problem 2.19).
     Cylindrical,
+    /// Cartesian (gantry) arm P-P-P, three prismatic axes not in one plane (Sect. 1.1's
+    /// Cartesian geometry).
+    Cartesian,
 }
 
 /// Which closed-form family an arm belongs to, detected from its DH table.
@@ -26,6 +29,8 @@ pub enum Family {
     SphericalArm,
     /// Cylindrical arm (Problem 2.19), position target.
     Cylindrical,
+    /// Cartesian arm P-P-P, position target.
+    Cartesian,
     /// Spherical wrist alone (Sect. 2.12.5), orientation target.
     SphericalWrist,
     /// Six-DOF arm with a spherical wrist, solved by kinematic decoupling (Sect. 2.12.2).
@@ -50,6 +55,7 @@ impl Family {
             Family::Anthropomorphic => "anthropomorphic arm",
             Family::SphericalArm => "spherical arm",
             Family::Cylindrical => "cylindrical arm",
+            Family::Cartesian => "Cartesian arm",
             Family::SphericalWrist => "spherical wrist",
             Family::Decoupled6 {
                 arm: ArmKind::Anthropomorphic,
@@ -60,6 +66,9 @@ impl Family {
             Family::Decoupled6 {
                 arm: ArmKind::Cylindrical,
             } => "cylindrical arm with spherical wrist",
+            Family::Decoupled6 {
+                arm: ArmKind::Cartesian,
+            } => "Cartesian arm with spherical wrist (gantry type)",
             Family::ThreeParallel => "three parallel axes (Universal Robots type)",
             Family::General6 => "general six-revolute arm (all real solutions, by elimination)",
         }
@@ -72,12 +81,12 @@ impl Family {
             Family::Planar2 | Family::Planar3 | Family::Scara => 2,
             Family::Anthropomorphic => 4,
             Family::SphericalArm => 2,
-            Family::Cylindrical => 1,
+            Family::Cylindrical | Family::Cartesian => 1,
             Family::SphericalWrist => 2,
             Family::Decoupled6 { arm } => match arm {
                 ArmKind::Anthropomorphic => 8,
                 ArmKind::Spherical => 4,
-                ArmKind::Cylindrical => 2,
+                ArmKind::Cylindrical | ArmKind::Cartesian => 2,
             },
             Family::ThreeParallel => 8,
             // At most; how many are real depends on the arm and the target.
