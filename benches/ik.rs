@@ -177,6 +177,13 @@ fn closed_form(c: &mut Criterion) {
             built_in("anthropomorphic_spherical_wrist").expect("built-in"),
         ),
         ("ur5_urdf", ur5),
+        // A spherical wrist on a skewed three-revolute arm: Pieper's general case, a quartic
+        // (issue 27).
+        (
+            "skewed_arm_wrist",
+            armlab::model_file::load_model("assets/robots/skewed_arm_wrist.toml")
+                .expect("skewed arm"),
+        ),
         // A general six-revolute arm (no two axes parallel or meeting): every real solution by
         // elimination (issue 27); this arm has up to 14.
         ("general6", general6()),

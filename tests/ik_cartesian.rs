@@ -7,7 +7,7 @@
 mod common;
 
 use common::closed_form::*;
-use nalgebra::{Matrix4, Matrix6, Vector6};
+use nalgebra::Matrix4;
 use rand::{Rng, SeedableRng};
 
 /// A prismatic row: theta and alpha constant, d = q + offset, with limits (m).
@@ -104,41 +104,9 @@ fn errors_here(q: &[f64], t: &Pose) -> (f64, f64) {
     (dp, dr)
 }
 
-/// Newton over all six joints on [`fk_here`] (finite differences), from `q`.
-fn newton_here(t: &Pose, mut q: Vec<f64>) -> Option<Vec<f64>> {
-    let want = t.to_homogeneous();
-    let resid = |q: &[f64]| -> Vector6<f64> {
-        let m = fk_here(q);
-        let dp = want.fixed_view::<3, 1>(0, 3) - m.fixed_view::<3, 1>(0, 3);
-        // Half the sum of the axes' cross products (3.84): zero at agreement and at half turns,
-        // which the final check below tells apart.
-        let mut eo = nalgebra::Vector3::zeros();
-        for c in 0..3 {
-            let a: nalgebra::Vector3<f64> = m.fixed_view::<3, 1>(0, c).into();
-            let b: nalgebra::Vector3<f64> = want.fixed_view::<3, 1>(0, c).into();
-            eo += a.cross(&b) * 0.5;
-        }
-        Vector6::new(dp.x, dp.y, dp.z, eo.x, eo.y, eo.z)
-    };
-    for _ in 0..60 {
-        let e = resid(&q);
-        if e.norm() < 1e-13 {
-            let (dp, dr) = errors_here(&q, t);
-            return (dp < 1e-10 && dr < 1e-10).then_some(q);
-        }
-        let mut j = Matrix6::zeros();
-        for k in 0..6 {
-            let mut qk = q.clone();
-            qk[k] += 1e-7;
-            j.set_column(k, &((e - resid(&qk)) / 1e-7));
-        }
-        let dq = j.lu().solve(&e)?;
-        let scale = (0.4 / dq.amax()).min(1.0);
-        for k in 0..6 {
-            q[k] += dq[k] * scale;
-        }
-    }
-    None
+/// Newton over all six joints on [`fk_here`], from `q` (see `common::closed_form::newton_on`).
+fn newton_here(t: &Pose, q: Vec<f64>) -> Option<Vec<f64>> {
+    newton_on(|q: &[f64]| fk_here(q), t, q)
 }
 
 #[test]

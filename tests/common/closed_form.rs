@@ -175,3 +175,47 @@ pub fn planar2_custom(a1: f64, a2: f64, base: Pose, tool: Pose) -> Robot {
     )
     .expect("valid")
 }
+
+/// Newton's method over six joints on a forward kinematics `fk` given by the test (finite
+/// differences), from `q`: the joint vector if it meets `t` to 1e-10 in position (m) and in the
+/// rotation matrix (so a half turn, where the residual below also vanishes, is no solution).
+pub fn newton_on(
+    fk: impl Fn(&[f64]) -> nalgebra::Matrix4<f64>,
+    t: &Pose,
+    mut q: Vec<f64>,
+) -> Option<Vec<f64>> {
+    let want = t.to_homogeneous();
+    let resid = |q: &[f64]| -> nalgebra::Vector6<f64> {
+        let m = fk(q);
+        let dp = want.fixed_view::<3, 1>(0, 3) - m.fixed_view::<3, 1>(0, 3);
+        // Half the sum of the axes' cross products (3.84).
+        let mut eo = Vector3::zeros();
+        for c in 0..3 {
+            let a: Vector3<f64> = m.fixed_view::<3, 1>(0, c).into();
+            let b: Vector3<f64> = want.fixed_view::<3, 1>(0, c).into();
+            eo += a.cross(&b) * 0.5;
+        }
+        nalgebra::Vector6::new(dp.x, dp.y, dp.z, eo.x, eo.y, eo.z)
+    };
+    for _ in 0..60 {
+        let e = resid(&q);
+        if e.norm() < 1e-13 {
+            let m = fk(&q);
+            let dp = (m.fixed_view::<3, 1>(0, 3) - want.fixed_view::<3, 1>(0, 3)).norm();
+            let dr = (m.fixed_view::<3, 3>(0, 0) - want.fixed_view::<3, 3>(0, 0)).norm();
+            return (dp < 1e-10 && dr < 1e-10).then_some(q);
+        }
+        let mut j = nalgebra::Matrix6::zeros();
+        for k in 0..6 {
+            let mut qk = q.clone();
+            qk[k] += 1e-7;
+            j.set_column(k, &((e - resid(&qk)) / 1e-7));
+        }
+        let dq = j.lu().solve(&e)?;
+        let scale = (0.4 / dq.amax()).min(1.0);
+        for k in 0..6 {
+            q[k] += dq[k] * scale;
+        }
+    }
+    None
+}

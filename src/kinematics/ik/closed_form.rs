@@ -18,6 +18,7 @@
 //! | [`Family::SphericalWrist`] | R-R-R, a1 = a2 = d2 = 0, alpha1, alpha2 = +-pi/2 | 2 (wrist no flip/flip) |
 //! | [`Family::Cartesian`] | P-P-P, the three prismatic axes not in one plane (a gantry) | 1 (a linear system) |
 //! | [`Family::Decoupled6`] | one of the four arms + a spherical wrist | arm count x 2 (8 for the Puma 560, 2 for a gantry) |
+//! | [`Family::Decoupled6`] with [`ArmKind::General3R`] | any other three revolute joints + a spherical wrist (Pieper's general case) | up to 8 (a quartic's real roots x 2: "branch k, wrist no flip/flip") |
 //! | [`Family::ThreeParallel`] | R x 6, axes 2, 3, 4 parallel, a1 = a4 = a5 = a6 = 0, alpha1, alpha4, alpha5 = +-pi/2 (Universal Robots) | 8 (shoulder right/left x elbow up/down x wrist up/down) |
 //!
 //! The spherical and cylindrical arms also have the mirror solution with the opposite extension
@@ -32,6 +33,7 @@
 //! clamped only within [`COS_TOL`] of +-1; [`ClosedForm::solve`] never returns NaN and never panics.
 
 mod arm;
+mod arm_general;
 mod chain;
 mod eigen;
 mod family;
@@ -309,6 +311,8 @@ impl ClosedForm {
                         ArmKind::Spherical => Family::SphericalArm,
                         ArmKind::Cylindrical => Family::Cylindrical,
                         ArmKind::Cartesian => Family::Cartesian,
+                        // detect() finds only the named arms.
+                        ArmKind::General3R => return None,
                     };
                     (family, Geometry::Arm(a))
                 } else {
@@ -366,7 +370,7 @@ impl ClosedForm {
         let wrist = Wrist::detect(&rows[3..], tol)?;
         // Wrist centre W = origin of frame 4 = (0, 0, d4) in frame 3 (a4 = 0).
         let w3 = Vector3::new(0.0, 0.0, rows[3].d);
-        let arm = SpatialArm::detect(&rows[..3], &w3, tol)?;
+        let arm = SpatialArm::detect_any(&rows[..3], &w3, tol)?;
         let r6 = rows[5];
         let w6 = Vector3::new(-r6.a, -r6.sa * r6.d, -r6.ca * r6.d);
         Some((

@@ -25,6 +25,7 @@
 //!   `p = c + d1 z0 + d2 z1 + d3 z2` (c the point at d = 0): a 3 x 3 linear system, one solution
 //!   when the axes are not in one plane.
 
+use super::arm_general::GeneralArm;
 use super::chain::Row;
 use super::planar::{TwoLinkSol, elbow_of, two_link};
 use super::posture::{Extension, FreeReason, Posture, Shoulder};
@@ -50,6 +51,8 @@ enum Geom {
     Cylindrical(Cylindrical),
     /// p = c + [z0 z1 z2] (d1, d2, d3).
     Cartesian(Cartesian),
+    /// Any other three revolute joints: Pieper's quartic.
+    General(GeneralArm),
 }
 
 /// The Cartesian arm's numbers: the point at d = 0 (frame 0, m) and the inverse of the matrix
@@ -120,6 +123,30 @@ impl SpatialArm {
     /// R-P-P (alpha1 = 0 or pi, alpha2 = +-pi/2) arms positioning the point `w` (frame-3
     /// coordinates).
     pub(super) fn detect(rows: &[Row], w: &Vector3<f64>, len_tol: f64) -> Option<Self> {
+        Self::detect_named(rows, w, len_tol)
+    }
+
+    /// [`Self::detect`], and any other three revolute joints as [`ArmKind::General3R`] (the
+    /// positioning arm of a six-revolute arm with a spherical wrist: Pieper's general case).
+    pub(super) fn detect_any(rows: &[Row], w: &Vector3<f64>, len_tol: f64) -> Option<Self> {
+        if let Some(arm) = Self::detect_named(rows, w, len_tol) {
+            return Some(arm);
+        }
+        let three: &[Row; 3] = rows.try_into().ok()?;
+        let g = GeneralArm::detect(three, w, len_tol)?;
+        Some(SpatialArm {
+            kind: ArmKind::General3R,
+            rows: *three,
+            a1: three[0].a,
+            d1: three[0].d,
+            s1: 0.0,
+            h: 0.0,
+            geom: Geom::General(g),
+            len_tol,
+        })
+    }
+
+    fn detect_named(rows: &[Row], w: &Vector3<f64>, len_tol: f64) -> Option<Self> {
         let [r1, r2, r3] = [*rows.first()?, *rows.get(1)?, *rows.get(2)?];
         if rows.len() != 3 {
             return None;
@@ -276,6 +303,7 @@ impl SpatialArm {
             Geom::Anthropomorphic(g) => self.solve_anthropomorphic(g, p, out),
             Geom::Spherical(g) => self.solve_spherical(g, p, out),
             Geom::Cylindrical(g) => self.solve_cylindrical(g, p, out),
+            Geom::General(g) => g.solve(p, out),
             Geom::Cartesian(g) => {
                 // Always reachable: the joint limits decide (the caller checks them).
                 out[0] = ArmSol {

@@ -12,6 +12,9 @@ pub enum ArmKind {
     /// Cartesian (gantry) arm P-P-P, three prismatic axes not in one plane (Sect. 1.1's
     /// Cartesian geometry).
     Cartesian,
+    /// Any other three revolute joints (Pieper's general case: a quartic in tan(theta3 / 2)),
+    /// solved only as the positioning arm of a six-revolute arm with a spherical wrist.
+    General3R,
 }
 
 /// Which closed-form family an arm belongs to, detected from its DH table.
@@ -69,6 +72,9 @@ impl Family {
             Family::Decoupled6 {
                 arm: ArmKind::Cartesian,
             } => "Cartesian arm with spherical wrist (gantry type)",
+            Family::Decoupled6 {
+                arm: ArmKind::General3R,
+            } => "three-revolute arm with spherical wrist (Pieper's general case)",
             Family::ThreeParallel => "three parallel axes (Universal Robots type)",
             Family::General6 => "general six-revolute arm (all real solutions, by elimination)",
         }
@@ -87,6 +93,8 @@ impl Family {
                 ArmKind::Anthropomorphic => 8,
                 ArmKind::Spherical => 4,
                 ArmKind::Cylindrical | ArmKind::Cartesian => 2,
+                // At most (the quartic's real roots, 2 wrist postures each).
+                ArmKind::General3R => 8,
             },
             Family::ThreeParallel => 8,
             // At most; how many are real depends on the arm and the target.

@@ -602,28 +602,23 @@ fn roots(aug: &[[f64; COLS]; NEQ], shift: f64) -> Option<([Root; 24], bool, Penc
     }
     let k1 = lu.solve(&mm1)?;
     let k0 = lu.solve(&mm0)?;
-    let mut c = SMatrix::<f64, 24, 24>::zeros();
+    // The companion matrix, row-major as the eigenvalue routine wants it.
+    let mut c = [[0.0; 24]; 24];
     for i in 0..12 {
-        c[(i, 12 + i)] = 1.0;
+        c[i][12 + i] = 1.0;
         for j in 0..12 {
-            c[(12 + i, j)] = -k0[(i, j)];
-            c[(12 + i, 12 + j)] = -k1[(i, j)];
+            c[12 + i][j] = -k0[(i, j)];
+            c[12 + i][12 + j] = -k1[(i, j)];
         }
     }
     // Schur's iteration has no cap: never hand it a NaN.
-    if c.iter().any(|v| !v.is_finite()) {
+    if c.iter().flatten().any(|v| !v.is_finite()) {
         return None;
     }
     balance(&mut c);
     // Eigenvalues only (no Schur vectors), with a capped iteration: one that cycles on a special
     // arm's companion matrix sends the solver to the next shift or order.
-    let mut rows = [[0.0; 24]; 24];
-    for (i, row) in rows.iter_mut().enumerate() {
-        for (j, v) in row.iter_mut().enumerate() {
-            *v = c[(i, j)];
-        }
-    }
-    let eig = super::eigen::eigenvalues(&mut rows)?;
+    let eig = super::eigen::eigenvalues(&mut c)?;
     let healthy = healthy(&eig);
     let mut roots = [None; 24];
     for (r, &(re, im)) in roots.iter_mut().zip(eig.iter()) {
@@ -656,15 +651,15 @@ fn healthy(eig: &[(f64, f64)]) -> bool {
 
 /// Parlett and Reinsch's balancing (powers of 2, so exact): a similarity that makes each row
 /// and column of similar size, for accurate eigenvalues of a badly scaled companion matrix.
-fn balance(c: &mut SMatrix<f64, 24, 24>) {
+fn balance(c: &mut [[f64; 24]; 24]) {
     for _ in 0..20 {
         let mut done = true;
         for i in 0..24 {
             let (mut col, mut row) = (0.0, 0.0);
-            for j in 0..24 {
+            for (j, r) in c.iter().enumerate() {
                 if j != i {
-                    col += c[(j, i)].abs();
-                    row += c[(i, j)].abs();
+                    col += r[i].abs();
+                    row += c[i][j].abs();
                 }
             }
             if col == 0.0 || row == 0.0 {
@@ -683,9 +678,11 @@ fn balance(c: &mut SMatrix<f64, 24, 24>) {
             }
             if (cc + row) / f < 0.95 * s {
                 done = false;
-                for j in 0..24 {
-                    c[(i, j)] /= f;
-                    c[(j, i)] *= f;
+                for v in c[i].iter_mut() {
+                    *v /= f;
+                }
+                for r in c.iter_mut() {
+                    r[i] *= f;
                 }
             }
         }
@@ -816,9 +813,70 @@ fn same(a: &Theta6, b: &Theta6) -> bool {
         .all(|(x, y)| crate::kinematics::orientation::wrap_angle(x - y).abs() < 1e-9)
 }
 
-/// A null vector of a 12 x 12 matrix of rank 11, by Gaussian elimination with complete
-/// pivoting.
-fn null_vector(mut m: SMatrix<f64, 12, 12>) -> Option<[f64; 12]> {
+/// A null vector of a 12 x 12 matrix of rank 11: by Gaussian elimination with row pivoting
+/// where the first 11 columns are clearly independent (the generic case: the elimination runs
+/// down contiguous columns), else with complete pivoting.
+fn null_vector(m: SMatrix<f64, 12, 12>) -> Option<[f64; 12]> {
+    null_vector_rows(&m).or_else(|| null_vector_complete(m))
+}
+
+/// [`null_vector`] by row pivoting, the last column left for the null direction; `None` where
+/// a pivot of the first 11 columns is below 1e-9 of the largest (then complete pivoting
+/// decides).
+// Row k of column j is `a[j][k]`: plain index ranges over the fixed-size columns read best.
+#[allow(clippy::needless_range_loop)]
+fn null_vector_rows(m: &SMatrix<f64, 12, 12>) -> Option<[f64; 12]> {
+    let mut a = [[0.0; 12]; 12];
+    for (j, col) in a.iter_mut().enumerate() {
+        col.copy_from_slice(m.column(j).as_slice());
+    }
+    let (mut lo, mut hi) = (f64::INFINITY, 0.0f64);
+    for k in 0..11 {
+        let mut p = k;
+        for i in k + 1..12 {
+            if a[k][i].abs() > a[k][p].abs() {
+                p = i;
+            }
+        }
+        let pivot = a[k][p];
+        lo = lo.min(pivot.abs());
+        hi = hi.max(pivot.abs());
+        // A NaN pivot fails too.
+        if pivot.abs().is_nan() || pivot.abs() <= 1e-9 * hi {
+            return None;
+        }
+        for col in a[k..].iter_mut() {
+            col.swap(k, p);
+        }
+        let mut f = [0.0; 12];
+        for i in k + 1..12 {
+            f[i] = a[k][i] / pivot;
+        }
+        let (_, right) = a.split_at_mut(k + 1);
+        for col in right.iter_mut() {
+            let akj = col[k];
+            if akj != 0.0 {
+                for i in k + 1..12 {
+                    col[i] -= f[i] * akj;
+                }
+            }
+        }
+    }
+    if lo <= 1e-9 * hi {
+        return None;
+    }
+    // U z = 0 with z[11] = 1: column j of U is a[j], rows 0..11.
+    let mut z = [0.0; 12];
+    z[11] = 1.0;
+    for k in (0..11).rev() {
+        let s = (k + 1..12).map(|j| a[j][k] * z[j]).sum::<f64>();
+        z[k] = -s / a[k][k];
+    }
+    z.iter().all(|x| x.is_finite()).then_some(z)
+}
+
+/// [`null_vector`] by complete pivoting; `None` where the null space is not one line.
+fn null_vector_complete(mut m: SMatrix<f64, 12, 12>) -> Option<[f64; 12]> {
     let mut cols: [usize; 12] = std::array::from_fn(|i| i);
     for k in 0..11 {
         let (mut pi, mut pj, mut best) = (k, k, 0.0);
