@@ -178,3 +178,59 @@ fn a_jump_keeps_the_sorted_numbers_and_a_new_branch_takes_the_lowest_free_number
         assert_eq!(r.posture, want);
     }
 }
+
+/// Pieper's general case (a spherical wrist on a skewed three-revolute arm) labels "wrist no
+/// flip, branch k" and "wrist flip, branch k": along a path whose theta1 passes pi (where the
+/// sorted order of the arm's branches changes), each branch keeps its number, and both wrist
+/// postures of one arm solution keep one number.
+#[test]
+fn pieper_branches_keep_their_numbers_and_both_wrists_share_one() {
+    let robot = armlab::model_file::load_model("assets/robots/skewed_arm_wrist.toml").unwrap();
+    let cf = ClosedForm::detect(&robot).unwrap();
+    assert!(cf.family().numbered_branches());
+    let (q0, q1) = (
+        [2.6, -0.6, 0.9, 0.3, 0.8, -0.4],
+        [3.9, -0.2, 1.3, -0.5, 1.1, 0.6],
+    );
+    let n = 600;
+    let mut plain: Vec<Vec<IkSolution>> = Vec::new();
+    let mut tracked: Vec<Vec<IkSolution>> = Vec::new();
+    for i in 0..=n {
+        let s = i as f64 / n as f64;
+        let q: Vec<f64> = q0.iter().zip(&q1).map(|(a, b)| a + s * (b - a)).collect();
+        let t = robot.fk(&q).unwrap();
+        let sols = cf.solve(&robot, &Target::Pose(t)).unwrap().solutions;
+        let mut renumbered = sols.clone();
+        if let Some(prev) = tracked.last() {
+            continue_numbers(&robot, prev, &mut renumbered);
+        }
+        assert_eq!(renumbered.len(), sols.len());
+        for s in &sols {
+            assert!(renumbered.iter().any(|r| distance(&r.q, &s.q) == 0.0));
+        }
+        for a in &renumbered {
+            assert!(a.posture.contains("wrist") && branch_number(&a.posture).is_some());
+            for b in &renumbered {
+                let same_arm = distance(&a.q[..3], &b.q[..3]) < 1e-9;
+                let same_number = branch_number(&a.posture) == branch_number(&b.posture);
+                let same_wrist =
+                    a.posture.starts_with("wrist flip") == b.posture.starts_with("wrist flip");
+                // One arm solution, one number; one number per wrist group, one arm solution.
+                assert_eq!(same_arm, same_number, "{} / {}", a.posture, b.posture);
+                if same_number && same_wrist {
+                    assert!(distance(&a.q, &b.q) < 1e-9);
+                }
+            }
+        }
+        plain.push(sols);
+        tracked.push(renumbered);
+    }
+    let (broken, checked) = broken_continuations(&tracked);
+    assert!(checked > 1000, "only {checked} clear continuations");
+    assert_eq!(broken, 0, "{broken} of {checked} continuations renumbered");
+    let (plain_broken, _) = broken_continuations(&plain);
+    assert!(
+        plain_broken > 0,
+        "the sorted order never changed on this path"
+    );
+}

@@ -144,7 +144,7 @@ impl AppState {
             self.shift_towards_q(&mut s.q);
         }
         // A general arm's branches keep their numbers while the target moves.
-        if self.family_of(ee) == Some(Family::General6)
+        if self.family_of(ee).is_some_and(|f| f.numbered_branches())
             && let Some(previous) = &self.targets[ee].result
         {
             continue_numbers(&self.robot, &previous.solutions, &mut result.solutions);

@@ -7,7 +7,10 @@
 //! (the app's gizmo, a path), [`continue_numbers`] gives each new solution the number of the
 //! previous solution it continues, the one nearest in joint space within [`MAX_STEP`]; a branch
 //! that appears (two are born at a singularity) takes the lowest free number, and a branch that
-//! disappears frees its number. Pure compute, no allocation beyond the label strings.
+//! disappears frees its number. A label with other parts, such as Pieper's general case's
+//! "wrist flip, branch 3", is numbered among the labels with the same other parts, so that both
+//! wrist postures of one arm branch keep one number. Pure compute, no allocation beyond the label
+//! strings.
 
 use super::IkSolution;
 use super::closed_form::BRANCH_LABELS;
@@ -18,23 +21,51 @@ use crate::kinematics::Robot;
 /// wrapped differences, rad or m) is below this: a farther jump is a new target, not a motion.
 pub const MAX_STEP: f64 = 1.0;
 
-/// The branch number of a "branch k" label (1-based), if it is one.
+/// The branch number (1-based) of a label that is "branch k" or has it as one of its parts
+/// ("wrist flip, branch 3"), if it has one.
 pub fn branch_number(label: &str) -> Option<usize> {
-    BRANCH_LABELS
-        .iter()
-        .position(|l| *l == label)
-        .map(|k| k + 1)
+    label
+        .split(", ")
+        .find_map(|part| BRANCH_LABELS.iter().position(|l| *l == part).map(|k| k + 1))
+}
+
+/// The label's parts other than its "branch k" (joined by ", "): the group a branch number is
+/// unique in.
+fn other_parts(label: &str) -> String {
+    label
+        .split(", ")
+        .filter(|part| !BRANCH_LABELS.contains(part))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// `label` with its "branch k" part replaced by "branch `k`".
+fn with_number(label: &str, k: usize) -> String {
+    label
+        .split(", ")
+        .map(|part| {
+            if BRANCH_LABELS.contains(&part) {
+                BRANCH_LABELS[k - 1]
+            } else {
+                part
+            }
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// Renumbers the "branch k" solutions of `new` so that each keeps the number of the solution of
-/// `previous` it continues (nearest first, within [`MAX_STEP`]); the others take the lowest free
-/// numbers in their sorted order. `new` is then sorted by number. Solutions with other labels,
-/// and a `new` that shares no branch with `previous` (a jump), are left as they are.
+/// `previous` it continues (nearest first, within [`MAX_STEP`], among labels with the same other
+/// parts); the others take the lowest numbers free in their group, in their sorted order. `new`
+/// is then sorted by number (stably). Solutions with other labels, and a `new` that shares no
+/// branch with `previous` (a jump), are left as they are.
 pub fn continue_numbers(robot: &Robot, previous: &[IkSolution], new: &mut [IkSolution]) {
-    let old: Vec<(usize, &[f64])> = previous
+    let old: Vec<(usize, &[f64], String)> = previous
         .iter()
-        .filter_map(|s| branch_number(&s.posture).map(|k| (k, s.q.as_slice())))
-        .filter(|(_, q)| q.len() == robot.dof())
+        .filter_map(|s| {
+            branch_number(&s.posture).map(|k| (k, s.q.as_slice(), other_parts(&s.posture)))
+        })
+        .filter(|(_, q, _)| q.len() == robot.dof())
         .collect();
     let fresh: Vec<usize> = (0..new.len())
         .filter(|&i| branch_number(&new[i].posture).is_some() && new[i].q.len() == robot.dof())
@@ -44,10 +75,11 @@ pub fn continue_numbers(robot: &Robot, previous: &[IkSolution], new: &mut [IkSol
     }
     // Every (new, old) pair within a step, nearest first: a greedy matching.
     let mut pairs: Vec<(f64, usize, usize)> = Vec::with_capacity(old.len() * fresh.len());
+    let groups: Vec<String> = new.iter().map(|s| other_parts(&s.posture)).collect();
     for &i in &fresh {
-        for (j, (_, q)) in old.iter().enumerate() {
+        for (j, (_, q, group)) in old.iter().enumerate() {
             let d = joint_distance(robot, &new[i].q, q);
-            if d < MAX_STEP {
+            if d < MAX_STEP && *group == groups[i] {
                 pairs.push((d, i, j));
             }
         }
@@ -64,20 +96,23 @@ pub fn continue_numbers(robot: &Robot, previous: &[IkSolution], new: &mut [IkSol
             taken[j] = true;
         }
     }
-    let mut used: Vec<usize> = number.iter().flatten().copied().collect();
-    // The rest, in their sorted order, take the lowest free numbers.
+    let mut used: Vec<(usize, &str)> = (0..new.len())
+        .filter_map(|i| number[i].map(|k| (k, groups[i].as_str())))
+        .collect();
+    // The rest, in their sorted order, take the lowest numbers free in their group.
     for &i in &fresh {
         if number[i].is_none() {
+            let g = groups[i].as_str();
             let k = (1..=BRANCH_LABELS.len())
-                .find(|k| !used.contains(k))
+                .find(|k| !used.contains(&(*k, g)))
                 .unwrap_or(BRANCH_LABELS.len());
             number[i] = Some(k);
-            used.push(k);
+            used.push((k, g));
         }
     }
     for &i in &fresh {
         if let Some(k) = number[i] {
-            new[i].posture = BRANCH_LABELS[k - 1].to_string();
+            new[i].posture = with_number(&new[i].posture, k);
         }
     }
     // Branches by number; other labels keep their places after them.

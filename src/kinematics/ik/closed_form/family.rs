@@ -102,6 +102,19 @@ impl Family {
         }
     }
 
+    /// Whether the family's solutions are numbered "branch k" (alone, or with the wrist's
+    /// posture) rather than named by their geometry: the general six-revolute arm and Pieper's
+    /// general case.
+    pub fn numbered_branches(&self) -> bool {
+        matches!(
+            self,
+            Family::General6
+                | Family::Decoupled6 {
+                    arm: ArmKind::General3R
+                }
+        )
+    }
+
     /// Whether the family solves a full pose of frame n (otherwise the position of the tool
     /// point).
     pub fn uses_frame(&self) -> bool {
