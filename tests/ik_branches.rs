@@ -89,40 +89,55 @@ fn broken_continuations(steps: &[Vec<IkSolution>]) -> (usize, usize) {
     (broken, checked)
 }
 
-#[test]
-fn a_branch_keeps_its_number_along_a_path_and_new_branches_take_free_numbers() {
-    let robot = general_arm();
-    let cf = ClosedForm::detect(&robot).unwrap();
-    let (q0, q1) = (
-        [0.3, -1.1, 0.7, 2.0, -0.4, 1.2],
-        [2.9, 0.9, -1.6, -2.7, 1.9, -2.2],
-    );
-    let n = 1500;
+/// The solutions along the straight joint path from `q0` to `q1` in `n` steps, as the closed
+/// form sorts them and as `continue_numbers` renumbers them from the step before; `check` sees
+/// each step's renumbered solutions. Renumbering changes labels and order only (checked here):
+/// the same joint vectors.
+fn follow_path(
+    robot: &Robot,
+    q0: [f64; 6],
+    q1: [f64; 6],
+    n: usize,
+    check: impl Fn(&[IkSolution]),
+) -> (Vec<Vec<IkSolution>>, Vec<Vec<IkSolution>>) {
+    let cf = ClosedForm::detect(robot).unwrap();
     let mut plain: Vec<Vec<IkSolution>> = Vec::new();
     let mut tracked: Vec<Vec<IkSolution>> = Vec::new();
     for i in 0..=n {
         let s = i as f64 / n as f64;
         let q: Vec<f64> = q0.iter().zip(&q1).map(|(a, b)| a + s * (b - a)).collect();
         let t = robot.fk(&q).unwrap();
-        let sols = cf.solve(&robot, &Target::Pose(t)).unwrap().solutions;
+        let sols = cf.solve(robot, &Target::Pose(t)).unwrap().solutions;
         let mut renumbered = sols.clone();
         if let Some(prev) = tracked.last() {
-            continue_numbers(&robot, prev, &mut renumbered);
+            continue_numbers(robot, prev, &mut renumbered);
         }
-        // Renumbering changes labels and order only: the same joint vectors.
         assert_eq!(renumbered.len(), sols.len());
         for s in &sols {
             assert!(renumbered.iter().any(|r| distance(&r.q, &s.q) == 0.0));
         }
+        check(&renumbered);
+        plain.push(sols);
+        tracked.push(renumbered);
+    }
+    (plain, tracked)
+}
+
+#[test]
+fn a_branch_keeps_its_number_along_a_path_and_new_branches_take_free_numbers() {
+    let robot = general_arm();
+    let (q0, q1) = (
+        [0.3, -1.1, 0.7, 2.0, -0.4, 1.2],
+        [2.9, 0.9, -1.6, -2.7, 1.9, -2.2],
+    );
+    let (plain, tracked) = follow_path(&robot, q0, q1, 1500, |renumbered| {
         // Numbers are distinct and in order.
         let numbers: Vec<usize> = renumbered
             .iter()
             .map(|s| branch_number(&s.posture).unwrap())
             .collect();
         assert!(numbers.windows(2).all(|w| w[0] < w[1]), "{numbers:?}");
-        plain.push(sols);
-        tracked.push(renumbered);
-    }
+    });
     let (broken, checked) = broken_continuations(&tracked);
     assert!(checked > 5000, "only {checked} clear continuations");
     assert_eq!(broken, 0, "{broken} of {checked} continuations renumbered");
@@ -186,31 +201,20 @@ fn a_jump_keeps_the_sorted_numbers_and_a_new_branch_takes_the_lowest_free_number
 #[test]
 fn pieper_branches_keep_their_numbers_and_both_wrists_share_one() {
     let robot = armlab::model_file::load_model("assets/robots/skewed_arm_wrist.toml").unwrap();
-    let cf = ClosedForm::detect(&robot).unwrap();
-    assert!(cf.family().numbered_branches());
+    assert!(
+        ClosedForm::detect(&robot)
+            .unwrap()
+            .family()
+            .numbered_branches()
+    );
     let (q0, q1) = (
         [2.6, -0.6, 0.9, 0.3, 0.8, -0.4],
         [3.9, -0.2, 1.3, -0.5, 1.1, 0.6],
     );
-    let n = 600;
-    let mut plain: Vec<Vec<IkSolution>> = Vec::new();
-    let mut tracked: Vec<Vec<IkSolution>> = Vec::new();
-    for i in 0..=n {
-        let s = i as f64 / n as f64;
-        let q: Vec<f64> = q0.iter().zip(&q1).map(|(a, b)| a + s * (b - a)).collect();
-        let t = robot.fk(&q).unwrap();
-        let sols = cf.solve(&robot, &Target::Pose(t)).unwrap().solutions;
-        let mut renumbered = sols.clone();
-        if let Some(prev) = tracked.last() {
-            continue_numbers(&robot, prev, &mut renumbered);
-        }
-        assert_eq!(renumbered.len(), sols.len());
-        for s in &sols {
-            assert!(renumbered.iter().any(|r| distance(&r.q, &s.q) == 0.0));
-        }
-        for a in &renumbered {
+    let (plain, tracked) = follow_path(&robot, q0, q1, 600, |renumbered| {
+        for a in renumbered {
             assert!(a.posture.contains("wrist") && branch_number(&a.posture).is_some());
-            for b in &renumbered {
+            for b in renumbered {
                 let same_arm = distance(&a.q[..3], &b.q[..3]) < 1e-9;
                 let same_number = branch_number(&a.posture) == branch_number(&b.posture);
                 let same_wrist =
@@ -222,9 +226,7 @@ fn pieper_branches_keep_their_numbers_and_both_wrists_share_one() {
                 }
             }
         }
-        plain.push(sols);
-        tracked.push(renumbered);
-    }
+    });
     let (broken, checked) = broken_continuations(&tracked);
     assert!(checked > 1000, "only {checked} clear continuations");
     assert_eq!(broken, 0, "{broken} of {checked} continuations renumbered");
