@@ -179,6 +179,26 @@ fn round_trip(name: &str, u: &[f64]) -> Result<(), TestCaseError> {
     }
     for (target, orient) in targets {
         let res = c.solve(&robot, &target).expect("valid target");
+        if res.status == IkStatus::Singular {
+            // A sample within about 1e-6 rad of a singular configuration: the solver merges the
+            // pair there (cosines within COS_TOL of +-1). Accept it only where the sample really is
+            // that close to a singularity, measured in the test by a finite-difference Jacobian,
+            // and one merged solution sits next to the sample.
+            let sigma = smallest_singular_value(&robot, &q, orient);
+            prop_assert!(
+                sigma < 1e-5,
+                "sigma_min {sigma:.1e}, q = {q:?}\n{}",
+                show(&res)
+            );
+            prop_assert!(
+                res.solutions
+                    .iter()
+                    .any(|s| same_q(&robot, &s.q, &q, 1e-5) && s.position_error < 1e-6),
+                "q = {q:?}\n{}",
+                show(&res)
+            );
+            continue;
+        }
         prop_assert_eq!(res.status, IkStatus::Ok, "{}", show(&res));
         prop_assert_eq!(
             res.solutions.len(),
@@ -218,6 +238,33 @@ fn round_trip(name: &str, u: &[f64]) -> Result<(), TestCaseError> {
         }
     }
     Ok(())
+}
+
+/// Smallest singular value of the end-effector Jacobian at `q` by central differences of the
+/// forward kinematics: position rows, plus the rotation rows when `orient`.
+fn smallest_singular_value(robot: &Robot, q: &[f64], orient: bool) -> f64 {
+    let rows = if orient { 6 } else { 3 };
+    let h = 1e-6;
+    let mut j = nalgebra::DMatrix::<f64>::zeros(rows, q.len());
+    for k in 0..q.len() {
+        let (mut qp, mut qm) = (q.to_vec(), q.to_vec());
+        qp[k] += h;
+        qm[k] -= h;
+        let (tp, tm) = (robot.fk(&qp).expect("fk"), robot.fk(&qm).expect("fk"));
+        let dp = (tp.translation.vector - tm.translation.vector) / (2.0 * h);
+        j.fixed_view_mut::<3, 1>(0, k).copy_from(&dp);
+        if orient {
+            // R(q + h) R(q - h)^T = I + [w] 2h + O(h^2): w from the skew part.
+            let m = tp.rotation.matrix() * tm.rotation.matrix().transpose();
+            let w = Vector3::new(
+                m[(2, 1)] - m[(1, 2)],
+                m[(0, 2)] - m[(2, 0)],
+                m[(1, 0)] - m[(0, 1)],
+            ) / (4.0 * h);
+            j.fixed_view_mut::<3, 1>(3, k).copy_from(&w);
+        }
+    }
+    j.singular_values().min()
 }
 
 proptest! {

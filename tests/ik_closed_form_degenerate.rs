@@ -105,6 +105,33 @@ fn planar_target_at_the_base_theta1_free() {
 }
 
 #[test]
+fn next_to_the_base_the_folded_pair_stays_two_exact_solutions() {
+    // Regression (CI, stop 43): a target 2e-8 m from the base of planar2 (a1 = a2 = 1) has
+    // 1 + c2 = 2e-16, within COS_TOL of the folded elbow, but its two solutions differ by about
+    // pi in theta1. They were merged into theta2 = pi, theta1 = 0, which missed by 2e-8 m.
+    let r = robot("planar2");
+    for (dist, angle) in [(2.2e-8, 0.7), (1e-6, -2.0), (3e-10, 2.9)] {
+        // theta2 = pi - delta puts the tip at 2 sin(delta/2) from the base.
+        let delta = 2.0 * (dist / 2.0f64).asin();
+        // The tip e^{i t1} (1 + e^{i (pi - delta)}) lies at the angle t1 + (pi - delta) / 2.
+        let t1 = angle - (PI - delta) / 2.0;
+        let q = [t1, PI - delta];
+        let t = r.fk(&q).unwrap();
+        let p = t.translation.vector;
+        assert!((p.norm() - dist).abs() < 1e-15, "{}", p.norm());
+        let res = solve(&r, Target::Position(p));
+        assert_eq!(res.status, IkStatus::Ok, "{dist}: {}", show(&res));
+        assert_eq!(res.solutions.len(), 2, "{}", show(&res));
+        assert_verified(&res, false, 1e-15);
+        assert!(
+            res.solutions.iter().any(|s| same_q(&r, &s.q, &q, 1e-7)),
+            "{q:?}\n{}",
+            show(&res)
+        );
+    }
+}
+
+#[test]
 fn wrist_singularity_only_the_sum_is_determined() {
     for name in ["anthropomorphic_spherical_wrist", "puma560", "stanford"] {
         let r = robot(name);

@@ -8,6 +8,9 @@ use super::{COS_TOL, Goal, PLANE_TOL, RawSolutions, TILT_TOL};
 use crate::kinematics::ik::IkError;
 use nalgebra::{Matrix3, Vector3};
 
+/// The merged elbow of [`two_link`] may miss the target by at most this many `len_tol`.
+const MERGE_TOL: f64 = 100.0;
+
 /// One solution of the two-link problem `P = L1 e^{iA} + L2 e^{i(A + D)}`.
 #[derive(Debug, Clone, Copy, Default)]
 pub(super) struct TwoLinkSol {
@@ -39,24 +42,42 @@ pub(super) fn two_link(
 ) -> Result<usize, f64> {
     let r2 = x * x + y * y;
     let r = r2.sqrt();
-    // c2 = (p_Wx^2 + p_Wy^2 - a1^2 - a2^2) / (2 a1 a2)
-    let c = (r2 - l1 * l1 - l2 * l2) / (2.0 * l1 * l2);
-    if c > 1.0 + COS_TOL {
+    // c2 = (p_Wx^2 + p_Wy^2 - a1^2 - a2^2) / (2 a1 a2), kept as 1 + c2 and 1 - c2 in factored form
+    // so that neither loses the target's distance to cancellation next to +-1 (a target 1e-8 m
+    // from the base of an arm with L1 = L2 has 1 + c2 = 5e-17).
+    let den = 2.0 * l1 * l2;
+    let dm = (l1 - l2).abs();
+    let one_plus = (r - dm) * (r + dm) / den;
+    let one_minus = (l1 + l2 - r) * (l1 + l2 + r) / den;
+    if one_minus < -COS_TOL {
         return Err(r - (l1 + l2));
     }
-    if c < -1.0 - COS_TOL {
-        return Err((l1 - l2).abs() - r);
+    if one_plus < -COS_TOL {
+        return Err(dm - r);
     }
+    let c = if one_plus < one_minus {
+        one_plus - 1.0
+    } else {
+        1.0 - one_minus
+    };
+    // k = L1 + L2 c2 from the accurate side.
+    let k = if c < 0.0 {
+        (l1 - l2) + l2 * one_plus
+    } else {
+        l1 + l2 - l2 * one_minus
+    };
     // theta1 = Atan2(s1, c1) with s1, c1 as in Sect. 2.12.1 (the common positive denominator
     // p_Wx^2 + p_Wy^2 dropped).
-    let first = |s: f64, c: f64| {
-        let k = l1 + l2 * c;
-        (k * y - l2 * s * x).atan2(k * x + l2 * s * y)
-    };
-    if c >= 1.0 - COS_TOL || c <= -1.0 + COS_TOL {
+    let first = |s: f64, k: f64| (k * y - l2 * s * x).atan2(k * x + l2 * s * y);
+    // Merge the pair only where the merged elbow (D = 0 or pi) still reaches the target: near the
+    // folded elbow of an arm with L1 ~ L2 the two solutions are far apart in theta1 even though
+    // c is within COS_TOL of -1.
+    let near = one_plus.min(one_minus);
+    let merged_miss = (r - (l1 + l2 * c.signum()).abs()).abs();
+    if near <= 0.0 || (near <= COS_TOL && merged_miss <= MERGE_TOL * len_tol) {
         let c = c.signum();
         out[0] = TwoLinkSol {
-            a: first(0.0, c),
+            a: first(0.0, l1 + l2 * c),
             d: if c > 0.0 { 0.0 } else { std::f64::consts::PI },
             sign: 0.0,
             merged_cos: c,
@@ -65,17 +86,17 @@ pub(super) fn two_link(
         return Ok(1);
     }
     // s2 = +-sqrt(1 - c2^2), theta2 = Atan2(s2, c2)
-    let s = ((1.0 - c) * (1.0 + c)).sqrt();
+    let s = (one_minus * one_plus).sqrt();
     let d = s.atan2(c);
     out[0] = TwoLinkSol {
-        a: first(s, c),
+        a: first(s, k),
         d,
         sign: 1.0,
         merged_cos: 0.0,
         free_first: false,
     };
     out[1] = TwoLinkSol {
-        a: first(-s, c),
+        a: first(-s, k),
         d: -d,
         sign: -1.0,
         merged_cos: 0.0,
