@@ -184,6 +184,13 @@ fn closed_form(c: &mut Criterion) {
             armlab::model_file::load_model("assets/robots/skewed_arm_wrist.toml")
                 .expect("skewed arm"),
         ),
+        // A ball shoulder (axes 1-3 meet): the anthropomorphic arm with spherical wrist read from
+        // the tool back to the base (issue 27).
+        (
+            "ball_shoulder_arm",
+            armlab::model_file::load_model("assets/robots/ball_shoulder_arm.toml")
+                .expect("ball-shoulder arm"),
+        ),
         // A general six-revolute arm (no two axes parallel or meeting): every real solution by
         // elimination (issue 27); this arm has up to 14.
         ("general6", general6()),

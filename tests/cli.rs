@@ -1449,3 +1449,36 @@ fn ik_takes_a_pose_printed_to_six_decimals() {
     );
     assert!(text.contains("q = [0.700000, 0.500000, 0.400000, 0.300000, 0.800000, -0.400000]"));
 }
+
+/// A spherical wrist at the base (issue 27): `armlab ik --all` lists the 8 postures of the chain
+/// read from the tool, labelled where they sit ("tool shoulder", "base wrist"), in text and JSON.
+#[test]
+fn ik_lists_the_reversed_chain_postures_of_a_ball_shoulder() {
+    let pose = "0.859962,-0.483871,-0.162276,0.547036,-0.510139,-0.824274,-0.245623,0.084962,\
+                -0.014910,0.294010,-0.955686,0.754738,0,0,0,1";
+    let model = "assets/robots/ball_shoulder_arm.toml";
+    let out = armlab(&["ik", model, "--pose", pose, "--all"]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(
+        text.contains("spherical wrist at the base") && text.contains("8 solution(s)"),
+        "{text}"
+    );
+    let v = json(&armlab(&[
+        "ik", model, "--pose", pose, "--all", "--format", "json",
+    ]));
+    let sols = v[0]["solutions"].as_array().unwrap();
+    assert_eq!(sols.len(), 8, "{v}");
+    for s in sols {
+        let p = s["posture"].as_str().unwrap();
+        assert!(
+            p.starts_with("tool shoulder") && p.contains("base wrist"),
+            "{p}"
+        );
+        assert!(s["position_error"].as_f64().unwrap() < 1e-9, "{s}");
+    }
+}

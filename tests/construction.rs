@@ -2,6 +2,8 @@
 //! labels equals the quantity it names, computed independently here (forward kinematics, angles
 //! between vectors, the DH table's own numbers).
 
+mod common;
+
 use armlab::construction::{ConstructionError, TwoLinkConstruction, WristPoint};
 use armlab::kinematics::models::anthropomorphic_spherical_wrist;
 use std::f64::consts::PI;
@@ -370,16 +372,7 @@ fn ur5_origins(q: &[f64]) -> Vec<nalgebra::Vector3<f64>> {
     let mut t = nalgebra::Matrix4::<f64>::identity();
     let mut out = Vec::new();
     for (k, (a, alpha, d)) in ur5_rows().into_iter().enumerate() {
-        let (st, ct) = q[k].sin_cos();
-        let (sa, ca) = alpha.sin_cos();
-        #[rustfmt::skip]
-        let a_k = nalgebra::Matrix4::new(
-            ct, -st * ca, st * sa, a * ct,
-            st, ct * ca, -ct * sa, a * st,
-            0.0, sa, ca, d,
-            0.0, 0.0, 0.0, 1.0,
-        );
-        t *= a_k;
+        t *= common::closed_form::dh_matrix(a, alpha, d, q[k]);
         out.push(nalgebra::Vector3::new(t[(0, 3)], t[(1, 3)], t[(2, 3)]));
     }
     out

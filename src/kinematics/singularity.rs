@@ -43,7 +43,7 @@
 //! reported by rank only: a wrist alignment of a seven-DOF arm is not, by itself, singular.
 
 use crate::kinematics::ik::ClosedForm;
-use crate::kinematics::ik::closed_form::{ArmKind, Family};
+use crate::kinematics::ik::closed_form::{ArmKind, Family, ReversedOf};
 use crate::kinematics::jacobian::analyze;
 use crate::kinematics::{KinematicsError, Robot};
 use nalgebra::{DMatrix, Matrix6xX, Vector3};
@@ -266,9 +266,13 @@ impl SingularityAnalyzer {
                 | Family::Cartesian,
             ) => &[0, 1, 2],
             Some(Family::SphericalWrist) => &[3, 4, 5],
-            Some(Family::Decoupled6 { .. } | Family::ThreeParallel | Family::General6) | None => {
-                &[0, 1, 2, 3, 4, 5]
-            }
+            Some(
+                Family::Decoupled6 { .. }
+                | Family::ThreeParallel
+                | Family::Reversed6 { .. }
+                | Family::General6,
+            )
+            | None => &[0, 1, 2, 3, 4, 5],
         }
     }
 
@@ -405,12 +409,20 @@ impl SingularityAnalyzer {
                 };
                 (Some((3, 5)), w, Some(arm))
             }
-            Family::SphericalWrist => (Some((0, 2)), None, None),
+            // The wrist at the base of a reversed chain: axes 1-3.
+            Family::SphericalWrist
+            | Family::Reversed6 {
+                of: ReversedOf::Decoupled(_),
+            } => (Some((0, 2)), None, None),
             Family::Anthropomorphic => (None, Some(*pe), Some(ArmKind::Anthropomorphic)),
             Family::SphericalArm => (None, Some(*pe), Some(ArmKind::Spherical)),
-            Family::Cylindrical | Family::Cartesian | Family::ThreeParallel | Family::General6 => {
-                (None, None, None)
+            Family::Cylindrical
+            | Family::Cartesian
+            | Family::ThreeParallel
+            | Family::Reversed6 {
+                of: ReversedOf::ThreeParallel,
             }
+            | Family::General6 => (None, None, None),
             Family::Planar2 | Family::Planar3 | Family::Scara => {
                 out.extend(planar_elbow(family, pe, ax));
                 return out;

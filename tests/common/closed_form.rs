@@ -5,7 +5,7 @@
 
 pub use armlab::kinematics::dh::standard_to_modified;
 pub use armlab::kinematics::ik::closed_form::{
-    ArmKind, ClosedForm, Family, MAX_SOLUTIONS, RawSolutions, wrap_into_limits,
+    ArmKind, ClosedForm, Family, MAX_SOLUTIONS, RawSolutions, ReversedOf, wrap_into_limits,
 };
 pub use armlab::kinematics::ik::{IkError, IkResult, IkStatus, Target};
 pub use armlab::kinematics::models::built_in;
@@ -176,6 +176,20 @@ pub fn planar2_custom(a1: f64, a2: f64, base: Pose, tool: Pose) -> Robot {
     .expect("valid")
 }
 
+/// The standard DH matrix `Rz(theta) Tz(d) Tx(a) Rx(alpha)`, written out (2.52).
+pub fn dh_matrix(a: f64, alpha: f64, d: f64, theta: f64) -> nalgebra::Matrix4<f64> {
+    let (st, ct) = theta.sin_cos();
+    let (sa, ca) = alpha.sin_cos();
+    #[rustfmt::skip]
+    let m = nalgebra::Matrix4::new(
+        ct, -st * ca, st * sa, a * ct,
+        st, ct * ca, -ct * sa, a * st,
+        0.0, sa, ca, d,
+        0.0, 0.0, 0.0, 1.0,
+    );
+    m
+}
+
 /// Newton's method over six joints on a forward kinematics `fk` given by the test (finite
 /// differences), from `q`: the joint vector if it meets `t` to 1e-10 in position (m) and in the
 /// rotation matrix (so a half turn, where the residual below also vanishes, is no solution).
@@ -218,4 +232,109 @@ pub fn newton_on(
         }
     }
     None
+}
+
+/// Whether `ARMLAB_EVIDENCE=full` asks for the long evidence runs.
+pub fn full_evidence() -> bool {
+    std::env::var("ARMLAB_EVIDENCE").is_ok_and(|v| v == "full")
+}
+
+/// Totals of [`all_solutions_evidence`].
+#[derive(Debug, Default)]
+pub struct Evidence {
+    /// Solutions returned over all poses.
+    pub solutions: usize,
+    /// Newton starts that converged (each to a returned solution).
+    pub converged: usize,
+    /// The largest count for one pose.
+    pub most: usize,
+}
+
+/// "All solutions" checked against the test's own forward kinematics `fk` (base and tool
+/// included): for `poses` random configurations q in [-pi, pi]^6, the closed form of `robot` at
+/// the pose fk(q) gives status Ok, at most `max` solutions, each meeting the pose to 1e-12 in
+/// position (m) and rotation matrix, q itself among them, no duplicates, distinct labels (and
+/// whatever `extra` asserts); a brute-force Newton search from `starts` random starts finds
+/// nothing else.
+pub fn all_solutions_evidence(
+    robot: &Robot,
+    fk: impl Fn(&[f64]) -> nalgebra::Matrix4<f64>,
+    (poses, starts): (usize, usize),
+    max: usize,
+    seed: u64,
+    extra: impl Fn(&IkResult),
+) -> Evidence {
+    use rand::{Rng, SeedableRng};
+    let c = cf(robot);
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+    let mut ev = Evidence::default();
+    let random_q = |rng: &mut rand_chacha::ChaCha8Rng| -> Vec<f64> {
+        (0..6).map(|_| rng.random_range(-PI..PI)).collect()
+    };
+    for _ in 0..poses {
+        let q = random_q(&mut rng);
+        let t = pose_from_matrix(&fk(&q)).unwrap();
+        let want = t.to_homogeneous();
+        let res = c.solve(robot, &Target::Pose(t)).unwrap();
+        assert_eq!(res.status, IkStatus::Ok, "{}", show(&res));
+        let n = res.solutions.len();
+        assert!(n <= max, "{n} solutions\n{}", show(&res));
+        extra(&res);
+        ev.solutions += n;
+        ev.most = ev.most.max(n);
+        for s in &res.solutions {
+            let m = fk(&s.q);
+            let dp = (m.fixed_view::<3, 1>(0, 3) - want.fixed_view::<3, 1>(0, 3)).norm();
+            let dr = (m.fixed_view::<3, 3>(0, 0) - want.fixed_view::<3, 3>(0, 0)).norm();
+            assert!(dp < 1e-12 && dr < 1e-12, "{dp:e} {dr:e}\n{}", show(&res));
+        }
+        assert!(
+            res.solutions.iter().any(|s| same_q(robot, &s.q, &q, 1e-9)),
+            "{q:?} missing from\n{}",
+            show(&res)
+        );
+        for (i, a) in res.solutions.iter().enumerate() {
+            for b in &res.solutions[..i] {
+                assert!(
+                    !same_q(robot, &a.q, &b.q, 1e-9),
+                    "duplicate\n{}",
+                    show(&res)
+                );
+                assert_ne!(a.posture, b.posture, "labels\n{}", show(&res));
+            }
+        }
+        for _ in 0..starts {
+            if let Some(found) = newton_on(&fk, &t, random_q(&mut rng)) {
+                ev.converged += 1;
+                assert!(
+                    res.solutions
+                        .iter()
+                        .any(|s| same_q(robot, &s.q, &found, 1e-6)),
+                    "Newton found {found:?}, not among\n{}",
+                    show(&res)
+                );
+            }
+        }
+    }
+    ev
+}
+
+/// How many poses (of `poses` random configurations, fk(q) by the test) have 0, 1, ..., 16
+/// solutions.
+pub fn solution_counts(
+    robot: &Robot,
+    fk: impl Fn(&[f64]) -> nalgebra::Matrix4<f64>,
+    poses: usize,
+    seed: u64,
+) -> [usize; 17] {
+    use rand::{Rng, SeedableRng};
+    let c = cf(robot);
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+    let mut counts = [0usize; 17];
+    for _ in 0..poses {
+        let q: Vec<f64> = (0..6).map(|_| rng.random_range(-PI..PI)).collect();
+        let t = pose_from_matrix(&fk(&q)).unwrap();
+        counts[c.solve(robot, &Target::Pose(t)).unwrap().solutions.len()] += 1;
+    }
+    counts
 }

@@ -20,6 +20,7 @@
 //! | [`Family::Decoupled6`] | one of the four arms + a spherical wrist | arm count x 2 (8 for the Puma 560, 2 for a gantry) |
 //! | [`Family::Decoupled6`] with [`ArmKind::General3R`] | any other three revolute joints + a spherical wrist (Pieper's general case) | up to 8 (a quartic's real roots x 2: "branch k, wrist no flip/flip") |
 //! | [`Family::ThreeParallel`] | R x 6, axes 2, 3, 4 parallel, a1 = a4 = a5 = a6 = 0, alpha1, alpha4, alpha5 = +-pi/2 (Universal Robots) | 8 (shoulder right/left x elbow up/down x wrist up/down) |
+//! | [`Family::Reversed6`] | R x 6, one of the two six-joint families above when read from the tool back to the base (a spherical wrist at the base; axes 3-5 parallel) | those of the reversed chain ("tool shoulder right, elbow up, base wrist flip") |
 //!
 //! The spherical and cylindrical arms also have the mirror solution with the opposite extension
 //! of the prismatic joint (d3 < 0 for the textbook arm); [`ClosedForm::solve`] returns it only when
@@ -42,11 +43,12 @@ mod locked;
 mod parallel3;
 mod planar;
 mod posture;
+mod reversed;
 mod solutions;
 mod why;
 mod wrist;
 
-pub use family::{ArmKind, Family};
+pub use family::{ArmKind, Family, ReversedOf};
 pub use locked::{EXACT_CHECK, LockedArm, MAX_LOCKED_SOLUTIONS};
 pub use posture::{
     BRANCH_LABELS, Elbow, Extension, FreeReason, Posture, SHORT_LEGEND, SHORT_LEGEND_UR, Shoulder,
@@ -157,6 +159,7 @@ enum Geometry {
         /// The wrist centre in frame 6: `A_6^-1` applied to the origin of frame 5.
         w6: Vector3<f64>,
     },
+    Reversed(Box<reversed::Reversed>),
 }
 
 /// A closed-form solver for one robot: the family and the numbers its formulas need, extracted
@@ -285,8 +288,19 @@ impl ClosedForm {
         }
     }
 
+    /// The family of the exact chain, read from the base to the tool only (no
+    /// [`Family::Reversed6`], no elimination): the reversed chain's own detection.
+    fn detect_forward(robot: &Robot) -> Option<ClosedForm> {
+        Self::detect_chain(robot, false, false)
+    }
+
     /// The family of the exact chain; the general six-revolute elimination only if `general`.
     fn detect_family(robot: &Robot, general: bool) -> Option<ClosedForm> {
+        Self::detect_chain(robot, general, true)
+    }
+
+    /// [`Self::detect_family`], the chain also read from the tool back to the base if `reverse`.
+    fn detect_chain(robot: &Robot, general: bool, reverse: bool) -> Option<ClosedForm> {
         let chain = chain::normalize(robot)?;
         let rows = &chain.rows;
         let n = rows.len();
@@ -325,6 +339,13 @@ impl ClosedForm {
                     (Family::ThreeParallel, Geometry::Parallel3(g))
                 } else if let Some(d) = Self::decoupled(rows, tol) {
                     d
+                } else if let Some(r) = reverse.then(|| reversed::Reversed::detect(rows)).flatten()
+                {
+                    let of = match r.inner.family {
+                        Family::Decoupled6 { arm } => ReversedOf::Decoupled(arm),
+                        _ => ReversedOf::ThreeParallel,
+                    };
+                    (Family::Reversed6 { of }, Geometry::Reversed(Box::new(r)))
                 } else if general {
                     let g = general6::General6::detect(rows)?;
                     (Family::General6, Geometry::General(Box::new(g)))
@@ -734,6 +755,7 @@ impl ClosedForm {
             (Geometry::Wrist(w), Goal::Frame(t)) => wrist_raw(w, t, out),
             (Geometry::Parallel3(g), Goal::Frame(t)) => g.solve_raw(t, out),
             (Geometry::General(g), Goal::Frame(t)) => general_raw(g, t, out)?,
+            (Geometry::Reversed(r), Goal::Frame(t)) => r.solve(t, out)?,
             (Geometry::Decoupled { arm, wrist, w6 }, Goal::Frame(t)) => {
                 let r6 = t.rotation.matrix();
                 // p_W = p_e - d6 a_e (2.93), generalised to a6, alpha6.

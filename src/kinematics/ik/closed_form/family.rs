@@ -17,6 +17,26 @@ pub enum ArmKind {
     General3R,
 }
 
+/// The family a six-revolute arm has when its chain is read from the tool back to the base
+/// ([`Family::Reversed6`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ReversedOf {
+    /// A positioning arm and a spherical wrist: the arm's axes 1-3 meet (a wrist at the base).
+    Decoupled(ArmKind),
+    /// Three parallel axes and the Universal Robots structure: the arm's axes 3-5 are parallel.
+    ThreeParallel,
+}
+
+impl ReversedOf {
+    /// The family of the reversed chain.
+    pub fn family(&self) -> Family {
+        match *self {
+            ReversedOf::Decoupled(arm) => Family::Decoupled6 { arm },
+            ReversedOf::ThreeParallel => Family::ThreeParallel,
+        }
+    }
+}
+
 /// Which closed-form family an arm belongs to, detected from its DH table.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Family {
@@ -43,6 +63,13 @@ pub enum Family {
     },
     /// Six revolute joints, axes 2, 3, 4 parallel, no spherical wrist (Universal Robots).
     ThreeParallel,
+    /// Six revolute joints that are one of the six-joint families above when read from the tool
+    /// back to the base (a spherical wrist at the base; three parallel axes at 3-5): solved as the
+    /// inverse pose of the reversed chain, with that chain's posture labels.
+    Reversed6 {
+        /// The family of the reversed chain.
+        of: ReversedOf,
+    },
     /// Any other six revolute joints: every real solution (at most 16) by Raghavan and Roth's
     /// elimination, labelled "branch k".
     General6,
@@ -76,6 +103,27 @@ impl Family {
                 arm: ArmKind::General3R,
             } => "three-revolute arm with spherical wrist (Pieper's general case)",
             Family::ThreeParallel => "three parallel axes (Universal Robots type)",
+            Family::Reversed6 { of } => match of {
+                ReversedOf::Decoupled(ArmKind::Anthropomorphic) => {
+                    "spherical wrist at the base: the anthropomorphic arm with spherical wrist \
+                     read from the tool"
+                }
+                ReversedOf::Decoupled(ArmKind::General3R) => {
+                    "spherical wrist at the base: Pieper's general case read from the tool"
+                }
+                ReversedOf::Decoupled(ArmKind::Spherical) => {
+                    "spherical wrist at the base: the Stanford type read from the tool"
+                }
+                ReversedOf::Decoupled(ArmKind::Cylindrical) => {
+                    "spherical wrist at the base: the cylindrical arm read from the tool"
+                }
+                ReversedOf::Decoupled(ArmKind::Cartesian) => {
+                    "spherical wrist at the base: the gantry read from the tool"
+                }
+                ReversedOf::ThreeParallel => {
+                    "three parallel axes 3-5: the Universal Robots type read from the tool"
+                }
+            },
             Family::General6 => "general six-revolute arm (all real solutions, by elimination)",
         }
     }
@@ -97,6 +145,7 @@ impl Family {
                 ArmKind::General3R => 8,
             },
             Family::ThreeParallel => 8,
+            Family::Reversed6 { of } => of.family().generic_solution_count(),
             // At most; how many are real depends on the arm and the target.
             Family::General6 => 16,
         }
@@ -112,6 +161,9 @@ impl Family {
                 | Family::Decoupled6 {
                     arm: ArmKind::General3R
                 }
+                | Family::Reversed6 {
+                    of: ReversedOf::Decoupled(ArmKind::General3R)
+                }
         )
     }
 
@@ -125,6 +177,7 @@ impl Family {
                 | Family::SphericalWrist
                 | Family::Decoupled6 { .. }
                 | Family::ThreeParallel
+                | Family::Reversed6 { .. }
                 | Family::General6
         )
     }

@@ -124,6 +124,10 @@ pub struct Posture {
     pub free: [Option<FreeReason>; 6],
     /// Branch number (1-based) of a general six-revolute arm, whose postures have no names.
     pub branch: Option<u8>,
+    /// A posture of the chain read from the tool back to the base ([`super::Family::Reversed6`]):
+    /// its shoulder is at the tool ("tool shoulder right") and its wrist at the base ("base wrist
+    /// flip").
+    pub reversed: bool,
 }
 
 /// The labels "branch 1" to "branch 16" of a general six-revolute arm's solutions.
@@ -155,11 +159,16 @@ impl Posture {
 
     /// The parts of the label, in order (no allocation).
     pub fn parts(&self) -> impl Iterator<Item = &'static str> {
-        let shoulder = self.shoulder.map(|s| match s {
-            Shoulder::Right => "shoulder right",
-            Shoulder::Left => "shoulder left",
-            Shoulder::OnAxis => "shoulder on axis",
-            Shoulder::Boundary => "shoulder boundary",
+        let r = self.reversed;
+        let shoulder = self.shoulder.map(|s| match (s, r) {
+            (Shoulder::Right, false) => "shoulder right",
+            (Shoulder::Left, false) => "shoulder left",
+            (Shoulder::OnAxis, false) => "shoulder on axis",
+            (Shoulder::Boundary, false) => "shoulder boundary",
+            (Shoulder::Right, true) => "tool shoulder right",
+            (Shoulder::Left, true) => "tool shoulder left",
+            (Shoulder::OnAxis, true) => "tool shoulder on axis",
+            (Shoulder::Boundary, true) => "tool shoulder boundary",
         });
         let elbow = self.elbow.map(|e| match e {
             Elbow::Up => "elbow up",
@@ -172,12 +181,17 @@ impl Posture {
             Extension::Reversed => "extension reversed",
             Extension::Zero => "extension zero",
         });
-        let wrist = self.wrist.map(|w| match w {
-            WristFlip::NoFlip => "wrist no flip",
-            WristFlip::Flip => "wrist flip",
-            WristFlip::Singular => "wrist singular",
-            WristFlip::Up => "wrist up",
-            WristFlip::Down => "wrist down",
+        let wrist = self.wrist.map(|w| match (w, r) {
+            (WristFlip::NoFlip, false) => "wrist no flip",
+            (WristFlip::Flip, false) => "wrist flip",
+            (WristFlip::Singular, false) => "wrist singular",
+            (WristFlip::Up, false) => "wrist up",
+            (WristFlip::Down, false) => "wrist down",
+            (WristFlip::NoFlip, true) => "base wrist no flip",
+            (WristFlip::Flip, true) => "base wrist flip",
+            (WristFlip::Singular, true) => "base wrist singular",
+            (WristFlip::Up, true) => "base wrist up",
+            (WristFlip::Down, true) => "base wrist down",
         });
         let branch = self
             .branch
@@ -226,7 +240,7 @@ impl std::fmt::Display for Posture {
 
 /// Abbreviations of the posture words, for labels that must stay short (ghost arms): "shoulder
 /// right, elbow up, wrist no flip" is "R U N". [`SHORT_LEGEND`] spells them out.
-const SHORT: [(&str, &str); 15] = [
+const SHORT: [(&str, &str); 23] = [
     ("shoulder right", "R"),
     ("shoulder left", "L"),
     ("shoulder on axis", "A"),
@@ -242,6 +256,14 @@ const SHORT: [(&str, &str); 15] = [
     ("wrist flip", "F"),
     ("wrist up", "W+"),
     ("wrist down", "W-"),
+    ("tool shoulder right", "tR"),
+    ("tool shoulder left", "tL"),
+    ("tool shoulder on axis", "tA"),
+    ("tool shoulder boundary", "tB"),
+    ("base wrist no flip", "bN"),
+    ("base wrist flip", "bF"),
+    ("base wrist up", "bW+"),
+    ("base wrist down", "bW-"),
 ];
 
 /// What the short labels mean.
@@ -255,7 +277,8 @@ pub const SHORT_LEGEND_UR: &str =
 /// The short form of a posture label ("shoulder right, elbow up, wrist no flip" -> "R U N");
 /// a part without an abbreviation ("wrist singular") becomes "!", other text is kept.
 pub fn short_label(label: &str) -> String {
-    let known = |part: &str| part == "wrist singular" || SHORT.iter().any(|(l, _)| *l == part);
+    let singular = |part: &str| part == "wrist singular" || part == "base wrist singular";
+    let known = |part: &str| singular(part) || SHORT.iter().any(|(l, _)| *l == part);
     if !label.split(", ").any(known) {
         // Not a closed-form posture (a self-motion branch name): as it is.
         return label.to_string();
@@ -267,7 +290,7 @@ pub fn short_label(label: &str) -> String {
                 .iter()
                 .find(|(long, _)| *long == part)
                 .map(|(_, s)| *s)
-                .unwrap_or(if part == "wrist singular" { "!" } else { part })
+                .unwrap_or(if singular(part) { "!" } else { part })
         })
         .collect::<Vec<_>>()
         .join(" ")
