@@ -12,6 +12,8 @@
 
 #![allow(clippy::approx_constant)] // the CAD-rounded 1.5708 is the point of these tests
 
+mod common;
+
 use armlab::kinematics::end_effectors::catalog;
 use armlab::kinematics::ik::solver::{SolverChoice, solve};
 use armlab::kinematics::ik::{ClosedForm, Target, numerical::NumericalOptions};
@@ -310,4 +312,88 @@ fn the_tool_is_not_a_part_of_the_gripper() {
     assert_eq!(name(cat.default_ee()), "wrist_ft_tool_link");
     assert_eq!(cat.arms.len(), 1, "the fingers join the arm");
     assert_eq!(cat.arms[0].dof, 2);
+}
+
+/// The Kinova Gen3 lite's URDF chain written out here: each joint's `<origin xyz rpy>` as in the
+/// file (rpy = Rz(y) Ry(p) Rx(r)), then Rz(q) about its axis z; the default end-effector is the
+/// link END_EFFECTOR, J5's child.
+fn fk_gen3_lite(q: &[f64]) -> Matrix4<f64> {
+    let origins: [([f64; 3], [f64; 3]); 6] = [
+        ([0.0, 0.0, 0.12825], [0.0, 0.0, 0.0]),
+        ([0.0, -0.03, 0.115], [1.5708, 0.0, 0.0]),
+        ([0.0, 0.28, 0.0], [-3.1416, 0.0, 0.0]),
+        ([0.0, -0.14, 0.02], [1.5708, 0.0, 0.0]),
+        ([0.0285, 0.0, 0.105], [0.0, 1.5708, 0.0]),
+        ([-0.105, 0.0, 0.0285], [0.0, -1.5708, 0.0]),
+    ];
+    let frame = |xyz: [f64; 3], rpy: [f64; 3]| {
+        let r = nalgebra::Rotation3::from_euler_angles(rpy[0], rpy[1], rpy[2]);
+        nalgebra::Isometry3::from_parts(
+            nalgebra::Translation3::new(xyz[0], xyz[1], xyz[2]),
+            nalgebra::UnitQuaternion::from_rotation_matrix(&r),
+        )
+        .to_homogeneous()
+    };
+    let mut t = Matrix4::<f64>::identity();
+    for (k, (xyz, rpy)) in origins.iter().enumerate() {
+        t *= frame(*xyz, *rpy) * frame([0.0; 3], [0.0, 0.0, q[k]]);
+    }
+    t
+}
+
+/// Regression: the Gen3 lite's axes 2 and 3 are 3.7e-6 rad from parallel (rpy = "-3.1416"), so
+/// its exact chain has no DH table (the common normal 38 km away) and it got no closed form at
+/// all. The elimination now runs on its ideal structure and every solution is polished on the
+/// exact model: each meets the pose to 1e-12 by the forward kinematics written here, the pose's
+/// own q is among them, and a Newton search over all six joints finds nothing else.
+#[test]
+fn the_gen3_lites_rounded_axes_get_all_solutions_polished_on_the_exact_model() {
+    use common::closed_form::{newton_on, pose_from_matrix};
+    use rand::{Rng, SeedableRng};
+    let robot = corpus("kinova_gen3_lite.urdf");
+    let opts = NumericalOptions::default();
+    let wrap = |a: f64| (a + PI).rem_euclid(2.0 * PI) - PI;
+    let same =
+        |a: &[f64], b: &[f64], tol: f64| a.iter().zip(b).all(|(x, y)| wrap(x - y).abs() < tol);
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(5);
+    let mut total = 0;
+    for _ in 0..20 {
+        let q: Vec<f64> = (0..6).map(|_| rng.random_range(-2.5..2.5)).collect();
+        // Our FK and armlab's agree (the URDF is read as written).
+        let m = fk_gen3_lite(&q);
+        let d = (robot.fk(&q).unwrap().to_homogeneous() - m).amax();
+        assert!(
+            d < 1e-14,
+            "{d:e} {:?}",
+            robot
+                .end_effectors()
+                .iter()
+                .map(|e| &e.name)
+                .collect::<Vec<_>>()
+        );
+        let t = pose_from_matrix(&m).unwrap();
+        let (res, used) =
+            solve(&robot, 0, &Target::Pose(t), None, SolverChoice::Auto, &opts).unwrap();
+        assert!(used.to_string().contains("closed form"), "{used}");
+        assert!(res.solutions.len() <= 16);
+        total += res.solutions.len();
+        for s in &res.solutions {
+            let e = (fk_gen3_lite(&s.q) - m).amax();
+            assert!(e < 1e-12, "{}: {e:e}", s.posture);
+        }
+        assert!(
+            res.solutions.iter().any(|s| same(&s.q, &q, 1e-7)),
+            "{q:?} missing"
+        );
+        for _ in 0..100 {
+            let start: Vec<f64> = (0..6).map(|_| rng.random_range(-PI..PI)).collect();
+            if let Some(found) = newton_on(fk_gen3_lite, &t, start) {
+                assert!(
+                    res.solutions.iter().any(|s| same(&s.q, &found, 1e-6)),
+                    "Newton found {found:?}"
+                );
+            }
+        }
+    }
+    assert!(total >= 40, "{total} solutions over 20 poses");
 }

@@ -219,9 +219,27 @@ impl ClosedForm {
                     cf.not_named = Some(why.to_string());
                     Ok(cf)
                 }
-                None => Err(why),
+                None => Self::general_near_miss(robot)
+                    .ok_or(why.clone())
+                    .map(|mut cf| {
+                        cf.not_named = Some(why.to_string());
+                        cf
+                    }),
             },
         }
+    }
+
+    /// The elimination on the ideal structure of a six-revolute chain whose exact axes have no
+    /// DH table (axes 7e-6 rad from parallel put the common normal 38 km away: the Kinova Gen3
+    /// lite's URDF), its solutions polished on the exact model as for any near miss.
+    fn general_near_miss(robot: &Robot) -> Option<ClosedForm> {
+        let (ideal, dev) = Self::ideal_robot(robot)?;
+        if dev.length == 0.0 && dev.angle == 0.0 {
+            return None;
+        }
+        let mut cf = Self::detect_family(&ideal, true)?;
+        cf.near_miss = Some(dev);
+        Some(cf)
     }
 
     /// The family of the robot's ideal structure, for a chain that misses it by rounding; the
