@@ -191,6 +191,12 @@ fn closed_form(c: &mut Criterion) {
             armlab::model_file::load_model("assets/robots/ball_shoulder_arm.toml")
                 .expect("ball-shoulder arm"),
         ),
+        // Axes 2-4 parallel, the rest skewed: theta1 from a quartic (issue 27).
+        (
+            "three_parallel_arm",
+            armlab::model_file::load_model("assets/robots/three_parallel_arm.toml")
+                .expect("three-parallel arm"),
+        ),
         // A general six-revolute arm (no two axes parallel or meeting): every real solution by
         // elimination (issue 27); this arm has up to 14.
         ("general6", general6()),

@@ -11,9 +11,6 @@ mod common;
 use common::closed_form::*;
 use nalgebra::Matrix4;
 
-/// (a, alpha, d) of the six rows.
-type Rows6 = [(f64, f64, f64); 6];
-
 /// Axes 1-3 meet (a1 = a2 = d2 = 0, twists +-pi/2), then three joints with skewed twists: read
 /// from the tool, Pieper's general case.
 const WRIST_FIRST: Rows6 = [
@@ -45,33 +42,12 @@ const UR_REVERSED: Rows6 = [
     (0.0, 0.0, 0.09),
 ];
 
-/// Base and tool transforms (nothing axis-aligned).
-fn base() -> Pose {
-    Pose::translation(0.1, -0.2, 0.05) * rot_z(0.3)
-}
-fn tool() -> Pose {
-    Pose::translation(0.01, 0.02, 0.04) * rot_y(0.25)
-}
-
-/// Joint offsets, so that theta = q + offset is exercised.
-const OFFSETS: [f64; 6] = [0.2, -0.4, 0.1, 0.0, 0.3, -0.1];
-
 fn arm(rows: &Rows6) -> Robot {
-    let r: Vec<Row> = rows
-        .iter()
-        .zip(OFFSETS)
-        .map(|(&(a, alpha, d), off)| rv(a, alpha, d, off))
-        .collect();
-    Robot::from_dh("reversed", Convention::Standard, &r, base(), tool()).unwrap()
+    arm6("reversed", rows)
 }
 
-/// The arm's forward kinematics multiplied out here, base and tool included.
 fn fk_here(rows: &Rows6, q: &[f64]) -> Matrix4<f64> {
-    let mut t = base().to_homogeneous();
-    for (i, &(a, alpha, d)) in rows.iter().enumerate() {
-        t *= dh_matrix(a, alpha, d, q[i] + OFFSETS[i]);
-    }
-    t * tool().to_homogeneous()
+    fk6(rows, q)
 }
 
 /// The family, then [`all_solutions_evidence`] on [`fk_here`]: 1000 poses x 1000 starts with

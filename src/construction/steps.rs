@@ -165,6 +165,7 @@ fn family_steps(robot: &Robot, q: &[f64]) -> Result<Vec<Step>, ConstructionError
         Family::SphericalWrist => arms::wrist_alone(robot, q),
         Family::ThreeParallel => parallel3::steps(robot, q),
         Family::General6
+        | Family::ThreeParallelGeneral
         | Family::Reversed6 { .. }
         | Family::Decoupled6 {
             arm: ArmKind::General3R,

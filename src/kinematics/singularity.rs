@@ -269,6 +269,7 @@ impl SingularityAnalyzer {
             Some(
                 Family::Decoupled6 { .. }
                 | Family::ThreeParallel
+                | Family::ThreeParallelGeneral
                 | Family::Reversed6 { .. }
                 | Family::General6,
             )
@@ -419,8 +420,9 @@ impl SingularityAnalyzer {
             Family::Cylindrical
             | Family::Cartesian
             | Family::ThreeParallel
+            | Family::ThreeParallelGeneral
             | Family::Reversed6 {
-                of: ReversedOf::ThreeParallel,
+                of: ReversedOf::ThreeParallel | ReversedOf::ThreeParallelGeneral,
             }
             | Family::General6 => (None, None, None),
             Family::Planar2 | Family::Planar3 | Family::Scara => {

@@ -338,3 +338,38 @@ pub fn solution_counts(
     }
     counts
 }
+
+/// (a, alpha, d) of six revolute DH rows (standard convention).
+pub type Rows6 = [(f64, f64, f64); 6];
+
+/// Base transform of the test arms built by [`arm6`] (nothing axis-aligned).
+pub fn base6() -> Pose {
+    Pose::translation(0.1, -0.2, 0.05) * rot_z(0.3)
+}
+
+/// Tool transform of the test arms built by [`arm6`].
+pub fn tool6() -> Pose {
+    Pose::translation(0.01, 0.02, 0.04) * rot_y(0.25)
+}
+
+/// Joint offsets of the test arms built by [`arm6`], so that theta = q + offset is exercised.
+pub const OFFSETS6: [f64; 6] = [0.2, -0.4, 0.1, 0.0, 0.3, -0.1];
+
+/// A six-revolute test arm: the rows with [`OFFSETS6`], [`base6`] and [`tool6`].
+pub fn arm6(name: &str, rows: &Rows6) -> Robot {
+    let r: Vec<Row> = rows
+        .iter()
+        .zip(OFFSETS6)
+        .map(|(&(a, alpha, d), off)| rv(a, alpha, d, off))
+        .collect();
+    Robot::from_dh(name, Convention::Standard, &r, base6(), tool6()).unwrap()
+}
+
+/// The forward kinematics of [`arm6`] multiplied out here (2.52), base and tool included.
+pub fn fk6(rows: &Rows6, q: &[f64]) -> nalgebra::Matrix4<f64> {
+    let mut t = base6().to_homogeneous();
+    for (i, &(a, alpha, d)) in rows.iter().enumerate() {
+        t *= dh_matrix(a, alpha, d, q[i] + OFFSETS6[i]);
+    }
+    t * tool6().to_homogeneous()
+}

@@ -20,6 +20,7 @@
 //! | [`Family::Decoupled6`] | one of the four arms + a spherical wrist | arm count x 2 (8 for the Puma 560, 2 for a gantry) |
 //! | [`Family::Decoupled6`] with [`ArmKind::General3R`] | any other three revolute joints + a spherical wrist (Pieper's general case) | up to 8 (a quartic's real roots x 2: "branch k, wrist no flip/flip") |
 //! | [`Family::ThreeParallel`] | R x 6, axes 2, 3, 4 parallel, a1 = a4 = a5 = a6 = 0, alpha1, alpha4, alpha5 = +-pi/2 (Universal Robots) | 8 (shoulder right/left x elbow up/down x wrist up/down) |
+//! | [`Family::ThreeParallelGeneral`] | R x 6, axes 2, 3, 4 parallel, axes 1 and 5 not, any other lengths and twists (IK-Geo's `three_parallel`) | up to 8 (a quartic's real roots x 2 elbows: "elbow up, branch k") |
 //! | [`Family::Reversed6`] | R x 6, one of the two six-joint families above when read from the tool back to the base (a spherical wrist at the base; axes 3-5 parallel) | those of the reversed chain ("tool shoulder right, elbow up, base wrist flip") |
 //!
 //! The spherical and cylindrical arms also have the mirror solution with the opposite extension
@@ -41,6 +42,7 @@ mod family;
 mod general6;
 mod locked;
 mod parallel3;
+mod parallel3_general;
 mod planar;
 mod posture;
 mod reversed;
@@ -160,6 +162,7 @@ enum Geometry {
         w6: Vector3<f64>,
     },
     Reversed(Box<reversed::Reversed>),
+    Parallel3General(Box<parallel3_general::Parallel3General>),
 }
 
 /// A closed-form solver for one robot: the family and the numbers its formulas need, extracted
@@ -357,10 +360,16 @@ impl ClosedForm {
                     (Family::ThreeParallel, Geometry::Parallel3(g))
                 } else if let Some(d) = Self::decoupled(rows, tol) {
                     d
+                } else if let Some(g) = parallel3_general::Parallel3General::detect(rows, tol) {
+                    (
+                        Family::ThreeParallelGeneral,
+                        Geometry::Parallel3General(Box::new(g)),
+                    )
                 } else if let Some(r) = reverse.then(|| reversed::Reversed::detect(rows)).flatten()
                 {
                     let of = match r.inner.family {
                         Family::Decoupled6 { arm } => ReversedOf::Decoupled(arm),
+                        Family::ThreeParallelGeneral => ReversedOf::ThreeParallelGeneral,
                         _ => ReversedOf::ThreeParallel,
                     };
                     (Family::Reversed6 { of }, Geometry::Reversed(Box::new(r)))
@@ -774,6 +783,7 @@ impl ClosedForm {
             (Geometry::Parallel3(g), Goal::Frame(t)) => g.solve_raw(t, out),
             (Geometry::General(g), Goal::Frame(t)) => general_raw(g, t, out)?,
             (Geometry::Reversed(r), Goal::Frame(t)) => r.solve(t, out)?,
+            (Geometry::Parallel3General(g), Goal::Frame(t)) => g.solve_raw(t, out),
             (Geometry::Decoupled { arm, wrist, w6 }, Goal::Frame(t)) => {
                 let r6 = t.rotation.matrix();
                 // p_W = p_e - d6 a_e (2.93), generalised to a6, alpha6.

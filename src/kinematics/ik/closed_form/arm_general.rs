@@ -30,9 +30,9 @@ use super::{COS_TOL, general6::branch_posture};
 use nalgebra::Vector3;
 
 /// `a0 + ac cos + as sin` of theta3.
-type Trig1 = [f64; 3];
+pub(super) type Trig1 = [f64; 3];
 /// `f0 + fc cos + fs sin + fc2 cos 2 theta + fs2 sin 2 theta` of theta3.
-type Trig2 = [f64; 5];
+pub(super) type Trig2 = [f64; 5];
 
 /// Shifts of theta3 (rad) tried for the half-angle tangent, the one keeping the quartic's
 /// leading coefficient largest chosen (a root at theta3 = shift + pi is at infinity).
@@ -63,7 +63,7 @@ pub(super) struct GeneralArm {
 }
 
 /// `a * b` for two affine trigonometric polynomials (cos^2 = (1 + cos 2)/2, ...).
-fn mul(a: &Trig1, b: &Trig1) -> Trig2 {
+pub(super) fn mul(a: &Trig1, b: &Trig1) -> Trig2 {
     [
         a[0] * b[0] + 0.5 * (a[1] * b[1] + a[2] * b[2]),
         a[0] * b[1] + a[1] * b[0],
@@ -73,7 +73,7 @@ fn mul(a: &Trig1, b: &Trig1) -> Trig2 {
     ]
 }
 
-fn eval1(a: &Trig1, c: f64, s: f64) -> f64 {
+pub(super) fn eval1(a: &Trig1, c: f64, s: f64) -> f64 {
     a[0] + a[1] * c + a[2] * s
 }
 
@@ -298,7 +298,7 @@ fn plus_minus(x: f64, scale: f64) -> Option<f64> {
 }
 
 /// The roots theta of `a0 + ac cos + as sin = 0` (0, 1 where tangent, or 2).
-fn affine_roots(a: &Trig1, out: &mut [f64; 4]) -> usize {
+pub(super) fn affine_roots(a: &Trig1, out: &mut [f64; 4]) -> usize {
     let r = a[1].hypot(a[2]);
     if r <= 1e-14 * (1.0 + a[0].abs()) {
         return 0;
@@ -320,7 +320,7 @@ fn affine_roots(a: &Trig1, out: &mut [f64; 4]) -> usize {
 /// The real roots theta of the trigonometric polynomial `f` of degree 2 (at most 4): the
 /// quartic in `x = tan((theta - shift) / 2)` solved by the eigenvalues of its companion matrix,
 /// each root then refined by Newton's method on f.
-fn quadratic_roots(f: &Trig2, out: &mut [f64; 4]) -> usize {
+pub(super) fn quadratic_roots(f: &Trig2, out: &mut [f64; 4]) -> usize {
     let at = |t: f64| {
         let (s, c) = t.sin_cos();
         let (s2, c2) = (2.0 * t).sin_cos();

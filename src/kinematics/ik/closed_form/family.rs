@@ -25,6 +25,8 @@ pub enum ReversedOf {
     Decoupled(ArmKind),
     /// Three parallel axes and the Universal Robots structure: the arm's axes 3-5 are parallel.
     ThreeParallel,
+    /// Three parallel axes, any other geometry: the arm's axes 3-5 are parallel.
+    ThreeParallelGeneral,
 }
 
 impl ReversedOf {
@@ -33,6 +35,7 @@ impl ReversedOf {
         match *self {
             ReversedOf::Decoupled(arm) => Family::Decoupled6 { arm },
             ReversedOf::ThreeParallel => Family::ThreeParallel,
+            ReversedOf::ThreeParallelGeneral => Family::ThreeParallelGeneral,
         }
     }
 }
@@ -63,6 +66,9 @@ pub enum Family {
     },
     /// Six revolute joints, axes 2, 3, 4 parallel, no spherical wrist (Universal Robots).
     ThreeParallel,
+    /// Six revolute joints, axes 2, 3, 4 parallel, any other lengths and twists (IK-Geo's
+    /// `three_parallel`): theta1 from a quartic, up to 8 solutions labelled "elbow up, branch k".
+    ThreeParallelGeneral,
     /// Six revolute joints that are one of the six-joint families above when read from the tool
     /// back to the base (a spherical wrist at the base; three parallel axes at 3-5): solved as the
     /// inverse pose of the reversed chain, with that chain's posture labels.
@@ -103,6 +109,7 @@ impl Family {
                 arm: ArmKind::General3R,
             } => "three-revolute arm with spherical wrist (Pieper's general case)",
             Family::ThreeParallel => "three parallel axes (Universal Robots type)",
+            Family::ThreeParallelGeneral => "three parallel axes 2-4, any other geometry",
             Family::Reversed6 { of } => match of {
                 ReversedOf::Decoupled(ArmKind::Anthropomorphic) => {
                     "spherical wrist at the base: the anthropomorphic arm with spherical wrist \
@@ -122,6 +129,9 @@ impl Family {
                 }
                 ReversedOf::ThreeParallel => {
                     "three parallel axes 3-5: the Universal Robots type read from the tool"
+                }
+                ReversedOf::ThreeParallelGeneral => {
+                    "three parallel axes 3-5: the general three-parallel arm read from the tool"
                 }
             },
             Family::General6 => "general six-revolute arm (all real solutions, by elimination)",
@@ -144,7 +154,7 @@ impl Family {
                 // At most (the quartic's real roots, 2 wrist postures each).
                 ArmKind::General3R => 8,
             },
-            Family::ThreeParallel => 8,
+            Family::ThreeParallel | Family::ThreeParallelGeneral => 8,
             Family::Reversed6 { of } => of.family().generic_solution_count(),
             // At most; how many are real depends on the arm and the target.
             Family::General6 => 16,
@@ -161,8 +171,10 @@ impl Family {
                 | Family::Decoupled6 {
                     arm: ArmKind::General3R
                 }
+                | Family::ThreeParallelGeneral
                 | Family::Reversed6 {
                     of: ReversedOf::Decoupled(ArmKind::General3R)
+                        | ReversedOf::ThreeParallelGeneral
                 }
         )
     }
@@ -177,6 +189,7 @@ impl Family {
                 | Family::SphericalWrist
                 | Family::Decoupled6 { .. }
                 | Family::ThreeParallel
+                | Family::ThreeParallelGeneral
                 | Family::Reversed6 { .. }
                 | Family::General6
         )

@@ -81,6 +81,8 @@ pub enum FreeReason {
     ExtensionZero,
     /// Wrist singularity, sin(theta5) = 0.
     WristAligned,
+    /// Axis 6 parallel to the parallel axes 2-4 (general three-parallel arm).
+    AxesAligned,
 }
 
 impl FreeReason {
@@ -103,6 +105,10 @@ impl FreeReason {
             FreeReason::WristAligned => {
                 "wrist singularity (sin theta5 = 0): only theta4 + theta6 (or theta4 - theta6) is \
                  determined; theta4 (with its offset) is set to 0"
+            }
+            FreeReason::AxesAligned => {
+                "axis 6 parallel to axes 2-4: only theta6 with theta2 + theta3 + theta4 is \
+                 determined; theta6 is set to 0"
             }
         }
     }

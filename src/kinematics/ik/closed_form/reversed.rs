@@ -39,7 +39,9 @@ impl Reversed {
         let robot = reversed_robot(rows)?;
         let inner = ClosedForm::detect_forward(&robot)?;
         match inner.family {
-            Family::Decoupled6 { .. } | Family::ThreeParallel => Some(Self { inner }),
+            Family::Decoupled6 { .. } | Family::ThreeParallel | Family::ThreeParallelGeneral => {
+                Some(Self { inner })
+            }
             _ => None,
         }
     }
