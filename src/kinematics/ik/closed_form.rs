@@ -355,31 +355,7 @@ impl ClosedForm {
                     (Family::SphericalWrist, Geometry::Wrist(w))
                 }
             }
-            6 => {
-                if let Some(g) = parallel3::Parallel3::detect(rows, tol) {
-                    (Family::ThreeParallel, Geometry::Parallel3(g))
-                } else if let Some(d) = Self::decoupled(rows, tol) {
-                    d
-                } else if let Some(g) = parallel3_general::Parallel3General::detect(rows, tol) {
-                    (
-                        Family::ThreeParallelGeneral,
-                        Geometry::Parallel3General(Box::new(g)),
-                    )
-                } else if let Some(r) = reverse.then(|| reversed::Reversed::detect(rows)).flatten()
-                {
-                    let of = match r.inner.family {
-                        Family::Decoupled6 { arm } => ReversedOf::Decoupled(arm),
-                        Family::ThreeParallelGeneral => ReversedOf::ThreeParallelGeneral,
-                        _ => ReversedOf::ThreeParallel,
-                    };
-                    (Family::Reversed6 { of }, Geometry::Reversed(Box::new(r)))
-                } else if general {
-                    let g = general6::General6::detect(rows)?;
-                    (Family::General6, Geometry::General(Box::new(g)))
-                } else {
-                    return None;
-                }
-            }
+            6 => Self::six_revolute(rows, tol, general, reverse)?,
             _ => return None,
         };
         let mirror_joint = match &geometry {
@@ -411,6 +387,41 @@ impl ClosedForm {
             near_miss: None,
             not_named: None,
         })
+    }
+
+    /// The family of six rows, in order: the UR structure, a spherical wrist, three parallel
+    /// axes 2-4, the chain read from the tool (if `reverse`), the elimination (if `general`).
+    fn six_revolute(
+        rows: &[chain::Row],
+        tol: f64,
+        general: bool,
+        reverse: bool,
+    ) -> Option<(Family, Geometry)> {
+        if let Some(g) = parallel3::Parallel3::detect(rows, tol) {
+            return Some((Family::ThreeParallel, Geometry::Parallel3(g)));
+        }
+        if let Some(d) = Self::decoupled(rows, tol) {
+            return Some(d);
+        }
+        if let Some(g) = parallel3_general::Parallel3General::detect(rows, tol) {
+            return Some((
+                Family::ThreeParallelGeneral,
+                Geometry::Parallel3General(Box::new(g)),
+            ));
+        }
+        if let Some(r) = reverse.then(|| reversed::Reversed::detect(rows)).flatten() {
+            let of = match r.inner.family {
+                Family::Decoupled6 { arm } => ReversedOf::Decoupled(arm),
+                Family::ThreeParallelGeneral => ReversedOf::ThreeParallelGeneral,
+                _ => ReversedOf::ThreeParallel,
+            };
+            return Some((Family::Reversed6 { of }, Geometry::Reversed(Box::new(r))));
+        }
+        if general {
+            let g = general6::General6::detect(rows)?;
+            return Some((Family::General6, Geometry::General(Box::new(g))));
+        }
+        None
     }
 
     /// A six-DOF arm with a spherical wrist (Sect. 2.12.2).
