@@ -89,7 +89,7 @@ fn numerical(c: &mut Criterion) {
 criterion_group!(benches, closed_form, locked7, numerical);
 criterion_main!(benches);
 
-/// The general arm of `tests/ik_general6.rs` with 14 real solutions at one pose.
+/// The general arm of `tests/kinematics/ik_general6.rs` with 14 real solutions at one pose.
 fn general6() -> armlab::kinematics::Robot {
     use armlab::kinematics::{Convention, DhJoint, DhRow, Pose, Robot};
     let arm = [

@@ -4,7 +4,7 @@
 # checked (docs/check_links.py). Part of the README's test command.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-docs/pictures.sh "${ARMLAB:-target/debug/armlab}"
+docs/pictures.sh ${ARMLAB:+"$ARMLAB"}
 if ! command -v mdbook >/dev/null 2>&1; then
   echo "installing mdbook from crates.io"
   cargo install mdbook --version "^0.4" --locked --quiet

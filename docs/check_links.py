@@ -27,7 +27,7 @@ SRC = os.path.join(DOCS, "src")
 REPO = os.path.dirname(DOCS)
 PICTURES_TXT = os.path.join(DOCS, "pictures.txt")
 FRONT = os.path.join(os.path.dirname(DOCS), "README.md")
-CLI_MARKER = "<!-- generated from the parser by tests/cli_reference.rs: UPDATE_DOCS=1 cargo test --test cli_reference rewrites it; do not edit below -->"
+CLI_MARKER = "<!-- generated from the parser by tests/cli/cli_reference.rs: UPDATE_DOCS=1 cargo test --test cli cli_reference rewrites it; do not edit below -->"
 
 FENCE = re.compile(r"^\s*(```|~~~)")
 HEADING = re.compile(r"^(#{1,6})\s+(.*?)\s*#*\s*$")

@@ -1,13 +1,16 @@
 #!/usr/bin/env bash
 # Makes the guide's pictures with armlab itself: one line of docs/pictures.txt per picture,
 # "NAME.png<TAB>armlab ARGS...", run in docs/src/pictures with the given armlab binary.
-# Usage: docs/pictures.sh [ARMLAB_BINARY]   (default: target/debug/armlab, built if missing)
+# Usage: docs/pictures.sh [ARMLAB_BINARY]   (default: armlab in cargo's build folder, built if missing)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bin=${1:-target/debug/armlab}
+# cargo's build folder (`target/`, or CARGO_TARGET_DIR where it is set).
+target_dir=$(cargo metadata --format-version 1 --no-deps \
+  | python3 -c 'import json, sys; print(json.load(sys.stdin)["target_directory"])')
+bin=${1:-$target_dir/debug/armlab}
 if [ ! -x "$bin" ]; then
   cargo build --bin armlab
-  bin=target/debug/armlab
+  bin=$target_dir/debug/armlab
 fi
 bin=$(realpath "$bin")
 mkdir -p docs/src/pictures

@@ -15,7 +15,10 @@ cd "$(dirname "$0")/.."
 out="${1:-web/dist}"
 target=wasm32-unknown-unknown
 BINARYEN_VERSION=132.0.0
-export CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$PWD/target}/web"
+# Its own folder inside cargo's build folder (`target/`, or CARGO_TARGET_DIR where it is set).
+target_dir=$(cargo metadata --format-version 1 --no-deps \
+  | python3 -c 'import json, sys; print(json.load(sys.stdin)["target_directory"])')
+export CARGO_TARGET_DIR="$target_dir/web"
 args=(rustc --lib --crate-type cdylib --profile web --target "$target" --no-default-features --features gui)
 
 if rustup target list --installed 2>/dev/null | grep -qx "$target"; then

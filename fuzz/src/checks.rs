@@ -1,6 +1,6 @@
 //! What must hold for every input of armlab's parsers of outside text: more than "no panic".
 //! Shared by the cargo-fuzz targets (`fuzz/fuzz_targets/`) and by the stable test suite, which
-//! replays every input kept under `tests/data/fuzz/<target>/` (`tests/fuzz_regressions.rs`).
+//! replays every input kept under `tests/data/fuzz/<target>/` (`tests/kinematics/fuzz_regressions.rs`).
 //!
 //! - A file that parses yields a robot whose forward kinematics and Jacobian are finite for
 //!   finite q (inside its limits), whose written form (TOML or URDF) reads back to the same

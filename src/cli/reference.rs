@@ -1,5 +1,5 @@
 //! The command-line reference in Markdown, generated from the parser's own definitions (clap),
-//! so that the guide's chapter cannot drift from the flags: `tests/cli_reference.rs` checks that
+//! so that the guide's chapter cannot drift from the flags: `tests/cli/cli_reference.rs` checks that
 //! `docs/src/cli.md` holds exactly this below its marker line.
 
 use super::Cli;
@@ -7,7 +7,7 @@ use clap::{Arg, Command, CommandFactory};
 use std::fmt::Write as _;
 
 /// The marker line in `docs/src/cli.md` under which the generated reference stands.
-pub const MARKER: &str = "<!-- generated from the parser by tests/cli_reference.rs: UPDATE_DOCS=1 cargo test --test cli_reference rewrites it; do not edit below -->";
+pub const MARKER: &str = "<!-- generated from the parser by tests/cli/cli_reference.rs: UPDATE_DOCS=1 cargo test --test cli cli_reference rewrites it; do not edit below -->";
 
 /// The whole reference: one section per subcommand (in the parser's order), each with its
 /// description, its usage line and its arguments.

@@ -458,22 +458,19 @@ fn map_plot(
     opts: &WsFigureOptions,
     view: MapView,
 ) -> Result<((Plot2d, PlotFrame), MapRequest), FigureError> {
-    let extent = workspace::map_extent(robot, view, opts.point, opts.end_effector)?;
+    let map_frame = workspace::map_frame(robot, view, opts.point, opts.end_effector)?;
+    let extent = map_frame.extent;
     let values = match opts.color_by {
         ColorBy::Dexterity => MapValues::Dexterity,
         ColorBy::Manipulability => MapValues::Manipulability,
         _ => MapValues::Classes,
     };
     let (xl, yl, which) = view_labels(view);
-    let wrist = matches!(
-        crate::kinematics::ik::closed_form::ClosedForm::detect(robot).map(|c| *c.family()),
-        Ok(crate::kinematics::ik::closed_form::Family::Decoupled6 { .. })
-    );
-    let point = match (view, opts.point) {
-        (MapView::Plane, _) => "",
-        (_, TrackedPoint::WristCentre) if wrist => " (wrist centre)",
-        _ if wrist => " (flange)",
-        _ => "",
+    // The title names the point the map follows, as the compute layer reports it.
+    let point = match map_frame.wrist_point {
+        Some(TrackedPoint::WristCentre) => " (wrist centre)",
+        Some(TrackedPoint::Flange) => " (flange)",
+        None => "",
     };
     let plot = Plot2d {
         title: format!("Workspace of the {title}{point}{which}"),

@@ -44,9 +44,9 @@ pub use grid::{
     DexterousSet, GridAnalysis, GridMethod, GridOptions, GridSpec, MethodChoice, analyze_grid,
 };
 pub use map::{
-    CellValues, CurveRole, MapCurve, MapForming, MapRequest, MapValues, MapView, OneShot,
+    CellValues, CurveRole, MapCurve, MapForming, MapFrame, MapRequest, MapValues, MapView, OneShot,
     PointQuery, ReachAnswer, Section, TILE_ROWS, TiledMap, TrackedPoint, WorkspaceMap, compute_map,
-    compute_map_forming, map_extent, map_statistics,
+    compute_map_forming, map_extent, map_frame, map_statistics,
 };
 pub use planar::{
     BoundaryCurve, BoundaryOptions, CurveKind, PlanarBoundary, PostureLoop, planar_boundary,

@@ -2,7 +2,7 @@
 //!
 //! - the UR5 (the corpus URDF): armlab's three-parallel family against ik-geo's
 //!   `three_parallel_two_intersecting` (the solver of its `ur5()`);
-//! - the general six-revolute arm of `tests/ik_general6.rs`: armlab's elimination against
+//! - the general six-revolute arm of `tests/kinematics/ik_general6.rs`: armlab's elimination against
 //!   ik-geo's `gen_six_dof`;
 //! - the ABB IRB 2400/10 (OPW parameters of rs-opw-kinematics): armlab's spherical-wrist family
 //!   (the labelled `solve_into`, and the raw `solve_raw`) against `OPWKinematics::inverse`.
@@ -341,7 +341,7 @@ fn ur5() -> Robot {
     armlab::model_file::load_model("../../tests/data/urdf_corpus/ur5_robot.urdf").expect("UR5")
 }
 
-/// The general arm of `tests/ik_general6.rs` (no two axes parallel or meeting).
+/// The general arm of `tests/kinematics/ik_general6.rs` (no two axes parallel or meeting).
 fn general6() -> Robot {
     use armlab::kinematics::{Convention, DhJoint, DhRow};
     let arm = [

@@ -215,6 +215,37 @@ impl WorkspaceMap {
     }
 }
 
+/// What a figure needs of a map view before the map is computed: where the view lies and, for an
+/// arm with a spherical wrist, which of its points the map follows (the figure's title says it).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MapFrame {
+    /// The view's extent ([`map_extent`]; m, base frame, r-z for the side view).
+    pub extent: Aabb,
+    /// For a six-joint arm with a spherical wrist, in the top and side views: the point followed
+    /// (the wrist centre or the flange). `None` for other arms and for the plane of a planar arm,
+    /// which have one point only.
+    pub wrist_point: Option<TrackedPoint>,
+}
+
+/// The frame of a map view: its extent ([`map_extent`]) and the point it follows.
+pub fn map_frame(
+    robot: &Robot,
+    view: MapView,
+    point: TrackedPoint,
+    end_effector: usize,
+) -> Result<MapFrame, WorkspaceError> {
+    let extent = map_extent(robot, view, point, end_effector)?;
+    let wrist = view != MapView::Plane
+        && matches!(
+            crate::kinematics::ik::ClosedForm::detect(robot).map(|c| *c.family()),
+            Ok(crate::kinematics::ik::Family::Decoupled6 { .. })
+        );
+    Ok(MapFrame {
+        extent,
+        wrist_point: wrist.then_some(point),
+    })
+}
+
 /// The extent of a view of the workspace (m): exact for planar arms and closed-form sections,
 /// else from samples.
 pub fn map_extent(

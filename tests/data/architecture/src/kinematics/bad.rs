@@ -6,3 +6,6 @@ const NAME: &str = "wgpu::Device in a string is fine";
 fn read(path: &str) -> String {
     std::fs::read_to_string(path).unwrap_or_default()
 }
+use crate::workspace::Map;
+use std::{fs, io::Read};
+fn fine() -> std::io::Result<()> { Err(std::io::Error::other("an error is not file access")) }

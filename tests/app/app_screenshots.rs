@@ -1,0 +1,198 @@
+//! The whole app window rendered offscreen (the `armlab view --screenshot` path) compared with
+//! golden PNGs: the default robot, every posture of one target, and an unreachable target.
+//! Needs a graphics adapter (Mesa's lavapipe without a GPU); fails without one.
+
+use crate::common;
+use armlab::app::screenshot::{ScreenshotOptions, screenshot};
+use armlab::app::state::AppState;
+use common::golden::assert_golden;
+
+fn shot(spec: &str, opts: &ScreenshotOptions) -> image::RgbaImage {
+    let state = AppState::from_spec(spec).unwrap();
+    screenshot(state, [1280, 800], opts).unwrap_or_else(|e| panic!("{e}"))
+}
+
+#[test]
+fn default_robot() {
+    let img = shot(
+        "anthropomorphic_spherical_wrist",
+        &ScreenshotOptions::default(),
+    );
+    assert_golden("app_default_robot", &img);
+}
+
+#[test]
+fn all_postures_of_a_puma_pose() {
+    let opts = ScreenshotOptions {
+        q: Some(vec![0.3, 0.5, -1.2, 0.4, 0.8, -0.6]),
+        all_postures: true,
+        ..Default::default()
+    };
+    let img = shot("puma560", &opts);
+    assert_golden("app_puma560_all_postures", &img);
+}
+
+#[test]
+fn unreachable_target() {
+    let opts = ScreenshotOptions {
+        all_postures: true,
+        target_position: Some([2.0, 0.0, 0.5]),
+        ..Default::default()
+    };
+    let img = shot("anthropomorphic_spherical_wrist", &opts);
+    assert_golden("app_unreachable_target", &img);
+    // The status names how far out the target is; the arm did not move (no NaN anywhere).
+    let state = AppState::from_spec("anthropomorphic_spherical_wrist").unwrap();
+    let mut state = state;
+    let q0 = state.q().to_vec();
+    let mut t = state.robot().fk(&q0).unwrap();
+    t.translation.vector = nalgebra::Vector3::new(2.0, 0.0, 0.5);
+    let reach = state.set_target(0, t).unwrap().clone();
+    assert!(!reach.is_reached());
+    let msg = reach.message().unwrap();
+    assert!(msg.contains("mm outside the workspace"), "{msg}");
+    assert_eq!(state.q(), q0.as_slice());
+}
+
+/// Runs `armlab args...` on a virtual X server (needs `xvfb xauth`, which CI installs),
+/// stopped by `timeout` after `seconds` (exit 124 then).
+fn armlab_under_xvfb(seconds: u32, args: &[&str]) -> std::process::Output {
+    let seconds = seconds.to_string();
+    std::process::Command::new("xvfb-run")
+        .args(["-a", "-s", "-screen 0 1280x900x24", "timeout", &seconds])
+        .arg(env!("CARGO_BIN_EXE_armlab"))
+        .args(args)
+        .output()
+        .unwrap_or_else(|e| {
+            panic!("cannot run xvfb-run ({e}): install it with apt-get install xvfb xauth")
+        })
+}
+
+/// The real window opens and runs under a virtual X server (needs `xvfb xauth`, which CI
+/// installs): it must still be running when `timeout` stops it after 6 s (exit 124), not have
+/// failed or crashed.
+#[test]
+fn real_window_runs_under_xvfb() {
+    let o = armlab_under_xvfb(6, &["view", "puma560"]);
+    assert_eq!(
+        o.status.code(),
+        Some(124),
+        "the app exited early: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+}
+
+/// `armlab view --measure-frames N` drives the real window (under a virtual X server), drags
+/// the IK target for N frames, prints the frame times and exits by itself.
+#[test]
+fn the_real_window_measures_its_frames() {
+    let o = armlab_under_xvfb(
+        120,
+        &[
+            "view",
+            "--measure-frames",
+            "15",
+            "--q",
+            "0.4,0.7,0.5,0.6,0.8,0.3",
+        ],
+    );
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        o.status.success(),
+        "exit {:?}: {}",
+        o.status.code(),
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(out.starts_with("15 frames at 1280x800 on "), "{out}");
+    let median: f64 = out
+        .split("median ")
+        .nth(1)
+        .and_then(|t| t.split(" ms").next())
+        .and_then(|t| t.parse().ok())
+        .unwrap_or_else(|| panic!("no median in {out}"));
+    assert!(median > 0.0 && median.is_finite(), "{out}");
+}
+
+/// The Screenshot button's path: the live app's state and camera rendered offscreen.
+#[test]
+fn screenshot_button_renders_the_current_view() {
+    use armlab::app::AppUi;
+    use armlab::app::screenshot::screenshot_with;
+    let mut app = AppUi::new(AppState::from_spec("planar3").unwrap());
+    app.state.set_q(&[0.2, 0.4, -0.3]).unwrap();
+    let a = screenshot_with(&app, [960, 600], &ScreenshotOptions::default()).unwrap();
+    let mut camera = app.tabs.view3d.camera;
+    camera.set_preset(armlab::camera::Preset::Top);
+    app.tabs.view3d.set_camera(camera);
+    let b = screenshot_with(&app, [960, 600], &ScreenshotOptions::default()).unwrap();
+    assert_eq!(a.dimensions(), (960, 600));
+    assert!(a != b, "the camera of the live view is used");
+}
+
+/// The DLR arm holding its hand: the Redundancy panel (n, m, r, the arm-angle slider with its
+/// feasible stretches), the elbow circle traced in the 3D view and the other branches as ghosts.
+#[test]
+fn dlr_self_motion_in_the_3d_view() {
+    let mut state = AppState::from_spec("dlr").unwrap();
+    let v = state.self_motion(0).unwrap().value;
+    state.set_self_motion(0, v + 0.6).unwrap();
+    let app = armlab::app::AppUi::new(state);
+    let img =
+        armlab::app::screenshot::screenshot_with(&app, [1280, 800], &ScreenshotOptions::default())
+            .unwrap_or_else(|e| panic!("{e}"));
+    assert_golden("app_dlr_self_motion", &img);
+}
+
+/// The Self-motion tab of the Panda: every joint against q7, every branch, limit bands, cursor.
+#[test]
+fn panda_self_motion_tab() {
+    let state = AppState::from_spec("panda").unwrap();
+    let mut app = armlab::app::AppUi::new(state);
+    app.tab = armlab::app::tabs::SELF_MOTION;
+    let img =
+        armlab::app::screenshot::screenshot_with(&app, [1280, 800], &ScreenshotOptions::default())
+            .unwrap_or_else(|e| panic!("{e}"));
+    assert_golden("app_panda_self_motion_tab", &img);
+}
+
+/// "Show the construction" on the default robot (anthropomorphic arm with spherical wrist) at its
+/// last step (every mark drawn, the wrist's in red), on the two-link arm (the triangle), and on
+/// the other families' arms at their last steps.
+#[test]
+fn construction_overlay() {
+    for (model, step, name) in [
+        (
+            "anthropomorphic_spherical_wrist",
+            9,
+            "app_construction_default_robot",
+        ),
+        ("planar2", 1, "app_construction_planar2"),
+        ("stanford", 9, "app_construction_stanford"),
+        ("scara", 9, "app_construction_scara"),
+        // The UR family (issue 27): the planar three-link problem after joint 1, theta4 last.
+        (
+            "tests/data/urdf_corpus/ur5_robot.urdf",
+            7,
+            "app_construction_ur5",
+        ),
+    ] {
+        let mut state = AppState::from_spec(model).unwrap();
+        // The construction alone: no frames, no ghosts.
+        state.display.frames = false;
+        state.display.labels = false;
+        state.display.ghosts = false;
+        let mut app = armlab::app::AppUi::new(state);
+        app.ik.construction.shown = true;
+        app.ik.construction.step = step;
+        // Framed for the window's 3D view, as the live app frames it on its first layout.
+        app.tabs.view3d.viewport_px = [530, 720];
+        app.fit();
+        let img = armlab::app::screenshot::screenshot_with(
+            &app,
+            [1280, 800],
+            &ScreenshotOptions::default(),
+        )
+        .unwrap_or_else(|e| panic!("{e}"));
+        assert_golden(name, &img);
+    }
+}

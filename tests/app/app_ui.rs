@@ -1,0 +1,526 @@
+//! The app driven through egui like a user: buttons clicked by their label (egui_kittest,
+//! through the accessibility tree) and clicks at pixel positions in the 3D view. No GPU: the
+//! layout and the interaction run without painting.
+
+use armlab::app::AppUi;
+use armlab::app::state::AppState;
+use egui_kittest::Harness;
+use egui_kittest::kittest::{NodeT, Queryable};
+
+fn harness(app: AppUi) -> Harness<'static, AppUi> {
+    let mut h = Harness::builder()
+        .with_size(egui::vec2(1280.0, 800.0))
+        .build_ui_state(|ui, app: &mut AppUi| app.show(ui, None), app);
+    h.run();
+    h
+}
+
+#[test]
+fn the_screenshot_button_asks_the_frame_loop_for_a_screenshot() {
+    let mut h = harness(AppUi::new(AppState::from_spec("planar3").unwrap()));
+    assert!(!h.state().screenshot_requested);
+    h.get_by_label("Screenshot").click();
+    h.run();
+    assert!(h.state().screenshot_requested);
+}
+
+#[test]
+fn the_help_button_and_the_h_key_toggle_the_shortcut_list() {
+    let mut h = harness(AppUi::new(AppState::from_spec("planar3").unwrap()));
+    h.get_by_label("Help (H)").click();
+    h.run();
+    assert!(h.state().show_help);
+    assert!(h.query_by_label("Keyboard shortcuts").is_some());
+    h.key_press(egui::Key::H);
+    h.run();
+    assert!(!h.state().show_help);
+}
+
+/// Clicking next to a ghost arm's joint in the 3D view makes that posture the arm's.
+#[test]
+fn clicking_a_ghost_arm_selects_its_posture() {
+    let mut state = AppState::from_spec("puma560").unwrap();
+    state.set_q(&[0.3, 0.5, -1.2, 0.4, 0.8, -0.6]).unwrap();
+    let tool = state.robot().fk(state.q()).unwrap();
+    state.set_target(0, tool).unwrap();
+    let mut app = AppUi::new(state);
+    app.state.display.ghosts = true;
+    let mut h = harness(app);
+    // Where each ghost's joints project in the view (window points).
+    let app = h.state();
+    let [w, hp] = app.tabs.view3d.viewport_px;
+    let rect = app.tabs.view3d.viewport_rect;
+    let robot = app.state.robot();
+    let chain = robot.chain_to(robot.end_effectors()[0].parent).to_vec();
+    let project = |q: &[f64]| -> Vec<egui::Pos2> {
+        let frames = robot.fk_frames(q).unwrap();
+        chain
+            .iter()
+            .filter_map(|&j| {
+                let p = armlab::scene::point32(&frames[j].translation.vector);
+                app.tabs.view3d.camera.project(&p, w, hp)
+            })
+            .map(|px| rect.min + egui::vec2(px[0], px[1]))
+            .collect()
+    };
+    let ghosts = app.state.ghosts(0);
+    let tool_px = *project(app.state.q()).last().unwrap();
+    // A joint of an unselected ghost within the limits that no other such ghost's joint is
+    // near, away from the target gizmo. Ghosts outside the limits may share the point (the
+    // postures differing only at the wrist put their joints at the same places): the click
+    // prefers the one that can be selected.
+    let mut pick = None;
+    for g in ghosts.iter().filter(|g| !g.selected && g.within_limits) {
+        for p in project(&g.q) {
+            let clear = ghosts
+                .iter()
+                .filter(|o| !o.selected && o.within_limits && o.posture != g.posture)
+                .flat_map(|o| project(&o.q))
+                .all(|x| (x - p).length() > 45.0);
+            if clear && (p - tool_px).length() > 160.0 && rect.shrink(5.0).contains(p) {
+                pick = Some((g.posture.clone(), p));
+            }
+        }
+    }
+    let (posture, at) = pick.expect("a ghost joint clear of the others and of the gizmo");
+    let before = h.state().state.q().to_vec();
+    h.event(egui::Event::PointerMoved(at));
+    h.run();
+    for pressed in [true, false] {
+        h.event(egui::Event::PointerButton {
+            pos: at,
+            button: egui::PointerButton::Primary,
+            pressed,
+            modifiers: egui::Modifiers::NONE,
+        });
+        h.run();
+    }
+    let app = h.state();
+    let selected: Vec<_> = app
+        .state
+        .ghosts(0)
+        .into_iter()
+        .filter(|g| g.selected)
+        .collect();
+    assert_eq!(selected.len(), 1);
+    assert_eq!(selected[0].posture, posture, "clicked at {at:?}");
+    assert_ne!(
+        app.state.q(),
+        before.as_slice(),
+        "the arm took the new posture"
+    );
+}
+
+/// The window's widgets run in an inner context on the outer (eframe's) input: a click reaches
+/// them, and what they ask of the platform (cursor, clipboard, repaint) reaches the outer one.
+#[test]
+fn the_inner_context_gets_the_input_and_hands_back_the_platform_output() {
+    use armlab::app::inner::InnerUi;
+    let outer = egui::Context::default();
+    let mut inner = InnerUi::default();
+    let screen = egui::Rect::from_min_size(egui::Pos2::ZERO, egui::vec2(400.0, 300.0));
+    let at = egui::pos2(32.0, 30.0);
+    let mut clicks = 0;
+    let mut frame = |events: Vec<egui::Event>, clicks: &mut i32| {
+        let raw = egui::RawInput {
+            screen_rect: Some(screen),
+            events,
+            ..Default::default()
+        };
+        let mut painted = None;
+        let mut out = outer.run_ui(raw, |ui| {
+            painted = Some(inner.run(ui.ctx(), |ui| {
+                egui::Area::new(egui::Id::unique("probe"))
+                    .fixed_pos(egui::pos2(20.0, 20.0))
+                    .show(ui.ctx(), |ui| {
+                        let r = ui.button("Copy");
+                        if r.hovered() {
+                            ui.ctx().set_cursor_icon(egui::CursorIcon::PointingHand);
+                        }
+                        if r.clicked() {
+                            *clicks += 1;
+                            ui.ctx().copy_text("q = [0, 1]".into());
+                            ui.ctx().request_repaint();
+                        }
+                    });
+            }));
+        });
+        // The outer context's own textures (its font atlas) are not painted here.
+        out.textures_delta.clear();
+        (out, painted.expect("inner frame"))
+    };
+    let (_, first) = frame(vec![egui::Event::PointerMoved(at)], &mut clicks);
+    assert_eq!(first.size_px, [400, 300]);
+    let press = |pressed| egui::Event::PointerButton {
+        pos: at,
+        button: egui::PointerButton::Primary,
+        pressed,
+        modifiers: egui::Modifiers::NONE,
+    };
+    // An area is laid out invisibly in its first frame, and hovering is found against the
+    // widgets of the frame before: two more frames.
+    frame(vec![], &mut clicks);
+    let (out, second) = frame(vec![], &mut clicks);
+    assert!(
+        !second.prims.is_empty(),
+        "the inner frame has the button to paint"
+    );
+    assert_eq!(
+        out.platform_output.cursor_icon,
+        egui::CursorIcon::PointingHand
+    );
+    frame(vec![press(true)], &mut clicks);
+    let (out, _) = frame(vec![press(false)], &mut clicks);
+    assert_eq!(clicks, 1, "the click reached the inner widget");
+    assert!(
+        out.platform_output
+            .commands
+            .iter()
+            .any(|c| matches!(c, egui::OutputCommand::CopyText(t) if t == "q = [0, 1]")),
+        "{:?}",
+        out.platform_output.commands
+    );
+    assert!(
+        out.viewport_output[&egui::ViewportId::ROOT]
+            .repaint_delay
+            .is_zero()
+    );
+    // Each outer frame is one pass: the inner context's passes are not counted into it (they
+    // once were, and egui showed "request_discard has been called N frames in a row" over the
+    // toolbar of every live window).
+    for _ in 0..3 {
+        let (out, _) = frame(vec![], &mut clicks);
+        assert_eq!(out.platform_output.num_completed_passes, 1);
+        assert!(out.platform_output.request_discard_reasons.is_empty());
+    }
+}
+
+/// Every cell of the DH table is wide enough for its whole entry (the grid once squeezed the
+/// Puma's "671.83" to "671." and "-160" to "-16"); the table scrolls sideways inside its panel
+/// instead of widening it, so the panel ends where the 3D view starts.
+#[test]
+fn dh_cells_show_their_whole_entry() {
+    let mut h = harness(AppUi::new(AppState::from_spec("puma560").unwrap()));
+    h.run();
+    let ctx = h.ctx.clone();
+    let font = egui::TextStyle::Body.resolve(&ctx.global_style());
+    let panel = h.state().tabs.view3d.viewport_rect.min.x;
+    let mut checked = 0;
+    for j in 1..=6 {
+        for field in ["a", "alpha", "d", "lower", "upper"] {
+            let label = format!("q{j} {field}");
+            let node = h.get_by_label(&label);
+            let text = node.value().unwrap_or_default();
+            let width = ctx.fonts_mut(|f| {
+                f.layout_no_wrap(text.clone(), font.clone(), egui::Color32::WHITE)
+                    .size()
+                    .x
+            });
+            let rect = node.rect();
+            // The text plus the field's inner margins.
+            assert!(
+                rect.width() >= width + 8.0,
+                "q{j} {field} = {text:?}: {:.1} pt wide for {width:.1} pt of text",
+                rect.width()
+            );
+            checked += 1;
+        }
+    }
+    assert_eq!(checked, 30);
+    let left = h.state().rects.left.expect("the left panel is open");
+    assert!(
+        left.max.x <= panel + 0.5,
+        "the left panel ends at {} past the 3D view's start {panel}",
+        left.max.x
+    );
+}
+
+/// The live window renders its first 3D frame before the panels are laid out, so the arm is
+/// framed for a guessed viewport; once the real size is known (and the camera untouched) it is
+/// framed again and fits. A camera the user moved is kept when the size changes.
+#[test]
+fn the_arm_is_framed_for_the_viewport_it_is_shown_in() {
+    let mut app = AppUi::new(AppState::from_spec("anthropomorphic_spherical_wrist").unwrap());
+    app.tabs.view3d.frame_if_needed(&app.state); // as the first live frame does, at the initial guess
+    let guessed = app.tabs.view3d.camera;
+    let mut h = harness(app);
+    let app = h.state_mut();
+    let [w, hp] = app.tabs.view3d.viewport_px;
+    assert!(w < hp, "the view is taller than wide at 1280x800: {w}x{hp}");
+    app.tabs.view3d.frame_if_needed(&app.state);
+    assert_ne!(
+        app.tabs.view3d.camera, guessed,
+        "framed again for the real size"
+    );
+    let pts = armlab::scene::arm_points(app.state.robot(), app.state.q()).unwrap();
+    for p in &pts {
+        let [x, y] = app
+            .tabs
+            .view3d
+            .camera
+            .project(p, w, hp)
+            .expect("in front of the camera");
+        assert!(
+            (0.0..w as f32).contains(&x) && (0.0..hp as f32).contains(&y),
+            "{p:?} at ({x}, {y}) outside the {w}x{hp} view"
+        );
+    }
+    // Moved by the user: a new size does not reframe.
+    app.tabs.view3d.camera.orbit(0.3, 0.1);
+    let moved = app.tabs.view3d.camera;
+    app.tabs.view3d.viewport_px = [w + 100, hp];
+    app.tabs.view3d.frame_if_needed(&app.state);
+    assert_eq!(app.tabs.view3d.camera, moved);
+}
+
+/// The status bar and the IK panel say the same thing about an unreachable target, however far
+/// it is dragged (they once showed "387.3 mm outside" and "10.4 mm outside" at the same time: the
+/// status kept the first message of the drag).
+#[test]
+fn the_status_bar_and_the_ik_panel_never_disagree() {
+    let state = AppState::from_spec("anthropomorphic_spherical_wrist").unwrap();
+    let mut t = state.robot().fk(state.q()).unwrap();
+    let reach = state.robot().characteristic_length();
+    let mut h = harness(AppUi::new(state));
+    for step in [1.02, 1.1, 1.3, 1.6] {
+        t.translation.vector = nalgebra::Vector3::new(reach * step, 0.0, 0.4);
+        let _ = h.state_mut().state.set_target(0, t);
+        h.run();
+        let app = h.state();
+        let panel = app.state.targets()[0].reach.message().expect("unreachable");
+        assert!(panel.contains("mm outside"), "{panel}");
+        let status = app.state.status_line(0).unwrap().text;
+        assert!(
+            status.contains(&panel),
+            "status {status:?} vs panel {panel:?}"
+        );
+        // On screen: every text that names a distance names the same one.
+        let mm: Vec<String> = h
+            .root()
+            .children_recursive()
+            .flat_map(|n| {
+                let a = n.accesskit_node();
+                [a.label(), a.value()]
+            })
+            .flatten()
+            .filter(|t| t.contains("mm outside"))
+            .collect();
+        assert!(mm.len() >= 2, "{mm:?}");
+        let number = |s: &str| {
+            s.split(" mm outside")
+                .next()
+                .unwrap()
+                .rsplit(' ')
+                .next()
+                .unwrap()
+                .to_string()
+        };
+        assert!(mm.iter().all(|s| number(s) == number(&panel)), "{mm:?}");
+    }
+}
+
+/// A 2D figure whose bounds have no extent (a workspace shrunk to a point when every length is
+/// edited to zero) or are not finite is drawn, not a panic in egui_plot (found by the long soak
+/// run, tests/soak/app_soak.rs, in the Workspace tab).
+#[test]
+fn a_plot_without_extent_is_drawn() {
+    use armlab::figure::plot2d::{Plot2d, drawable_bounds, show};
+    for bounds in [
+        [1.0, 1.0, 0.0, 0.0],
+        [0.0, 0.0, 0.0, 0.0],
+        [f64::NAN, 1.0, 0.0, 1.0],
+        [2.0, -2.0, 1e300, f64::INFINITY],
+    ] {
+        let [x0, x1, y0, y1] = drawable_bounds(bounds);
+        assert!(x1 - x0 >= 1e-3 && y1 - y0 >= 1e-3, "{bounds:?}");
+        for equal_aspect in [false, true] {
+            let plot = Plot2d {
+                bounds,
+                equal_aspect,
+                ..Default::default()
+            };
+            let mut h = Harness::new_ui(|ui| {
+                show(ui, &plot, None);
+            });
+            h.run();
+        }
+    }
+}
+
+/// A press on a popup over the 3D view (a menu, a combo box's list, a window) belongs to the
+/// popup: the gizmo under it does not start dragging (clicks once fell through). Without the
+/// popup, the same press and drag moves the target.
+#[test]
+fn presses_on_a_popup_do_not_reach_the_gizmo_under_it() {
+    for with_popup in [false, true] {
+        let app = AppUi::new(AppState::from_spec("anthropomorphic_spherical_wrist").unwrap());
+        let grip = std::rc::Rc::new(std::cell::Cell::new(None::<egui::Pos2>));
+        let g = grip.clone();
+        let mut h = Harness::builder()
+            .with_size(egui::vec2(1280.0, 800.0))
+            .build_ui_state(
+                move |ui, app: &mut AppUi| {
+                    app.show(ui, None);
+                    if let (true, Some(p)) = (with_popup, g.get()) {
+                        egui::Area::new(egui::Id::unique("popup over the view"))
+                            .order(egui::Order::Foreground)
+                            .fixed_pos(p - egui::vec2(60.0, 40.0))
+                            .show(ui.ctx(), |ui| {
+                                ui.set_min_size(egui::vec2(120.0, 80.0));
+                                let _ = ui.button("a menu entry");
+                            });
+                    }
+                },
+                app,
+            );
+        h.run();
+        let p = h.state().gizmo_grip().expect("the gizmo is shown");
+        grip.set(Some(p));
+        h.run();
+        let before = h.state().state.target(0).unwrap().world_from_tool;
+        h.drag_at(p);
+        h.step();
+        for k in 1..=5 {
+            h.hover_at(p + egui::vec2(8.0 * k as f32, 5.0 * k as f32));
+            h.step();
+        }
+        h.drop_at(p + egui::vec2(40.0, 25.0));
+        h.run();
+        let after = h.state().state.target(0).unwrap().world_from_tool;
+        let moved = (after.translation.vector - before.translation.vector).norm()
+            + (after.rotation.angle_to(&before.rotation));
+        if with_popup {
+            assert!(
+                moved < 1e-12,
+                "the press on the popup moved the target by {moved}"
+            );
+        } else {
+            assert!(
+                moved > 1e-4,
+                "the drag on the gizmo did not move the target"
+            );
+        }
+    }
+}
+
+/// The figure computed by W (1200x900 px) stays on screen when the Workspace tab opens and
+/// recomputes it at the tab's size: the tab was blank for that time (a minute in a browser).
+#[test]
+fn the_workspace_tab_shows_the_finished_figure_while_it_resizes_it() {
+    let mut app = AppUi::new(AppState::from_spec("planar2").unwrap());
+    app.tabs.workspace.start(&app.state);
+    app.tabs.workspace.job.as_ref().unwrap().wait();
+    assert!(app.tabs.workspace.job.as_ref().unwrap().figure().is_some());
+    app.tab = armlab::app::tabs::WORKSPACE;
+    let mut h = harness(app);
+    h.step();
+    let tab = &h.state().tabs.workspace;
+    assert!(
+        tab.job.as_ref().unwrap().progress().is_some(),
+        "the tab recomputes at its own size"
+    );
+    assert!(
+        tab.showing_figure(),
+        "the finished figure stays on screen meanwhile"
+    );
+    h.state().tabs.workspace.job.as_ref().unwrap().wait();
+    h.step();
+    h.step();
+    let tab = &h.state().tabs.workspace;
+    assert!(tab.showing_figure());
+    let f = tab.job.as_ref().unwrap().figure().unwrap();
+    assert_ne!([f.width(), f.height()], [1200, 900], "the tab's own size");
+}
+
+/// The Symbols section shows the kinematics in the textbook's notation, steps through the
+/// product, and highlights the partial product's frame in the 3D view.
+#[test]
+fn the_symbols_section_steps_through_the_product() {
+    // a tall window: at 1280x800 the section is below the fold of the right panel
+    let app = AppUi::new(AppState::from_spec("anthropomorphic_spherical_wrist").unwrap());
+    let mut h = Harness::builder()
+        .with_size(egui::vec2(1280.0, 2400.0))
+        .build_ui_state(|ui, app: &mut AppUi| app.show(ui, None), app);
+    h.run();
+    h.get_by_label("Show the kinematics in symbols").click();
+    h.run();
+    assert!(h.state().ik.symbols.shown);
+    // the wrist point of (2.95), in a layout whose subscripts are smaller (text without '_')
+    assert!(h.query_by_label("pWx = c1(a2c2 + d4s23)").is_some());
+    for _ in 0..5 {
+        h.get_by_label("Next >").click();
+        h.run();
+    }
+    assert_eq!(h.state().ik.symbols.step, 5);
+    assert!(h.query_by_label("step 6 of 6").is_some());
+    let mut scene = armlab::scene::Scene::default();
+    let state = AppState::from_spec("anthropomorphic_spherical_wrist").unwrap();
+    h.state_mut().ik.symbols.decorate(&state, 0, &mut scene);
+    assert!(scene.labels.iter().any(|l| l.text == "frame 6"));
+}
+
+/// The Exercise tab: a sheet's key opens its arm with the DH table and frames hidden, the
+/// answer typed in the grid is graded by equivalence, with feedback per row.
+#[test]
+fn the_exercise_tab_grades_a_typed_dh_table() {
+    use armlab::exercise::{Kind, generate};
+    let puma = armlab::kinematics::models::built_in("puma560").unwrap();
+    let sheet = generate(Kind::DhTable, Some(&puma), 5, 1).unwrap();
+    let key = serde_json::to_string(&sheet.key).unwrap();
+    let mut app = AppUi::new(AppState::from_spec("planar3").unwrap());
+    app.open_exercise_text("key.json", &key).unwrap();
+    assert!(app.state.hidden.dh_table && !app.state.display.frames);
+    assert_eq!(app.tab, armlab::app::tabs::EXERCISE);
+    // the answer: the Puma's table with z1 chosen the other way (alpha1 = -90 deg)
+    let (_, table) = puma.dh_table().unwrap();
+    let open = app.tabs.exercise.sheet.as_mut().unwrap();
+    for (row, (_, r, _)) in open.rows.iter_mut().zip(&table) {
+        row.a = r.a.to_string();
+        row.alpha_deg = r.alpha.to_degrees().to_string();
+        row.d = r.d.to_string();
+    }
+    open.rows[0].alpha_deg = "-90".into();
+    let app = {
+        let mut h = Harness::builder()
+            .with_size(egui::vec2(1280.0, 1600.0))
+            .build_ui_state(|ui, app: &mut AppUi| app.show(ui, None), app);
+        h.run();
+        h.get_by_label("Check").click();
+        h.run();
+        assert!(h.query_by_label("score 6 of 6").is_some());
+        // a real slip: d4 the other way
+        let open = h.state_mut().tabs.exercise.sheet.as_mut().unwrap();
+        open.rows[3].d = format!("-{}", table[3].1.d);
+        h.run();
+        h.get_by_label("Check").click();
+        h.run();
+        assert!(h.query_by_label("score 5 of 6").is_some());
+        h.get_by_label("Close sheet").click();
+        h.run();
+        h.into_state()
+    };
+    assert!(!app.state.hidden.dh_table && app.tabs.exercise.sheet.is_none());
+}
+
+#[test]
+fn the_record_button_starts_and_stops_a_recording() {
+    let mut h = harness(AppUi::new(AppState::from_spec("planar3").unwrap()));
+    h.get_by_label("Record").click();
+    h.run();
+    assert!(h.state().recorder.is_some());
+    assert!(h.query_by_label("Stop (0)").is_some());
+}
+
+/// The workspace overlay remembered as on from the last session (or set by a lesson) computes
+/// the workspace at once: it showed nothing, and W then turned it off (found by the web test,
+/// whose second page remembered the first one's overlay).
+#[test]
+fn a_remembered_workspace_overlay_computes_the_workspace() {
+    let mut app = AppUi::new(AppState::from_spec("planar2").unwrap());
+    app.state.display.workspace = true;
+    let h = harness(app);
+    assert!(
+        h.state().tabs.workspace.job.is_some(),
+        "the overlay is on but no workspace is computed"
+    );
+}

@@ -1,0 +1,6 @@
+//! The command line, run as a process, and its reference page.
+//!
+//! Needs the `app` feature (`required-features` in Cargo.toml).
+
+mod cli;
+mod cli_reference;

@@ -1,0 +1,3 @@
+//! The scene naming the GPU (fixture).
+use wgpu::Buffer;
+use crate::kinematics::Robot;
