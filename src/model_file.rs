@@ -58,6 +58,75 @@ use thiserror::Error;
 /// `path` is only used in error messages. The robot's joints are in file order, its `q`
 /// components are the actuated (not fixed, not coupled) joints in file order, and it has the
 /// configuration "zero" plus those of the file.
+///
+/// # Examples
+///
+/// The anthropomorphic arm of Table 2.4 written as a model file; at q = (0, 0, 0) it stretches
+/// out along x0 to a2 + a3:
+///
+/// ```
+/// use armlab::model_file::parse_model;
+/// use std::path::Path;
+///
+/// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+/// let text = r#"
+/// name = "anthropomorphic arm"
+/// convention = "standard"
+///
+/// [[joints]]
+/// type = "revolute"
+/// a = 0.0
+/// alpha = "pi/2"
+/// d = 0.0
+///
+/// [[joints]]
+/// type = "revolute"
+/// a = 0.5
+/// alpha = 0.0
+/// d = 0.0
+///
+/// [[joints]]
+/// type = "revolute"
+/// a = 0.4
+/// alpha = 0.0
+/// d = 0.0
+/// limits = ["-150deg", "150deg"]
+///
+/// [[configurations]]
+/// name = "ready"
+/// q = [0.0, "pi/4", "-pi/2"]
+/// "#;
+/// let arm = parse_model(text, Path::new("arm.toml"))?;
+/// assert_eq!(arm.dof(), 3);
+/// let p = arm.fk(&[0.0, 0.0, 0.0])?.translation.vector;
+/// assert!((p.x - 0.9).abs() < 1e-15 && p.y.abs() < 1e-15 && p.z.abs() < 1e-15);
+/// assert!((arm.dof_joint(2).limits[1] - 150f64.to_radians()).abs() < 1e-15);
+/// assert_eq!(arm.config("ready"), Some(&[0.0, std::f64::consts::FRAC_PI_4, -std::f64::consts::FRAC_PI_2][..]));
+/// # Ok(())
+/// # }
+/// ```
+///
+/// Errors name the field and where it is, line and column:
+///
+/// ```
+/// use armlab::model_file::{ModelFileError, parse_model};
+/// use std::path::Path;
+///
+/// let text = r#"name = "arm"
+/// convention = "standard"
+/// [[joints]]
+/// type = "revolute"
+/// a = 1.0
+/// alpha = true
+/// d = 0.0
+/// "#;
+/// let err = parse_model(text, Path::new("arm.toml")).unwrap_err();
+/// assert!(matches!(err, ModelFileError::WrongType { .. }));
+/// assert_eq!(err.field(), Some("joints[1].alpha"));
+/// let at = err.location().expect("a position in the file");
+/// assert_eq!((at.line, at.column), (6, 9));
+/// println!("{err}"); // joints[1].alpha: expected a number or an angle string ... (arm.toml:6:9)
+/// ```
 pub fn parse_model(text: &str, path: &Path) -> Result<Robot, ModelFileError> {
     build::build(&value::Ctx { text, path })
 }
@@ -114,6 +183,37 @@ pub enum LoadError {
 /// A robot from the text of a model file named `name` (`.toml` or `.urdf`, by the extension,
 /// case-insensitively), e.g. a file the browser handed over. Errors name `name` like a path. A
 /// URDF's meshes are looked up next to `name` (there are none in a browser: each is a warning).
+///
+/// # Examples
+///
+/// A two-joint URDF chain; the format is chosen by the name's extension:
+///
+/// ```
+/// use armlab::model_file::parse_model_text;
+///
+/// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+/// let urdf = r#"<robot name="two_link">
+///   <link name="base"/> <link name="upper"/> <link name="fore"/>
+///   <joint name="shoulder" type="revolute">
+///     <parent link="base"/> <child link="upper"/>
+///     <axis xyz="0 0 1"/> <limit lower="-3" upper="3" effort="1" velocity="1"/>
+///   </joint>
+///   <joint name="elbow" type="revolute">
+///     <parent link="upper"/> <child link="fore"/>
+///     <origin xyz="0.4 0 0"/>
+///     <axis xyz="0 0 1"/> <limit lower="-3" upper="3" effort="1" velocity="1"/>
+///   </joint>
+/// </robot>"#;
+/// let robot = parse_model_text("two_link.urdf", urdf)?;
+/// assert_eq!(robot.dof(), 2);
+/// // The tool sits at the last joint's frame: the elbow, 0.4 m along the upper arm.
+/// let p = robot.fk(&[std::f64::consts::FRAC_PI_2, 0.3])?.translation.vector;
+/// assert!(p.x.abs() < 1e-15 && (p.y - 0.4).abs() < 1e-15);
+/// // Anything else is refused by name.
+/// assert!(parse_model_text("two_link.txt", urdf).is_err());
+/// # Ok(())
+/// # }
+/// ```
 pub fn parse_model_text(name: &str, text: &str) -> Result<Robot, LoadError> {
     let path = Path::new(name);
     let ext = path
@@ -134,6 +234,19 @@ pub fn parse_model_text(name: &str, text: &str) -> Result<Robot, LoadError> {
 
 /// A robot from a built-in name (see [`BUILT_INS`]) or from a path ending in `.toml` (model
 /// file) or `.urdf` (see [`crate::urdf`]); the extension is matched case-insensitively.
+///
+/// # Examples
+///
+/// ```
+/// use armlab::model_file::{LoadError, load_model};
+///
+/// let stanford = load_model("stanford").expect("a built-in model");
+/// assert_eq!(stanford.dof(), 6);
+/// // Neither a built-in name nor a model file: the error lists the built-in names.
+/// let err = load_model("stanfrod").unwrap_err();
+/// assert!(matches!(err, LoadError::Unknown { .. }));
+/// assert!(err.to_string().contains("stanford"));
+/// ```
 pub fn load_model(spec: &str) -> Result<Robot, LoadError> {
     let ext = Path::new(spec)
         .extension()

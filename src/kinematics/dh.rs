@@ -63,6 +63,32 @@ impl DhRow {
     /// The homogeneous transform `A_i` of this row with the given `theta` and `d` (the caller
     /// has already put the joint variable into one of them), eq. (2.52) for the standard
     /// convention.
+    ///
+    /// # Examples
+    ///
+    /// Eq. (2.52) written out for alpha = pi/2: `A = [[c, 0, s, a c], [s, 0, -c, a s],
+    /// [0, 1, 0, d], [0, 0, 0, 1]]`.
+    ///
+    /// ```
+    /// use armlab::kinematics::{Convention, DhRow};
+    /// use std::f64::consts::FRAC_PI_2;
+    ///
+    /// let row = DhRow { a: 0.2, alpha: FRAC_PI_2, d: 0.1, theta: 0.0 };
+    /// let (theta, d) = (0.7, row.d); // a revolute joint: theta = q + offset
+    /// let m = row.transform(Convention::Standard, theta, d).to_homogeneous();
+    /// let (s, c) = theta.sin_cos();
+    /// let expected = [
+    ///     [c, 0.0, s, 0.2 * c],
+    ///     [s, 0.0, -c, 0.2 * s],
+    ///     [0.0, 1.0, 0.0, 0.1],
+    ///     [0.0, 0.0, 0.0, 1.0],
+    /// ];
+    /// for (i, row) in expected.iter().enumerate() {
+    ///     for (j, v) in row.iter().enumerate() {
+    ///         assert!((m[(i, j)] - v).abs() < 1e-15, "A[{i}][{j}]");
+    ///     }
+    /// }
+    /// ```
     pub fn transform(&self, convention: Convention, theta: f64, d: f64) -> Pose {
         match convention {
             Convention::Standard => rot_z(theta) * trans_z(d) * trans_x(self.a) * rot_x(self.alpha),
@@ -78,6 +104,33 @@ impl DhRow {
 /// `a_{i-1}, alpha_{i-1}` from standard row i-1, and the last `Tx(a_n) Rx(alpha_n)` moves into the
 /// tool. Returns the rows and the extra tool-side transform (`flange_from_tool` to prepend to the
 /// tool). Always exact.
+///
+/// # Examples
+///
+/// Both tables give the same chain: the product of the standard rows equals the product of the
+/// modified rows followed by the extra tool transform.
+///
+/// ```
+/// use armlab::kinematics::dh::standard_to_modified;
+/// use armlab::kinematics::{Convention, DhRow, Pose};
+/// use std::f64::consts::FRAC_PI_2;
+///
+/// let standard = [
+///     DhRow { a: 0.0, alpha: FRAC_PI_2, d: 0.3, theta: 0.0 },
+///     DhRow { a: 0.4, alpha: 0.0, d: 0.0, theta: 0.0 },
+///     DhRow { a: 0.35, alpha: -FRAC_PI_2, d: 0.05, theta: 0.0 },
+/// ];
+/// let q = [0.3, -0.5, 1.1];
+/// let (modified, tool_extra) = standard_to_modified(&standard);
+/// let mut t_std = Pose::identity();
+/// let mut t_mod = Pose::identity();
+/// for ((s, m), q) in standard.iter().zip(&modified).zip(q) {
+///     t_std *= s.transform(Convention::Standard, q, s.d);
+///     t_mod *= m.transform(Convention::Modified, q, m.d);
+/// }
+/// t_mod *= tool_extra;
+/// assert!((t_std.to_homogeneous() - t_mod.to_homogeneous()).amax() < 1e-15);
+/// ```
 pub fn standard_to_modified(rows: &[DhRow]) -> (Vec<DhRow>, Pose) {
     let mut out = Vec::with_capacity(rows.len());
     let mut prev = (0.0, 0.0);

@@ -8,6 +8,26 @@ use nalgebra::{Matrix3, Rotation3, Translation3, Vector3};
 
 impl Robot {
     /// Checks that `q` has `dof()` finite entries.
+    ///
+    /// # Examples
+    ///
+    /// Every function that takes a joint vector reports a wrong one as a typed
+    /// [`KinematicsError`] instead of panicking:
+    ///
+    /// ```
+    /// use armlab::kinematics::KinematicsError;
+    /// use armlab::kinematics::models::built_in;
+    ///
+    /// let planar2 = built_in("planar2").expect("a built-in model");
+    /// assert_eq!(planar2.check_q(&[0.1, 0.2]), Ok(()));
+    /// assert_eq!(
+    ///     planar2.fk(&[0.1, 0.2, 0.3]).unwrap_err(),
+    ///     KinematicsError::DofMismatch { expected: 2, got: 3 }
+    /// );
+    /// let err = planar2.fk(&[0.1, f64::NAN]).unwrap_err();
+    /// assert!(matches!(err, KinematicsError::NonFinite { index: 1, .. }));
+    /// assert_eq!(err.to_string(), "joint value 1 (q2) is not a finite number: NaN");
+    /// ```
     pub fn check_q(&self, q: &[f64]) -> Result<(), KinematicsError> {
         if q.len() != self.dof() {
             return Err(KinematicsError::DofMismatch {
@@ -101,6 +121,29 @@ impl Robot {
     }
 
     /// `world_from_frame_j` for every joint j.
+    ///
+    /// # Examples
+    ///
+    /// The frames of the three-link planar arm (a = 0.5, 0.3, 0.2 m): the origin of frame 1 is
+    /// the elbow at `(a1 c1, a1 s1)`, that of frame 2 the wrist.
+    ///
+    /// ```
+    /// use armlab::kinematics::models::built_in;
+    ///
+    /// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+    /// let arm = built_in("planar3").expect("a built-in model");
+    /// let q = [0.4, -0.3, 0.2];
+    /// let frames = arm.fk_frames(&q)?;
+    /// assert_eq!(frames.len(), 3);
+    /// let elbow = frames[0].translation.vector;
+    /// assert!((elbow.x - 0.5 * q[0].cos()).abs() < 1e-15);
+    /// assert!((elbow.y - 0.5 * q[0].sin()).abs() < 1e-15);
+    /// // The last frame is the flange: the tool of this model is the identity.
+    /// let tool = arm.fk(&q)?;
+    /// assert!((frames[2].to_homogeneous() - tool.to_homogeneous()).amax() < 1e-15);
+    /// # Ok(())
+    /// # }
+    /// ```
     pub fn fk_frames(&self, q: &[f64]) -> Result<Vec<Pose>, KinematicsError> {
         let mut f = vec![Pose::identity(); self.lowered.len()];
         self.fk_frames_into(q, &mut f)?;
@@ -124,6 +167,23 @@ impl Robot {
 
     /// Position of end-effector `ee` (world, m): the workspace-sampling hot path. Same checks as
     /// [`Self::fk_ee`], but the tool's rotation is never multiplied out.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use armlab::kinematics::models::built_in;
+    ///
+    /// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+    /// let puma = built_in("puma560").expect("a built-in model");
+    /// let q = [0.1, -0.4, 0.3, 0.5, -0.2, 0.9];
+    /// let p = puma.fk_ee_position(&q, 0)?;
+    /// let t = puma.fk(&q)?.translation.vector;
+    /// assert!((p[0] - t.x).abs() < 1e-15 && (p[1] - t.y).abs() < 1e-15 && (p[2] - t.z).abs() < 1e-15);
+    /// // An end-effector the robot does not have is an error, not a panic.
+    /// assert!(puma.fk_ee_position(&q, 1).is_err());
+    /// # Ok(())
+    /// # }
+    /// ```
     pub fn fk_ee_position(&self, q: &[f64], ee: usize) -> Result<[f64; 3], KinematicsError> {
         self.check_q(q)?;
         if ee >= self.end_effectors().len() {
@@ -205,11 +265,56 @@ impl Robot {
     }
 
     /// `world_from_tool` of the first end-effector.
+    ///
+    /// # Examples
+    ///
+    /// The three-link planar arm's direct kinematics (2.63): `x = a1 c1 + a2 c12 + a3 c123`,
+    /// `y = a1 s1 + a2 s12 + a3 s123`, and the tool's x axis at `phi = q1 + q2 + q3`.
+    ///
+    /// ```
+    /// use armlab::kinematics::models::built_in;
+    ///
+    /// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+    /// let arm = built_in("planar3").expect("a built-in model");
+    /// let (a1, a2, a3) = (0.5, 0.3, 0.2); // Problem 2.17
+    /// let q = [0.3, 0.6, -0.4];
+    /// let world_from_tool = arm.fk(&q)?;
+    /// let (q12, q123) = (q[0] + q[1], q[0] + q[1] + q[2]);
+    /// let x = a1 * q[0].cos() + a2 * q12.cos() + a3 * q123.cos();
+    /// let y = a1 * q[0].sin() + a2 * q12.sin() + a3 * q123.sin();
+    /// let p = world_from_tool.translation.vector;
+    /// assert!((p.x - x).abs() < 1e-15 && (p.y - y).abs() < 1e-15 && p.z.abs() < 1e-15);
+    /// let x_axis = world_from_tool.rotation * armlab::nalgebra::Vector3::x();
+    /// assert!((x_axis.y.atan2(x_axis.x) - q123).abs() < 1e-15);
+    /// # Ok(())
+    /// # }
+    /// ```
     pub fn fk(&self, q: &[f64]) -> Result<Pose, KinematicsError> {
         self.fk_ee(q, 0)
     }
 
     /// `world_from_tool` of every end-effector.
+    ///
+    /// # Examples
+    ///
+    /// The humanoid of Fig. 2.28 has two hands on one torso:
+    ///
+    /// ```
+    /// use armlab::kinematics::models::built_in;
+    ///
+    /// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+    /// let humanoid = built_in("humanoid").expect("a built-in model");
+    /// assert_eq!(humanoid.dof(), 17);
+    /// let q = humanoid.ready_or_zero();
+    /// let hands = humanoid.fk_all_ee(&q)?;
+    /// assert_eq!(hands.len(), humanoid.end_effectors().len());
+    /// for (k, hand) in hands.iter().enumerate() {
+    ///     let alone = humanoid.fk_ee(&q, k)?;
+    ///     assert!((hand.to_homogeneous() - alone.to_homogeneous()).amax() < 1e-12);
+    /// }
+    /// # Ok(())
+    /// # }
+    /// ```
     pub fn fk_all_ee(&self, q: &[f64]) -> Result<Vec<Pose>, KinematicsError> {
         let frames = self.fk_frames(q)?;
         Ok(self

@@ -35,6 +35,29 @@ impl JacobianAnalysis {
 }
 
 /// SVD of any Jacobian (rows = task components).
+///
+/// # Examples
+///
+/// The positional rows x, y of the two-link planar arm's Jacobian: its manipulability
+/// `sqrt(det(J J^T)) = |det J|` is `a1 a2 |s2|`, zero with the arm stretched out (q2 = 0).
+///
+/// ```
+/// use armlab::kinematics::jacobian::analyze;
+/// use armlab::kinematics::models::built_in;
+/// use armlab::nalgebra::DMatrix;
+///
+/// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+/// let arm = built_in("planar2").expect("a built-in model"); // a1 = a2 = 1 m
+/// for q2 in [0.0, 0.5, 1.2] {
+///     let j = arm.jacobian(&[0.3, q2], 0)?;
+///     let xy = DMatrix::from_fn(2, 2, |r, c| j[(r, c)]);
+///     let a = analyze(&xy);
+///     assert!((a.manipulability - q2.sin().abs()).abs() < 1e-12);
+///     assert_eq!(a.rank, if q2 == 0.0 { 1 } else { 2 });
+/// }
+/// # Ok(())
+/// # }
+/// ```
 pub fn analyze(j: &nalgebra::DMatrix<f64>) -> JacobianAnalysis {
     let mut sv = j.clone().svd(false, false).singular_values;
     sv.as_mut_slice().sort_by(|a, b| b.total_cmp(a));
@@ -131,6 +154,38 @@ impl Robot {
     }
 
     /// The geometric Jacobian (6 x dof) of end-effector `ee` in the world frame.
+    ///
+    /// # Examples
+    ///
+    /// The two-link planar arm's Jacobian written out (Sect. 3.1.3): linear rows
+    /// `[-a1 s1 - a2 s12, -a2 s12; a1 c1 + a2 c12, a2 c12; 0, 0]`, angular rows `[0, 0; 0, 0; 1, 1]`.
+    ///
+    /// ```
+    /// use armlab::kinematics::models::built_in;
+    ///
+    /// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+    /// let arm = built_in("planar2").expect("a built-in model");
+    /// let (a1, a2) = (1.0, 1.0);
+    /// let q = [0.4, 0.9];
+    /// let j = arm.jacobian(&q, 0)?;
+    /// let (s1, c1) = q[0].sin_cos();
+    /// let (s12, c12) = (q[0] + q[1]).sin_cos();
+    /// let expected = [
+    ///     [-a1 * s1 - a2 * s12, -a2 * s12],
+    ///     [a1 * c1 + a2 * c12, a2 * c12],
+    ///     [0.0, 0.0],
+    ///     [0.0, 0.0],
+    ///     [0.0, 0.0],
+    ///     [1.0, 1.0],
+    /// ];
+    /// for (r, row) in expected.iter().enumerate() {
+    ///     for (c, v) in row.iter().enumerate() {
+    ///         assert!((j[(r, c)] - v).abs() < 1e-15, "J[{r}][{c}]");
+    ///     }
+    /// }
+    /// # Ok(())
+    /// # }
+    /// ```
     pub fn jacobian(&self, q: &[f64], ee: usize) -> Result<Matrix6xX<f64>, KinematicsError> {
         let mut frames = vec![Pose::identity(); self.joints().len()];
         let mut jac = Matrix6xX::zeros(self.dof());
@@ -141,6 +196,28 @@ impl Robot {
     /// The analytical Jacobian `J_A = T_A(phi)^-1 J` (Sect. 3.6) for the orientation
     /// representation `kind`; an error where `T(phi)` is singular (ZYZ: sin(theta) = 0, RPY:
     /// cos(theta) = 0).
+    ///
+    /// # Examples
+    ///
+    /// A planar arm turns its tool about z only: in roll-pitch-yaw angles the first angle's
+    /// rate is `q1_dot + q2_dot`, while ZYZ angles are singular at every configuration
+    /// (theta = 0).
+    ///
+    /// ```
+    /// use armlab::kinematics::models::built_in;
+    /// use armlab::kinematics::{EulerKind, KinematicsError};
+    ///
+    /// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+    /// let arm = built_in("planar2").expect("a built-in model");
+    /// let q = [0.4, 0.9];
+    /// let ja = arm.analytical_jacobian(&q, 0, EulerKind::Rpy)?;
+    /// assert!((ja[(3, 0)] - 1.0).abs() < 1e-15 && (ja[(3, 1)] - 1.0).abs() < 1e-15);
+    /// assert!(ja[(4, 0)].abs() < 1e-15 && ja[(5, 1)].abs() < 1e-15);
+    /// let zyz = arm.analytical_jacobian(&q, 0, EulerKind::Zyz);
+    /// assert!(matches!(zyz, Err(KinematicsError::RepresentationSingular { .. })));
+    /// # Ok(())
+    /// # }
+    /// ```
     pub fn analytical_jacobian(
         &self,
         q: &[f64],
@@ -168,6 +245,26 @@ impl Robot {
     }
 
     /// The operational-space vector `x_e = [p_e; phi_e]` of (2.80)/(2.82) for end-effector `ee`.
+    ///
+    /// # Examples
+    ///
+    /// For the three-link planar arm the first roll-pitch-yaw angle is the orientation
+    /// `phi = q1 + q2 + q3` of (2.83):
+    ///
+    /// ```
+    /// use armlab::kinematics::EulerKind;
+    /// use armlab::kinematics::models::built_in;
+    ///
+    /// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+    /// let arm = built_in("planar3").expect("a built-in model");
+    /// let q = [0.2, 0.5, -0.3];
+    /// let x = arm.operational(&q, 0, EulerKind::Rpy)?;
+    /// let p = arm.fk(&q)?.translation.vector;
+    /// assert!((x[0] - p.x).abs() < 1e-15 && (x[1] - p.y).abs() < 1e-15);
+    /// assert!((x[3] - (q[0] + q[1] + q[2])).abs() < 1e-15);
+    /// # Ok(())
+    /// # }
+    /// ```
     pub fn operational(
         &self,
         q: &[f64],
@@ -181,6 +278,26 @@ impl Robot {
     }
 
     /// Rank, singular values and manipulability of the geometric Jacobian.
+    ///
+    /// # Examples
+    ///
+    /// The Puma 560 has full rank at a generic configuration and loses one at the wrist
+    /// singularity q5 = 0 (axes 4 and 6 aligned, Sect. 3.3):
+    ///
+    /// ```
+    /// use armlab::kinematics::models::built_in;
+    ///
+    /// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+    /// let puma = built_in("puma560").expect("a built-in model");
+    /// let generic = puma.analyze_jacobian(&[0.1, -0.6, 0.4, 0.3, 0.8, -0.2], 0)?;
+    /// assert_eq!(generic.rank, 6);
+    /// assert!(generic.manipulability > 1e-4);
+    /// let wrist = puma.analyze_jacobian(&[0.1, -0.6, 0.4, 0.3, 0.0, -0.2], 0)?;
+    /// assert_eq!(wrist.rank, 5);
+    /// assert!(wrist.manipulability < 1e-12 && wrist.min_singular_value() < 1e-12);
+    /// # Ok(())
+    /// # }
+    /// ```
     pub fn analyze_jacobian(
         &self,
         q: &[f64],

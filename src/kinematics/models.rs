@@ -118,6 +118,22 @@ pub const BUILT_INS: &[BuiltIn] = &[
 ];
 
 /// Builds the built-in model called `name`, if there is one.
+///
+/// # Examples
+///
+/// ```
+/// use armlab::kinematics::models::{BUILT_INS, built_in};
+///
+/// let scara = built_in("scara").expect("a built-in model");
+/// assert_eq!(scara.dof(), 4);
+/// assert!(built_in("no such arm").is_none());
+/// // The catalogue, as `armlab robots` lists it.
+/// for b in BUILT_INS {
+///     let robot = (b.build)();
+///     assert!(robot.dof() >= 2, "{}", b.name);
+///     println!("{:<32} {} DOF  {}", b.name, robot.dof(), b.summary);
+/// }
+/// ```
 pub fn built_in(name: &str) -> Option<Robot> {
     BUILT_INS
         .iter()

@@ -24,6 +24,26 @@ pub struct Orientation {
 }
 
 /// Which minimal representation of orientation an operational-space vector uses.
+///
+/// # Examples
+///
+/// Choosing the representation at run time, e.g. from a user's setting:
+///
+/// ```
+/// use armlab::kinematics::EulerKind;
+/// use armlab::nalgebra::Vector3;
+///
+/// let angles = Vector3::new(0.5, 0.8, -1.2);
+/// for kind in [EulerKind::Zyz, EulerKind::Rpy] {
+///     let r = kind.to_rotation(&angles);
+///     let back = kind.from_rotation(&r);
+///     assert!((back.angles - angles).amax() < 1e-14, "{}", kind.as_str());
+/// }
+/// // The same three numbers are different rotations in the two representations.
+/// let zyz = EulerKind::Zyz.to_rotation(&angles);
+/// let rpy = EulerKind::Rpy.to_rotation(&angles);
+/// assert!(zyz.angle_to(&rpy) > 0.1);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum EulerKind {
     /// ZYZ Euler angles `R = Rz(phi) Ry(theta) Rz(psi)`, (2.18).
@@ -84,11 +104,49 @@ pub fn rotation_from_zyz(a: &Vector3<f64>) -> Rotation3<f64> {
 /// (theta = pi) is determined; phi = 0 is chosen and psi carries the whole rotation about z.
 /// psi is always computed from the residual `(Rz(phi) Ry(theta))^T R`, so that the round trip is
 /// exact to rounding even close to the singularity.
+///
+/// # Examples
+///
+/// A round trip through (2.18) and (2.19), and the singular case:
+///
+/// ```
+/// use armlab::kinematics::orientation::{rotation_from_zyz, zyz_from_rotation};
+/// use armlab::nalgebra::Vector3;
+///
+/// let angles = Vector3::new(0.3, 1.1, -0.7); // phi, theta, psi (rad), theta in (0, pi)
+/// let r = rotation_from_zyz(&angles);
+/// let back = zyz_from_rotation(&r);
+/// assert!(!back.singular);
+/// assert!((back.angles - angles).amax() < 1e-15);
+///
+/// // theta = 0: only phi + psi is determined; phi = 0 is chosen.
+/// let flat = zyz_from_rotation(&rotation_from_zyz(&Vector3::new(0.4, 0.0, 0.5)));
+/// assert!(flat.singular);
+/// assert_eq!(flat.angles[0], 0.0);
+/// assert!((flat.angles[2] - 0.9).abs() < 1e-15);
+/// ```
 pub fn zyz_from_rotation(r: &Rotation3<f64>) -> Orientation {
     zyz_branch(r, 1.0)
 }
 
 /// ZYZ angles with theta in [-pi, 0], eq. (2.20): the second solution of the spherical wrist.
+///
+/// # Examples
+///
+/// Both solutions describe the same rotation: `(phi + pi, -theta, psi + pi)`.
+///
+/// ```
+/// use armlab::kinematics::orientation::{
+///     rotation_from_zyz, zyz_from_rotation, zyz_from_rotation_negative,
+/// };
+/// use armlab::nalgebra::Vector3;
+///
+/// let r = rotation_from_zyz(&Vector3::new(0.3, 1.1, -0.7));
+/// let (pos, neg) = (zyz_from_rotation(&r), zyz_from_rotation_negative(&r));
+/// assert!((neg.angles[1] + pos.angles[1]).abs() < 1e-15);
+/// let again = rotation_from_zyz(&neg.angles);
+/// assert!((again.matrix() - r.matrix()).amax() < 1e-15);
+/// ```
 pub fn zyz_from_rotation_negative(r: &Rotation3<f64>) -> Orientation {
     zyz_branch(r, -1.0)
 }
@@ -119,6 +177,22 @@ pub fn rotation_from_rpy(a: &Vector3<f64>) -> Rotation3<f64> {
 }
 
 /// Roll–pitch–yaw angles with theta in [-pi/2, pi/2], eq. (2.22).
+///
+/// # Examples
+///
+/// ```
+/// use armlab::kinematics::orientation::{rotation_from_rpy, rpy_from_rotation};
+/// use armlab::nalgebra::Vector3;
+///
+/// // phi about z, theta about y, psi about x: R = Rz(phi) Ry(theta) Rx(psi), (2.21).
+/// let angles = Vector3::new(-2.0, 0.4, 2.5);
+/// let back = rpy_from_rotation(&rotation_from_rpy(&angles));
+/// assert!(!back.singular && (back.angles - angles).amax() < 1e-14);
+///
+/// // A pure yaw of 90 degrees takes x0 to y0.
+/// let yaw = rotation_from_rpy(&Vector3::new(std::f64::consts::FRAC_PI_2, 0.0, 0.0));
+/// assert!((yaw * Vector3::x() - Vector3::y()).norm() < 1e-15);
+/// ```
 ///
 /// Singular case (Problem 2.3), cos(theta) = 0: only phi - psi (theta = pi/2) or phi + psi
 /// (theta = -pi/2) is determined; phi = 0 is chosen. psi is computed from the residual, as for
@@ -153,11 +227,48 @@ pub struct AngleAxis {
 }
 
 /// `R(theta, r)`, eq. (2.25).
+///
+/// # Examples
+///
+/// A third of a turn about the diagonal `(1, 1, 1)/sqrt(3)` permutes the axes: x to y, y to z.
+///
+/// ```
+/// use armlab::kinematics::orientation::{angle_axis_from_rotation, rotation_from_angle_axis};
+/// use armlab::nalgebra::{Unit, Vector3};
+///
+/// let axis = Unit::new_normalize(Vector3::new(1.0, 1.0, 1.0));
+/// let angle = 2.0 * std::f64::consts::PI / 3.0;
+/// let r = rotation_from_angle_axis(angle, &axis);
+/// assert!((r * Vector3::x() - Vector3::y()).norm() < 1e-15);
+/// assert!((r * Vector3::y() - Vector3::z()).norm() < 1e-15);
+/// // And back, eqs. (2.26)-(2.27).
+/// let aa = angle_axis_from_rotation(&r);
+/// assert!((aa.angle - angle).abs() < 1e-15);
+/// assert!((aa.axis.into_inner() - axis.into_inner()).norm() < 1e-15);
+/// ```
 pub fn rotation_from_angle_axis(angle: f64, axis: &Unit<Vector3<f64>>) -> Rotation3<f64> {
     Rotation3::from_axis_angle(axis, angle)
 }
 
 /// Angle and axis of a rotation, eqs. (2.26)–(2.27), robust at both ends.
+///
+/// # Examples
+///
+/// A half turn (Problem 2.5), where (2.27) divides by sin(pi) = 0, and no turn at all:
+///
+/// ```
+/// use armlab::kinematics::orientation::{angle_axis_from_rotation, rotation_from_angle_axis};
+/// use armlab::nalgebra::{Rotation3, Unit, Vector3};
+/// use std::f64::consts::PI;
+///
+/// let axis = Unit::new_normalize(Vector3::new(0.0, 3.0, 4.0));
+/// let half = angle_axis_from_rotation(&rotation_from_angle_axis(PI, &axis));
+/// assert!((half.angle - PI).abs() < 1e-15);
+/// assert!((half.axis.into_inner() - axis.into_inner()).norm() < 1e-15);
+///
+/// let none = angle_axis_from_rotation(&Rotation3::identity());
+/// assert!(none.singular && none.angle == 0.0);
+/// ```
 ///
 /// angle = 0: the axis is undefined; z is returned and `singular` is set. angle = pi
 /// (Problem 2.5): r and -r describe the same rotation; r is taken from the symmetric part
@@ -209,6 +320,25 @@ pub fn angle_axis_from_rotation(r: &Rotation3<f64>) -> AngleAxis {
 /// Unit quaternion `Q = {eta, epsilon}` of a rotation, eqs. (2.34)–(2.35), with eta >= 0
 /// (rotation angle in [-pi, pi]); at eta = 0 (a half turn) the sign makes the largest component
 /// of epsilon positive. Computed with Shepperd's method, accurate for every rotation.
+///
+/// # Examples
+///
+/// `eta = cos(theta/2)`, `epsilon = sin(theta/2) r`, (2.30), and back to the matrix:
+///
+/// ```
+/// use armlab::kinematics::orientation::{
+///     quaternion_from_rotation, rotation_from_angle_axis, rotation_from_quaternion,
+/// };
+/// use armlab::nalgebra::{Unit, Vector3};
+///
+/// let (theta, r) = (1.3, Unit::new_normalize(Vector3::new(2.0, -1.0, 2.0)));
+/// let rot = rotation_from_angle_axis(theta, &r);
+/// let q = quaternion_from_rotation(&rot);
+/// assert!((q.w - (theta / 2.0).cos()).abs() < 1e-15);
+/// assert!((q.imag() - r.into_inner() * (theta / 2.0).sin()).norm() < 1e-15);
+/// let back = rotation_from_quaternion(&q);
+/// assert!((back.matrix() - rot.matrix()).amax() < 1e-15);
+/// ```
 pub fn quaternion_from_rotation(r: &Rotation3<f64>) -> UnitQuaternion<f64> {
     let q = UnitQuaternion::from_rotation_matrix(r);
     let mut c = *q.quaternion();
@@ -249,6 +379,17 @@ pub fn angular_velocity_map(kind: EulerKind, a: &Vector3<f64>) -> Matrix3<f64> {
 }
 
 /// Wraps an angle into (-pi, pi].
+///
+/// # Examples
+///
+/// ```
+/// use armlab::kinematics::orientation::wrap_angle;
+/// use std::f64::consts::{FRAC_PI_2, PI};
+///
+/// assert!((wrap_angle(3.0 * FRAC_PI_2) + FRAC_PI_2).abs() < 1e-15);
+/// assert_eq!(wrap_angle(-PI), PI); // the interval is open at -pi
+/// assert_eq!(wrap_angle(0.25), 0.25); // inside: returned as is
+/// ```
 pub fn wrap_angle(a: f64) -> f64 {
     if a > -PI && a <= PI {
         // Already inside: returned as is (the shifted form below would round tiny angles).

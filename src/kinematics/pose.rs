@@ -6,6 +6,27 @@ use nalgebra::{Matrix3, Matrix4, Rotation3, Translation3};
 ///
 /// Name values by their frames: `world_from_tool` maps tool coordinates into world coordinates,
 /// and compose right to left, `world_from_tool = world_from_base * base_from_tool`.
+///
+/// # Examples
+///
+/// The elementary transforms of chapter 2 compose by `*`; a pose maps points of its right-hand
+/// frame into its left-hand frame:
+///
+/// ```
+/// use armlab::kinematics::Pose;
+/// use armlab::kinematics::pose::{rot_z, trans_x, trans_z};
+/// use armlab::nalgebra::Point3;
+/// use std::f64::consts::FRAC_PI_2;
+///
+/// let world_from_base = trans_z(0.5);
+/// let base_from_tool = rot_z(FRAC_PI_2) * trans_x(0.3);
+/// let world_from_tool: Pose = world_from_base * base_from_tool;
+/// let p = world_from_tool * Point3::origin();
+/// assert!((p - Point3::new(0.0, 0.3, 0.5)).norm() < 1e-15);
+/// // The inverse maps back: tool_from_world.
+/// let back = world_from_tool.inverse() * p;
+/// assert!(back.coords.norm() < 1e-15);
+/// ```
 pub type Pose = nalgebra::IsometryMatrix3<f64>;
 
 /// Elementary rotation about x by `angle` (rad), eq. (2.6).
@@ -82,6 +103,27 @@ impl std::fmt::Display for NotRigid {
 
 /// Accepts a homogeneous 4x4 matrix as a rigid transform, re-orthonormalising the rotation part
 /// when it is within [`RIGID_TOLERANCE`] of orthonormal (so that 6-digit data in files works).
+///
+/// # Examples
+///
+/// ```
+/// use armlab::kinematics::pose::{NotRigid, matrix_from_rows, pose_from_matrix};
+///
+/// // A quarter turn about z, 1 m up.
+/// let rows = [
+///     [0.0, -1.0, 0.0, 0.0],
+///     [1.0, 0.0, 0.0, 0.0],
+///     [0.0, 0.0, 1.0, 1.0],
+///     [0.0, 0.0, 0.0, 1.0],
+/// ];
+/// let pose = pose_from_matrix(&matrix_from_rows(&rows)).expect("rigid");
+/// assert_eq!(pose.translation.vector.z, 1.0);
+///
+/// // A mirror is not a rigid transform.
+/// let mut mirror = rows;
+/// mirror[2][2] = -1.0;
+/// assert_eq!(pose_from_matrix(&matrix_from_rows(&mirror)), Err(NotRigid::Reflection));
+/// ```
 pub fn pose_from_matrix(m: &Matrix4<f64>) -> Result<Pose, NotRigid> {
     if m.iter().any(|v| !v.is_finite()) {
         return Err(NotRigid::NonFinite);

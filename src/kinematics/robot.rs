@@ -261,6 +261,24 @@ pub struct PointMass {
 }
 
 /// A manipulator: base transform, joint tree, end-effectors and named configurations.
+///
+/// # Examples
+///
+/// A built-in model of the textbook ([`crate::kinematics::models::built_in`]) and what it holds:
+///
+/// ```
+/// use armlab::kinematics::models::built_in;
+///
+/// let puma = built_in("puma560").expect("a built-in model");
+/// assert_eq!(puma.dof(), 6);
+/// assert_eq!(puma.end_effectors().len(), 1);
+/// // Every built-in model has the configurations "zero" and "ready".
+/// assert_eq!(puma.config("zero"), Some(&[0.0; 6][..]));
+/// let ready = puma.config("ready").expect("a ready configuration");
+/// assert!(puma.within_limits(ready, 0.0));
+/// // Joints are named q1, q2, ... unless the table names them.
+/// println!("{}: {} joints, first {:?}", puma.name, puma.joints().len(), puma.joints()[0].name);
+/// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct Robot {
     /// Display name.
@@ -368,6 +386,51 @@ impl Robot {
     /// A serial DH chain: joint i's parent is joint i-1, one end-effector `tool`
     /// (`flange_from_tool`) on the last joint, `base` = `world_from_base`. Joints are named
     /// `q1`, `q2`, ... unless [`DhJoint::name`] is given.
+    ///
+    /// # Examples
+    ///
+    /// The two-link planar arm of Sect. 2.12.1 with a1 = 0.5 m, a2 = 0.3 m, mounted 1 m above
+    /// the world origin. Stretched out along x0 (q = 0) its tool is at x = a1 + a2:
+    ///
+    /// ```
+    /// use armlab::kinematics::{Convention, DhJoint, DhRow, Pose, Robot};
+    ///
+    /// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+    /// let (a1, a2) = (0.5, 0.3);
+    /// let arm = Robot::from_dh(
+    ///     "two-link arm",
+    ///     Convention::Standard,
+    ///     &[
+    ///         DhJoint::revolute(DhRow { a: a1, alpha: 0.0, d: 0.0, theta: 0.0 }).name("shoulder"),
+    ///         DhJoint::revolute(DhRow { a: a2, alpha: 0.0, d: 0.0, theta: 0.0 }).name("elbow"),
+    ///     ],
+    ///     Pose::translation(0.0, 0.0, 1.0), // world_from_base
+    ///     Pose::identity(),                 // flange_from_tool
+    /// )?;
+    /// assert_eq!(arm.dof(), 2);
+    /// assert_eq!(arm.dof_joint(1).name, "elbow");
+    /// let p = arm.fk(&[0.0, 0.0])?.translation.vector;
+    /// assert!((p.x - (a1 + a2)).abs() < 1e-15 && p.y.abs() < 1e-15 && (p.z - 1.0).abs() < 1e-15);
+    /// # Ok(())
+    /// # }
+    /// ```
+    ///
+    /// A table that is not a robot is a typed [`ModelError`], here limits that are not an
+    /// interval:
+    ///
+    /// ```
+    /// use armlab::kinematics::{Convention, DhJoint, DhRow, ModelError, Pose, Robot};
+    ///
+    /// let bad = Robot::from_dh(
+    ///     "bad",
+    ///     Convention::Standard,
+    ///     &[DhJoint::revolute(DhRow { a: 1.0, ..DhRow::default() }).limits(1.0, -1.0)],
+    ///     Pose::identity(),
+    ///     Pose::identity(),
+    /// );
+    /// assert!(matches!(bad, Err(ModelError::BadLimits { joint: 0, .. })));
+    /// println!("{}", bad.unwrap_err()); // "joint 0: limits [1, -1] are not an interval (...)"
+    /// ```
     pub fn from_dh(
         name: impl Into<String>,
         convention: Convention,

@@ -15,6 +15,19 @@ use std::f64::consts::{FRAC_PI_2, FRAC_PI_3, FRAC_PI_4, FRAC_PI_6, FRAC_PI_8, PI
 ///
 /// Anything else, including a bare number in a string, `"inf"`, `"nan"` and results that are not
 /// finite, gives `None`.
+///
+/// # Examples
+///
+/// ```
+/// use armlab::model_file::parse_angle;
+/// use std::f64::consts::{FRAC_PI_2, FRAC_PI_3};
+///
+/// assert_eq!(parse_angle("pi/2"), Some(FRAC_PI_2));
+/// assert_eq!(parse_angle("-2*pi/3"), Some(-2.0 * FRAC_PI_3));
+/// assert_eq!(parse_angle("-90deg"), Some(-FRAC_PI_2));
+/// assert_eq!(parse_angle("1.2 rad"), Some(1.2));
+/// assert_eq!(parse_angle("1.2"), None); // a bare number belongs outside the string
+/// ```
 pub fn parse_angle(text: &str) -> Option<f64> {
     let s = text.trim();
     if let Some(num) = s.strip_suffix("deg") {

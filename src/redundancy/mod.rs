@@ -164,6 +164,34 @@ pub struct BranchSolution {
 }
 
 /// The self-motion of the three-link planar arm holding its hand at a point.
+///
+/// # Examples
+///
+/// The arm of Problem 2.17 holding its hand at (0.6, 0.2) m: for each orientation phi in a
+/// feasible interval, the elbow-down and elbow-up solutions.
+///
+/// ```
+/// use armlab::kinematics::models::built_in;
+/// use armlab::redundancy::PlanarSelfMotion;
+///
+/// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+/// let arm = built_in("planar3").expect("a built-in model");
+/// let motion = PlanarSelfMotion::new(&arm, [0.6, 0.2])?;
+/// assert_eq!(motion.parameter(), "phi");
+/// let (pieces, _merges) = motion.feasible();
+/// let [lo, hi] = pieces[0].first().copied().expect("elbow down is feasible");
+/// let phi = 0.5 * (lo + hi);
+/// for s in motion.solutions(&arm, phi) {
+///     let p = arm.fk(&s.q)?.translation.vector;
+///     assert!((p.x - 0.6).abs() < 1e-12 && (p.y - 0.2).abs() < 1e-12, "{}", s.name);
+///     assert!(s.orientation_error < 1e-12);
+/// }
+/// assert!(motion.manifolds(&arm) >= 1);
+/// // Out of reach (a1 + a2 + a3 = 1 m): an error.
+/// assert!(PlanarSelfMotion::new(&arm, [1.5, 0.0]).is_err());
+/// # Ok(())
+/// # }
+/// ```
 #[derive(Debug, Clone)]
 pub struct PlanarSelfMotion {
     chain: PlanarChain,

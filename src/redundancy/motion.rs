@@ -23,6 +23,55 @@ enum Solver {
 }
 
 /// The exact self-motion of a redundant arm holding its hand at one pose.
+///
+/// # Examples
+///
+/// The KUKA LWR-IV is an SRS arm: its self-motion is parameterised by the arm angle, the
+/// elbow's rotation about the shoulder-wrist line. Every branch at every arm angle holds the
+/// hand where it was:
+///
+/// ```
+/// use armlab::kinematics::models::built_in;
+/// use armlab::redundancy::motion::ExactSelfMotion;
+///
+/// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+/// let lwr = built_in("lwr4").expect("a built-in model");
+/// let q0 = [0.2, 0.6, -0.3, -1.4, 0.2, 0.7, 0.1];
+/// let pose = lwr.fk(&q0)?;
+/// let motion = ExactSelfMotion::new(&lwr, &pose)?;
+/// assert_eq!(motion.parameter(), "arm angle");
+/// assert_eq!(motion.names().len(), 8); // shoulder, elbow, wrist: two each
+/// for psi in [-2.0, -0.5, 0.0, 1.0] {
+///     for s in motion.solutions(&lwr, psi) {
+///         assert!(s.position_error < 1e-9 && s.orientation_error < 1e-9, "{}", s.name);
+///     }
+/// }
+/// // q0 lies on one branch, at its own arm angle.
+/// let (branch, psi0) = motion.locate(&lwr, &q0).expect("on the self-motion");
+/// let again = motion.solutions(&lwr, psi0);
+/// let s = again.iter().find(|s| s.name == motion.names()[branch]).expect("the branch");
+/// assert!(s.q.iter().zip(&q0).all(|(a, b)| (a - b).abs() < 1e-9));
+/// println!("{} curves inside the limits", motion.manifolds());
+/// # Ok(())
+/// # }
+/// ```
+///
+/// An arm that is not redundant has no self-motion:
+///
+/// ```
+/// use armlab::kinematics::models::built_in;
+/// use armlab::redundancy::RedundancyError;
+/// use armlab::redundancy::motion::ExactSelfMotion;
+///
+/// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+/// let puma = built_in("puma560").expect("a built-in model");
+/// let pose = puma.fk(&[0.1, -0.5, 0.3, 0.0, 0.8, 0.0])?;
+/// let err = ExactSelfMotion::new(&puma, &pose).unwrap_err();
+/// assert!(matches!(err, RedundancyError::NoExactSelfMotion { .. }));
+/// println!("{err}");
+/// # Ok(())
+/// # }
+/// ```
 #[derive(Debug, Clone)]
 pub struct ExactSelfMotion {
     solver: Solver,
@@ -45,6 +94,31 @@ impl ExactSelfMotion {
 
     /// [`Self::new`], or with `locked = Some(k)` the self-motion of a seven-revolute arm with
     /// joint k (0-based) locked as the parameter, whatever its structure (an SRS arm too).
+    ///
+    /// # Examples
+    ///
+    /// The Franka Emika Panda's self-motion with q3 as the parameter instead of q7:
+    ///
+    /// ```
+    /// use armlab::kinematics::models::built_in;
+    /// use armlab::redundancy::motion::ExactSelfMotion;
+    ///
+    /// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+    /// let panda = built_in("panda").expect("a built-in model");
+    /// let q0 = [0.3, -0.4, 0.2, -2.0, 0.1, 1.6, 0.5];
+    /// let pose = panda.fk(&q0)?;
+    /// let motion = ExactSelfMotion::with_lock(&panda, &pose, Some(2))?;
+    /// assert_eq!(motion.locked_joint(), Some(2));
+    /// assert_eq!(motion.parameter(), "q3 (locked)");
+    /// let solutions = motion.solutions(&panda, q0[2]);
+    /// assert!(solutions.iter().any(|s| s.q.iter().zip(&q0).all(|(a, b)| (a - b).abs() < 1e-8)));
+    /// for s in &solutions {
+    ///     assert!((s.q[2] - q0[2]).abs() < 1e-12);
+    ///     assert!(s.position_error < 1e-9 && s.orientation_error < 1e-9);
+    /// }
+    /// # Ok(())
+    /// # }
+    /// ```
     pub fn with_lock(
         robot: &Robot,
         target: &Pose,

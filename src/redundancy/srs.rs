@@ -358,6 +358,31 @@ impl SrsArm {
     /// Every branch (up to 8) reaching `target` with arm angle `psi` (rad), named, wrapped into
     /// the limits where they fit and flagged. Empty when the wrist centre is out of reach or at
     /// the algorithmic singularity.
+    ///
+    /// # Examples
+    ///
+    /// The DLR arm of Fig. 2.27 is an SRS arm; each branch at an arm angle has that arm angle
+    /// and puts the tool at the target:
+    ///
+    /// ```
+    /// use armlab::kinematics::models::built_in;
+    /// use armlab::redundancy::srs::SrsArm;
+    ///
+    /// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+    /// let dlr = built_in("dlr").expect("a built-in model");
+    /// let arm = SrsArm::detect(&dlr).expect("an SRS arm");
+    /// let target = dlr.fk(&[0.3, 0.7, -0.2, 1.2, 0.4, -0.6, 0.2])?;
+    /// let branches = arm.solve(&target, 0.8);
+    /// assert_eq!(branches.len(), 8);
+    /// for b in &branches {
+    ///     let gap = (dlr.fk(&b.q)?.to_homogeneous() - target.to_homogeneous()).amax();
+    ///     assert!(gap < 1e-12, "{}", b.name);
+    ///     let psi = arm.arm_angle(&b.q).expect("not at the singularity");
+    ///     assert!((psi - 0.8).abs() < 1e-9);
+    /// }
+    /// # Ok(())
+    /// # }
+    /// ```
     pub fn solve(&self, target: &Pose, psi: f64) -> Vec<SrsSolution> {
         let names = Self::branch_names();
         let mut raw = [[0.0; 7]; 8];

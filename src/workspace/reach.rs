@@ -83,6 +83,29 @@ enum Mode {
 /// approach direction of the 64 bin centres, with the x axis of the tool chosen perpendicular to
 /// it, has a solution; the roll about the approach is not scanned, which matters only when the
 /// last joint's range is under 2 pi).
+///
+/// # Examples
+///
+/// The three-link planar arm (Problem 2.17) at a point: which elbows reach it within the limits,
+/// and with how many of 64 orientations phi (the dexterous workspace counts these):
+///
+/// ```
+/// use armlab::kinematics::models::built_in;
+/// use armlab::workspace::ReachTester;
+///
+/// let arm = built_in("planar3").expect("a built-in model");
+/// let tester = ReachTester::new(&arm, 64).expect("a closed form");
+/// assert_eq!(tester.family(), "three-link planar arm");
+/// let near = tester.test_plane([0.6, 0.2]);
+/// assert!(near.mask != 0 && near.reached > 0 && near.reached < near.tried);
+/// assert_eq!(near.tried, 64);
+/// // Beyond a1 + a2 + a3 = 1 m nothing reaches.
+/// let far = tester.test_plane([1.1, 0.0]);
+/// assert_eq!((far.mask, far.reached), (0, 0));
+/// for (k, name) in tester.class_names().iter().enumerate() {
+///     println!("{name}: {}", near.mask >> k & 1 == 1);
+/// }
+/// ```
 #[derive(Debug, Clone)]
 pub struct ReachTester<'a> {
     robot: &'a Robot,

@@ -211,6 +211,29 @@ impl ClosedForm {
     ///
     /// Any other six-revolute chain gets [`Family::General6`]: every real solution by
     /// elimination.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use armlab::kinematics::ik::closed_form::{ArmKind, ClosedForm, Family, NoClosedForm};
+    /// use armlab::kinematics::models::built_in;
+    ///
+    /// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+    /// let puma = built_in("puma560").expect("a built-in model");
+    /// let cf = ClosedForm::detect(&puma)?;
+    /// assert!(matches!(cf.family(), Family::Decoupled6 { arm: ArmKind::Anthropomorphic }));
+    /// assert!(cf.near_miss().is_none());
+    /// println!("{}", cf.describe()); // "anthropomorphic arm with spherical wrist"
+    ///
+    /// // Of the four-joint arms only the SCARA has a closed form: the error says why, in words.
+    /// let planar4 = built_in("planar4").expect("a built-in model");
+    /// let why = ClosedForm::detect(&planar4).unwrap_err();
+    /// assert!(matches!(why, NoClosedForm::Geometry { .. }));
+    /// assert!(why.to_string().starts_with("4 joints: only the SCARA"));
+    /// println!("{why}");
+    /// # Ok(())
+    /// # }
+    /// ```
     pub fn detect(robot: &Robot) -> Result<ClosedForm, NoClosedForm> {
         if let Some(cf) = Self::detect_family(robot, false) {
             return Ok(cf);
@@ -481,6 +504,51 @@ impl ClosedForm {
     /// gap to the workspace in the plane of the arm (|p_W| - (a2 + a3) for the anthropomorphic
     /// arm, the gap to the annulus for planar arms, the gap to the cylinder of the lateral offset
     /// for a Puma-like shoulder), or the tilt angle (rad) of a pose a SCARA cannot orient.
+    ///
+    /// # Examples
+    ///
+    /// The two-link planar arm (a1 = a2 = 1 m) reaching (1, 1) m: the elbow at (1, 0) with
+    /// q = (0, pi/2), or at (0, 1) with q = (pi/2, -pi/2) (Sect. 2.12.1).
+    ///
+    /// ```
+    /// use armlab::kinematics::ik::{ClosedForm, IkStatus, Target};
+    /// use armlab::kinematics::models::built_in;
+    /// use armlab::nalgebra::Vector3;
+    /// use std::f64::consts::FRAC_PI_2;
+    ///
+    /// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+    /// let arm = built_in("planar2").expect("a built-in model");
+    /// let cf = ClosedForm::detect(&arm)?;
+    /// let result = cf.solve(&arm, &Target::Position(Vector3::new(1.0, 1.0, 0.0)))?;
+    /// assert_eq!(result.status, IkStatus::Ok);
+    /// assert_eq!(result.solutions.len(), 2);
+    /// for s in &result.solutions {
+    ///     let label = s.posture.to_string();
+    ///     let expected = if label == "elbow down" { [0.0, FRAC_PI_2] } else { [FRAC_PI_2, -FRAC_PI_2] };
+    ///     assert!((s.q[0] - expected[0]).abs() < 1e-12 && (s.q[1] - expected[1]).abs() < 1e-12);
+    ///     assert!(s.within_limits && s.position_error < 1e-12);
+    /// }
+    /// # Ok(())
+    /// # }
+    /// ```
+    ///
+    /// A point out of reach is not an error: the status says by how much it misses.
+    ///
+    /// ```
+    /// use armlab::kinematics::ik::{ClosedForm, IkStatus, Target};
+    /// use armlab::kinematics::models::built_in;
+    /// use armlab::nalgebra::Vector3;
+    ///
+    /// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+    /// let arm = built_in("planar2").expect("a built-in model");
+    /// let cf = ClosedForm::detect(&arm)?;
+    /// let far = cf.solve(&arm, &Target::Position(Vector3::new(3.0, 0.0, 0.0)))?;
+    /// let IkStatus::Unreachable { distance } = far.status else { panic!("reachable?") };
+    /// assert!((distance - 1.0).abs() < 1e-12); // 3 m from the base, the arm reaches 2 m
+    /// assert!(far.solutions.is_empty());
+    /// # Ok(())
+    /// # }
+    /// ```
     pub fn solve(&self, robot: &Robot, target: &Target) -> Result<IkResult, IkError> {
         let mut out = Solutions::default();
         self.solve_into(robot, target, Verify::Fk, &mut out)?;
@@ -510,6 +578,34 @@ impl ClosedForm {
     /// removed in the same pass; with [`Verify::Fk`] each solution is also checked by the
     /// robot's forward kinematics. `out` is cleared first; its `status` is set as in
     /// [`IkResult::status`].
+    ///
+    /// # Examples
+    ///
+    /// The anthropomorphic arm (Sect. 2.12.4) has four postures for a point; one buffer serves
+    /// a whole trajectory, with no allocation per point:
+    ///
+    /// ```
+    /// use armlab::kinematics::ik::Target;
+    /// use armlab::kinematics::ik::closed_form::{ClosedForm, Solutions, Verify};
+    /// use armlab::kinematics::models::built_in;
+    ///
+    /// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+    /// let arm = built_in("anthropomorphic3r").expect("a built-in model");
+    /// let cf = ClosedForm::detect(&arm)?;
+    /// let mut out = Solutions::default();
+    /// for k in 0..10 {
+    ///     let q = [0.1 * k as f64, 0.3, -0.8];
+    ///     let p = arm.fk(&q)?.translation.vector;
+    ///     cf.solve_into(&arm, &Target::Position(p), Verify::Limits, &mut out)?;
+    ///     assert_eq!(out.len(), 4);
+    ///     // Verify::Limits skips the forward-kinematics check: errors stay None.
+    ///     assert!(out.iter().all(|s| s.errors.is_none()));
+    ///     // The configuration the point came from is one of the four.
+    ///     assert!(out.iter().any(|s| s.q().iter().zip(&q).all(|(a, b)| (a - b).abs() < 1e-9)));
+    /// }
+    /// # Ok(())
+    /// # }
+    /// ```
     pub fn solve_into(
         &self,
         robot: &Robot,
@@ -619,6 +715,30 @@ impl ClosedForm {
     /// with its posture into `out`, returning the count. No wrapping into the limits, no
     /// duplicate removal, no FK check (see [`RawSolutions`]). For position-only families the
     /// position of the pose is used.
+    ///
+    /// # Examples
+    ///
+    /// The eight raw solutions of the Puma 560, each checked here by forward kinematics:
+    ///
+    /// ```
+    /// use armlab::kinematics::ik::closed_form::{ClosedForm, RawSolutions};
+    /// use armlab::kinematics::models::built_in;
+    ///
+    /// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+    /// let puma = built_in("puma560").expect("a built-in model");
+    /// let cf = ClosedForm::detect(&puma)?;
+    /// let target = puma.fk(&[0.3, -0.5, 0.2, 0.4, 0.9, -0.1])?;
+    /// let mut raw = RawSolutions::default();
+    /// let n = cf.solve_raw(&target, &mut raw)?;
+    /// assert_eq!(n, 8);
+    /// for (q, posture) in raw.iter(puma.dof()) {
+    ///     let t = puma.fk(q)?;
+    ///     let gap = (t.to_homogeneous() - target.to_homogeneous()).amax();
+    ///     assert!(gap < 1e-12, "{posture}: {gap}");
+    /// }
+    /// # Ok(())
+    /// # }
+    /// ```
     pub fn solve_raw(
         &self,
         world_from_tool: &Pose,
@@ -649,6 +769,34 @@ impl ClosedForm {
     /// six-DOF arm with a spherical wrist (Sect. 2.12.2: the wrist centre depends on the first
     /// three joints only). Writes q1..q3 (rad or m, joint offsets removed, not wrapped, the other
     /// entries 0) and their postures into `out`; allocation-free. Other families: `TargetKind`.
+    ///
+    /// # Examples
+    ///
+    /// Kinematic decoupling (Sect. 2.12.2): the Puma's wrist centre depends on q1..q3 alone, and
+    /// every one of the four arm solutions puts it in place.
+    ///
+    /// ```
+    /// use armlab::kinematics::ik::closed_form::{ClosedForm, RawSolutions};
+    /// use armlab::kinematics::models::built_in;
+    /// use armlab::nalgebra::Point3;
+    ///
+    /// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+    /// let puma = built_in("puma560").expect("a built-in model");
+    /// let cf = ClosedForm::detect(&puma)?;
+    /// let centre_in_tool = cf.wrist_centre_in_tool().expect("a spherical wrist");
+    /// let q = [0.3, -0.5, 0.2, 0.4, 0.9, -0.1];
+    /// let centre = (puma.fk(&q)? * Point3::from(centre_in_tool)).coords;
+    /// let mut raw = RawSolutions::default();
+    /// assert_eq!(cf.solve_position_raw(&centre, &mut raw)?, 4);
+    /// for (arm_q, _) in raw.iter(6) {
+    ///     // Any wrist angles: the centre stays put.
+    ///     let q_any = [arm_q[0], arm_q[1], arm_q[2], 1.0, -0.5, 2.0];
+    ///     let c = (puma.fk(&q_any)? * Point3::from(centre_in_tool)).coords;
+    ///     assert!((c - centre).norm() < 1e-12);
+    /// }
+    /// # Ok(())
+    /// # }
+    /// ```
     pub fn solve_position_raw(
         &self,
         world_point: &Vector3<f64>,
@@ -897,6 +1045,18 @@ fn wrist_posture(singular: bool, k: usize) -> WristFlip {
 /// `q + 2 pi k` inside `[lo, hi]` (with [`LIMIT_TOL`] slack), the one nearest to 0 if several;
 /// `q` wrapped into (-pi, pi] when no shift fits.
 ///
+/// # Examples
+///
+/// ```
+/// use armlab::kinematics::ik::closed_form::wrap_into_limits;
+/// use std::f64::consts::{PI, TAU};
+///
+/// // -0.5 rad is not inside [0, 2 pi], -0.5 + 2 pi is.
+/// assert!((wrap_into_limits(-0.5, [0.0, TAU]) - (TAU - 0.5)).abs() < 1e-15);
+/// // No shift fits: wrapped into (-pi, pi].
+/// assert!((wrap_into_limits(3.0 * PI - 0.1, [-0.2, 0.2]) - (PI - 0.1)).abs() < 1e-14);
+/// ```
+///
 /// The shifts are tried outwards from the wrapped angle (which is the nearest to 0), so no
 /// floating-point rounding call is needed in the common case of limits within a few turns.
 #[inline]
@@ -962,6 +1122,18 @@ fn same_configuration_fast(a: &[f64], b: &[f64], revolute: &[bool]) -> bool {
 
 /// Whether two joint vectors are the same configuration: every revolute joint equal modulo
 /// 2 pi, every prismatic joint equal, within [`DUPLICATE_TOL`].
+///
+/// # Examples
+///
+/// ```
+/// use armlab::kinematics::ik::closed_form::same_configuration;
+/// use std::f64::consts::TAU;
+///
+/// let revolute = [true, true, false]; // R-R-P
+/// assert!(same_configuration(&[0.1, 0.2, 0.3], &[0.1 + TAU, 0.2, 0.3], &revolute));
+/// // A prismatic joint has no turns.
+/// assert!(!same_configuration(&[0.1, 0.2, 0.3], &[0.1, 0.2, 0.3 + TAU], &revolute));
+/// ```
 pub fn same_configuration(a: &[f64], b: &[f64], revolute: &[bool]) -> bool {
     a.len() == b.len()
         && a.iter().zip(b).zip(revolute).all(|((&x, &y), &rev)| {

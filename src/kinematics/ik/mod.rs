@@ -13,6 +13,30 @@ use nalgebra::Vector3;
 use thiserror::Error;
 
 /// What the end-effector must reach, in the world frame (metres, radians).
+///
+/// # Examples
+///
+/// The three-link planar arm with the planar target (px, py, phi) of (2.83): the wrist point
+/// `p - a3 (cos phi, sin phi)` is then a two-link problem with two solutions (Sect. 2.12.1).
+///
+/// ```
+/// use armlab::kinematics::ik::{ClosedForm, Target};
+/// use armlab::kinematics::models::built_in;
+///
+/// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+/// let arm = built_in("planar3").expect("a built-in model");
+/// let cf = ClosedForm::detect(&arm)?;
+/// let (px, py, phi) = (0.6, 0.3, 0.5);
+/// let result = cf.solve(&arm, &Target::Planar { px, py, phi })?;
+/// assert_eq!(result.solutions.len(), 2);
+/// for s in &result.solutions {
+///     assert!((s.q.iter().sum::<f64>() - phi).abs() < 1e-12); // phi = q1 + q2 + q3
+///     let p = arm.fk(&s.q)?.translation.vector;
+///     assert!((p.x - px).abs() < 1e-12 && (p.y - py).abs() < 1e-12);
+/// }
+/// # Ok(())
+/// # }
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Target {
     /// A full pose `world_from_tool`.
@@ -87,6 +111,31 @@ pub struct IkResult {
 }
 
 /// Invalid IK input (a solver that fails to converge is not an error: see the reports).
+///
+/// # Examples
+///
+/// ```
+/// use armlab::kinematics::ik::{ClosedForm, IkError, Target};
+/// use armlab::kinematics::models::built_in;
+/// use armlab::nalgebra::Vector3;
+///
+/// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+/// let puma = built_in("puma560").expect("a built-in model");
+/// let cf = ClosedForm::detect(&puma)?;
+/// // A six-joint arm needs a pose, not a planar target.
+/// let err = cf.solve(&puma, &Target::Planar { px: 0.5, py: 0.1, phi: 0.0 }).unwrap_err();
+/// assert!(matches!(err, IkError::TargetKind { .. }));
+/// println!("{err}");
+/// // NaN never reaches a solver.
+/// let nan = Target::Position(Vector3::new(f64::NAN, 0.0, 0.0));
+/// assert_eq!(cf.solve(&puma, &nan).unwrap_err(), IkError::NonFiniteTarget);
+/// // A closed form belongs to the arm it was detected for.
+/// let planar2 = built_in("planar2").expect("a built-in model");
+/// let other = cf.solve(&planar2, &Target::Position(Vector3::new(1.0, 0.0, 0.0)));
+/// assert!(matches!(other, Err(IkError::OtherRobot { dof: 6, robot_dof: 2, .. })));
+/// # Ok(())
+/// # }
+/// ```
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum IkError {
     /// A target with NaN or infinite numbers.

@@ -275,6 +275,54 @@ struct Scratch {
 
 /// Solves IK numerically for end-effector `ee` from `seed_q`. Invalid input (NaN target, wrong
 /// seed length) is an error; failure to converge is a report with `converged = false`.
+///
+/// # Examples
+///
+/// The four-link planar arm is redundant for a planar task (x, y, phi) (Sect. 2.10.2): one of
+/// its infinitely many solutions, from the seed.
+///
+/// ```
+/// use armlab::kinematics::ik::Target;
+/// use armlab::kinematics::ik::numerical::{NumericalOptions, solve};
+/// use armlab::kinematics::models::built_in;
+///
+/// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+/// let arm = built_in("planar4").expect("a built-in model");
+/// let (px, py, phi) = (0.5, 0.4, 1.0);
+/// let target = Target::Planar { px, py, phi };
+/// let report = solve(&arm, 0, &target, &arm.ready_or_zero(), &NumericalOptions::default())?;
+/// assert!(report.converged);
+/// let t = arm.fk(&report.q)?;
+/// assert!((t.translation.vector.x - px).abs() < 1e-9 && (t.translation.vector.y - py).abs() < 1e-9);
+/// // The tool's orientation in the plane is the sum of the joint angles.
+/// let sum: f64 = report.q.iter().sum();
+/// assert!((armlab::kinematics::orientation::wrap_angle(sum - phi)).abs() < 1e-9);
+/// # Ok(())
+/// # }
+/// ```
+///
+/// A target out of reach is not an error: the report says it did not converge, and how far
+/// the best configuration found is from the target.
+///
+/// ```
+/// use armlab::kinematics::ik::Target;
+/// use armlab::kinematics::ik::numerical::{Method, NumericalOptions, solve};
+/// use armlab::kinematics::models::built_in;
+/// use armlab::nalgebra::Vector3;
+///
+/// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+/// let arm = built_in("planar2").expect("a built-in model"); // reaches 2 m
+/// let opts = NumericalOptions { method: Method::DampedLeastSquares, restarts: 2, ..Default::default() };
+/// let far = Target::Position(Vector3::new(3.0, 0.0, 0.0));
+/// let report = solve(&arm, 0, &far, &[0.2, 0.3], &opts)?;
+/// assert!(!report.converged);
+/// // The target is 3 m from the base and the arm reaches 2 m: at best 1 m off.
+/// assert!(report.position_error >= 1.0 - 1e-12);
+/// // Bad input is an error: a seed of the wrong length.
+/// assert!(solve(&arm, 0, &far, &[0.0], &opts).is_err());
+/// # Ok(())
+/// # }
+/// ```
 pub fn solve(
     robot: &Robot,
     ee: usize,

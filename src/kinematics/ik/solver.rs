@@ -45,6 +45,60 @@ pub const POLISH_THRESHOLD: f64 = 1e-12;
 /// configuration, else zero). A numerical solve that does not converge is reported as
 /// [`IkStatus::Unreachable`] with the remaining position error as the distance and the best
 /// configuration found as its only solution, posture "numerical (not converged)".
+///
+/// # Examples
+///
+/// One call for any arm: the Puma 560 gets its eight closed-form solutions, the seven-joint
+/// KUKA LWR-IV (no closed form for a pose) the numerical solver, seeded here with a nearby
+/// configuration.
+///
+/// ```
+/// use armlab::kinematics::ik::numerical::NumericalOptions;
+/// use armlab::kinematics::ik::solver::{SolverChoice, SolverUsed, solve};
+/// use armlab::kinematics::ik::{IkStatus, Target};
+/// use armlab::kinematics::models::built_in;
+///
+/// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+/// let opts = NumericalOptions::default();
+///
+/// let puma = built_in("puma560").expect("a built-in model");
+/// let target = Target::Pose(puma.fk(&[0.3, -0.5, 0.2, 0.4, 0.9, -0.1])?);
+/// let (result, used) = solve(&puma, 0, &target, None, SolverChoice::Auto, &opts)?;
+/// assert!(matches!(used, SolverUsed::ClosedForm(_)));
+/// assert_eq!(result.solutions.len(), 8);
+///
+/// let lwr = built_in("lwr4").expect("a built-in model");
+/// let goal = [0.2, 0.6, -0.3, -1.4, 0.2, 0.7, 0.1];
+/// let target = Target::Pose(lwr.fk(&goal)?);
+/// let seed = [0.0, 0.5, 0.0, -1.2, 0.0, 0.5, 0.0];
+/// let (result, used) = solve(&lwr, 0, &target, Some(&seed), SolverChoice::Auto, &opts)?;
+/// assert_eq!(used, SolverUsed::Numerical("Levenberg-Marquardt"));
+/// assert_eq!(result.status, IkStatus::Ok);
+/// let s = &result.solutions[0];
+/// assert!(s.position_error < 1e-9 && s.orientation_error < 1e-9);
+/// println!("{used}: {} q = {:?}", s.posture.to_string(), s.q);
+/// # Ok(())
+/// # }
+/// ```
+///
+/// Asking for the closed form of an arm without one is an error that says why:
+///
+/// ```
+/// use armlab::kinematics::ik::numerical::NumericalOptions;
+/// use armlab::kinematics::ik::solver::{SolverChoice, solve};
+/// use armlab::kinematics::ik::{IkError, Target};
+/// use armlab::kinematics::models::built_in;
+///
+/// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+/// let lwr = built_in("lwr4").expect("a built-in model");
+/// let target = Target::Pose(lwr.fk(&lwr.ready_or_zero())?);
+/// let err = solve(&lwr, 0, &target, None, SolverChoice::ClosedForm, &NumericalOptions::default())
+///     .unwrap_err();
+/// assert!(matches!(err, IkError::NoClosedForm(_)));
+/// println!("{err}"); // "no closed-form solver matches this arm's structure (7 joints: ...)"
+/// # Ok(())
+/// # }
+/// ```
 pub fn solve(
     robot: &Robot,
     ee: usize,
@@ -531,6 +585,19 @@ pub fn solve_from_reference(
 }
 
 /// Distance between two joint vectors: revolute differences wrapped into (-pi, pi].
+///
+/// # Examples
+///
+/// ```
+/// use armlab::kinematics::ik::solver::joint_distance;
+/// use armlab::kinematics::models::built_in;
+/// use std::f64::consts::TAU;
+///
+/// let scara = built_in("scara").expect("a built-in model"); // R-R-P-R
+/// // A full turn of a revolute joint is no distance; a prismatic joint's metres count.
+/// let d = joint_distance(&scara, &[0.1, 0.2, 0.05, 0.3], &[0.1 + TAU, 0.2, 0.02, 0.3]);
+/// assert!((d - 0.03).abs() < 1e-12);
+/// ```
 pub fn joint_distance(robot: &Robot, a: &[f64], b: &[f64]) -> f64 {
     a.iter()
         .zip(b)
@@ -548,6 +615,26 @@ pub fn joint_distance(robot: &Robot, a: &[f64], b: &[f64]) -> f64 {
 }
 
 /// The solution closest to `q` (within-limits solutions first).
+///
+/// # Examples
+///
+/// ```
+/// use armlab::kinematics::ik::numerical::NumericalOptions;
+/// use armlab::kinematics::ik::solver::{SolverChoice, closest, solve};
+/// use armlab::kinematics::ik::Target;
+/// use armlab::kinematics::models::built_in;
+///
+/// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+/// let puma = built_in("puma560").expect("a built-in model");
+/// let current = [0.3, -0.5, 0.2, 0.4, 0.9, -0.1];
+/// let target = Target::Pose(puma.fk(&current)?);
+/// let opts = NumericalOptions::default();
+/// let (result, _) = solve(&puma, 0, &target, None, SolverChoice::Auto, &opts)?;
+/// let best = closest(&puma, &result.solutions, &current).expect("solutions");
+/// assert!(best.q.iter().zip(&current).all(|(a, b)| (a - b).abs() < 1e-9));
+/// # Ok(())
+/// # }
+/// ```
 pub fn closest<'a>(
     robot: &Robot,
     solutions: &'a [IkSolution],

@@ -424,6 +424,32 @@ fn terms_single(robot: &Robot, jid: JointId, k: u16, vars: &[Variable]) -> bool 
 /// has one ([`crate::kinematics::dh_derive::derive_dh`], same joint variables q), so that a
 /// UR5 reads `a2c2 + a3c23` with `a2 = -0.425` rather than a page of numbers; otherwise the
 /// origins are used as they are (constant numeric matrices).
+///
+/// # Examples
+///
+/// The three-link planar arm in the textbook's notation, (2.63): the position column of
+/// `T_3^0` is `(a1c1 + a2c12 + a3c123, a1s1 + a2s12 + a3s123, 0)`, and the symbolic matrix
+/// evaluated at q equals the forward kinematics.
+///
+/// ```
+/// use armlab::kinematics::models::built_in;
+/// use armlab::kinematics::symbolic::expr::Style;
+/// use armlab::kinematics::symbolic::{Options, derive, document};
+///
+/// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+/// let arm = built_in("planar3").expect("a built-in model");
+/// let sk = derive(&arm, 0, &Options::default())?;
+/// println!("{}", document::text(&sk, false)); // what `armlab symbolic planar3` prints
+/// assert_eq!(sk.symbols["a1"], 0.5);
+/// let p = document::position(&sk.t(), Style::Text, sk.separate_indices);
+/// assert_eq!(p, ["a1c1 + a2c12 + a3c123", "a1s1 + a2s12 + a3s123", "0"]);
+///
+/// let q = [0.3, -0.2, 0.7];
+/// let t = sk.eval_t(&sk.variable_values(&arm, &q)?);
+/// assert!((t - arm.fk(&q)?.to_homogeneous()).amax() < 1e-15);
+/// # Ok(())
+/// # }
+/// ```
 pub fn derive(
     robot: &Robot,
     ee: usize,

@@ -320,6 +320,37 @@ impl MapForming for OneShot {
 }
 
 /// Computes a map.
+///
+/// # Examples
+///
+/// A coarse map (40 x 40 cells) of the two-link planar arm of Example 2.6, whose joint limits
+/// leave points reached with one posture only (Fig. 2.30):
+///
+/// ```
+/// use armlab::kinematics::models::built_in;
+/// use armlab::workspace::{MapRequest, MapView, compute_map};
+///
+/// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+/// let arm = built_in("planar2_fig2_30").expect("a built-in model");
+/// let req = MapRequest {
+///     view: MapView::Plane,
+///     cells: [40, 40],
+///     bounds: Some([-2.2, 2.2, -2.2, 2.2]),
+///     ..MapRequest::default()
+/// };
+/// let map = compute_map(&arm, &req)?;
+/// assert!(map.exact); // decided by the closed form at every cell, not sampled
+/// assert_eq!((map.width, map.height, map.masks.len()), (40, 40, 1600));
+/// // The corner cell is outside the disc of radius 2 m.
+/// let corner = map.centre(0, 0);
+/// assert!(corner[0].hypot(corner[1]) > 2.0 && map.masks[0] == 0);
+/// // Some cells are reached with both postures (mask 0b11), some with one only.
+/// assert!(map.masks.contains(&0b11));
+/// assert!(map.masks.iter().any(|&m| m == 0b01 || m == 0b10));
+/// println!("{}: classes {:?}", map.method, map.class_names);
+/// # Ok(())
+/// # }
+/// ```
 pub fn compute_map(robot: &Robot, req: &MapRequest) -> Result<WorkspaceMap, WorkspaceError> {
     compute_map_forming(robot, req, &mut OneShot)
 }
@@ -446,6 +477,39 @@ fn checked_bounds(robot: &Robot, req: &MapRequest) -> Result<[f64; 4], Workspace
 /// Statistics of the workspace with the exact method where there is one: exact areas for planar
 /// arms, Pappus volumes for closed-form sections (end-effector 0), the grid of
 /// [`super::statistics`] with `fallback` otherwise.
+///
+/// # Examples
+///
+/// Exact values against the geometry: a two-link arm with a1 = 1 m, a2 = 0.5 m and full joint
+/// ranges reaches the annulus between radii 0.5 m and 1.5 m, area pi (1.5^2 - 0.5^2) = 2 pi m^2;
+/// the Puma's wrist centre sweeps a solid of revolution whose volume Pappus gives from its section.
+///
+/// ```
+/// use armlab::kinematics::models::built_in;
+/// use armlab::kinematics::{Convention, DhJoint, DhRow, Pose, Robot};
+/// use armlab::workspace::{StatsOptions, TrackedPoint, map_statistics};
+/// use std::f64::consts::PI;
+///
+/// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+/// let link = |a: f64| DhJoint::revolute(DhRow { a, ..DhRow::default() }).limits(-PI, PI);
+/// let arm = Robot::from_dh(
+///     "annulus arm",
+///     Convention::Standard,
+///     &[link(1.0), link(0.5)],
+///     Pose::identity(),
+///     Pose::identity(),
+/// )?;
+/// let stats = map_statistics(&arm, TrackedPoint::Flange, &StatsOptions::default())?;
+/// assert!((stats.area.expect("planar") - 2.0 * PI).abs() < 1e-9);
+/// assert!((stats.min_reach - 0.5).abs() < 1e-9 && (stats.max_reach - 1.5).abs() < 1e-9);
+///
+/// let puma = built_in("puma560").expect("a built-in model");
+/// let wrist = map_statistics(&puma, TrackedPoint::WristCentre, &StatsOptions::default())?;
+/// assert!(wrist.volume.expect("a spatial arm") > 0.0);
+/// println!("{} m^3 by {}", wrist.volume.unwrap_or_default(), wrist.measure_method);
+/// # Ok(())
+/// # }
+/// ```
 pub fn map_statistics(
     robot: &Robot,
     point: TrackedPoint,

@@ -23,6 +23,55 @@ enum Kind {
 }
 
 /// Answers point queries for one robot.
+///
+/// # Examples
+///
+/// Which postures reach a point, and how far it is from the workspace boundary (what
+/// `armlab reach` prints). The two-link planar arm (a1 = a2 = 1 m, full ranges) reaches
+/// (1, 1) m with both elbows, 2 - sqrt(2) m inside the circle of radius 2 m:
+///
+/// ```
+/// use armlab::kinematics::models::built_in;
+/// use armlab::workspace::{PointQuery, TrackedPoint};
+///
+/// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+/// let arm = built_in("planar2").expect("a built-in model");
+/// let query = PointQuery::new(&arm, TrackedPoint::Flange)?;
+/// assert_eq!(query.dimension(), 2); // plane coordinates
+/// let inside = query.query(&[1.0, 1.0]);
+/// assert!(inside.reachable);
+/// assert_eq!(inside.postures, ["elbow down", "elbow up"]);
+/// assert!((inside.distance - (2.0 - 2f64.sqrt())).abs() < 1e-12);
+/// let outside = query.query(&[3.0, 0.0]);
+/// assert!(!outside.reachable && (outside.distance + 1.0).abs() < 1e-12);
+/// # Ok(())
+/// # }
+/// ```
+///
+/// A spatial arm takes world points. The spherical arm of Fig. 2.22 (d2 = 0.5 m,
+/// 0.25 <= d3 <= 1 m, (2.65)) reaches the points between the spheres of radii
+/// sqrt(d2^2 + 0.25^2) and sqrt(d2^2 + 1) at least d2 from the z axis:
+///
+/// ```
+/// use armlab::kinematics::models::built_in;
+/// use armlab::workspace::{PointQuery, TrackedPoint};
+///
+/// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+/// let arm = built_in("spherical_arm").expect("a built-in model");
+/// let query = PointQuery::new(&arm, TrackedPoint::Flange)?;
+/// assert_eq!(query.dimension(), 3);
+/// let a = query.query(&[0.8, 0.0, 0.0]);
+/// assert!(a.reachable);
+/// // The nearest boundary is the inner sphere.
+/// let inner = (0.5f64.powi(2) + 0.25f64.powi(2)).sqrt();
+/// assert!((a.distance - (0.8 - inner)).abs() < 1e-6, "{}", a.distance);
+/// assert!(!query.query(&[0.0, 0.0, 0.8]).reachable); // on the z axis: closer than d2
+/// // An arm without the structure for exact queries is an error that says why.
+/// let lwr = built_in("lwr4").expect("a built-in model");
+/// assert!(PointQuery::new(&lwr, TrackedPoint::Flange).is_err());
+/// # Ok(())
+/// # }
+/// ```
 pub struct PointQuery {
     kind: Kind,
     scale: f64,

@@ -17,6 +17,36 @@ pub const EXACT_CHECK: f64 = 1e-12;
 pub const MAX_LOCKED_SOLUTIONS: usize = MAX_BRANCHES;
 
 /// A serial arm of seven revolute joints with joint `locked` held at a given value.
+///
+/// # Examples
+///
+/// The Franka Emika Panda with q3 locked: every configuration that puts the tool at a pose with
+/// q3 at the value given, the one the pose came from among them.
+///
+/// ```
+/// use armlab::kinematics::ik::closed_form::{LockedArm, MAX_LOCKED_SOLUTIONS};
+/// use armlab::kinematics::models::built_in;
+///
+/// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+/// let panda = built_in("panda").expect("a built-in model");
+/// let q0 = [0.3, -0.4, 0.2, -2.0, 0.1, 1.6, 0.5];
+/// let pose = panda.fk(&q0)?;
+/// let arm = LockedArm::new(&panda, 2).expect("seven revolute joints");
+/// let mut out = [[0.0; 7]; MAX_LOCKED_SOLUTIONS];
+/// let n = arm.solve_exact(&panda, &pose, q0[2], &mut out)?;
+/// assert!(n >= 1);
+/// for q in &out[..n] {
+///     assert_eq!(q[2], q0[2]);
+///     let gap = (panda.fk(q)?.to_homogeneous() - pose.to_homogeneous()).amax();
+///     assert!(gap < 1e-11);
+/// }
+/// let found = out[..n].iter().any(|q| q.iter().zip(&q0).all(|(a, b)| {
+///     armlab::kinematics::orientation::wrap_angle(a - b).abs() < 1e-8
+/// }));
+/// assert!(found);
+/// # Ok(())
+/// # }
+/// ```
 #[derive(Debug, Clone)]
 pub struct LockedArm {
     links: [Link; 7],

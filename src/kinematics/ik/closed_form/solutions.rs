@@ -62,6 +62,41 @@ impl Solution {
 }
 
 /// Every solution of one closed-form query, in a fixed-capacity container (no allocation).
+///
+/// # Examples
+///
+/// Iterating, indexing, and picking the solution nearest the arm's current configuration (the
+/// usual choice when following a path):
+///
+/// ```
+/// use armlab::kinematics::ik::closed_form::{ClosedForm, Solutions, Verify};
+/// use armlab::kinematics::ik::{IkStatus, Target};
+/// use armlab::kinematics::models::built_in;
+///
+/// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+/// let puma = built_in("puma560").expect("a built-in model");
+/// let cf = ClosedForm::detect(&puma)?;
+/// let current = [0.2, -0.7, 0.3, 0.1, 0.6, 0.4];
+/// let target = Target::Pose(puma.fk(&current)?);
+/// let mut solutions = Solutions::default();
+/// cf.solve_into(&puma, &target, Verify::Fk, &mut solutions)?;
+/// assert_eq!(solutions.status, IkStatus::Ok);
+/// assert_eq!(solutions.as_slice().len(), solutions.len());
+/// assert!(solutions.get(solutions.len()).is_none());
+/// let distance = |q: &[f64]| -> f64 {
+///     q.iter().zip(&current).map(|(a, b)| (a - b).powi(2)).sum::<f64>().sqrt()
+/// };
+/// let nearest = (&solutions)
+///     .into_iter()
+///     .min_by(|a, b| distance(a.q()).total_cmp(&distance(b.q())))
+///     .expect("eight solutions");
+/// assert!(distance(nearest.q()) < 1e-9); // the configuration we came from
+/// let errors = nearest.errors.expect("Verify::Fk");
+/// assert!(errors.position < 1e-12 && errors.orientation < 1e-12);
+/// println!("nearest: {}", nearest.posture);
+/// # Ok(())
+/// # }
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Solutions {
     items: [Solution; MAX_SOLUTIONS],
