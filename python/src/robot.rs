@@ -126,7 +126,7 @@ fn ik_tuple(result: IkResult, used: &str) -> IkTuple {
             let free = s.free_joints.iter().map(|f| (f.index, f.reason)).collect();
             (
                 s.q,
-                s.posture,
+                s.posture.to_string(),
                 s.within_limits,
                 s.position_error,
                 s.orientation_error,

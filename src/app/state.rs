@@ -38,11 +38,9 @@ mod units;
 
 pub use dh::{DH_FIELDS, DhCell, DhField, DhRowCells};
 pub use self_motion::{SELF_MOTION_SAMPLES, SelfMotionView, TracedPath, full_task, tasks_for};
-pub use track::{
-    BRANCH_SWITCH_MARGIN, BRANCH_SWITCH_MEASURE, is_degenerate_label, tracking_options,
-};
+pub use track::{BRANCH_SWITCH_MARGIN, BRANCH_SWITCH_MEASURE, tracking_options};
 pub use types::{
-    DisplayToggles, EeTarget, Ghost, Level, Reach, Readouts, StateError, StatusMessage,
+    DisplayToggles, EeTarget, Ghost, GhostLabel, Level, Reach, Readouts, StateError, StatusMessage,
 };
 pub use units::{
     AngleUnit, EntryError, MM_PER_M, Quantity, format_entry, format_number, parse_entry,
@@ -50,6 +48,7 @@ pub use units::{
 };
 
 use crate::kinematics::end_effectors::{EndEffectorCatalog, catalog};
+use crate::kinematics::ik::SolutionPosture;
 use crate::kinematics::orientation::angle_axis_from_rotation;
 use crate::kinematics::pose::Pose;
 use crate::kinematics::singularity::SingularityAnalyzer;
@@ -317,10 +316,11 @@ impl AppState {
         self.arms.reports.get(ee)
     }
 
-    /// The posture class of a closed-form label, as the workspace figures colour it (`None`:
-    /// no class, e.g. a degenerate posture or an arm without posture classes).
-    pub fn posture_class(&self, label: &str) -> Option<u8> {
-        self.classifier.class_of_label(label)
+    /// The posture class of an IK solution's posture, as the workspace figures colour it
+    /// (`None`: no class, e.g. a degenerate posture, the numerical solver's, or an arm without
+    /// posture classes).
+    pub fn posture_class(&self, posture: &SolutionPosture) -> Option<u8> {
+        self.classifier.class_of_solution(posture)
     }
 
     /// Every target, one per end-effector.
@@ -637,9 +637,9 @@ impl AppState {
         });
         let t = &mut self.targets[ee];
         if let (Some(r), Some(i)) = (&result, selected) {
-            let label = &r.solutions[i].posture;
-            if !is_degenerate_label(label) {
-                t.posture = Some(label.clone());
+            let posture = r.solutions[i].posture;
+            if !posture.is_merged() {
+                t.posture = Some(posture);
             }
         }
         t.world_from_tool = fk;

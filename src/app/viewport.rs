@@ -464,7 +464,7 @@ fn add_ghost(
         let p = f.translation.vector;
         // Short ("R U N"): the list and the legend spell them out, and full labels would pile
         // up where the postures share an elbow.
-        let short = crate::kinematics::ik::closed_form::short_label(&g.posture);
+        let short = g.posture.short();
         let text = if g.within_limits {
             short
         } else {

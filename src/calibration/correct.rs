@@ -7,7 +7,7 @@ use super::CalibrationError;
 use crate::kinematics::Robot;
 use crate::kinematics::ik::numerical::NumericalOptions;
 use crate::kinematics::ik::solver::{self, NEAR_MISS_CHECK};
-use crate::kinematics::ik::{IkError, Target};
+use crate::kinematics::ik::{IkError, SolutionPosture, Target};
 use crate::kinematics::pose::Pose;
 
 /// One desired pose reached in one posture.
@@ -15,8 +15,8 @@ use crate::kinematics::pose::Pose;
 pub struct TargetCorrection {
     /// Index of the desired pose.
     pub pose: usize,
-    /// The posture's label (from the nominal model's closed form).
-    pub posture: String,
+    /// The posture (from the nominal model's closed form); its `Display` is the label.
+    pub posture: SolutionPosture,
     /// Joint vector that puts the calibrated arm's tool on the desired pose (rad, m), checked by
     /// the calibrated arm's FK to [`NEAR_MISS_CHECK`].
     pub q: Vec<f64>,
@@ -62,7 +62,7 @@ pub fn correct_targets(
             let uncorrected = ideal
                 .solutions
                 .iter()
-                .find(|i| i.posture == s.posture)
+                .find(|i| i.posture.same_label(&s.posture))
                 .map(|i| calibrated.fk(&i.q))
                 .transpose()?
                 .map_or(f64::NAN, |p| {

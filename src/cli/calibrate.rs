@@ -817,7 +817,7 @@ fn corrections_json((file, poses, rows): &(String, usize, Vec<TargetCorrection>)
             let u = nalgebra::UnitQuaternion::from_rotation_matrix(&r.send.rotation);
             json!({
                 "pose": r.pose + 1,
-                "posture": r.posture,
+                "posture": r.posture.to_string(),
                 "q": r.q,
                 "within_limits": r.within_limits,
                 "send": {
@@ -866,7 +866,7 @@ fn print_corrections(
             out,
             "{:>5}  {:<42} {:>10.4}  {:.4}, {:.4}, {:.4}",
             r.pose + 1,
-            r.posture,
+            r.posture.to_string(),
             r.uncorrected_error * 1e3,
             t[0],
             t[1],

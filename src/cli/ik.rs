@@ -351,10 +351,10 @@ fn pick(
             Some(s) => (vec![s.clone()], None),
             None if result.solutions.is_empty() => (Vec::new(), None),
             None => {
-                let have: Vec<&str> = result
+                let have: Vec<String> = result
                     .solutions
                     .iter()
-                    .map(|s| s.posture.as_str())
+                    .map(|s| s.posture.to_string())
                     .collect();
                 (
                     Vec::new(),
@@ -386,7 +386,8 @@ fn status_name(s: &IkStatus) -> &'static str {
 fn solution_json(s: &IkSolution) -> Value {
     json!({
         "q": s.q,
-        "posture": s.posture,
+        "posture": s.posture.to_string(),
+        "posture_parts": s.posture,
         "within_limits": s.within_limits,
         "position_error": s.position_error,
         "orientation_error": s.orientation_error,

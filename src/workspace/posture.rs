@@ -6,6 +6,7 @@
 
 use super::rng;
 use crate::kinematics::Pose;
+use crate::kinematics::ik::SolutionPosture;
 use crate::kinematics::ik::closed_form::{
     ArmKind, ClosedForm, Elbow, Family, MAX_DOF, Posture, RawSolutions, Shoulder,
 };
@@ -175,18 +176,15 @@ impl PostureClassifier {
         }
     }
 
-    /// Index of the class a closed-form posture label belongs to: the class whose every part
-    /// ("shoulder right", "elbow up") the label has ("shoulder right, elbow up, wrist flip" is in
-    /// "shoulder right, elbow up"). `None` for a label of no class (degenerate postures).
-    pub fn class_of_label(&self, label: &str) -> Option<u8> {
+    /// Index of the class an IK solution's posture belongs to, as the workspace figures colour
+    /// it: [`Self::class_of_posture`] for a closed-form posture ("shoulder right, elbow up, wrist
+    /// flip" is in "shoulder right, elbow up"). `None` for a degenerate posture, the numerical
+    /// solver's, or a classifier without posture classes.
+    pub fn class_of_solution(&self, posture: &SolutionPosture) -> Option<u8> {
         if !self.has_postures() {
             return None;
         }
-        let parts: Vec<&str> = label.split(", ").collect();
-        self.names
-            .iter()
-            .position(|n| n.split(", ").all(|p| parts.contains(&p)))
-            .map(|i| i as u8)
+        posture.closed_form().and_then(|p| self.class_of_posture(p))
     }
 
     /// Index of the class called `name`.

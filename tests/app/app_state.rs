@@ -277,13 +277,14 @@ fn ghosts_list_every_solution_and_selection_moves_the_arm() {
         s.select_solution(0, i).unwrap();
         assert_eq!(s.q(), &g.q[..]);
         assert!(pose_gap(&fk(&s, 0), &target) < 1e-9);
-        assert_eq!(
-            s.target(0).unwrap().posture.as_deref(),
-            Some(g.posture.as_str())
-        );
+        assert_eq!(s.target(0).unwrap().posture.as_ref(), g.posture.posture());
         assert!(s.ghosts(0)[i].selected);
     }
-    let label = ghosts[5].posture.replace(", ", "_").to_uppercase();
+    let label = ghosts[5]
+        .posture
+        .to_string()
+        .replace(", ", "_")
+        .to_uppercase();
     s.select_posture(0, &label).unwrap();
     assert_eq!(s.q(), &ghosts[5].q[..]);
     assert!(matches!(
@@ -328,10 +329,7 @@ fn posture_lock_keeps_the_branch_when_the_target_jumps() {
     assert!(pose_gap(&fk(&s, 0), &far) < 1e-9);
     let selected = s.ghosts(0).into_iter().find(|g| g.selected).unwrap();
     assert_eq!(selected.posture, label);
-    assert_eq!(
-        s.target(0).unwrap().posture.as_deref(),
-        Some(label.as_str())
-    );
+    assert_eq!(s.target(0).unwrap().posture.as_ref(), label.posture());
 
     // Unlocked, the arm takes the solution closest to where it is.
     s.set_lock(false);
@@ -397,7 +395,7 @@ fn humanoid_hands_have_independent_targets() {
     assert_eq!(&s.q()[10..], &q0[10..]);
     assert!(pose_gap(&fk(&s, 1), &left0) < 1e-12);
     assert_eq!(s.ghosts(0).len(), 1);
-    assert_eq!(s.ghosts(0)[0].posture, "numerical");
+    assert_eq!(s.ghosts(0)[0].posture.to_string(), "numerical");
     // The left hand's own target works the same way and leaves the right hand alone.
     let right = fk(&s, 0);
     let turn = Rotation3::from_axis_angle(&Vector3::x_axis(), 0.05);
@@ -531,7 +529,9 @@ fn readouts_trail_and_toggles() {
 /// label's parts ("R U N").
 #[test]
 fn ghosts_are_coloured_by_the_workspace_posture_classes() {
-    use armlab::kinematics::ik::closed_form::short_label;
+    use armlab::app::state::GhostLabel;
+    use armlab::kinematics::ik::SolutionPosture;
+    use armlab::kinematics::ik::closed_form::{Elbow, Posture, Shoulder, WristFlip};
     use armlab::workspace::PostureClassifier;
     let mut s = state("puma560");
     s.set_q(&[0.3, 0.5, -1.2, 0.4, 0.8, -0.6]).unwrap();
@@ -546,23 +546,52 @@ fn ghosts_are_coloured_by_the_workspace_posture_classes() {
         assert_eq!(class, by_q, "{}", g.posture);
         let name = &classifier.class_names()[class as usize];
         assert!(
-            g.posture.starts_with(name.as_str()),
+            g.posture.to_string().starts_with(name.as_str()),
             "{} vs {name}",
             g.posture
         );
     }
+    // Short labels from the posture's fields, against the letters written here.
+    let posture = |shoulder, elbow, wrist| Posture {
+        shoulder,
+        elbow,
+        wrist,
+        ..Posture::default()
+    };
+    let run = posture(
+        Some(Shoulder::Right),
+        Some(Elbow::Up),
+        Some(WristFlip::NoFlip),
+    );
+    assert_eq!(run.short(), "R U N");
+    let ldf = posture(
+        Some(Shoulder::Left),
+        Some(Elbow::Down),
+        Some(WristFlip::Flip),
+    );
+    assert_eq!(ldf.short(), "L D F");
     assert_eq!(
-        short_label("shoulder right, elbow up, wrist no flip"),
-        "R U N"
+        posture(None, Some(Elbow::Stretched), Some(WristFlip::Singular)).short(),
+        "S !"
+    );
+    let reversed = Posture {
+        reversed: true,
+        ..posture(Some(Shoulder::Left), None, Some(WristFlip::Up))
+    };
+    assert_eq!(reversed.short(), "tL bW+");
+    let numbered = Posture {
+        branch: Some(3),
+        ..posture(None, Some(Elbow::Up), None)
+    };
+    assert_eq!(numbered.short(), "U branch 3");
+    // Labels with no short form stay as they are.
+    assert_eq!(
+        SolutionPosture::Numerical { converged: true }.short(),
+        "numerical"
     );
     assert_eq!(
-        short_label("shoulder left, elbow down, wrist flip"),
-        "L D F"
-    );
-    assert_eq!(short_label("elbow stretched, wrist singular"), "S !");
-    assert_eq!(
-        short_label("shoulder +, elbow -, wrist +"),
-        "shoulder +, elbow -, wrist +"
+        GhostLabel::SelfMotion("elbow up".into()).short(),
+        "elbow up"
     );
     // A planar arm: elbow up and down.
     let mut s = state("planar2");
@@ -673,7 +702,7 @@ fn a_general_arm_under_the_posture_lock_keeps_its_branch_by_continuity() {
     s.set_lock(true);
     let start = s.robot().fk_ee(s.q(), ee).unwrap();
     let mut prev = s.q().to_vec();
-    let mut first_label: Option<Option<String>> = None;
+    let mut first_label = None;
     for k in 1..=20 {
         let moved =
             Translation3::new(0.004 * k as f64, -0.003 * k as f64, 0.002 * k as f64) * start;
@@ -683,7 +712,7 @@ fn a_general_arm_under_the_posture_lock_keeps_its_branch_by_continuity() {
             .as_ref()
             .expect("the general solutions");
         assert!(result.solutions.len() >= 2, "every branch listed");
-        assert!(result.solutions[0].posture.contains("branch "));
+        assert!(result.solutions[0].posture.branch().is_some());
         let now = s.robot().fk_ee(s.q(), ee).unwrap();
         let dp = (now.translation.vector - moved.translation.vector).norm();
         assert!(dp < 1e-10, "step {k}: the hand follows exactly: {dp:e} m");
@@ -693,8 +722,8 @@ fn a_general_arm_under_the_posture_lock_keeps_its_branch_by_continuity() {
             "step {k}: the branch continues (largest joint step {step} rad)"
         );
         // The branch keeps its number (the lock's label) while the target moves.
-        let label = s.targets()[ee].posture.clone();
-        assert!(label.as_deref().is_some_and(|l| l.contains("branch ")));
+        let label = s.targets()[ee].posture;
+        assert!(label.is_some_and(|l| l.branch().is_some()));
         if let Some(first) = &first_label {
             assert_eq!(&label, first, "step {k}: the branch was renumbered");
         }

@@ -279,6 +279,103 @@ fn ik_all_postures_of_a_puma_pose() {
     assert_eq!(v[0]["solutions"][0]["posture"], sols[3]["posture"]);
 }
 
+/// Issue 45: `ik --format json` gives each solution's posture as its label (`"posture"`, the
+/// same text as before and as the text output) and as fields (`"posture_parts"`); the label is
+/// rebuilt here from the fields.
+#[test]
+fn ik_json_carries_the_posture_label_and_its_fields() {
+    let pose = puma_pose_arg("0.3,0.5,-1.2,0.4,0.8,-0.6");
+    let v = json(&armlab(&[
+        "ik", "puma560", "--pose", &pose, "--all", "--format", "json",
+    ]));
+    let sols = v[0]["solutions"].as_array().unwrap();
+    assert_eq!(sols.len(), 8);
+    let mut seen = Vec::new();
+    for s in sols {
+        let label = s["posture"].as_str().unwrap();
+        let parts = &s["posture_parts"];
+        assert_eq!(parts["solver"], "closed_form", "{parts}");
+        let word = |k: &str| parts[k].as_str().unwrap().replace('_', " ");
+        let rebuilt = format!(
+            "shoulder {}, elbow {}, wrist {}",
+            word("shoulder"),
+            word("elbow"),
+            word("wrist")
+        );
+        assert_eq!(label, rebuilt);
+        assert!(parts["extension"].is_null() && parts["branch"].is_null());
+        assert_eq!(parts["reversed"], false);
+        let free = parts["free"].as_array().unwrap();
+        assert!(free.len() == 6 && free.iter().all(serde_json::Value::is_null));
+        seen.push(label.to_string());
+    }
+    seen.sort();
+    seen.dedup();
+    assert_eq!(seen.len(), 8, "{seen:?}");
+    // The text output prints the same labels, one per solution.
+    let text = armlab(&["ik", "puma560", "--pose", &pose, "--all"]);
+    assert!(text.status.success());
+    let text = String::from_utf8(text.stdout).unwrap();
+    for label in &seen {
+        assert!(
+            text.contains(&format!("  {label}: within limits"))
+                || text.contains(&format!("  {label}: OUTSIDE the joint limits")),
+            "{label} not in\n{text}"
+        );
+    }
+    // Pieper's general case numbers its branches: "wrist flip, branch 3".
+    let model = "assets/robots/skewed_arm_wrist.toml";
+    let t = json(&armlab(&[
+        "fk",
+        model,
+        "--q",
+        "0.3,-0.4,0.9,0.3,0.8,-0.4",
+        "--format",
+        "json",
+    ]));
+    let pose: Vec<String> = t[0]["T"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .flat_map(|r| r.as_array().unwrap().iter().map(|x| x.to_string()))
+        .collect();
+    let v = json(&armlab(&[
+        "ik",
+        model,
+        "--pose",
+        &pose.join(","),
+        "--all",
+        "--format",
+        "json",
+    ]));
+    let sols = v[0]["solutions"].as_array().unwrap();
+    assert!(sols.len() >= 2, "{v}");
+    for s in sols {
+        let parts = &s["posture_parts"];
+        let rebuilt = format!(
+            "wrist {}, branch {}",
+            parts["wrist"].as_str().unwrap().replace('_', " "),
+            parts["branch"].as_u64().unwrap()
+        );
+        assert_eq!(s["posture"], rebuilt.as_str());
+    }
+    // The numerical solver's answer.
+    let v = json(&armlab(&[
+        "ik",
+        "panda",
+        "--position",
+        "0.4,0.2,0.5",
+        "--format",
+        "json",
+    ]));
+    let s = &v[0]["solutions"][0];
+    assert_eq!(s["posture"], "numerical");
+    assert_eq!(
+        s["posture_parts"],
+        serde_json::json!({"solver": "numerical", "converged": true})
+    );
+}
+
 #[test]
 fn ik_batch_targets_planar_and_unreachable() {
     let input = "# px, py, phi\n0.7, 0.2, 0.3\n\n5, 0, 0   # too far\n";

@@ -224,7 +224,7 @@ fn label_of(robot: &Robot, cf: &ClosedForm, target: Target, q: &[f64]) -> Option
                 d.abs() < 1e-6
             })
         })
-        .map(|s| s.posture.clone())
+        .map(|s| s.posture.to_string())
 }
 
 #[test]

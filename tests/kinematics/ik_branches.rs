@@ -7,8 +7,9 @@
 //! distance, the second nearest at least four times farther) must carry the same number. The plain
 //! sorted numbers fail that check on the same path (so the test can fail).
 
-use armlab::kinematics::ik::branches::{branch_number, continue_numbers};
-use armlab::kinematics::ik::{ClosedForm, IkSolution, Target};
+use armlab::kinematics::ik::branches::continue_numbers;
+use armlab::kinematics::ik::closed_form::Posture;
+use armlab::kinematics::ik::{ClosedForm, IkSolution, SolutionPosture, Target};
 use armlab::kinematics::{Convention, DhJoint, DhRow, Pose, Robot};
 use std::f64::consts::PI;
 
@@ -80,7 +81,7 @@ fn broken_continuations(steps: &[Vec<IkSolution>]) -> (usize, usize) {
             };
             if clear && back(near[0].1) {
                 checked += 1;
-                if branch_number(&s.posture) != branch_number(&near[0].1.posture) {
+                if s.posture.branch() != near[0].1.posture.branch() {
                     broken += 1;
                 }
             }
@@ -132,9 +133,9 @@ fn a_branch_keeps_its_number_along_a_path_and_new_branches_take_free_numbers() {
     );
     let (plain, tracked) = follow_path(&robot, q0, q1, 1500, |renumbered| {
         // Numbers are distinct and in order.
-        let numbers: Vec<usize> = renumbered
+        let numbers: Vec<u8> = renumbered
             .iter()
-            .map(|s| branch_number(&s.posture).unwrap())
+            .map(|s| s.posture.branch().unwrap())
             .collect();
         assert!(numbers.windows(2).all(|w| w[0] < w[1]), "{numbers:?}");
     });
@@ -156,6 +157,14 @@ fn a_branch_keeps_its_number_along_a_path_and_new_branches_take_free_numbers() {
     );
 }
 
+/// The posture "branch k" of a general arm.
+fn branch(k: usize) -> SolutionPosture {
+    SolutionPosture::ClosedForm(Posture {
+        branch: Some(u8::try_from(k).unwrap()),
+        ..Posture::default()
+    })
+}
+
 /// A jump (no previous solution within a step) keeps the sorted numbers, the same as for a
 /// target given alone; where the previous solutions are the same ones renumbered and one is
 /// missing (it was born since), the others keep their numbers and it takes the lowest free one.
@@ -167,12 +176,12 @@ fn a_jump_keeps_the_sorted_numbers_and_a_new_branch_takes_the_lowest_free_number
     let sols = cf.solve(&robot, &Target::Pose(t)).unwrap().solutions;
     let m = sols.len();
     assert!(m >= 4, "{m} solutions");
-    let labels = |s: &[IkSolution]| s.iter().map(|x| x.posture.clone()).collect::<Vec<_>>();
+    let labels = |s: &[IkSolution]| s.iter().map(|x| x.posture.to_string()).collect::<Vec<_>>();
     // Far away: every previous q turned by 2 rad at joint 1, numbers reversed.
     let mut far = sols.clone();
     for (k, s) in far.iter_mut().enumerate() {
         s.q[0] += 2.0;
-        s.posture = format!("branch {}", m - k);
+        s.posture = branch(m - k);
     }
     let mut renumbered = sols.clone();
     continue_numbers(&robot, &far, &mut renumbered);
@@ -180,17 +189,17 @@ fn a_jump_keeps_the_sorted_numbers_and_a_new_branch_takes_the_lowest_free_number
     // The same solutions, numbered 2..=m in reverse, without the first one.
     let mut previous: Vec<IkSolution> = sols[1..].to_vec();
     for (k, s) in previous.iter_mut().enumerate() {
-        s.posture = format!("branch {}", m - k);
+        s.posture = branch(m - k);
     }
     let mut renumbered = sols.clone();
     continue_numbers(&robot, &previous, &mut renumbered);
     for r in &renumbered {
         let want = match previous.iter().find(|p| distance(&p.q, &r.q) == 0.0) {
-            Some(p) => p.posture.clone(),
+            Some(p) => p.posture.to_string(),
             // The one not there before: 1 is the lowest number no other has.
             None => "branch 1".to_string(),
         };
-        assert_eq!(r.posture, want);
+        assert_eq!(r.posture.to_string(), want);
     }
 }
 
@@ -213,12 +222,12 @@ fn pieper_branches_keep_their_numbers_and_both_wrists_share_one() {
     );
     let (plain, tracked) = follow_path(&robot, q0, q1, 600, |renumbered| {
         for a in renumbered {
-            assert!(a.posture.contains("wrist") && branch_number(&a.posture).is_some());
+            let wrist = |s: &IkSolution| s.posture.closed_form().and_then(|p| p.wrist);
+            assert!(wrist(a).is_some() && a.posture.branch().is_some());
             for b in renumbered {
                 let same_arm = distance(&a.q[..3], &b.q[..3]) < 1e-9;
-                let same_number = branch_number(&a.posture) == branch_number(&b.posture);
-                let same_wrist =
-                    a.posture.starts_with("wrist flip") == b.posture.starts_with("wrist flip");
+                let same_number = a.posture.branch() == b.posture.branch();
+                let same_wrist = wrist(a) == wrist(b);
                 // One arm solution, one number; one number per wrist group, one arm solution.
                 assert_eq!(same_arm, same_number, "{} / {}", a.posture, b.posture);
                 if same_number && same_wrist {

@@ -365,7 +365,7 @@ fn reference_planar2() {
                 } else {
                     "elbow up"
                 };
-                assert_eq!(ours.posture, expected, "{label}");
+                assert_eq!(ours.posture.to_string(), expected, "{label}");
                 if matches!(target, Target::Planar { .. }) {
                     // phi is not controlled by a two-link arm: its error is reported.
                     let phi_err = s["phi_err"].as_f64().unwrap();
@@ -404,7 +404,7 @@ fn reference_planar3_with_limit_flags() {
             } else {
                 "elbow up"
             };
-            assert_eq!(res.solutions[i].posture, expected);
+            assert_eq!(res.solutions[i].posture.to_string(), expected);
         }
     }
 }
@@ -436,7 +436,10 @@ fn reference_anthropomorphic3r() {
             } else {
                 "elbow down"
             };
-            assert_eq!(res.solutions[i].posture, format!("{shoulder}, {elbow}"));
+            assert_eq!(
+                res.solutions[i].posture.to_string(),
+                format!("{shoulder}, {elbow}")
+            );
         }
     }
 }
@@ -487,7 +490,7 @@ fn elbow_up_is_geometrically_up() {
                 let eu = e.xy().dot(&u);
                 let above = -dz * eu + du * e.z > 0.0;
                 assert_eq!(
-                    s.posture.contains("elbow up"),
+                    s.posture.to_string().contains("elbow up"),
                     above,
                     "{} {}",
                     r.name,
@@ -514,13 +517,19 @@ fn reference_anthropomorphic_spherical_wrist() {
             let label = s["label"].as_str().unwrap();
             let no_flip = label.ends_with("theta5 in (0, pi)");
             assert_eq!(
-                res.solutions[i].posture.ends_with("wrist no flip"),
+                res.solutions[i]
+                    .posture
+                    .to_string()
+                    .ends_with("wrist no flip"),
                 no_flip,
                 "{label} vs {}",
                 res.solutions[i].posture
             );
             assert_eq!(
-                res.solutions[i].posture.starts_with("shoulder right"),
+                res.solutions[i]
+                    .posture
+                    .to_string()
+                    .starts_with("shoulder right"),
                 label.starts_with("th1_I,")
             );
         }
@@ -552,7 +561,7 @@ fn reference_puma560_with_config_letters_and_limits() {
                 "{}",
                 show(&res)
             );
-            let p = &ours.posture;
+            let p = &ours.posture.to_string();
             let letters: String = [
                 if p.contains("shoulder left") {
                     'l'
@@ -588,8 +597,8 @@ fn spherical_wrist_matches_the_zyz_functions() {
         assert_eq!(res.solutions.len(), 2);
         let pos = zyz_from_rotation(&t.rotation).angles;
         let neg = zyz_from_rotation_negative(&t.rotation).angles;
-        assert_eq!(res.solutions[0].posture, "wrist no flip");
-        assert_eq!(res.solutions[1].posture, "wrist flip");
+        assert_eq!(res.solutions[0].posture.to_string(), "wrist no flip");
+        assert_eq!(res.solutions[1].posture.to_string(), "wrist flip");
         assert!(same_q(&r, &res.solutions[0].q, pos.as_slice(), 1e-12));
         assert!(same_q(&r, &res.solutions[1].q, neg.as_slice(), 1e-12));
         assert!(res.solutions[0].q[1] > 0.0 && res.solutions[1].q[1] < 0.0);
@@ -634,7 +643,7 @@ fn solve_into_matches_solve_and_an_independent_check() {
             assert_eq!(labels_only.len(), sols.len(), "{name}");
             for ((s, o), l) in sols.iter().zip(&old.solutions).zip(&labels_only) {
                 assert_eq!(s.q(), o.q.as_slice(), "{name}");
-                assert_eq!(s.posture.to_string(), o.posture, "{name}");
+                assert_eq!(s.posture.to_string(), o.posture.to_string(), "{name}");
                 assert_eq!(s.within_limits, o.within_limits, "{name}");
                 assert_eq!(l.q(), s.q(), "{name}");
                 assert!(l.errors.is_none(), "{name}: Limits does not verify");
@@ -723,4 +732,222 @@ fn wrapping_into_limits_picks_the_shift_nearest_to_zero() {
         wrap_angle(7.0)
     );
     assert!((wrap_into_limits(-3.0, [0.0, f64::INFINITY]) - (-3.0 + 2.0 * PI)).abs() < 1e-15);
+}
+
+/// Issue 45: a solution's posture is data, and its `Display` is the label text it always had.
+/// Every family's postures, built from their fields, print as the labels written out here.
+#[test]
+fn posture_labels_of_every_family_are_the_text_written_here() {
+    use armlab::kinematics::ik::SolutionPosture;
+    use armlab::kinematics::ik::closed_form::{
+        Elbow, Extension, FreeReason, Posture, Shoulder, WristFlip,
+    };
+    let p = Posture::default;
+    let cases: Vec<(Posture, &str)> = vec![
+        // Planar arms and the SCARA.
+        (
+            Posture {
+                elbow: Some(Elbow::Down),
+                ..p()
+            },
+            "elbow down",
+        ),
+        (
+            Posture {
+                elbow: Some(Elbow::Folded),
+                ..p()
+            },
+            "elbow folded",
+        ),
+        // Anthropomorphic arm.
+        (
+            Posture {
+                shoulder: Some(Shoulder::Left),
+                elbow: Some(Elbow::Up),
+                ..p()
+            },
+            "shoulder left, elbow up",
+        ),
+        (
+            Posture {
+                shoulder: Some(Shoulder::OnAxis),
+                elbow: Some(Elbow::Stretched),
+                free: [Some(FreeReason::ShoulderAxis), None, None, None, None, None],
+                ..p()
+            },
+            "shoulder on axis, elbow stretched",
+        ),
+        // Spherical and cylindrical arms.
+        (
+            Posture {
+                shoulder: Some(Shoulder::Right),
+                extension: Some(Extension::Reversed),
+                ..p()
+            },
+            "shoulder right, extension reversed",
+        ),
+        (
+            Posture {
+                extension: Some(Extension::Zero),
+                ..p()
+            },
+            "extension zero",
+        ),
+        // The wrist alone.
+        (
+            Posture {
+                wrist: Some(WristFlip::Flip),
+                ..p()
+            },
+            "wrist flip",
+        ),
+        // Six joints with a spherical wrist (Puma 560, Stanford arm).
+        (
+            Posture {
+                shoulder: Some(Shoulder::Right),
+                elbow: Some(Elbow::Up),
+                wrist: Some(WristFlip::NoFlip),
+                ..p()
+            },
+            "shoulder right, elbow up, wrist no flip",
+        ),
+        (
+            Posture {
+                shoulder: Some(Shoulder::Boundary),
+                extension: Some(Extension::Forward),
+                wrist: Some(WristFlip::Singular),
+                ..p()
+            },
+            "shoulder boundary, extension forward, wrist singular",
+        ),
+        // Three parallel axes (UR).
+        (
+            Posture {
+                shoulder: Some(Shoulder::Left),
+                elbow: Some(Elbow::Down),
+                wrist: Some(WristFlip::Up),
+                ..p()
+            },
+            "shoulder left, elbow down, wrist up",
+        ),
+        // The chain read from the tool.
+        (
+            Posture {
+                shoulder: Some(Shoulder::Right),
+                elbow: Some(Elbow::Down),
+                wrist: Some(WristFlip::Down),
+                reversed: true,
+                ..p()
+            },
+            "tool shoulder right, elbow down, base wrist down",
+        ),
+        // General six-revolute arm, Pieper's general case, general three-parallel arm.
+        (
+            Posture {
+                branch: Some(7),
+                ..p()
+            },
+            "branch 7",
+        ),
+        (
+            Posture {
+                branch: Some(17),
+                ..p()
+            },
+            "branch 17",
+        ),
+        (
+            Posture {
+                wrist: Some(WristFlip::Flip),
+                branch: Some(3),
+                ..p()
+            },
+            "wrist flip, branch 3",
+        ),
+        (
+            Posture {
+                elbow: Some(Elbow::Up),
+                branch: Some(2),
+                ..p()
+            },
+            "elbow up, branch 2",
+        ),
+    ];
+    for (posture, label) in cases {
+        assert_eq!(posture.to_string(), label);
+        assert_eq!(SolutionPosture::ClosedForm(posture).to_string(), label);
+        // A width pads the label as it pads a string.
+        assert_eq!(format!("{:<60}|", posture), format!("{label:<60}|"));
+    }
+    assert_eq!(
+        SolutionPosture::Numerical { converged: true }.to_string(),
+        "numerical"
+    );
+    assert_eq!(
+        SolutionPosture::Numerical { converged: false }.to_string(),
+        "numerical (not converged)"
+    );
+    // And the solvers' own solutions print so: the Puma 560 at a generic pose has the eight
+    // labels of shoulder x elbow x wrist.
+    let r = robot("puma560");
+    let c = ClosedForm::detect(&r).unwrap();
+    let t = r.fk(&[0.3, 0.5, -1.2, 0.4, 0.8, -0.6]).unwrap();
+    let mut labels: Vec<String> = c
+        .solve(&r, &Target::Pose(t))
+        .unwrap()
+        .solutions
+        .iter()
+        .map(|s| s.posture.to_string())
+        .collect();
+    labels.sort();
+    let mut want = Vec::new();
+    for s in ["left", "right"] {
+        for e in ["down", "up"] {
+            for w in ["flip", "no flip"] {
+                want.push(format!("shoulder {s}, elbow {e}, wrist {w}"));
+            }
+        }
+    }
+    assert_eq!(labels, want);
+}
+
+/// Nothing in `src/` reads a posture label back (issue 45): the label parsers are gone and no
+/// code splits or searches a posture's text; colours, locks, legends and branch numbers read
+/// the fields.
+#[test]
+fn no_posture_label_is_parsed_in_src() {
+    fn rust_files(dir: &std::path::Path, out: &mut Vec<std::path::PathBuf>) {
+        for e in std::fs::read_dir(dir).unwrap() {
+            let path = e.unwrap().path();
+            if path.is_dir() {
+                rust_files(&path, out);
+            } else if path.extension().is_some_and(|x| x == "rs") {
+                out.push(path);
+            }
+        }
+    }
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut files = Vec::new();
+    rust_files(&root.join("src"), &mut files);
+    rust_files(&root.join("python/src"), &mut files);
+    assert!(files.len() > 50, "{} files", files.len());
+    let banned = [
+        "fn branch_number(",
+        "fn other_parts(",
+        "fn with_number(",
+        "fn class_of_label(",
+        "fn is_degenerate_label(",
+        "fn short_label(",
+        "posture.split(",
+        "posture.contains(",
+        "posture.starts_with(",
+        "posture.ends_with(",
+        "BRANCH_LABELS",
+    ];
+    for f in &files {
+        let text = std::fs::read_to_string(f).unwrap();
+        for b in banned {
+            assert!(!text.contains(b), "{} has {b:?}", f.display());
+        }
+    }
 }

@@ -412,7 +412,7 @@ fn mirror_extension_returned_when_inside_the_limits() {
     assert_eq!(
         res.solutions
             .iter()
-            .filter(|s| s.posture.contains("extension reversed"))
+            .filter(|s| s.posture.to_string().contains("extension reversed"))
             .count(),
         2
     );
@@ -562,10 +562,14 @@ fn eight_distinct_labels_for_the_six_dof_arms() {
             &r,
             Target::Pose(r.fk(&[0.3, 0.2, -0.4, 0.5, 0.6, 0.7]).unwrap()),
         );
-        let mut labels: Vec<&str> = res.solutions.iter().map(|s| s.posture.as_str()).collect();
+        let mut labels: Vec<String> = res
+            .solutions
+            .iter()
+            .map(|s| s.posture.to_string())
+            .collect();
         labels.sort();
         labels.dedup();
         assert_eq!(labels.len(), 8, "{}", show(&res));
-        assert!(labels.contains(&"shoulder left, elbow down, wrist flip"));
+        assert!(labels.contains(&"shoulder left, elbow down, wrist flip".to_string()));
     }
 }

@@ -130,7 +130,11 @@ fn solver(r: &Robot, t: &Matrix4<f64>) -> (Vec<Vec<f64>>, Vec<String>) {
     )
     .unwrap();
     assert!(used.to_string().contains("general six-revolute"), "{used}");
-    let labels = res.solutions.iter().map(|s| s.posture.clone()).collect();
+    let labels = res
+        .solutions
+        .iter()
+        .map(|s| s.posture.to_string())
+        .collect();
     (res.solutions.into_iter().map(|s| s.q).collect(), labels)
 }
 

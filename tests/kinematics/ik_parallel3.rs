@@ -244,16 +244,16 @@ fn the_labels_say_what_the_geometry_shows() {
             let u = (o3 - o1).normalize();
             let foot = o1 + u * u.dot(&(o2 - o1));
             let above = o2.z > foot.z;
-            if s.posture.contains("elbow up") {
+            if s.posture.to_string().contains("elbow up") {
                 assert!(above, "{}: the elbow is below", s.posture);
-            } else if s.posture.contains("elbow down") {
+            } else if s.posture.to_string().contains("elbow down") {
                 assert!(!above, "{}: the elbow is above", s.posture);
             }
         }
         let count = |w: &str| {
             res.solutions
                 .iter()
-                .filter(|s| s.posture.contains(w))
+                .filter(|s| s.posture.to_string().contains(w))
                 .count()
         };
         if res.solutions.len() == 8 {

@@ -104,8 +104,8 @@ fn labels_are_elbows_of_numbered_branches() {
     let res = cf(&r).solve(&r, &Target::Pose(t)).unwrap();
     for s in &res.solutions {
         assert!(
-            (s.posture.starts_with("elbow up, branch ")
-                || s.posture.starts_with("elbow down, branch ")),
+            (s.posture.to_string().starts_with("elbow up, branch ")
+                || s.posture.to_string().starts_with("elbow down, branch ")),
             "{}",
             s.posture
         );

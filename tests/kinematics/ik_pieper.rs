@@ -79,7 +79,9 @@ fn check(rows: &Rows3, seed: u64) -> Evidence {
     let pairs = |res: &IkResult| {
         assert!(res.solutions.len().is_multiple_of(2), "{}", show(res));
         for s in &res.solutions {
-            assert!(s.posture.contains("branch") && s.posture.contains("wrist"));
+            assert!(
+                s.posture.to_string().contains("branch") && s.posture.to_string().contains("wrist")
+            );
         }
     };
     all_solutions_evidence(&r, |q: &[f64]| fk_here(rows, q), size, 8, seed, pairs)

@@ -116,13 +116,17 @@ fn labels_say_tool_shoulder_and_base_wrist() {
     let q = r.config("ready").unwrap().to_vec();
     let res = c.solve(&r, &Target::Pose(r.fk(&q).unwrap())).unwrap();
     assert_eq!(res.solutions.len(), 8, "{}", show(&res));
-    let mut labels: Vec<&str> = res.solutions.iter().map(|s| s.posture.as_str()).collect();
+    let mut labels: Vec<String> = res
+        .solutions
+        .iter()
+        .map(|s| s.posture.to_string())
+        .collect();
     labels.sort();
     for s in ["right", "left"] {
         for e in ["up", "down"] {
             for w in ["no flip", "flip"] {
                 let l = format!("tool shoulder {s}, elbow {e}, base wrist {w}");
-                assert!(labels.contains(&l.as_str()), "{l} not in {labels:?}");
+                assert!(labels.contains(&l), "{l} not in {labels:?}");
             }
         }
     }

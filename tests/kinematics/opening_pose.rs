@@ -68,7 +68,7 @@ fn the_puma_opens_off_its_wrist_singularity_with_all_eight_postures() {
     let elbow_down = r
         .solutions
         .iter()
-        .filter(|s| s.posture.contains("elbow down"))
+        .filter(|s| s.posture.to_string().contains("elbow down"))
         .count();
     assert_eq!(elbow_down, 4);
 }

@@ -301,12 +301,12 @@ fn solution_list(
     ui.label(format!("{} solution(s):", result.solutions.len()));
     for (i, s) in result.solutions.iter().enumerate() {
         let selected = target.selected == Some(i);
-        let short = crate::kinematics::ik::closed_form::short_label(&s.posture);
+        let (long, short) = (s.posture.to_string(), s.posture.short());
         // A label with no short form ("branch 3" of a general arm) is not repeated.
-        let label = if short == s.posture {
-            format!("{}. {}", i + 1, s.posture)
+        let label = if short == long {
+            format!("{}. {long}", i + 1)
         } else {
-            format!("{}. {} ({short})", i + 1, s.posture)
+            format!("{}. {long} ({short})", i + 1)
         };
         let mut text = RichText::new(label);
         if !s.within_limits {
@@ -347,8 +347,7 @@ fn solution_list(
     }
     if !result.solutions.is_empty() && state.posture_class(&result.solutions[0].posture).is_some() {
         use crate::kinematics::ik::closed_form::{SHORT_LEGEND, SHORT_LEGEND_UR};
-        let ur = result.solutions[0].posture.contains("wrist up")
-            || result.solutions[0].posture.contains("wrist down");
+        let ur = result.solutions[0].posture.has_up_down_wrist();
         let legend = if ur { SHORT_LEGEND_UR } else { SHORT_LEGEND };
         ui.label(RichText::new(legend).small().weak());
     }

@@ -1,7 +1,7 @@
 //! Choosing among IK solutions (by index or posture label), the posture lock, and what the UI
 //! reads back: ghosts and readouts.
 
-use super::{AppState, Ghost, Level, Reach, Readouts, StateError};
+use super::{AppState, Ghost, GhostLabel, Level, Reach, Readouts, StateError};
 use crate::kinematics::ik::IkSolution;
 use crate::kinematics::jacobian::analyze;
 
@@ -18,13 +18,13 @@ impl AppState {
         if !s.within_limits {
             return Err(StateError::SolutionOutsideLimits {
                 index,
-                posture: s.posture.clone(),
+                posture: s.posture.to_string(),
             });
         }
-        let (q, label) = (s.q.clone(), s.posture.clone());
+        let (q, label) = (s.q.clone(), s.posture);
         let t = &mut self.targets[ee];
         t.selected = Some(index);
-        t.posture = Some(label.clone());
+        t.posture = Some(label);
         t.reach = Reach::Reached;
         self.apply_q(q, Some(ee));
         self.push_message(Level::Info, format!("posture \"{label}\" selected"));
@@ -42,7 +42,7 @@ impl AppState {
                 label: label.to_string(),
                 available: sols
                     .iter()
-                    .map(|s| s.posture.as_str())
+                    .map(|s| s.posture.to_string())
                     .collect::<Vec<_>>()
                     .join("; "),
             })?;
@@ -59,7 +59,7 @@ impl AppState {
         let labels: Vec<String> = self
             .targets
             .iter()
-            .filter_map(|t| t.posture.clone())
+            .filter_map(|t| t.posture.map(|p| p.to_string()))
             .collect();
         let msg = if on {
             format!("posture lock on ({})", labels.join("; "))
@@ -83,7 +83,7 @@ impl AppState {
             .enumerate()
             .map(|(i, s)| Ghost {
                 q: s.q.clone(),
-                posture: s.posture.clone(),
+                posture: GhostLabel::Solution(s.posture),
                 within_limits: s.within_limits,
                 selected: t.selected == Some(i),
                 class: self.posture_class(&s.posture),

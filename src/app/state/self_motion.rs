@@ -8,7 +8,7 @@
 //! pose) keeps the arc length walked since the pose was last changed and the last tangent, so
 //! the direction never flips between drags.
 
-use super::{AppState, Ghost, Level, StateError};
+use super::{AppState, Ghost, GhostLabel, Level, StateError};
 use crate::kinematics::arm::{Arm, arm_of};
 use crate::kinematics::redundancy::{Redundancy, Task};
 use crate::kinematics::{Pose, Robot};
@@ -524,7 +524,7 @@ impl AppState {
             .filter(|s| s.name != view.names[view.branch])
             .map(|s| Ghost {
                 q: solo.whole(&s.q, &self.q),
-                posture: s.name,
+                posture: GhostLabel::SelfMotion(s.name),
                 within_limits: s.within_limits,
                 selected: false,
                 class: None,

@@ -38,8 +38,8 @@ use crate::kinematics::hold::{Held, hold_joints, hold_other_chains};
 use crate::kinematics::ik::branches::continue_numbers;
 use crate::kinematics::ik::closed_form::Family;
 use crate::kinematics::ik::numerical::{self, NumericalOptions};
-use crate::kinematics::ik::solver::{self, SolverChoice, by_posture, joint_distance};
-use crate::kinematics::ik::{IkResult, IkSolution, IkStatus, Target};
+use crate::kinematics::ik::solver::{self, SolverChoice, joint_distance};
+use crate::kinematics::ik::{IkResult, IkSolution, IkStatus, SolutionPosture, Target};
 use crate::kinematics::orientation::wrap_angle;
 use crate::kinematics::pose::{Pose, rot_z};
 use crate::kinematics::singularity::NEAR_RATIO;
@@ -64,22 +64,6 @@ pub fn tracking_options() -> NumericalOptions {
         tolerance: 1e-9,
         ..NumericalOptions::default()
     }
-}
-
-/// Whether a posture label names a degenerate member of a pair (merged or with a free joint):
-/// "elbow stretched", "elbow folded", "wrist singular", "shoulder on axis", "shoulder boundary",
-/// "extension zero".
-pub fn is_degenerate_label(label: &str) -> bool {
-    [
-        "stretched",
-        "folded",
-        "singular",
-        "on axis",
-        "boundary",
-        "extension zero",
-    ]
-    .iter()
-    .any(|w| label.contains(w))
 }
 
 /// The decision of one tracking step.
@@ -164,7 +148,7 @@ impl AppState {
         let degenerate = result
             .solutions
             .iter()
-            .any(|s| !s.free_joints.is_empty() || is_degenerate_label(&s.posture));
+            .any(|s| !s.free_joints.is_empty() || s.posture.is_merged());
         match self.choose(ee, &result.solutions, degenerate) {
             Choice::Pick { index, follow } => self.adopt(ee, result, index, follow),
             Choice::Freeze(reach) => self.freeze(ee, Some(result), reach),
@@ -180,7 +164,7 @@ impl AppState {
             .min_by(|a, b| dist(a.1).total_cmp(&dist(b.1)))
             .map(|(i, _)| i);
         let locked = if self.lock {
-            self.targets[ee].posture.as_deref()
+            self.targets[ee].posture
         } else {
             None
         };
@@ -188,11 +172,8 @@ impl AppState {
             index,
             follow: false,
         };
-        let outside = |posture: Option<&str>| {
-            Choice::Freeze(Reach::OutsideLimits {
-                posture: posture.map(str::to_string),
-            })
-        };
+        let outside =
+            |posture: Option<SolutionPosture>| Choice::Freeze(Reach::OutsideLimits { posture });
         let Some(label) = locked else {
             return closest_in.map_or_else(|| outside(None), pick);
         };
@@ -206,8 +187,7 @@ impl AppState {
                 _ => outside(Some(label)),
             };
         }
-        let same =
-            by_posture(sols, label).and_then(|s| sols.iter().position(|x| std::ptr::eq(x, s)));
+        let same = sols.iter().position(|s| s.posture.same_label(&label));
         let Some(i) = same else {
             return closest_in.map_or_else(|| outside(Some(label)), pick);
         };
@@ -246,16 +226,16 @@ impl AppState {
     fn adopt(&mut self, ee: usize, result: IkResult, index: usize, follow: bool) {
         let sol = &result.solutions[index];
         let q = sol.q.clone();
-        let label = sol.posture.clone();
+        let label = sol.posture;
         let lock = self.lock;
         let t = &mut self.targets[ee];
         let mut note = None;
-        if !is_degenerate_label(&label) {
-            let old = t.posture.replace(label.clone());
+        if !label.is_merged() {
+            let old = t.posture.replace(label);
             if follow
                 && lock
                 && let Some(old) = old
-                && old != label
+                && !old.same_label(&label)
             {
                 note = Some(format!(
                     "posture lock: through the singularity the branch continues as \"{label}\" \
@@ -411,7 +391,7 @@ impl AppState {
         let sol = IkSolution {
             within_limits: self.robot.within_limits(&q, LIMIT_SLACK),
             q,
-            posture: "numerical".into(),
+            posture: SolutionPosture::Numerical { converged: true },
             position_error,
             orientation_error,
             free_joints: Vec::new(),

@@ -3,7 +3,7 @@
 
 use super::DhField;
 use super::units::{EntryError, MM_PER_M};
-use crate::kinematics::ik::IkResult;
+use crate::kinematics::ik::{IkResult, SolutionPosture};
 use crate::kinematics::pose::Pose;
 use crate::kinematics::singularity::SingularityReport;
 use crate::kinematics::{EulerKind, KinematicsError};
@@ -90,7 +90,7 @@ pub enum Reach {
     /// Reachable only outside the joint limits (or, under the lock, only with another posture).
     OutsideLimits {
         /// The locked posture, if the lock caused it.
-        posture: Option<String>,
+        posture: Option<SolutionPosture>,
     },
     /// The IK rejected the target (its message).
     Invalid {
@@ -145,8 +145,8 @@ pub struct EeTarget {
     pub result: Option<IkResult>,
     /// Index into the result's solutions of the one the arm is at.
     pub selected: Option<usize>,
-    /// Selected posture label (the lock keeps it).
-    pub posture: Option<String>,
+    /// Selected posture (the lock keeps it).
+    pub posture: Option<SolutionPosture>,
     /// Whether the arm reaches the target.
     pub reach: Reach,
 }
@@ -156,14 +156,52 @@ pub struct EeTarget {
 pub struct Ghost {
     /// Joint vector (rad or m).
     pub q: Vec<f64>,
-    /// Posture label.
-    pub posture: String,
+    /// What the ghost is: an IK solution's posture or a self-motion branch.
+    pub posture: GhostLabel,
     /// Inside the joint limits (grey it out otherwise).
     pub within_limits: bool,
     /// The arm is at this solution.
     pub selected: bool,
     /// Its posture class (the workspace figures' colour index), if it has one.
     pub class: Option<u8>,
+}
+
+/// What a ghost arm is labelled with.
+#[derive(Debug, Clone, PartialEq)]
+pub enum GhostLabel {
+    /// One of the IK solutions of the target.
+    Solution(SolutionPosture),
+    /// Another branch of the self-motion, by its name (e.g. "elbow up", "branch 2").
+    SelfMotion(String),
+}
+
+impl GhostLabel {
+    /// The IK solution's posture, if the ghost is one.
+    pub fn posture(&self) -> Option<&SolutionPosture> {
+        match self {
+            GhostLabel::Solution(p) => Some(p),
+            GhostLabel::SelfMotion(_) => None,
+        }
+    }
+
+    /// The short label drawn at the ghost ("R U N", [`SolutionPosture::short`]); a self-motion
+    /// branch's name as it is.
+    pub fn short(&self) -> String {
+        match self {
+            GhostLabel::Solution(p) => p.short(),
+            GhostLabel::SelfMotion(name) => name.clone(),
+        }
+    }
+}
+
+impl std::fmt::Display for GhostLabel {
+    /// The full label: the posture label or the branch name.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            GhostLabel::Solution(p) => std::fmt::Display::fmt(p, f),
+            GhostLabel::SelfMotion(name) => f.pad(name),
+        }
+    }
 }
 
 /// The numbers shown next to the 3D view for one end-effector.

@@ -15,6 +15,7 @@
 use super::{Mark, Step, axes, deg, signed};
 use crate::construction::{ConstructionError, meet};
 use crate::kinematics::Robot;
+use crate::kinematics::ik::closed_form::{Elbow, Posture, Shoulder, WristFlip};
 use crate::kinematics::ik::{ClosedForm, Target};
 use crate::kinematics::orientation::wrap_angle;
 use nalgebra::Vector3;
@@ -123,50 +124,62 @@ struct Angles {
     other: [String; 3],
 }
 
-/// The posture of the closed-form solution equal to q, as its three parts (generic names where
-/// none is found, e.g. at a singularity).
-fn posture_parts(robot: &Robot, q: &[f64]) -> [String; 3] {
-    let generic = ["this shoulder", "this elbow", "this wrist"].map(String::from);
+/// The posture of the closed-form solution equal to q, if the closed form gives one there.
+fn posture_at(robot: &Robot, q: &[f64]) -> Option<Posture> {
     let (Ok(cf), Ok(t)) = (ClosedForm::detect(robot), robot.fk(q)) else {
-        return generic;
+        return None;
     };
-    let Ok(result) = cf.solve(robot, &Target::Pose(t)) else {
-        return generic;
-    };
+    let result = cf.solve(robot, &Target::Pose(t)).ok()?;
     let same = |a: &[f64]| {
         a.iter().zip(q).all(|(x, y)| {
             let d = (x - y).rem_euclid(std::f64::consts::TAU);
             d.min(std::f64::consts::TAU - d) < 1e-6
         })
     };
-    let Some(found) = result.solutions.iter().find(|s| same(&s.q)) else {
-        return generic;
-    };
-    let parts: Vec<&str> = found.posture.split(", ").collect();
-    let pick = |word: &str, k: usize| {
-        parts
-            .iter()
-            .find(|p| p.starts_with(word))
-            .map_or_else(|| generic[k].clone(), |p| (*p).to_string())
-    };
-    [pick("shoulder", 0), pick("elbow", 1), pick("wrist", 2)]
+    let found = result.solutions.iter().find(|s| same(&s.q))?;
+    found.posture.closed_form().copied()
 }
 
-/// The opposite of a posture part ("shoulder left" -> "shoulder right"), or "the other ...".
-fn opposite(part: &str) -> String {
-    let swaps = [
-        ("left", "right"),
-        ("right", "left"),
-        ("up", "down"),
-        ("down", "up"),
-    ];
-    let mut words = part.splitn(2, ' ');
-    let (Some(what), Some(side)) = (words.next(), words.next()) else {
-        return format!("the other {part}");
+/// The names of the shoulder, elbow and wrist of the posture drawn ("shoulder left", "elbow
+/// up", "wrist down"; "this shoulder" where the posture has none, e.g. at a singularity) and of
+/// the other member of each pair ("shoulder right", or "the other wrist" where the pair has no
+/// opposite name).
+fn part_names(posture: Option<Posture>) -> ([String; 3], [String; 3]) {
+    // Parts read from the base (a reversed chain's are named from the tool: not these).
+    let p = posture.filter(|p| !p.reversed).unwrap_or_default();
+    let shoulder = match p.shoulder {
+        Some(Shoulder::Right) => Some(Shoulder::Left),
+        Some(Shoulder::Left) => Some(Shoulder::Right),
+        _ => None,
     };
-    swaps.iter().find(|(a, _)| *a == side).map_or_else(
-        || format!("the other {what}"),
-        |(_, b)| format!("{what} {b}"),
+    let elbow = match p.elbow {
+        Some(Elbow::Up) => Some(Elbow::Down),
+        Some(Elbow::Down) => Some(Elbow::Up),
+        _ => None,
+    };
+    let wrist = match p.wrist {
+        Some(WristFlip::Up) => Some(WristFlip::Down),
+        Some(WristFlip::Down) => Some(WristFlip::Up),
+        _ => None,
+    };
+    let other = Posture {
+        shoulder,
+        elbow,
+        wrist,
+        ..Posture::default()
+    };
+    let name = |label: Option<&str>, fallback: &str| label.unwrap_or(fallback).to_string();
+    (
+        [
+            name(p.shoulder_label(), "this shoulder"),
+            name(p.elbow_label(), "this elbow"),
+            name(p.wrist_label(), "this wrist"),
+        ],
+        [
+            name(other.shoulder_label(), "the other shoulder"),
+            name(other.elbow_label(), "the other elbow"),
+            name(other.wrist_label(), "the other wrist"),
+        ],
     )
 }
 
@@ -175,12 +188,12 @@ pub(super) fn steps(robot: &Robot, q: &[f64]) -> Result<Vec<Step>, ConstructionE
     let g = Geometry::at(robot, q)?;
     let zero = Geometry::at(robot, &vec![0.0; robot.dof()])?;
     let (drawn, at_zero) = (g.drawn(), zero.drawn());
-    let this = posture_parts(robot, q);
+    let (this, other) = part_names(posture_at(robot, q));
     let a = Angles {
         drawn,
         joint: std::array::from_fn(|k| wrap_angle(drawn[k] - at_zero[k])),
-        other: [opposite(&this[0]), opposite(&this[1]), opposite(&this[2])],
         this,
+        other,
     };
     let scale = robot.characteristic_length();
     Ok(vec![

@@ -53,13 +53,12 @@ mod wrist;
 pub use family::{ArmKind, Family, ReversedOf};
 pub use locked::{EXACT_CHECK, LockedArm, MAX_LOCKED_SOLUTIONS};
 pub use posture::{
-    BRANCH_LABELS, Elbow, Extension, FreeReason, Posture, SHORT_LEGEND, SHORT_LEGEND_UR, Shoulder,
-    WristFlip, short_label,
+    Elbow, Extension, FreeReason, Posture, SHORT_LEGEND, SHORT_LEGEND_UR, Shoulder, WristFlip,
 };
 pub use solutions::{Solution, SolutionErrors, Solutions, Verify};
 pub use why::NoClosedForm;
 
-use super::{IkError, IkResult, IkSolution, IkStatus, Target, check_target};
+use super::{IkError, IkResult, IkSolution, IkStatus, SolutionPosture, Target, check_target};
 use crate::kinematics::fk::SharedPrefix;
 use crate::kinematics::orientation::wrap_angle;
 use crate::kinematics::pose::{Pose, rot_z};
@@ -558,7 +557,7 @@ impl ClosedForm {
                 let e = s.errors.unwrap_or_default();
                 IkSolution {
                     q: s.q().to_vec(),
-                    posture: s.posture.to_string(),
+                    posture: SolutionPosture::ClosedForm(s.posture),
                     within_limits: s.within_limits,
                     position_error: e.position,
                     orientation_error: e.orientation,

@@ -8,6 +8,8 @@ pub mod solver;
 
 pub use closed_form::{ClosedForm, Family};
 
+use closed_form::{Posture, WristFlip};
+
 use super::pose::Pose;
 use nalgebra::Vector3;
 use thiserror::Error;
@@ -70,9 +72,9 @@ pub struct IkSolution {
     /// Joint vector (rad or m), angles wrapped into the joint limits where a 2*pi shift allows,
     /// otherwise into (-pi, pi].
     pub q: Vec<f64>,
-    /// Posture label, e.g. "shoulder right, elbow up, wrist no flip", "elbow down", or
-    /// "numerical".
-    pub posture: String,
+    /// Which solution this is, as data; its `Display` is the posture label, e.g. "shoulder
+    /// right, elbow up, wrist no flip", "elbow down", or "numerical".
+    pub posture: SolutionPosture,
     /// Whether q lies inside the joint limits.
     pub within_limits: bool,
     /// |p(FK(q)) - p_target| (m).
@@ -81,6 +83,85 @@ pub struct IkSolution {
     pub orientation_error: f64,
     /// Joints that are free at this target (a representative value was chosen for them).
     pub free_joints: Vec<FreeJoint>,
+}
+
+/// What an IK solution is, as data: the closed form's posture (shoulder, elbow, extension,
+/// wrist, branch number, reversed chain, free joints), or the numerical solver's answer.
+///
+/// `Display` gives the label ("shoulder right, elbow up, wrist no flip", "wrist flip, branch 3",
+/// "numerical", "numerical (not converged)"); nothing reads a label back. `Serialize` gives the
+/// fields, tagged by `"solver"`: `{"solver": "closed_form", "shoulder": "right", "elbow": "up",
+/// "extension": null, "wrist": "no_flip", "branch": null, "reversed": false, "free": [null, ...]}`
+/// or `{"solver": "numerical", "converged": true}`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(tag = "solver", rename_all = "snake_case")]
+pub enum SolutionPosture {
+    /// A closed-form solution's posture; also "branch k" of the numerical search where a general
+    /// six-revolute arm's elimination finds nothing (a posture with only a branch number).
+    ClosedForm(Posture),
+    /// The one configuration of the numerical solver.
+    Numerical {
+        /// Whether it reached the tolerance.
+        converged: bool,
+    },
+}
+
+impl SolutionPosture {
+    /// The closed-form posture, if this is one.
+    pub fn closed_form(&self) -> Option<&Posture> {
+        match self {
+            SolutionPosture::ClosedForm(p) => Some(p),
+            SolutionPosture::Numerical { .. } => None,
+        }
+    }
+
+    /// The branch number (1-based) of a solution of a general arm ("branch k"), if it has one.
+    pub fn branch(&self) -> Option<u8> {
+        self.closed_form().and_then(|p| p.branch)
+    }
+
+    /// Whether the posture is the merged member of a pair ([`Posture::is_merged`]: "elbow
+    /// stretched", "wrist singular", ...); false for the numerical solver's.
+    pub fn is_merged(&self) -> bool {
+        self.closed_form().is_some_and(Posture::is_merged)
+    }
+
+    /// Whether the wrist is named up/down (three parallel axes, the UR family) rather than
+    /// flip/no flip.
+    pub fn has_up_down_wrist(&self) -> bool {
+        matches!(
+            self.closed_form().and_then(|p| p.wrist),
+            Some(WristFlip::Up | WristFlip::Down)
+        )
+    }
+
+    /// Whether two postures have the same label (closed-form postures compared without their
+    /// free joints, [`Posture::same_label`]).
+    pub fn same_label(&self, other: &SolutionPosture) -> bool {
+        match (self, other) {
+            (SolutionPosture::ClosedForm(a), SolutionPosture::ClosedForm(b)) => a.same_label(b),
+            _ => self == other,
+        }
+    }
+
+    /// The short label ("R U N", [`Posture::short`]); the numerical solver's label as it is.
+    pub fn short(&self) -> String {
+        match self {
+            SolutionPosture::ClosedForm(p) => p.short(),
+            SolutionPosture::Numerical { .. } => self.to_string(),
+        }
+    }
+}
+
+impl std::fmt::Display for SolutionPosture {
+    /// The posture label (padded to a width, `{:<42}`, as a string is).
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            SolutionPosture::ClosedForm(p) => std::fmt::Display::fmt(p, f),
+            SolutionPosture::Numerical { converged: true } => f.pad("numerical"),
+            SolutionPosture::Numerical { converged: false } => f.pad("numerical (not converged)"),
+        }
+    }
 }
 
 /// Overall outcome for one target.

@@ -2,9 +2,9 @@
 //! polished numerically where that helps), the numerical solver otherwise (seeded with the
 //! caller's q); plus picking a solution by posture or by closeness to a configuration.
 
-use super::closed_form::{ClosedForm, Family, NoClosedForm};
+use super::closed_form::{ClosedForm, Family, NoClosedForm, Posture};
 use super::numerical::{self, NumericalOptions};
-use super::{FreeJoint, IkError, IkResult, IkSolution, IkStatus, Target};
+use super::{FreeJoint, IkError, IkResult, IkSolution, IkStatus, SolutionPosture, Target};
 use crate::kinematics::orientation::wrap_angle;
 use crate::kinematics::robot::{JointKind, Robot};
 
@@ -145,16 +145,14 @@ pub fn solve(
                     distance: rep.position_error.max(rep.orientation_error),
                 }
             };
-            let posture = if rep.converged {
-                "numerical"
-            } else {
-                "numerical (not converged)"
+            let posture = SolutionPosture::Numerical {
+                converged: rep.converged,
             };
             let (position_error, orientation_error) =
                 numerical::pose_errors(robot, ee, &rep.q, target)?;
             let solution = IkSolution {
                 q: rep.q,
-                posture: posture.into(),
+                posture,
                 within_limits,
                 position_error,
                 orientation_error,
@@ -245,7 +243,8 @@ fn singular_general(
         found.push((
             IkSolution {
                 q: rep.q,
-                posture: String::new(),
+                // Numbered by `labelled_branches` below.
+                posture: SolutionPosture::ClosedForm(Posture::default()),
                 within_limits,
                 position_error: pe,
                 orientation_error: oe,
@@ -341,9 +340,10 @@ fn labelled_branches(mut solutions: Vec<IkSolution>) -> Vec<IkSolution> {
             .unwrap_or(std::cmp::Ordering::Equal)
     });
     for (k, s) in solutions.iter_mut().enumerate() {
-        s.posture = super::closed_form::BRANCH_LABELS
-            .get(k)
-            .map_or_else(|| format!("branch {}", k + 1), |l| (*l).to_string());
+        s.posture = SolutionPosture::ClosedForm(Posture {
+            branch: Some(u8::try_from(k + 1).unwrap_or(u8::MAX)),
+            ..Posture::default()
+        });
     }
     solutions
 }
@@ -647,8 +647,9 @@ pub fn closest<'a>(
     })
 }
 
-/// The solution whose posture label equals `name` (case-insensitive; words may be separated by
-/// spaces, commas, dashes or underscores).
+/// The solution whose posture label equals `name`, text a user typed (case-insensitive; words
+/// may be separated by spaces, commas, dashes or underscores): compared with each posture's
+/// `Display`.
 pub fn by_posture<'a>(solutions: &'a [IkSolution], name: &str) -> Option<&'a IkSolution> {
     let norm = |s: &str| {
         s.to_lowercase()
@@ -658,5 +659,7 @@ pub fn by_posture<'a>(solutions: &'a [IkSolution], name: &str) -> Option<&'a IkS
             .join(" ")
     };
     let want = norm(name);
-    solutions.iter().find(|s| norm(&s.posture) == want)
+    solutions
+        .iter()
+        .find(|s| norm(&s.posture.to_string()) == want)
 }

@@ -150,7 +150,7 @@ fn corrections(
             for r in rows.iter().take(40) {
                 let t = r.send.translation.vector * 1e3;
                 ui.label((r.pose + 1).to_string());
-                ui.label(&r.posture);
+                ui.label(r.posture.to_string());
                 ui.label(format!("{:.4}", r.uncorrected_error * 1e3));
                 ui.label(format!("{:.3}, {:.3}, {:.3}", t[0], t[1], t[2]));
                 ui.label(if r.within_limits { "ok" } else { "outside" });

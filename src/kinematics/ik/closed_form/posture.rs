@@ -4,8 +4,9 @@
 use crate::kinematics::ik::FreeJoint;
 
 /// Which of the two solutions for theta1, (2.109)-(2.110), generalised to a lateral shoulder offset
-/// (Puma 560, Stanford arm).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// (Puma 560, Stanford arm). Serialised in snake case ("right", "on_axis").
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
 pub enum Shoulder {
     /// theta1 of (2.109): the wrist point lies ahead of the shoulder along x1 (Paul's right arm).
     Right,
@@ -25,7 +26,9 @@ pub enum Shoulder {
 /// naming)"). For spatial arms (anthropomorphic arm, Puma) "up" means the elbow lies on the +z0
 /// side of the shoulder-wrist line for the shoulder-right solution (and the mirrored posture for
 /// shoulder left), which is the Robotics Toolbox's `u`/`d` convention for the Puma 560.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// Serialised in snake case ("up", "stretched").
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
 pub enum Elbow {
     /// Elbow up.
     Up,
@@ -38,8 +41,9 @@ pub enum Elbow {
 }
 
 /// Sign of the extension of a prismatic joint that positions the wrist (spherical and
-/// cylindrical arms).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// cylindrical arms). Serialised in snake case ("forward").
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
 pub enum Extension {
     /// The textbook's choice (d3 >= 0 in Sect. 2.12.3).
     Forward,
@@ -50,8 +54,10 @@ pub enum Extension {
     Zero,
 }
 
-/// Wrist posture: which of the two ZYZ-like solutions (2.111)-(2.112).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// Wrist posture: which of the two ZYZ-like solutions (2.111)-(2.112). Serialised in snake case
+/// ("no_flip", "up").
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
 pub enum WristFlip {
     /// The solution of (2.111), the middle ZYZ angle in (0, pi). For the textbook wrist
     /// (alpha4 = -pi/2) this is theta5 in (0, pi); with alpha4 = +pi/2 (Puma 560) theta5 < 0 (the
@@ -68,8 +74,9 @@ pub enum WristFlip {
     Down,
 }
 
-/// Why a joint is free (infinitely many solutions).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// Why a joint is free (infinitely many solutions). Serialised in snake case ("wrist_aligned").
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
 pub enum FreeReason {
     /// Wrist point on the axis of joint 1.
     ShoulderAxis,
@@ -114,9 +121,10 @@ impl FreeReason {
     }
 }
 
-/// The posture of one closed-form solution: allocation-free, turned into a label by
-/// [`Posture::label`].
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+/// The posture of one closed-form solution: allocation-free, turned into a label by its
+/// `Display` ([`Posture::label`]); serialised as its fields (the enums in snake case, `free` as six
+/// reasons or nulls).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
 pub struct Posture {
     /// Shoulder solution, for arms with a shoulder.
     pub shoulder: Option<Shoulder>,
@@ -136,26 +144,6 @@ pub struct Posture {
     pub reversed: bool,
 }
 
-/// The labels "branch 1" to "branch 16" of a general six-revolute arm's solutions.
-pub const BRANCH_LABELS: [&str; 16] = [
-    "branch 1",
-    "branch 2",
-    "branch 3",
-    "branch 4",
-    "branch 5",
-    "branch 6",
-    "branch 7",
-    "branch 8",
-    "branch 9",
-    "branch 10",
-    "branch 11",
-    "branch 12",
-    "branch 13",
-    "branch 14",
-    "branch 15",
-    "branch 16",
-];
-
 impl Posture {
     /// Human-readable label, e.g. "shoulder right, elbow up, wrist no flip" (the `Display`
     /// text).
@@ -163,10 +151,10 @@ impl Posture {
         self.to_string()
     }
 
-    /// The parts of the label, in order (no allocation).
-    pub fn parts(&self) -> impl Iterator<Item = &'static str> {
-        let r = self.reversed;
-        let shoulder = self.shoulder.map(|s| match (s, r) {
+    /// The shoulder's part of the label: "shoulder right", or "tool shoulder right" on the
+    /// reversed chain.
+    pub fn shoulder_label(&self) -> Option<&'static str> {
+        self.shoulder.map(|s| match (s, self.reversed) {
             (Shoulder::Right, false) => "shoulder right",
             (Shoulder::Left, false) => "shoulder left",
             (Shoulder::OnAxis, false) => "shoulder on axis",
@@ -175,19 +163,32 @@ impl Posture {
             (Shoulder::Left, true) => "tool shoulder left",
             (Shoulder::OnAxis, true) => "tool shoulder on axis",
             (Shoulder::Boundary, true) => "tool shoulder boundary",
-        });
-        let elbow = self.elbow.map(|e| match e {
+        })
+    }
+
+    /// The elbow's part of the label: "elbow up".
+    pub fn elbow_label(&self) -> Option<&'static str> {
+        self.elbow.map(|e| match e {
             Elbow::Up => "elbow up",
             Elbow::Down => "elbow down",
             Elbow::Stretched => "elbow stretched",
             Elbow::Folded => "elbow folded",
-        });
-        let extension = self.extension.map(|x| match x {
+        })
+    }
+
+    /// The extension's part of the label: "extension forward".
+    pub fn extension_label(&self) -> Option<&'static str> {
+        self.extension.map(|x| match x {
             Extension::Forward => "extension forward",
             Extension::Reversed => "extension reversed",
             Extension::Zero => "extension zero",
-        });
-        let wrist = self.wrist.map(|w| match (w, r) {
+        })
+    }
+
+    /// The wrist's part of the label: "wrist no flip", or "base wrist no flip" on the reversed
+    /// chain.
+    pub fn wrist_label(&self) -> Option<&'static str> {
+        self.wrist.map(|w| match (w, self.reversed) {
             (WristFlip::NoFlip, false) => "wrist no flip",
             (WristFlip::Flip, false) => "wrist flip",
             (WristFlip::Singular, false) => "wrist singular",
@@ -198,22 +199,98 @@ impl Posture {
             (WristFlip::Singular, true) => "base wrist singular",
             (WristFlip::Up, true) => "base wrist up",
             (WristFlip::Down, true) => "base wrist down",
-        });
-        let branch = self
-            .branch
-            .and_then(|b| BRANCH_LABELS.get(usize::from(b).wrapping_sub(1)).copied());
-        [shoulder, elbow, extension, wrist, branch]
-            .into_iter()
-            .flatten()
+        })
+    }
+
+    /// The named parts of the label, in order (shoulder, elbow, extension, wrist; the branch
+    /// number, which is no name, is left out). No allocation.
+    pub fn parts(&self) -> impl Iterator<Item = &'static str> {
+        [
+            self.shoulder_label(),
+            self.elbow_label(),
+            self.extension_label(),
+            self.wrist_label(),
+        ]
+        .into_iter()
+        .flatten()
     }
 
     /// True on a degenerate solution: a free joint or a merged pair of postures.
     pub fn is_degenerate(&self) -> bool {
-        self.free.iter().any(Option::is_some)
-            || matches!(self.shoulder, Some(Shoulder::OnAxis | Shoulder::Boundary))
+        self.free.iter().any(Option::is_some) || self.is_merged()
+    }
+
+    /// True when the posture is the merged member of a pair (the label says so: "elbow
+    /// stretched", "elbow folded", "wrist singular", "shoulder on axis", "shoulder boundary",
+    /// "extension zero"), whatever the free joints.
+    pub fn is_merged(&self) -> bool {
+        matches!(self.shoulder, Some(Shoulder::OnAxis | Shoulder::Boundary))
             || matches!(self.elbow, Some(Elbow::Stretched | Elbow::Folded))
             || self.extension == Some(Extension::Zero)
             || self.wrist == Some(WristFlip::Singular)
+    }
+
+    /// The posture less its branch number and free joints: what the label says besides "branch
+    /// k", the group in which branch numbers are unique
+    /// ([`crate::kinematics::ik::branches::continue_numbers`]).
+    pub fn without_branch(&self) -> Posture {
+        Posture {
+            branch: None,
+            free: [None; 6],
+            ..*self
+        }
+    }
+
+    /// Whether two postures have the same label: equal but for the free joints, which the label
+    /// does not show.
+    pub fn same_label(&self, other: &Posture) -> bool {
+        self.without_branch() == other.without_branch() && self.branch == other.branch
+    }
+
+    /// The short label, for places that must stay short (ghost arms): "shoulder right, elbow
+    /// up, wrist no flip" is "R U N" ([`SHORT_LEGEND`] spells the letters out); "wrist
+    /// singular" is "!", and the branch number stays "branch k".
+    pub fn short(&self) -> String {
+        let r = self.reversed;
+        let shoulder = self.shoulder.map(|s| match (s, r) {
+            (Shoulder::Right, false) => "R",
+            (Shoulder::Left, false) => "L",
+            (Shoulder::OnAxis, false) => "A",
+            (Shoulder::Boundary, false) => "B",
+            (Shoulder::Right, true) => "tR",
+            (Shoulder::Left, true) => "tL",
+            (Shoulder::OnAxis, true) => "tA",
+            (Shoulder::Boundary, true) => "tB",
+        });
+        let elbow = self.elbow.map(|e| match e {
+            Elbow::Up => "U",
+            Elbow::Down => "D",
+            Elbow::Stretched => "S",
+            Elbow::Folded => "Fo",
+        });
+        let extension = self.extension.map(|x| match x {
+            Extension::Forward => "+",
+            Extension::Reversed => "-",
+            Extension::Zero => "0",
+        });
+        let wrist = self.wrist.map(|w| match (w, r) {
+            (WristFlip::Singular, _) => "!",
+            (WristFlip::NoFlip, false) => "N",
+            (WristFlip::Flip, false) => "F",
+            (WristFlip::Up, false) => "W+",
+            (WristFlip::Down, false) => "W-",
+            (WristFlip::NoFlip, true) => "bN",
+            (WristFlip::Flip, true) => "bF",
+            (WristFlip::Up, true) => "bW+",
+            (WristFlip::Down, true) => "bW-",
+        });
+        let mut words: Vec<String> = [shoulder, elbow, extension, wrist]
+            .into_iter()
+            .flatten()
+            .map(str::to_string)
+            .collect();
+        words.extend(self.branch.map(|b| format!("branch {b}")));
+        words.join(" ")
     }
 
     /// The free joints as [`FreeJoint`]s.
@@ -231,46 +308,40 @@ impl Posture {
     }
 }
 
-impl std::fmt::Display for Posture {
-    /// The label: the parts joined by ", " ("shoulder right, elbow up, wrist no flip").
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        for (i, p) in self.parts().enumerate() {
-            if i > 0 {
-                f.write_str(", ")?;
+impl Posture {
+    /// Writes the label (see `Display`) to `w`.
+    fn write_label(&self, w: &mut impl std::fmt::Write) -> std::fmt::Result {
+        let mut first = true;
+        for p in self.parts() {
+            if !first {
+                w.write_str(", ")?;
             }
-            f.write_str(p)?;
+            w.write_str(p)?;
+            first = false;
+        }
+        if let Some(b) = self.branch {
+            if !first {
+                w.write_str(", ")?;
+            }
+            write!(w, "branch {b}")?;
         }
         Ok(())
     }
 }
 
-/// Abbreviations of the posture words, for labels that must stay short (ghost arms): "shoulder
-/// right, elbow up, wrist no flip" is "R U N". [`SHORT_LEGEND`] spells them out.
-const SHORT: [(&str, &str); 23] = [
-    ("shoulder right", "R"),
-    ("shoulder left", "L"),
-    ("shoulder on axis", "A"),
-    ("shoulder boundary", "B"),
-    ("elbow up", "U"),
-    ("elbow down", "D"),
-    ("elbow stretched", "S"),
-    ("elbow folded", "Fo"),
-    ("extension forward", "+"),
-    ("extension reversed", "-"),
-    ("extension zero", "0"),
-    ("wrist no flip", "N"),
-    ("wrist flip", "F"),
-    ("wrist up", "W+"),
-    ("wrist down", "W-"),
-    ("tool shoulder right", "tR"),
-    ("tool shoulder left", "tL"),
-    ("tool shoulder on axis", "tA"),
-    ("tool shoulder boundary", "tB"),
-    ("base wrist no flip", "bN"),
-    ("base wrist flip", "bF"),
-    ("base wrist up", "bW+"),
-    ("base wrist down", "bW-"),
-];
+impl std::fmt::Display for Posture {
+    /// The label: the parts joined by ", " ("shoulder right, elbow up, wrist no flip"), the
+    /// branch number last ("wrist flip, branch 3"). A width (`{:<42}`) pads it as it pads a
+    /// string.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        if f.width().is_some() {
+            let mut s = String::new();
+            self.write_label(&mut s)?;
+            return f.pad(&s);
+        }
+        self.write_label(f)
+    }
+}
 
 /// What the short labels mean.
 pub const SHORT_LEGEND: &str = "R/L shoulder right/left, U/D elbow up/down, N/F wrist no flip/flip \
@@ -279,25 +350,3 @@ pub const SHORT_LEGEND: &str = "R/L shoulder right/left, U/D elbow up/down, N/F 
 /// What the short labels of the three-parallel-axes family (UR) mean.
 pub const SHORT_LEGEND_UR: &str =
     "R/L shoulder right/left, U/D elbow up/down, W+/W- wrist up/down (! wrist singular)";
-
-/// The short form of a posture label ("shoulder right, elbow up, wrist no flip" -> "R U N");
-/// a part without an abbreviation ("wrist singular") becomes "!", other text is kept.
-pub fn short_label(label: &str) -> String {
-    let singular = |part: &str| part == "wrist singular" || part == "base wrist singular";
-    let known = |part: &str| singular(part) || SHORT.iter().any(|(l, _)| *l == part);
-    if !label.split(", ").any(known) {
-        // Not a closed-form posture (a self-motion branch name): as it is.
-        return label.to_string();
-    }
-    label
-        .split(", ")
-        .map(|part| {
-            SHORT
-                .iter()
-                .find(|(long, _)| *long == part)
-                .map(|(_, s)| *s)
-                .unwrap_or(if singular(part) { "!" } else { part })
-        })
-        .collect::<Vec<_>>()
-        .join(" ")
-}
