@@ -739,7 +739,8 @@ fn calibrate_prints_the_library_experiments_report() {
     let dir = std::env::temp_dir().join(format!("armlab-cal-lib-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let targets = dir.join("targets.csv");
-    let text = "x [mm], y [mm], z [mm], roll [deg], pitch [deg], yaw [deg]\n450, 150, 400, 180, 0, 0\n";
+    let text =
+        "x [mm], y [mm], z [mm], roll [deg], pitch [deg], yaw [deg]\n450, 150, 400, 180, 0, 0\n";
     std::fs::write(&targets, text).unwrap();
     let tracker = Experiment {
         setup: Setup::Tracker,

@@ -5,10 +5,10 @@
 //! once and print the [`Report`] it returns.
 
 use super::{
-    CalibrationError, CalibrationOptions, Criterion, Measurement, MeasurementFileError,
-    ParameterModel, Report, Setup, SetupScene, SimulationOptions, TargetCorrection, JointColumns,
-    calibrate, correct_targets, dh_form, fit, nominal_examples, parse_setup, parse_targets,
-    register_tracker, select_poses, simulate_setup, template,
+    CalibrationError, CalibrationOptions, Criterion, JointColumns, Measurement,
+    MeasurementFileError, ParameterModel, Report, Setup, SetupScene, SimulationOptions,
+    TargetCorrection, calibrate, correct_targets, dh_form, fit, nominal_examples, parse_setup,
+    parse_targets, register_tracker, select_poses, simulate_setup, template,
 };
 use crate::kinematics::pose::Pose;
 use crate::kinematics::{Convention, Robot};

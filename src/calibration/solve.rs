@@ -400,7 +400,12 @@ impl ScaledSvd {
 
     /// Row `k` of V^T (a right singular vector, scaled coordinates).
     pub fn v(&self, k: usize) -> DVector<f64> {
-        self.svd.v_t.as_ref().expect("v_t computed").row(k).transpose()
+        self.svd
+            .v_t
+            .as_ref()
+            .expect("v_t computed")
+            .row(k)
+            .transpose()
     }
 }
 
