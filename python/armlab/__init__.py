@@ -24,10 +24,10 @@ be loaded: file, line and field named), :class:`IkError`, :class:`KinematicsErro
 
 from __future__ import annotations
 
+import io
 import json
 import os
 import struct
-import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
@@ -861,40 +861,35 @@ def calibrate(
     weights). Any other flag of ``armlab calibrate`` goes in ``options``. Returns the report,
     identifiability in words included.
     """
-    args: List[str] = ["calibrate", robot._core.spec]
-    tmp: Optional[str] = None
-    try:
-        if isinstance(measurements, tuple):
-            tmp = _write_measurements(robot, *measurements)
-            args += ["--measurements", tmp]
-        elif measurements is not None:
-            args += ["--measurements", os.fspath(measurements)]
-        elif not simulate:
-            raise ValueError("give measurements (a file or (Q, Y) arrays), or simulate=True")
-        flags = {
-            "--setup": setup, "--validate": None if validate is None else os.fspath(validate),
-            "--poses": poses, "--noise-mm": noise_mm, "--noise-mrad": noise_mrad, "--seed": seed,
-            "--fix": None if fix is None else ",".join(fix), "--hayati": hayati,
-            "--unidentifiable": unidentifiable,
-        }
-        for flag, value in flags.items():
-            if value is not None:
-                args += [flag, str(value)]
-        for flag, on in (("--simulate", simulate), ("--with-base", with_base),
-                         ("--with-tool", with_tool), ("--with-compliance", with_compliance)):
-            if on:
-                args.append(flag)
-        args += list(options)
-        data = json.loads(_core.run_cli(args + ["--format", "json"], "calibration"))
-        summary = _core.run_cli(args + ["--format", "text"], "calibration")
-        return CalibrationReport(data, summary)
-    finally:
-        if tmp is not None:
-            os.unlink(tmp)
+    args: List[str] = [robot._core.spec]
+    text: Optional[str] = None
+    if isinstance(measurements, tuple):
+        text = _measurement_text(robot, *measurements)
+    elif measurements is not None:
+        args += ["--measurements", os.fspath(measurements)]
+    elif not simulate:
+        raise ValueError("give measurements (a file or (Q, Y) arrays), or simulate=True")
+    flags = {
+        "--setup": setup, "--validate": None if validate is None else os.fspath(validate),
+        "--poses": poses, "--noise-mm": noise_mm, "--noise-mrad": noise_mrad, "--seed": seed,
+        "--fix": None if fix is None else ",".join(fix), "--hayati": hayati,
+        "--unidentifiable": unidentifiable,
+    }
+    for flag, value in flags.items():
+        if value is not None:
+            args += [flag, str(value)]
+    for flag, on in (("--simulate", simulate), ("--with-base", with_base),
+                     ("--with-tool", with_tool), ("--with-compliance", with_compliance)):
+        if on:
+            args.append(flag)
+    args += list(options)
+    # One computation in the library: the report as JSON and as text.
+    data, summary = _core.calibrate(args, text)
+    return CalibrationReport(json.loads(data), summary)
 
 
-def _write_measurements(robot: Robot, Q: Any, Y: Any) -> str:
-    """(Q, Y) arrays as armlab's plain measurement file (a temporary file; the caller removes it)."""
+def _measurement_text(robot: Robot, Q: Any, Y: Any) -> str:
+    """(Q, Y) arrays as the text of armlab's plain measurement file."""
     q = _floats(Q, "Q")
     y = _floats(Y, "Y")
     if q.ndim != 2 or q.shape[1] != robot.dof:
@@ -906,8 +901,7 @@ def _write_measurements(robot: Robot, Q: Any, Y: Any) -> str:
         if bad.size:
             raise ValueError(f"{name} contains a non-finite number at index {tuple(int(i) for i in bad[0])}")
     rows = np.hstack([q, y.reshape(q.shape[0], -1)])
-    fd, path = tempfile.mkstemp(suffix=".csv", prefix="armlab-measurements-")
-    with os.fdopen(fd, "w") as f:
-        f.write("# armlab measurements (SI units: rad, m), written by armlab.calibrate\n")
-        np.savetxt(f, rows, delimiter=",", fmt="%.17g")
-    return path
+    f = io.StringIO()
+    f.write("# armlab measurements (SI units: rad, m), written by armlab.calibrate\n")
+    np.savetxt(f, rows, delimiter=",", fmt="%.17g")
+    return f.getvalue()

@@ -48,6 +48,30 @@ def test_calibrate_simulated_equals_the_command_line(cli):
     assert rep.estimate.shape == (len(rep.parameters),)
 
 
+def test_calibrate_computes_once_in_the_library(monkeypatch):
+    """One call of the library's experiment per calibration, no command line run in-process:
+    the JSON-like data and the summary come from the same report."""
+    calls = []
+    library = armlab._core.calibrate
+
+    def once(*args):
+        calls.append(args)
+        return library(*args)
+
+    def no_cli(*args, **kwargs):
+        raise AssertionError(f"calibrate ran the command line: {args}")
+
+    monkeypatch.setattr(armlab._core, "calibrate", once)
+    monkeypatch.setattr(armlab._core, "run_cli", no_cli)
+    puma = armlab.Robot.builtin("puma560")
+    rep = armlab.calibrate(puma, simulate=True, poses=20, seed=2)
+    Q = np.random.default_rng(4).uniform(-1.5, 1.5, (30, 6))
+    arrays = armlab.calibrate(puma, (Q, puma.fk(Q)), noise_mm=0.01)
+    assert len(calls) == 2
+    assert f"rank {rep.rank} of {rep.data['parameter_count']}" in rep.summary
+    assert arrays.data["setup"] == "pose" and arrays.converged
+
+
 def test_calibrate_from_a_cell_file_and_from_arrays(root):
     puma = armlab.Robot.builtin("puma560")
     rep = armlab.calibrate(puma, root / "tests/data/calibration/cell_puma_fit.csv",

@@ -4,7 +4,7 @@
 use super::CalibrationError;
 use super::model::{Kind, Measurement, ParameterModel};
 use super::setup::Unknowns;
-use super::solve::{CalibrationOptions, check, column_scale, stacked};
+use super::solve::{CalibrationOptions, ScaledSvd, check, stacked};
 use nalgebra::DMatrix;
 
 /// Observability indices of a pose set, from the singular values sigma_1 >= ... >= sigma_L of
@@ -90,31 +90,19 @@ pub(super) fn identifiability_of(
 ) -> Result<Identifiability, CalibrationError> {
     let free = model.free();
     let (phi, _) = stacked(model, zeta, s, ms, &free, opts)?;
-    let scale = column_scale(&phi);
-    let mut scaled = phi;
-    for (j, mut c) in scaled.column_iter_mut().enumerate() {
-        c /= scale[j];
-    }
     let p = free.len() + s.len();
-    // A tall matrix gives all p right singular vectors; pad a short one with zero rows.
-    if scaled.nrows() < p {
-        scaled = scaled.resize_vertically(p, 0.0);
-    }
-    let svd = scaled.svd(false, true);
-    let vt = svd.v_t.as_ref().expect("v_t requested");
+    let scaled = ScaledSvd::new(&phi, false, opts);
+    let svd = &scaled.svd;
     let mut order: Vec<usize> = (0..svd.singular_values.len()).collect();
     order.sort_by(|&a, &b| svd.singular_values[b].total_cmp(&svd.singular_values[a]));
     let sv: Vec<f64> = order.iter().map(|&k| svd.singular_values[k]).collect();
-    let smax = sv.first().copied().unwrap_or(0.0);
-    let rank = sv
-        .iter()
-        .filter(|&&s| s > opts.rank_tolerance * smax && s > 0.0)
-        .count();
+    let rank = sv.iter().filter(|&&s| scaled.counts(s)).count();
     // Null space basis (scaled coordinates), one row per null direction.
     let null: Vec<Vec<f64>> = order[rank..]
         .iter()
-        .map(|&k| vt.row(k).iter().copied().collect())
+        .map(|&k| scaled.v(k).iter().copied().collect())
         .collect();
+    let scale = &scaled.scale;
     let names = model.parameters();
     let columns = Columns::new(model, &free, s);
     let mut identifiable = vec![false; names.len()];

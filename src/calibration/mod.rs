@@ -1,6 +1,6 @@
 //! Kinematic calibration (Sect. 2.11): estimate the DH parameters of a real arm from measured
 //! poses by iterative least squares, and say which parameters the measurements can identify.
-//! Pure compute over [`crate::kinematics`]; no graphics, no I/O.
+//! Pure compute over [`crate::kinematics`]; no graphics, no I/O (files come in as text).
 //!
 //! - [`ParameterModel`]: the parameter vector zeta = [a; alpha; d; theta] of (2.84) for every
 //!   row of a serial DH table (standard or modified), joint offsets included as theta (revolute)
@@ -23,6 +23,10 @@
 //!   and the poses to send a controller that runs the nominal model (target filtering).
 //! - [`accuracy_map`]: the position deviation between two models over the top view of the
 //!   workspace (Sect. 2.10.1).
+//! - [`Experiment`] / [`run`]: one experiment end to end (setup, data from files' text or a
+//!   simulation, options, identifiability at the nominal point and at the estimate, held-out
+//!   check, target correction); its [`Report`] prints as text and serialises to the JSON of
+//!   `armlab calibrate --format json`. The command line, the app and Python all call it.
 //! - [`simulate`]: a "real" robot (the nominal plus seeded deviations) and measurements with
 //!   seeded noise, for teaching and for tests.
 //!
@@ -32,9 +36,11 @@
 mod accuracy;
 mod chain;
 mod correct;
+mod experiment;
 mod file;
 mod identify;
 mod model;
+mod report;
 mod select;
 mod setup;
 mod simulate;
@@ -44,12 +50,17 @@ mod yaml;
 pub use accuracy::{AccuracyMap, accuracy_map};
 pub use chain::{dh_form, with_calibrated_origins};
 pub use correct::{TargetCorrection, correct_targets};
+pub use experiment::{
+    Corrections, Experiment, ExperimentError, ModelOptions, NamedText, Selection, Simulation,
+    Source, dh_robot, measurement_template, run,
+};
 pub use file::{
     JointColumns, MeasurementFileError, ParsedFile, parse_measurements, parse_setup, parse_targets,
     template, write_corrections, write_measurements,
 };
 pub use identify::{Identifiability, Observability, identifiability};
 pub use model::{Kind, Measurement, Parameter, ParameterModel};
+pub use report::Report;
 pub use select::{Criterion, select_poses};
 pub use setup::{Linearised, PlaneUnknown, Setup, Unknowns, linearise, register_tracker};
 pub use simulate::{

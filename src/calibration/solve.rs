@@ -356,6 +356,59 @@ fn validate(opts: &CalibrationOptions) -> Result<(), CalibrationError> {
     Ok(())
 }
 
+/// The column-scaled system and its SVD, shared by the step, the identifiability and the
+/// uncertainty: D = diag(column norms of Phi) ([`column_scale`]), the SVD of `Phi D^-1` (padded
+/// with zero rows to at least as many rows as columns, so that every right singular vector
+/// comes back), and which singular values count for the numerical rank.
+pub(super) struct ScaledSvd {
+    /// The column scale D.
+    pub scale: DVector<f64>,
+    /// The SVD of the scaled system (U only when asked for).
+    pub svd: nalgebra::SVD<f64, nalgebra::Dyn, nalgebra::Dyn>,
+    /// The largest singular value.
+    pub smax: f64,
+    /// Singular values at or below `rank_tolerance * smax` count as zero.
+    rank_tolerance: f64,
+}
+
+impl ScaledSvd {
+    /// The SVD of `phi` scaled by its column norms; `with_u`: compute U as well.
+    pub fn new(phi: &DMatrix<f64>, with_u: bool, opts: &CalibrationOptions) -> Self {
+        let scale = column_scale(phi);
+        let mut scaled = phi.clone();
+        for (j, mut c) in scaled.column_iter_mut().enumerate() {
+            c /= scale[j];
+        }
+        let columns = scaled.ncols();
+        if scaled.nrows() < columns {
+            scaled = scaled.resize_vertically(columns, 0.0);
+        }
+        let svd = scaled.svd(with_u, true);
+        let smax = svd.singular_values.iter().copied().fold(0.0, f64::max);
+        Self {
+            scale,
+            svd,
+            smax,
+            rank_tolerance: opts.rank_tolerance,
+        }
+    }
+
+    /// Whether the singular value `s` counts for the numerical rank.
+    pub fn counts(&self, s: f64) -> bool {
+        s > self.rank_tolerance * self.smax && s > 0.0
+    }
+
+    /// Row `k` of V^T (a right singular vector, scaled coordinates).
+    pub fn v(&self, k: usize) -> DVector<f64> {
+        self.svd
+            .v_t
+            .as_ref()
+            .expect("v_t computed")
+            .row(k)
+            .transpose()
+    }
+}
+
 /// One scaled, rank-revealing least-squares step: the change of the free parameters, the
 /// rank and the condition number.
 fn step(
@@ -363,31 +416,24 @@ fn step(
     res: &DVector<f64>,
     opts: &CalibrationOptions,
 ) -> (DVector<f64>, usize, f64) {
-    let scale = column_scale(phi);
-    let mut scaled = phi.clone();
-    for (j, mut c) in scaled.column_iter_mut().enumerate() {
-        c /= scale[j];
-    }
-    let svd = scaled.svd(true, true);
-    let (u, vt) = (
-        svd.u.as_ref().expect("u requested"),
-        svd.v_t.as_ref().expect("v_t requested"),
-    );
-    let smax = svd.singular_values.max();
+    let s = ScaledSvd::new(phi, true, opts);
+    let u = s.svd.u.as_ref().expect("u requested");
+    let smax = s.smax;
     let mut y = DVector::zeros(phi.ncols());
     let mut rank = 0;
     let mut smin = smax;
-    for (k, &s) in svd.singular_values.iter().enumerate() {
-        if s <= opts.rank_tolerance * smax || s == 0.0 {
+    for (k, &sv) in s.svd.singular_values.iter().enumerate() {
+        if !s.counts(sv) {
             continue;
         }
         rank += 1;
-        smin = smin.min(s);
+        smin = smin.min(sv);
         let lambda = opts.damping * smax * smax;
-        let coef = u.column(k).dot(res) * s / (s * s + lambda);
-        y += vt.row(k).transpose() * coef;
+        // The padding rows of U (a short system) are zero where sv > 0.
+        let coef = u.column(k).rows(0, res.len()).dot(res) * sv / (sv * sv + lambda);
+        y += s.v(k) * coef;
     }
-    let dz = y.component_div(&scale);
+    let dz = y.component_div(&s.scale);
     let cond = if rank > 0 { smax / smin } else { f64::INFINITY };
     (dz, rank, cond)
 }
@@ -634,24 +680,15 @@ fn uncertainty(
     ident: &Identifiability,
 ) -> Result<Uncertainty, CalibrationError> {
     let (phi, res) = stacked(model, zeta, s, ms, free, opts)?;
-    let scale = column_scale(&phi);
-    let mut scaled = phi.clone();
-    for (j, mut c) in scaled.column_iter_mut().enumerate() {
-        c /= scale[j];
-    }
+    let svd = ScaledSvd::new(&phi, false, opts);
+    let scale = &svd.scale;
     let p = free.len() + s.len();
-    if scaled.nrows() < p {
-        scaled = scaled.resize_vertically(p, 0.0);
-    }
-    let svd = scaled.svd(false, true);
-    let vt = svd.v_t.as_ref().expect("v_t requested");
-    let smax = svd.singular_values.max();
     let mut cov = DMatrix::zeros(p, p);
     let mut rank = 0;
-    for (k, &sv) in svd.singular_values.iter().enumerate() {
-        if sv > opts.rank_tolerance * smax && sv > 0.0 {
+    for (k, &sv) in svd.svd.singular_values.iter().enumerate() {
+        if svd.counts(sv) {
             rank += 1;
-            let v = vt.row(k).transpose();
+            let v = svd.v(k);
             cov += &v * v.transpose() / (sv * sv);
         }
     }

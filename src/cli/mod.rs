@@ -2,7 +2,7 @@
 //! parses and reports errors; everything here returns typed errors.
 
 mod animate;
-mod calibrate;
+pub mod calibrate;
 mod exercise;
 mod export;
 mod figures;

@@ -802,6 +802,75 @@ fn calibrate_from_a_measurement_file_and_write_the_model() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// The library's experiment (the workflow the app and Python call) is the report the command
+/// line prints: the same JSON byte for byte, and the same text, for a simulated run described
+/// to the library directly; and for a tracker setup with desired poses to correct.
+#[test]
+fn calibrate_prints_the_library_experiments_report() {
+    use armlab::calibration::{
+        CalibrationOptions, Experiment, NamedText, Setup, Simulation, Source, run,
+    };
+    let puma = armlab::kinematics::models::built_in("puma560").unwrap();
+    let simulated = Experiment {
+        source: Source::Simulated(Simulation {
+            poses: 30,
+            validation_poses: 30,
+            seed: 5,
+            noise_mm: 0.02,
+            ..Simulation::default()
+        }),
+        options: CalibrationOptions::default().with_noise(0.02, 0.1),
+        ..Experiment::new(puma.clone())
+    };
+    let args = [
+        "calibrate",
+        "puma560",
+        "--simulate",
+        "--poses",
+        "30",
+        "--seed",
+        "5",
+        "--noise-mm",
+        "0.02",
+    ];
+    let dir = std::env::temp_dir().join(format!("armlab-cal-lib-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let targets = dir.join("targets.csv");
+    let text =
+        "x [mm], y [mm], z [mm], roll [deg], pitch [deg], yaw [deg]\n450, 150, 400, 180, 0, 0\n";
+    std::fs::write(&targets, text).unwrap();
+    let tracker = Experiment {
+        setup: Setup::Tracker,
+        targets: Some(NamedText {
+            name: targets.display().to_string(),
+            text: text.into(),
+        }),
+        ..Experiment::new(puma)
+    };
+    let tracker_args = [
+        "calibrate",
+        "puma560",
+        "--simulate",
+        "--setup",
+        "tracker",
+        "--correct-targets",
+        targets.to_str().unwrap(),
+    ];
+    for (e, args) in [(simulated, &args[..]), (tracker, &tracker_args[..])] {
+        let report = run(&e).unwrap();
+        let o = armlab(&[args, &["--format", "json"]].concat());
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let printed = String::from_utf8(o.stdout).unwrap();
+        assert_eq!(
+            printed,
+            format!("{}\n", serde_json::to_string_pretty(&report).unwrap())
+        );
+        let o = armlab(args);
+        assert_eq!(String::from_utf8(o.stdout).unwrap(), report.to_string());
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 #[test]
 fn calibrate_pose_selection_beats_random_poses() {
     let o1 = |select: &str| {

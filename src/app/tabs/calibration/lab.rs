@@ -3,14 +3,13 @@
 //! message; the previous result stays.
 
 use crate::calibration::{
-    AccuracyMap, CalibrationOptions, CalibrationReport, Criterion, Fit, JointColumns, Measurement,
-    ParameterModel, Setup, SetupScene, SimulationOptions, TargetCorrection, Unidentifiable,
-    accuracy_map, calibrate, correct_targets, fit, nominal_examples, parse_setup, parse_targets,
-    register_tracker, select_poses, simulate, simulate_setup, template, write_corrections,
+    AccuracyMap, CalibrationOptions, CalibrationReport, Criterion, Experiment, Fit, JointColumns,
+    ModelOptions, NamedText, ParameterModel, Report, Selection, Setup, Simulation, Source,
+    TargetCorrection, Unidentifiable, accuracy_map, correct_targets, measurement_template,
+    parse_targets, write_corrections,
 };
 use crate::kinematics::Robot;
 use crate::kinematics::pose::Pose;
-use nalgebra::{Rotation3, Translation3, Vector3};
 
 /// How the simulated poses are chosen.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -158,55 +157,50 @@ pub struct CalibrationLab {
 
 fn options(s: &LabSettings) -> CalibrationOptions {
     CalibrationOptions {
-        position_sigma: (s.noise_mm * 1e-3).max(1e-9),
-        orientation_sigma: (s.noise_mrad * 1e-3).max(1e-9),
         unidentifiable: if s.minimum_norm {
             Unidentifiable::MinimumNorm
         } else {
             Unidentifiable::Nominal
         },
-        ..CalibrationOptions::default()
+        ..CalibrationOptions::default().with_noise(s.noise_mm, s.noise_mrad)
     }
 }
 
-fn model_of(robot: &Robot, hayati: bool) -> Result<ParameterModel, String> {
-    let m = ParameterModel::new(robot).map_err(|e| e.to_string())?;
-    if hayati {
-        m.with_hayati().map_err(|e| e.to_string())
-    } else {
-        Ok(m)
+/// The experiment of the settings on `robot` with the data of `source` (the library's
+/// workflow, the one `armlab calibrate` runs).
+fn experiment(s: &LabSettings, robot: &Robot, source: Source) -> Experiment {
+    Experiment {
+        robot: robot.clone(),
+        setup: s.setup,
+        model: ModelOptions {
+            hayati: s.hayati,
+            with_compliance: s.with_compliance,
+            ..ModelOptions::default()
+        },
+        source,
+        options: options(s),
+        targets: None,
     }
 }
 
-/// Poses within 0.02 rad (or m) of `q0`, measured on the true parameters with the stated noise
-/// (deterministic).
-fn alike(
-    model: &ParameterModel,
-    truth: &[f64],
-    q0: &[f64],
-    s: &LabSettings,
-) -> Result<Vec<Measurement>, String> {
-    (0..s.poses)
-        .map(|k| {
-            let n = |i: usize| ((k * 13 + i * 5) % 17) as f64 / 8.0 - 1.0;
-            let q: Vec<f64> = q0
-                .iter()
-                .enumerate()
-                .map(|(j, v)| v + 0.01 * n(j + 6))
-                .collect();
-            let (_, t) = model.frames(truth, &q).map_err(|e| e.to_string())?;
-            let p = t.translation.vector + Vector3::new(n(0), n(1), n(2)) * 1.7 * s.noise_mm * 1e-3;
-            Ok(if s.position_only {
-                Measurement::Position { q, p }
-            } else {
-                let r = Rotation3::new(Vector3::new(n(3), n(4), n(5)) * 1.7 * s.noise_mrad * 1e-3);
-                Measurement::Pose {
-                    q,
-                    world_from_tool: Pose::from_parts(Translation3::from(p), r * t.rotation),
-                }
-            })
-        })
-        .collect()
+/// The tab's result of a library report.
+fn lab_result(title: String, r: Report) -> LabResult {
+    LabResult {
+        title,
+        poses: r
+            .measurements
+            .iter()
+            .flat_map(|m| m.joint_vectors())
+            .map(<[f64]>::to_vec)
+            .collect(),
+        robot_base: r.tracker_from_base.map(|_| r.nominal_robot.base),
+        model: r.model,
+        report: r.calibration,
+        truth: r.truth,
+        validation: r.validation,
+        setup: r.setup,
+        warnings: r.warnings,
+    }
 }
 
 impl CalibrationLab {
@@ -254,138 +248,45 @@ impl CalibrationLab {
 
     fn simulated(&self, robot: &Robot, q_now: &[f64]) -> Result<LabResult, String> {
         let s = self.settings;
-        if !matches!(s.setup, Setup::Pose | Setup::Position) {
-            return self.simulated_setup(robot);
-        }
-        // The real arm (bending under gravity or not) and the model calibrated (with compliance
-        // or not); compliances come last in zeta, so the geometric truth is a prefix.
-        let geometric = model_of(robot, s.hayati)?;
-        let bending = |m: ParameterModel| m.with_compliance().map_err(|e| e.to_string());
-        let real = if s.bend {
-            bending(geometric.clone())?
-        } else {
-            geometric.clone()
-        };
-        let model = if s.with_compliance {
-            bending(geometric)?
-        } else {
-            geometric
-        };
-        let opts = options(&s);
-        let candidates = match s.choice {
-            PoseChoice::O1 | PoseChoice::O4 => 10 * s.poses,
-            _ => s.poses,
-        };
-        let sim = simulate(
-            &real,
-            &SimulationOptions {
-                poses: candidates,
-                validation_poses: s.poses.max(10),
-                tolerance_mm: s.tolerance_mm,
-                tolerance_deg: s.tolerance_deg,
-                noise_mm: s.noise_mm,
-                noise_mrad: s.noise_mrad,
-                position_only: s.position_only || s.setup == Setup::Position,
-                seed: s.seed,
+        let sim = Simulation {
+            poses: s.poses,
+            validation_poses: s.poses.max(10),
+            selection: match s.choice {
+                PoseChoice::Random => Selection::Random,
+                PoseChoice::O1 => Selection::Best(Criterion::O1),
+                PoseChoice::O4 => Selection::Best(Criterion::O4),
+                PoseChoice::Alike => Selection::Alike(q_now.to_vec()),
             },
-        )
-        .map_err(|e| e.to_string())?;
-        let ms = match s.choice {
-            PoseChoice::Random => sim.measurements,
-            PoseChoice::Alike => alike(&model, &sim.truth, q_now, &s)?,
-            PoseChoice::O1 | PoseChoice::O4 => {
-                let c = if s.choice == PoseChoice::O1 {
-                    Criterion::O1
-                } else {
-                    Criterion::O4
-                };
-                let chosen = select_poses(&model, &sim.measurements, s.poses, c, &opts)
-                    .map_err(|e| e.to_string())?;
-                chosen
-                    .into_iter()
-                    .map(|i| sim.measurements[i].clone())
-                    .collect()
-            }
-        };
-        let title = format!(
-            "simulated {}, {} {:?} poses",
-            robot.name,
-            ms.len(),
-            s.choice
-        )
-        .to_lowercase();
-        let setup = if s.position_only {
-            Setup::Position
-        } else {
-            s.setup
-        };
-        let mut truth = sim.truth;
-        truth.resize(model.parameters().len(), 0.0);
-        let data = RunData {
-            ms: &ms,
-            validation: Some(&sim.validation),
-            truth: Some(truth),
-            title,
-            setup,
-            warnings: Vec::new(),
-            robot_base: None,
-        };
-        finish(model, data, &opts)
-    }
-
-    /// A simulated setup without a tracker (or a tracker of unknown pose): random joint vectors
-    /// placed where the setup needs the tool.
-    fn simulated_setup(&self, robot: &Robot) -> Result<LabResult, String> {
-        let s = self.settings;
-        let model = model_of(robot, s.hayati)?;
-        let scene = SetupScene {
-            setup: s.setup,
+            tolerance_mm: s.tolerance_mm,
+            tolerance_deg: s.tolerance_deg,
+            noise_mm: s.noise_mm,
+            noise_mrad: s.noise_mrad,
+            position_only: s.position_only,
+            seed: s.seed,
             groups: s.groups.max(1),
             distance: s.distance_mm * 1e-3,
             radius: s.radius_mm * 1e-3,
-            ..SetupScene::default()
+            bend: s.bend,
         };
-        let sim = simulate_setup(
-            &model,
-            &scene,
-            &SimulationOptions {
-                poses: s.poses,
-                validation_poses: s.poses.max(10),
-                tolerance_mm: s.tolerance_mm,
-                tolerance_deg: s.tolerance_deg,
-                noise_mm: s.noise_mm,
-                noise_mrad: s.noise_mrad,
-                position_only: false,
-                seed: s.seed,
-            },
-        )
-        .map_err(|e| e.to_string())?;
-        let (model, robot_base, mut truth) = if s.setup == Setup::Tracker {
-            let (m, base) = tracker_model(robot, s.hayati, &sim.measurements)?;
-            // The true base correction against the registered pose: not part of the arm's truth.
-            let mut t = sim.truth.clone();
-            t.resize(m.parameters().len(), f64::NAN);
-            (m, Some(base), t)
+        let e = experiment(&s, robot, Source::Simulated(sim));
+        let r = crate::calibration::run(&e).map_err(|e| e.to_string())?;
+        let title = if matches!(s.setup, Setup::Pose | Setup::Position) {
+            format!(
+                "simulated {}, {} {:?} poses",
+                robot.name,
+                r.measurements.len(),
+                s.choice
+            )
+            .to_lowercase()
         } else {
-            (model, None, sim.truth.clone())
+            format!(
+                "simulated {}, {} {} measurements",
+                robot.name,
+                r.measurements.len(),
+                s.setup.name()
+            )
         };
-        truth.truncate(model.parameters().len());
-        let title = format!(
-            "simulated {}, {} {} measurements",
-            robot.name,
-            sim.measurements.len(),
-            s.setup.name()
-        );
-        let data = RunData {
-            ms: &sim.measurements,
-            validation: Some(&sim.validation),
-            truth: Some(truth),
-            title,
-            setup: s.setup,
-            warnings: Vec::new(),
-            robot_base,
-        };
-        finish(model, data, &options(&s))
+        Ok(lab_result(title, r))
     }
 
     /// Calibrates `robot` from the measurement file typed in `measurements_path`.
@@ -405,33 +306,17 @@ impl CalibrationLab {
     /// read as the setup of the settings says (plain or headered CSV).
     pub fn run_text(&mut self, robot: &Robot, name: &str, text: &str) {
         let s = self.settings;
-        let radius = Some(s.radius_mm * 1e-3);
-        let result = parse_setup(text, name, &JointColumns::of(robot), s.setup, radius)
-            .map_err(|e| e.to_string())
-            .and_then(|file| {
-                let ms = &file.measurements;
-                let (model, robot_base) = if s.setup == Setup::Tracker {
-                    let (m, b) = tracker_model(robot, s.hayati, ms)?;
-                    (m, Some(b))
-                } else {
-                    (model_of(robot, s.hayati)?, None)
-                };
-                let kind = ms.first().map_or("pose", Measurement::kind);
-                let data = RunData {
-                    ms,
-                    validation: None,
-                    truth: None,
-                    title: name.to_string(),
-                    setup: if s.setup == Setup::Pose && kind == "position" {
-                        Setup::Position
-                    } else {
-                        s.setup
-                    },
-                    warnings: file.warnings.clone(),
-                    robot_base,
-                };
-                finish(model, data, &options(&s))
-            });
+        let source = Source::Measured {
+            fit: NamedText {
+                name: name.to_string(),
+                text: text.to_string(),
+            },
+            validation: None,
+            radius: Some(s.radius_mm * 1e-3),
+        };
+        let result = crate::calibration::run(&experiment(&s, robot, source))
+            .map(|r| lab_result(name.to_string(), r))
+            .map_err(|e| e.to_string());
         match result {
             Ok(r) => {
                 self.result = Some(r);
@@ -478,16 +363,20 @@ impl CalibrationLab {
     /// degrees and millimetres, four example rows from the nominal model).
     pub fn template_text(&self, robot: &Robot) -> Result<String, String> {
         let s = self.settings;
-        let model = model_of(robot, s.hayati)?;
-        let scene = SetupScene {
-            setup: s.setup,
-            groups: 2,
-            distance: s.distance_mm * 1e-3,
-            radius: s.radius_mm * 1e-3,
-            world_from_tracker: Pose::identity(),
+        let model = ModelOptions {
+            hayati: s.hayati,
+            ..ModelOptions::default()
         };
-        let examples = nominal_examples(&model, &scene, 4, s.seed).map_err(|e| e.to_string())?;
-        Ok(template(&JointColumns::of(robot), s.setup, &examples))
+        let (text, _) = measurement_template(
+            robot,
+            &model,
+            s.setup,
+            s.distance_mm * 1e-3,
+            s.radius_mm * 1e-3,
+            s.seed,
+        )
+        .map_err(|e| e.to_string())?;
+        Ok(text)
     }
 
     /// Writes the template to `template_path`.
@@ -617,60 +506,4 @@ impl CalibrationLab {
              not identifiable and run far from their true values, though the fit is good."
         });
     }
-}
-
-/// What a run calibrates, besides the model: where the data came from.
-struct RunData<'a> {
-    ms: &'a [Measurement],
-    validation: Option<&'a [Measurement]>,
-    truth: Option<Vec<f64>>,
-    title: String,
-    setup: Setup,
-    warnings: Vec<String>,
-    robot_base: Option<Pose>,
-}
-
-fn finish(
-    model: ParameterModel,
-    d: RunData<'_>,
-    opts: &CalibrationOptions,
-) -> Result<LabResult, String> {
-    let report = calibrate(&model, d.ms, opts).map_err(|e| e.to_string())?;
-    let validation = match d.validation {
-        Some(v) => Some((
-            fit(&model, &model.nominal(), v).map_err(|e| e.to_string())?,
-            fit(&model, &report.estimate, v).map_err(|e| e.to_string())?,
-        )),
-        None => None,
-    };
-    Ok(LabResult {
-        title: d.title,
-        poses: d
-            .ms
-            .iter()
-            .flat_map(|m| m.joint_vectors())
-            .map(<[f64]>::to_vec)
-            .collect(),
-        model,
-        report,
-        truth: d.truth,
-        validation,
-        setup: d.setup,
-        warnings: d.warnings,
-        robot_base: d.robot_base,
-    })
-}
-
-/// The tracker setup's model: the base started at the tracker pose registered from the
-/// measurements, its six parameters estimated; with the robot's own base.
-fn tracker_model(
-    robot: &Robot,
-    hayati: bool,
-    ms: &[Measurement],
-) -> Result<(ParameterModel, Pose), String> {
-    let plain = model_of(robot, hayati)?;
-    let reg = register_tracker(&plain, &plain.nominal(), ms).map_err(|e| e.to_string())?;
-    let mut moved = robot.clone();
-    moved.base = reg * robot.base;
-    Ok((model_of(&moved, hayati)?.with_base(), robot.base))
 }
