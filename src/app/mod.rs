@@ -7,6 +7,7 @@
 pub mod action;
 pub mod file_browser;
 pub mod file_picker;
+pub mod files;
 pub mod gizmo;
 pub mod inner;
 pub mod layout;
@@ -18,10 +19,12 @@ pub mod recorder;
 pub mod screenshot;
 pub mod settings;
 pub mod shell;
+pub mod shortcuts;
 pub mod state;
 pub mod tabs;
 pub mod toolbar;
 pub mod viewport;
+pub mod window;
 pub mod workspace_job;
 
 use crate::render::Gpu;
@@ -250,7 +253,8 @@ impl ArmlabApp {
     }
 
     fn report_screenshot(&mut self, image: Result<image::RgbaImage, String>, stem: &str) {
-        let result = image.and_then(|img| self.ui.deliver_png(&img, stem));
+        let picker = self.ui.file_picker.as_mut();
+        let result = image.and_then(|img| files::deliver_png(picker, &img, stem));
         match result {
             Ok(m) => self.ui.state.push_message(state::Level::Info, m),
             Err(e) => self
