@@ -1,6 +1,6 @@
-//! What a panel or a tab asks the app to do. Panels and tabs read the shared state and return
-//! actions; [`super::shell::AppUi::apply`] applies them in one place, so no panel reaches into
-//! another's state and every change of the model goes through one door.
+//! What a panel, a tab, the lesson player or a key asks the app to do. They read the shared
+//! state and return actions; [`super::shell::AppUi::apply`] applies them in one place, so no
+//! panel reaches into another's state and every change of the model goes through one door.
 
 use super::state::{DhField, DisplayToggles, Hidden, Level};
 use crate::camera::Preset;

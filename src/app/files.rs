@@ -71,8 +71,8 @@ pub fn open_key(path: &str) -> Opening {
     }
 }
 
-/// The paths of the files dropped onto the window in this frame (none in a browser, whose
-/// dropped files have no path: the file picker reads them).
+/// The paths of the files dropped onto the window in this frame (a file without a path, as a
+/// browser hands it over, is read by the file picker instead).
 pub fn dropped_paths(ctx: &egui::Context) -> Vec<String> {
     ctx.input(|i| {
         i.raw

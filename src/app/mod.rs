@@ -1,8 +1,10 @@
 //! The interactive app (eframe/egui over wgpu). The shared state ([`state`]) has no GUI types
 //! and is unit-tested; [`shell`] lays out the window and applies the [`action`]s that the side
-//! [`panels`] and the central [`tabs`] return (each owns its own state); [`layout`] keeps the 3D
-//! view the largest thing on screen; [`viewport`] renders the 3D scene with the same renderer as
-//! the headless figures; [`screenshot`] renders the whole window offscreen.
+//! [`panels`], the central [`tabs`], the [`lesson`] player and the [`shortcuts`] return (each
+//! owns its own state and reads the shared one); [`files`] reads and writes the app's files;
+//! [`layout`] keeps the 3D view the largest thing on screen; [`viewport`] renders the 3D scene
+//! with the same renderer as the headless figures; [`screenshot`] renders the whole window
+//! offscreen.
 
 pub mod action;
 pub mod file_browser;

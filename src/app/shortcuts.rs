@@ -10,7 +10,8 @@ use egui::Key;
 /// The keyboard, read once a frame: the desktop's shortcuts (consumed, so Ctrl+O does not also
 /// press O), then single keys unless a text field has the keyboard. The display keys (G, D, T)
 /// and the construction keys (C, N, B) change `state.display` and `construction` at once; the
-/// others become actions; PgDn / PgUp leave `lesson_step` (the lesson's step shown, if any).
+/// others become actions; PgDn / PgUp step from `lesson_step` (the lesson's step shown, if
+/// any).
 pub fn read(
     ctx: &egui::Context,
     state: &mut AppState,
