@@ -1,11 +1,12 @@
-//! What a panel or a tab asks the app to do. Panels and tabs read the shared state and return
-//! actions; [`super::shell::AppUi::apply`] applies them in one place, so no panel reaches into
-//! another's state and every change of the model goes through one door.
+//! What a panel, a tab, the lesson player or a key asks the app to do. They read the shared
+//! state and return actions; [`super::shell::AppUi::apply`] applies them in one place, so no
+//! panel reaches into another's state and every change of the model goes through one door.
 
-use super::state::{DhField, Level};
+use super::state::{DhField, DisplayToggles, Hidden, Level};
 use crate::camera::Preset;
 use crate::kinematics::Pose;
 use crate::kinematics::redundancy::Task;
+use nalgebra::{Rotation3, Vector3};
 
 /// One thing to do.
 #[derive(Debug, Clone, PartialEq)]
@@ -35,6 +36,8 @@ pub enum Action {
     ResetEdits,
     /// Set joint `k` (rad or m).
     SetJoint(usize, f64),
+    /// Move the arm to `q` (rad, m), clamped into the limits; the targets follow.
+    SetQ(Vec<f64>),
     /// Move to a named configuration.
     ResetTo(String),
     /// Make end-effector `k` the one the readouts and the target refer to.
@@ -45,6 +48,16 @@ pub enum Action {
     SetTarget(usize, Pose),
     /// Put target `ee` on the tool.
     TargetToTool(usize),
+    /// Put target `ee` on the tool with its position (world, m) or its rotation (world from
+    /// tool) replaced where given.
+    TargetFromTool {
+        /// The end-effector.
+        ee: usize,
+        /// The target's position instead of the tool's.
+        position: Option<Vector3<f64>>,
+        /// The target's rotation instead of the tool's.
+        rotation: Option<Rotation3<f64>>,
+    },
     /// Take solution `index` (0-based) of target `ee`.
     SelectSolution(usize, usize),
     /// Show the next solution of the current target.
@@ -59,8 +72,26 @@ pub enum Action {
     ShowConstruction(bool),
     /// Show construction step `k` (0-based).
     ConstructionStep(usize),
+    /// What the 3D view draws.
+    SetDisplay(DisplayToggles),
+    /// What the panels hide while an exercise sheet is answered.
+    SetHidden(Hidden),
+    /// Clear the end-effector trails.
+    ClearTrails,
     /// A camera preset, then fit.
     CameraPreset(Preset),
+    /// Look from azimuth `yaw` and elevation `pitch` (rad) at `distance` (m), or framed to fit
+    /// where no distance is given.
+    LookFrom {
+        /// Azimuth (rad).
+        yaw: f32,
+        /// Elevation (rad).
+        pitch: f32,
+        /// Distance from the camera's centre (m).
+        distance: Option<f32>,
+    },
+    /// Frame everything the arm can reach (a workspace overlay seen whole).
+    FitReach,
     /// Fit the robot (and its ghosts and targets) in the view.
     Fit,
     /// Perspective / orthographic.

@@ -1,12 +1,15 @@
 //! The interactive app (eframe/egui over wgpu). The shared state ([`state`]) has no GUI types
 //! and is unit-tested; [`shell`] lays out the window and applies the [`action`]s that the side
-//! [`panels`] and the central [`tabs`] return (each owns its own state); [`layout`] keeps the 3D
-//! view the largest thing on screen; [`viewport`] renders the 3D scene with the same renderer as
-//! the headless figures; [`screenshot`] renders the whole window offscreen.
+//! [`panels`], the central [`tabs`], the [`lesson`] player and the [`shortcuts`] return (each
+//! owns its own state and reads the shared one); [`files`] reads and writes the app's files;
+//! [`layout`] keeps the 3D view the largest thing on screen; [`viewport`] renders the 3D scene
+//! with the same renderer as the headless figures; [`screenshot`] renders the whole window
+//! offscreen.
 
 pub mod action;
 pub mod file_browser;
 pub mod file_picker;
+pub mod files;
 pub mod gizmo;
 pub mod inner;
 pub mod layout;
@@ -18,10 +21,12 @@ pub mod recorder;
 pub mod screenshot;
 pub mod settings;
 pub mod shell;
+pub mod shortcuts;
 pub mod state;
 pub mod tabs;
 pub mod toolbar;
 pub mod viewport;
+pub mod window;
 pub mod workspace_job;
 
 use crate::render::Gpu;
@@ -250,7 +255,8 @@ impl ArmlabApp {
     }
 
     fn report_screenshot(&mut self, image: Result<image::RgbaImage, String>, stem: &str) {
-        let result = image.and_then(|img| self.ui.deliver_png(&img, stem));
+        let picker = self.ui.file_picker.as_mut();
+        let result = image.and_then(|img| files::deliver_png(picker, &img, stem));
         match result {
             Ok(m) => self.ui.state.push_message(state::Level::Info, m),
             Err(e) => self

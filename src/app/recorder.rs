@@ -106,3 +106,22 @@ impl Recorder {
         Ok(gif)
     }
 }
+
+/// The Record button: starts a recording in `slot`, or stops the one there and saves what was
+/// recorded as `armlab-<stem>-<n>.gif` (a download in a browser, see
+/// [`super::files::deliver_bytes`]); the message for the status bar either way.
+pub fn toggle(
+    slot: &mut Option<Recorder>,
+    picker: &mut dyn super::file_picker::FilePicker,
+    stem: &str,
+) -> Result<String, String> {
+    let Some(rec) = slot.take() else {
+        *slot = Some(Recorder::default());
+        return Ok("recording the 3D view: press Stop to save it as a GIF".into());
+    };
+    let n = rec.len();
+    rec.finish()
+        .and_then(|gif| super::files::deliver_bytes(picker, &gif, stem, ("gif", "image/gif")))
+        .map(|m| format!("{m} ({n} frames)"))
+        .map_err(|e| format!("recording failed: {e}"))
+}

@@ -2,6 +2,7 @@
 //! renderer as the live app, written to PNG by `armlab view MODEL --screenshot FILE.png`.
 
 use super::AppError;
+use super::lesson::LessonPlayer;
 use super::shell::AppUi;
 use super::state::AppState;
 use super::viewport::Viewport3d;
@@ -152,7 +153,10 @@ fn render_window(
     match camera {
         Some(c) => app.tabs.view3d.set_camera(c),
         None => {
-            if !app.frame_lesson_step() {
+            // A lesson's step that shows the workspace is framed for all the arm can reach.
+            if app.lesson.as_ref().is_some_and(LessonPlayer::frames_reach) {
+                app.tabs.view3d.fit_reach(&app.state);
+            } else {
                 app.fit();
             }
         }

@@ -684,6 +684,22 @@ impl AppState {
         Ok(&self.targets[ee].reach)
     }
 
+    /// Puts the target of `ee` on the tool (at the current q), with its position (world, m) or
+    /// its rotation (world from tool) replaced where given, and solves as
+    /// [`AppState::set_target`]; nothing where the tool has no pose.
+    pub fn set_target_from_tool(
+        &mut self,
+        ee: usize,
+        position: Option<Vector3<f64>>,
+        rotation: Option<Rotation3<f64>>,
+    ) -> Result<(), StateError> {
+        if let Ok(tool) = self.robot.fk_ee(&self.q, ee) {
+            let at = position.map_or(tool.translation, Translation3::from);
+            self.set_target(ee, Pose::from_parts(at, rotation.unwrap_or(tool.rotation)))?;
+        }
+        Ok(())
+    }
+
     /// Moves the target of `ee` by `translation` (m, world frame) and turns it by `rotation`
     /// (world frame, about the target's origin), then solves as [`AppState::set_target`].
     pub fn move_target_by(

@@ -487,6 +487,20 @@ pub fn posture_rgba(c: u8) -> [f32; 4] {
     [r, g, b, 1.0]
 }
 
+/// The self-motion of `ee` in `state`, where its arm has one, as [`add_self_motion`] draws it
+/// (with the other branches' ghosts and the traced path as the display says).
+pub fn add_self_motion_of(scene: &mut Scene, state: &mut AppState, ee: usize) {
+    if let Ok(view) = state.self_motion(ee) {
+        let ghosts = if state.display.ghosts {
+            state.self_motion_ghosts(ee)
+        } else {
+            Vec::new()
+        };
+        let path = state.display.self_motion_path;
+        add_self_motion(scene, state.robot(), &view, &ghosts, path);
+    }
+}
+
 /// The self-motion in the 3D view: the other branches at the current parameter as ghosts, and
 /// (with `path`) the traced point over the parameter's range, green where the branch is inside
 /// the limits, grey elsewhere (for an SRS arm, the elbow circle about the shoulder-wrist axis).

@@ -13,7 +13,10 @@
 //! - a figure that calls an IK solver, the closed-form detection, a sampler or another
 //!   computation (it paints what it is handed);
 //! - `render` naming the kinematics, and `mesh`, the leaf module of triangle meshes, naming
-//!   anything of the crate.
+//!   anything of the crate;
+//! - a file of `app` other than `app/shell.rs` implements `AppUi` (the app's parts return actions
+//!   and read the state; only the shell changes the window model), or `app/shell.rs` grows past
+//!   [`SHELL_LINES`] lines.
 //!
 //! The rules are first shown to catch each kind of breach on a small fixture tree
 //! (`tests/data/architecture/src`), then applied to the real `src/`.
@@ -152,6 +155,10 @@ const NOT_CALLED_IN_FIGURES: &[&str] = &[
 
 /// Items of `std::io` that any layer may name: they carry an error the input layer made.
 const IO_ERROR_TYPES: &[&str] = &["Error", "Result", "ErrorKind"];
+
+/// The most lines `src/app/shell.rs` may have: the window's layout and the one place where the
+/// actions are applied; what grows beyond goes to a file of its own under `src/app`.
+const SHELL_LINES: usize = 500;
 
 /// The source with comments and the contents of string and character literals blanked out
 /// (line breaks kept, so that line numbers stay).
@@ -480,6 +487,61 @@ fn calls(code: &str, function: &str) -> bool {
     })
 }
 
+/// The type a line's `impl` block is for (`impl<T> Trait for path::Type<T> {` -> "Type"), or
+/// `None` where the line opens no impl block.
+fn implemented_type(line: &str) -> Option<&str> {
+    let rest = line.trim_start().strip_prefix("impl")?;
+    let mut head = rest.split('{').next()?;
+    if head.starts_with('<') {
+        // The impl's own generics: up to the matching '>'.
+        let mut depth = 0;
+        let end = head.char_indices().find_map(|(i, ch)| {
+            depth += match ch {
+                '<' => 1,
+                '>' => -1,
+                _ => 0,
+            };
+            (depth == 0).then_some(i + 1)
+        })?;
+        head = &head[end..];
+    } else if !head.starts_with(char::is_whitespace) {
+        return None; // `implies`, say
+    }
+    let ty = head.rsplit(" for ").next()?.split('<').next()?.trim();
+    ty.rsplit("::").next().filter(|t| !t.is_empty())
+}
+
+/// Every breach of the app's rule under `app` (a `src/app` folder), as "app/file:line: what": an
+/// impl block for `AppUi` in a file other than `shell.rs`, and a `shell.rs` of more than
+/// `max_shell_lines` lines.
+fn app_breaches(app: &Path, max_shell_lines: usize) -> Vec<String> {
+    let mut out = Vec::new();
+    for file in sources(app) {
+        let rel = file.strip_prefix(app).expect("a file under app");
+        let text =
+            std::fs::read_to_string(&file).unwrap_or_else(|e| panic!("{}: {e}", file.display()));
+        if rel == Path::new("shell.rs") {
+            let n = text.lines().count();
+            if n > max_shell_lines {
+                out.push(format!(
+                    "app/shell.rs: {n} lines (at most {max_shell_lines})"
+                ));
+            }
+            continue;
+        }
+        for (n, line) in code_only(&text).lines().enumerate() {
+            if implemented_type(line) == Some("AppUi") {
+                out.push(format!(
+                    "app/{}:{}: an impl block for `AppUi` outside app/shell.rs",
+                    rel.display(),
+                    n + 1
+                ));
+            }
+        }
+    }
+    out
+}
+
 #[test]
 fn comments_and_strings_are_not_code() {
     let code = code_only(
@@ -582,6 +644,59 @@ fn src_keeps_the_layer_rules() {
     assert!(
         found.is_empty(),
         "{} breach(es) of the layer rules:\n{}",
+        found.len(),
+        found.join("\n")
+    );
+}
+
+#[test]
+fn impl_blocks_are_told_by_their_type() {
+    for (line, ty) in [
+        ("impl AppUi {", Some("AppUi")),
+        ("    impl super::shell::AppUi {", Some("AppUi")),
+        ("impl Default for AppUi {", Some("AppUi")),
+        ("impl<'a> From<&'a AppUi> for Settings {", Some("Settings")),
+        ("impl<T: Into<f64>> Wrapper<T> {", Some("Wrapper")),
+        ("impl AppUiParts {", Some("AppUiParts")),
+        ("let implied = AppUi::new();", None),
+        ("fn f(x: impl AppUi) {}", None),
+    ] {
+        assert_eq!(implemented_type(line), ty, "{line}");
+    }
+}
+
+#[test]
+fn the_app_rule_catches_impl_blocks_and_a_long_shell_on_a_fixture() {
+    let app = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/architecture/src/app");
+    let shell_lines = std::fs::read_to_string(app.join("shell.rs"))
+        .expect("the fixture's shell")
+        .lines()
+        .count();
+    let found = app_breaches(&app, shell_lines - 1);
+    let expect = [
+        "app/player.rs:3: an impl block for `AppUi`",
+        "app/player.rs:6: an impl block for `AppUi`",
+        "app/shell.rs: 5 lines (at most 4)",
+    ];
+    for e in expect {
+        assert!(
+            found.iter().any(|f| f.starts_with(e)),
+            "the fixture's breach {e:?} was not reported; reported:\n{}",
+            found.join("\n")
+        );
+    }
+    assert_eq!(found.len(), expect.len(), "{}", found.join("\n"));
+    // At its length, the shell is no breach.
+    assert_eq!(app_breaches(&app, shell_lines).len(), 2);
+}
+
+#[test]
+fn only_the_shell_implements_the_app_window_model() {
+    let app = Path::new(env!("CARGO_MANIFEST_DIR")).join("src/app");
+    let found = app_breaches(&app, SHELL_LINES);
+    assert!(
+        found.is_empty(),
+        "{} breach(es) of the app's rule:\n{}",
         found.len(),
         found.join("\n")
     );

@@ -24,6 +24,13 @@ pub struct IkPanel {
 }
 
 impl IkPanel {
+    /// Adds what the panel shows over the 3D view (the construction, the symbols of `ee`) to
+    /// the scene.
+    pub fn decorate(&mut self, state: &AppState, ee: usize, scene: &mut crate::scene::Scene) {
+        self.construction.decorate(state, scene);
+        self.symbols.decorate(state, ee, scene);
+    }
+
     /// The whole panel.
     pub fn ui(&mut self, state: &mut AppState, ui: &mut egui::Ui, out: &mut Actions) {
         egui::ScrollArea::vertical()

@@ -4,7 +4,7 @@
 //! keeps the previous one and the cell stays red with the reason; edits can be undone.
 
 use super::super::action::{Action, Actions};
-use super::super::file_picker::suggested_model_name;
+use super::super::files::suggested_model_name;
 use super::super::state::{AppState, DhField, format_number};
 use crate::kinematics::models::BUILT_INS;
 use egui::{Color32, RichText};

@@ -6,6 +6,19 @@ use crate::kinematics::ik::IkSolution;
 use crate::kinematics::jacobian::analyze;
 
 impl AppState {
+    /// Moves the arm to the next solution of the last IK result of `ee` (the first where none
+    /// is selected); nothing where there is no solution.
+    pub fn select_next_solution(&mut self, ee: usize) -> Result<(), StateError> {
+        if let Ok(t) = self.target(ee)
+            && let Some(r) = &t.result
+            && !r.solutions.is_empty()
+        {
+            let next = t.selected.map_or(0, |s| (s + 1) % r.solutions.len());
+            self.select_solution(ee, next)?;
+        }
+        Ok(())
+    }
+
     /// Moves the arm to solution `index` of the last IK result of `ee` and selects its posture.
     /// Refused for a solution outside the joint limits.
     pub fn select_solution(&mut self, ee: usize, index: usize) -> Result<(), StateError> {

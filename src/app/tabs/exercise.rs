@@ -4,8 +4,7 @@
 //! of numbers) and shows the grade item by item. Grading is [`crate::exercise`]'s.
 
 use super::super::action::{Action, Actions};
-use super::super::shell::AppUi;
-use super::super::state::{Hidden, Level};
+use super::super::state::{AppState, Hidden, Level};
 use super::{Tab, TabContext};
 use crate::exercise::{Answer, Grade, Key, KeyAnswer, grade, parse_rows};
 use crate::kinematics::{Convention, DhJoint, DhRow, JointKind, Pose, Robot};
@@ -67,13 +66,56 @@ impl Tab for ExerciseTab {
         "Exercise"
     }
 
-    fn ui(&mut self, cx: &mut TabContext<'_>, ui: &mut egui::Ui, out: &mut Actions) {
-        egui::ScrollArea::vertical().show(ui, |ui| self.contents(cx, ui, out));
+    fn ui(&mut self, _cx: &mut TabContext<'_>, ui: &mut egui::Ui, out: &mut Actions) {
+        egui::ScrollArea::vertical().show(ui, |ui| self.contents(ui, out));
     }
 }
 
 impl ExerciseTab {
-    fn contents(&mut self, cx: &mut TabContext<'_>, ui: &mut egui::Ui, out: &mut Actions) {
+    /// Opens the sheet of `key`, whose arm `state` has just loaded: returns what the sheet sets
+    /// up (the key's q and the target on the tool, what the sheet asks for hidden, the Exercise
+    /// tab shown).
+    pub fn open(&mut self, key: Key, state: &AppState) -> Actions {
+        let mut out = Actions::default();
+        out.push(Action::SetQ(key.q.clone()));
+        out.push(Action::TargetToTool(0));
+        let dh = matches!(key.answer, KeyAnswer::DhTable);
+        let ik = matches!(key.answer, KeyAnswer::Ik { .. });
+        out.push(Action::SetHidden(Hidden {
+            dh_table: dh,
+            pose: matches!(key.answer, KeyAnswer::Fk { .. }),
+            solutions: ik,
+        }));
+        let mut d = state.display;
+        d.frames = !dh;
+        d.labels = !dh;
+        d.ghosts = !ik;
+        out.push(Action::SetDisplay(d));
+        out.push(Action::ShowConstruction(false));
+        out.push(Action::ShowTab(super::EXERCISE));
+        self.sheet = Some(OpenSheet {
+            rows: vec![AnswerRow::default(); if dh { state.robot().dof() } else { 0 }],
+            key,
+            modified: false,
+            text: String::new(),
+            result: None,
+        });
+        out
+    }
+
+    /// Closes the sheet: returns what shows the panels' contents again.
+    pub fn close(&mut self, state: &AppState) -> Actions {
+        self.sheet = None;
+        let mut d = state.display;
+        d.frames = true;
+        d.labels = true;
+        Actions(vec![
+            Action::SetHidden(Hidden::default()),
+            Action::SetDisplay(d),
+        ])
+    }
+
+    fn contents(&mut self, ui: &mut egui::Ui, out: &mut Actions) {
         ui.horizontal(|ui| {
             ui.label("Key:");
             let r = ui.add(
@@ -114,7 +156,7 @@ impl ExerciseTab {
         if ui.button("Check").clicked() {
             sheet.result = Some(check(sheet));
             if let Some(Ok(g)) = &sheet.result {
-                cx.state.push_message(
+                out.message(
                     Level::Info,
                     format!("exercise: score {} of {}", g.score, g.max),
                 );
@@ -261,50 +303,7 @@ fn feedback(ui: &mut egui::Ui, g: &Grade) {
     }
 }
 
-impl AppUi {
-    /// Opens a sheet from its key's text (`name` for messages): loads its arm at its q, hides
-    /// what the sheet asks for, shows the Exercise tab. The app keeps its state on an error.
-    pub fn open_exercise_text(&mut self, name: &str, text: &str) -> Result<(), String> {
-        let key: Key = serde_json::from_str(text)
-            .map_err(|e| format!("{name}: not an armlab exercise key: {e}"))?;
-        self.state
-            .load_model_text("sheet.toml", &key.model)
-            .map_err(|e| format!("{name}: the key's model: {e}"))?;
-        self.model_changed();
-        if let Err(e) = self.state.set_q(&key.q) {
-            self.state.push_message(Level::Warning, e.to_string());
-        }
-        if let Ok(tool) = self.state.robot().fk_ee(self.state.q(), 0) {
-            let _ = self.state.set_target(0, tool);
-        }
-        let dh = matches!(key.answer, KeyAnswer::DhTable);
-        self.state.hidden = Hidden {
-            dh_table: dh,
-            pose: matches!(key.answer, KeyAnswer::Fk { .. }),
-            solutions: matches!(key.answer, KeyAnswer::Ik { .. }),
-        };
-        let d = &mut self.state.display;
-        d.frames = !dh;
-        d.labels = !dh;
-        d.ghosts = !matches!(key.answer, KeyAnswer::Ik { .. });
-        self.ik.construction.shown = false;
-        let n = self.state.robot().dof();
-        self.tabs.exercise.sheet = Some(OpenSheet {
-            rows: vec![AnswerRow::default(); if dh { n } else { 0 }],
-            key,
-            modified: false,
-            text: String::new(),
-            result: None,
-        });
-        self.tab = super::EXERCISE;
-        Ok(())
-    }
-
-    /// Closes the sheet: the panels show everything again.
-    pub fn close_exercise(&mut self) {
-        self.tabs.exercise.sheet = None;
-        self.state.hidden = Hidden::default();
-        self.state.display.frames = true;
-        self.state.display.labels = true;
-    }
+/// The exercise key in `text` (the file `name`, for messages).
+pub fn parse_key(name: &str, text: &str) -> Result<Key, String> {
+    serde_json::from_str(text).map_err(|e| format!("{name}: not an armlab exercise key: {e}"))
 }

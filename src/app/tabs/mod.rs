@@ -11,18 +11,21 @@ pub mod workspace;
 use super::action::Actions;
 use super::file_picker::FilePicker;
 use super::layout::Layout;
-use super::state::AppState;
+use super::state::{AppState, SelfMotionView};
 use super::viewport::ViewportImage;
 use crate::scene::Scene;
 
 /// What a tab reads while it lays itself out.
 pub struct TabContext<'a> {
-    /// The shared model (read it; change it through actions).
-    pub state: &'a mut AppState,
+    /// The shared model (read only: a tab changes it through actions).
+    pub state: &'a AppState,
     /// The window's layout (projector mode).
     pub layout: &'a Layout,
     /// The end-effector the readouts refer to.
     pub ee: usize,
+    /// The self-motion of `ee` (or why there is none) for the Self-motion tab, which plots it;
+    /// `None` for the other tabs (it is sampled anew after every move).
+    pub self_motion: Option<Result<SelfMotionView, String>>,
     /// File dialogs, downloads.
     pub picker: &'a mut dyn FilePicker,
     /// The rendered 3D view, for the 3D tab.
@@ -90,6 +93,22 @@ tabs! {
     calibration: calibration::CalibrationTab,
     self_motion: self_motion::SelfMotionTab,
     exercise: exercise::ExerciseTab,
+}
+
+impl Tabs {
+    /// Adds what every tab shows over the 3D view to the scene.
+    pub fn decorate(&self, state: &AppState, scene: &mut Scene) {
+        for t in self.all() {
+            t.decorate(state, scene);
+        }
+    }
+
+    /// The model changed: every tab drops what belonged to the old one.
+    pub fn model_changed(&mut self) {
+        for t in self.all_mut() {
+            t.model_changed();
+        }
+    }
 }
 
 /// The index of the 3D view among the tabs.

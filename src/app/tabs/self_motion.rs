@@ -1,10 +1,12 @@
 //! The Self-motion tab (Sect. 2.10.2): every joint against the self-motion parameter for every
 //! branch, the current branch green where it is inside the limits, the limits as bands, the
-//! current value as a cursor. It only paints what [`AppState::self_motion`] hands it.
+//! current value as a cursor. It only paints what
+//! [`AppState::self_motion`](super::super::state::AppState::self_motion) hands it.
 
 use super::super::action::Actions;
-use super::super::state::{AppState, SelfMotionView};
+use super::super::state::SelfMotionView;
 use super::{Tab, TabContext};
+use crate::kinematics::Robot;
 use egui::Color32;
 use egui_plot::{Axis, Line, Plot, Span, VLine};
 
@@ -21,15 +23,23 @@ impl Tab for SelfMotionTab {
     }
 
     fn ui(&mut self, cx: &mut TabContext<'_>, ui: &mut egui::Ui, out: &mut Actions) {
-        plots(cx.state, ui, cx.ee, out);
+        if let Some(view) = cx.self_motion.take() {
+            plots(view, cx.state.robot(), cx.ee, ui, out);
+        }
     }
 }
 
-/// The tab's plots: one small plot per joint, stacked, x linked; above them the same slider as
-/// the Redundancy panel's, so the lesson needs no scrolling of the side panel (in projector
-/// mode it is below the fold).
-fn plots(state: &mut AppState, ui: &mut egui::Ui, ee: usize, out: &mut Actions) {
-    let view = match state.self_motion(ee) {
+/// The tab's plots of the self-motion `view` of `robot`'s end-effector `ee`: one small plot per
+/// joint, stacked, x linked; above them the same slider as the Redundancy panel's, so the lesson
+/// needs no scrolling of the side panel (in projector mode it is below the fold).
+fn plots(
+    view: Result<SelfMotionView, String>,
+    robot: &Robot,
+    ee: usize,
+    ui: &mut egui::Ui,
+    out: &mut Actions,
+) {
+    let view = match view {
         Ok(v) if v.exact => v,
         Ok(_) => {
             ui.label(
@@ -59,7 +69,6 @@ fn plots(state: &mut AppState, ui: &mut egui::Ui, ee: usize, out: &mut Actions) 
             out.push(crate::app::action::Action::SetSelfMotion(ee, v));
         }
     });
-    let robot = state.robot().clone();
     let limits = robot.limits();
     let n = robot.dof();
     egui::ScrollArea::vertical().show(ui, |ui| {

@@ -105,6 +105,37 @@ impl View3d {
         self.fit(state);
     }
 
+    /// Looks from azimuth `yaw` and elevation `pitch` (rad; the elevation kept short of the
+    /// poles) at `distance` (m), or framed to fit where no distance is given.
+    pub fn look_from(&mut self, yaw: f32, pitch: f32, distance: Option<f32>, state: &AppState) {
+        self.camera.yaw = yaw;
+        self.camera.pitch = pitch.clamp(-1.55, 1.55);
+        match distance {
+            Some(distance) => self.set_camera(Camera {
+                distance,
+                ..self.camera
+            }),
+            None => self.fit(state),
+        }
+    }
+
+    /// Frames everything the arm can reach (a box of its longest chain around the base), so
+    /// that a workspace overlay is seen whole.
+    pub fn fit_reach(&mut self, state: &AppState) {
+        let reach = state.robot().longest_chain_length() as f32;
+        let o = state.robot().base.translation.vector.map(|v| v as f32);
+        let corners: Vec<nalgebra::Point3<f32>> = (0..8)
+            .map(|c| {
+                let s = |bit: i32| if c & bit == 0 { -reach } else { reach };
+                nalgebra::Point3::new(o.x + s(1), o.y + s(2), o.z + s(4))
+            })
+            .collect();
+        let [w, h] = self.viewport_px;
+        let mut camera = self.camera;
+        camera.fit_points(&corners, w, h, 0.9);
+        self.set_camera(camera);
+    }
+
     /// Perspective / orthographic, then framing.
     pub fn toggle_projection(&mut self, state: &AppState) {
         self.camera.projection = match self.camera.projection {

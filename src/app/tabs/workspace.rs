@@ -205,7 +205,7 @@ impl WorkspaceTab {
                 && let Some(img) = self.job.as_ref().and_then(|j| j.figure())
             {
                 let stem = format!("{}-workspace", cx.state.spec().replace(['/', '.'], "_"));
-                match super::super::file_picker::deliver_png(&mut *cx.picker, img, &stem) {
+                match super::super::files::deliver_png(&mut *cx.picker, img, &stem) {
                     Ok(m) => out.message(Level::Info, m),
                     Err(e) => out.message(Level::Error, format!("figure not saved: {e}")),
                 }

@@ -302,6 +302,18 @@ impl CalibrationLab {
         }
     }
 
+    /// Calibrates `robot` from a measurement file handed over as bytes (a browser's file
+    /// picker), or says that it is no text.
+    pub fn run_bytes(&mut self, robot: &Robot, name: &str, bytes: &[u8]) {
+        match std::str::from_utf8(bytes) {
+            Ok(text) => {
+                self.measurements_path = name.to_string();
+                self.run_text(robot, name, text);
+            }
+            Err(_) => self.message = Some(format!("{name}: not a text file")),
+        }
+    }
+
     /// Calibrates `robot` from the text of a measurement file named `name` (errors name it),
     /// read as the setup of the settings says (plain or headered CSV).
     pub fn run_text(&mut self, robot: &Robot, name: &str, text: &str) {
