@@ -171,6 +171,7 @@ struct SendJson {
 struct CorrectionRowJson<'a> {
     pose: usize,
     posture: String,
+    posture_parts: crate::kinematics::ik::SolutionPosture,
     q: &'a [f64],
     within_limits: bool,
     send: SendJson,
@@ -251,6 +252,7 @@ fn corrections_json(c: &Corrections) -> CorrectionsJson<'_> {
                 CorrectionRowJson {
                     pose: r.pose + 1,
                     posture: r.posture.to_string(),
+                    posture_parts: r.posture,
                     q: &r.q,
                     within_limits: r.within_limits,
                     send: SendJson {

@@ -348,6 +348,17 @@ fn correct_targets_writes_a_row_per_pose_and_posture() {
         ] {
             assert!(r.get(key).is_some(), "{key}");
         }
+        // The posture as fields too, the label rebuilt from them (the Puma's three parts).
+        let parts = &r["posture_parts"];
+        assert_eq!(parts["solver"], "closed_form", "{parts}");
+        let word = |k: &str| parts[k].as_str().unwrap_or("?").replace('_', " ");
+        let rebuilt = format!(
+            "shoulder {}, elbow {}, wrist {}",
+            word("shoulder"),
+            word("elbow"),
+            word("wrist")
+        );
+        assert_eq!(r["posture"].as_str(), Some(rebuilt.as_str()), "{parts}");
         // The uncorrected nominal solution misses by millimetres on this arm.
         assert!(r["uncorrected_error"].as_f64().unwrap() > 1e-3);
     }
