@@ -147,6 +147,10 @@ def self_motion(
 def symbolic(robot: CoreRobot, numbers: bool = False, ee: int = 0) -> Tuple[str, str, str]:
     """(text, latex, markdown)."""
 
+def calibrate(args: List[str], measurements: Optional[str] = None) -> Tuple[str, str]:
+    """One calibration in the library, as ``armlab calibrate ARGS...`` describes it:
+    (the report's JSON, its text)."""
+
 def run_cli(args: List[str], error: str = "armlab") -> str:
     """``armlab ARGS...`` in process; what it printed."""
 
