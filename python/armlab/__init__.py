@@ -228,6 +228,17 @@ class IkSolution:
     orientation_error: float
     #: Joints the closed form cannot determine here: (index, why), a representative value chosen.
     free_joints: List[Tuple[int, str]] = field(default_factory=list)
+    #: The posture's fields as JSON text (read by :attr:`parts`).
+    _parts_json: str = field(default="", repr=False)
+
+    @property
+    def parts(self) -> Dict[str, Any]:
+        """The posture as data, the ``posture_parts`` of ``armlab ik --format json``:
+        ``{"solver": "closed_form", "shoulder": "right", "elbow": "up", "extension": None,
+        "wrist": "no_flip", "branch": None, "reversed": False, "free": [...]}``, or
+        ``{"solver": "numerical", "converged": True}``. Read these instead of parsing
+        :attr:`posture`, the label."""
+        return json.loads(self._parts_json) if self._parts_json else {}
 
     def __repr__(self) -> str:
         q = np.array2string(np.asarray(self.q), precision=4, suppress_small=True, floatmode="fixed")
@@ -696,7 +707,8 @@ class Robot:
             return IkBatch(q, valid, within, codes, dict(labels), pe, oe)
         status, distance, used, found = self._core.ik(a, ee, s, solver)
         sols = IkSolutions(
-            [IkSolution(np.array(q, dtype=float), p, w, pe, oe, list(fr)) for q, p, w, pe, oe, fr in found],
+            [IkSolution(np.array(q, dtype=float), p, w, pe, oe, list(fr), parts)
+             for q, p, w, pe, oe, fr, parts in found],
             status, used, distance,
         )
         if all:
@@ -839,52 +851,70 @@ def calibrate(
     setup: Optional[str] = None,
     validate: Optional[PathLike] = None,
     simulate: bool = False,
-    poses: Optional[int] = None,
-    noise_mm: Optional[float] = None,
-    noise_mrad: Optional[float] = None,
-    seed: Optional[int] = None,
+    poses: int = 50,
+    select: str = "random",
+    tolerance_mm: float = 1.0,
+    tolerance_deg: float = 0.5,
+    noise_mm: float = 0.05,
+    noise_mrad: float = 0.1,
+    position_only: bool = False,
+    seed: int = 1,
+    groups: int = 3,
+    distance_mm: float = 300.0,
+    sphere_radius_mm: Optional[float] = None,
     with_base: bool = False,
     with_tool: bool = False,
     with_compliance: bool = False,
     fix: Optional[Sequence[str]] = None,
-    hayati: Optional[str] = None,
-    unidentifiable: Optional[str] = None,
-    options: Sequence[str] = (),
+    hayati: str = "auto",
+    unidentifiable: str = "nominal",
+    correct_targets: Optional[PathLike] = None,
 ) -> CalibrationReport:
-    """Calibrates ``robot``'s DH parameters from measurements, as ``armlab calibrate`` does.
+    """Calibrates ``robot``'s DH parameters from measurements, as ``armlab calibrate`` does, in
+    the library (one computation per call; no command line, no temporary file).
 
     ``measurements`` is a file (a headered CSV with units, robot_cal_tools' YAML, FIGAROH's CSV,
     or armlab's plain file; ``setup`` = "pose", "position", "tracker", "distance", "pivot",
     "plane" or "sphere"), or a pair of arrays ``(Q, Y)``: Q (N, dof) joint values and Y (N, 3)
-    measured tool positions or (N, 4, 4) poses (m). ``simulate=True`` makes a "real" arm and
-    its measurements instead. ``noise_mm`` / ``noise_mrad`` are the measurement noise (the
-    weights). Any other flag of ``armlab calibrate`` goes in ``options``. Returns the report,
-    identifiability in words included.
+    measured tool positions or (N, 4, 4) poses (m). ``validate`` is a held-out file of the same
+    format.
+
+    ``simulate=True`` makes a "real" arm (the model plus deviations within ``tolerance_mm`` and
+    ``tolerance_deg``) and ``poses`` measurements of it (as many again held out), chosen by
+    ``select`` ("random", "o1" or "o4"), ``position_only`` or full poses, from ``seed``;
+    ``groups``, ``distance_mm`` and ``sphere_radius_mm`` shape the pivot, plane, sphere and
+    distance setups. ``noise_mm`` / ``noise_mrad`` are the measurement noise (the weights).
+
+    The model: ``with_base``, ``with_tool``, ``with_compliance`` add parameters; ``fix`` keeps
+    parameters at their nominal values by name ("d1", "theta6"); ``hayati`` is "auto" (beta on
+    parallel axes) or "off"; ``unidentifiable`` is "nominal" or "minimum-norm".
+    ``correct_targets`` is a file of desired tool poses, corrected in every posture.
+
+    Returns the report, identifiability in words included. Raises ``CalibrationError`` naming the
+    file and line of bad data, ``ValueError`` naming a bad keyword.
     """
-    args: List[str] = [robot._core.spec]
+    path: Optional[str] = None
     text: Optional[str] = None
     if isinstance(measurements, tuple):
         text = _measurement_text(robot, *measurements)
     elif measurements is not None:
-        args += ["--measurements", os.fspath(measurements)]
+        path = os.fspath(measurements)
     elif not simulate:
         raise ValueError("give measurements (a file or (Q, Y) arrays), or simulate=True")
-    flags = {
-        "--setup": setup, "--validate": None if validate is None else os.fspath(validate),
-        "--poses": poses, "--noise-mm": noise_mm, "--noise-mrad": noise_mrad, "--seed": seed,
-        "--fix": None if fix is None else ",".join(fix), "--hayati": hayati,
-        "--unidentifiable": unidentifiable,
-    }
-    for flag, value in flags.items():
-        if value is not None:
-            args += [flag, str(value)]
-    for flag, on in (("--simulate", simulate), ("--with-base", with_base),
-                     ("--with-tool", with_tool), ("--with-compliance", with_compliance)):
-        if on:
-            args.append(flag)
-    args += list(options)
-    # One computation in the library: the report as JSON and as text.
-    data, summary = _core.calibrate(args, text)
+
+    def fspath(p: Optional[PathLike]) -> Optional[str]:
+        return None if p is None else os.fspath(p)
+
+    data, summary = _core.calibrate(
+        robot._core, measurements=path, measurements_text=text, setup=setup,
+        validate=fspath(validate), simulate=simulate, poses=poses, select=select,
+        tolerance_mm=tolerance_mm, tolerance_deg=tolerance_deg, noise_mm=noise_mm,
+        noise_mrad=noise_mrad, position_only=position_only, seed=seed, groups=groups,
+        distance_mm=distance_mm, sphere_radius_mm=sphere_radius_mm, with_base=with_base,
+        with_tool=with_tool, with_compliance=with_compliance, fix=list(fix or []),
+        hayati=hayati, unidentifiable=unidentifiable,
+        correct_targets=fspath(correct_targets),
+    )
     return CalibrationReport(json.loads(data), summary)
 
 

@@ -66,7 +66,7 @@ class CoreRobot:
         """(manipulability, task rows)."""
     def ik(
         self, target: F64, ee: int = 0, seed: Optional[F64] = None, solver: str = "auto"
-    ) -> Tuple[str, Optional[float], str, List[Tuple[List[float], str, bool, float, float, List[Tuple[int, str]]]]]:
+    ) -> Tuple[str, Optional[float], str, List[Tuple[List[float], str, bool, float, float, List[Tuple[int, str]], str]]]:
         """(status, distance, solver, [(q, posture, within_limits, position_error,
         orientation_error, free joints)])."""
     def ik_numerical(
@@ -147,8 +147,18 @@ def self_motion(
 def symbolic(robot: CoreRobot, numbers: bool = False, ee: int = 0) -> Tuple[str, str, str]:
     """(text, latex, markdown)."""
 
-def calibrate(args: List[str], measurements: Optional[str] = None) -> Tuple[str, str]:
-    """One calibration in the library, as ``armlab calibrate ARGS...`` describes it:
+def calibrate(
+    robot: CoreRobot, *, measurements: Optional[str] = None,
+    measurements_text: Optional[str] = None, setup: Optional[str] = None,
+    validate: Optional[str] = None, simulate: bool = False, poses: int = 50,
+    select: str = "random", tolerance_mm: float = 1.0, tolerance_deg: float = 0.5,
+    noise_mm: float = 0.05, noise_mrad: float = 0.1, position_only: bool = False, seed: int = 1,
+    groups: int = 3, distance_mm: float = 300.0, sphere_radius_mm: Optional[float] = None,
+    with_base: bool = False, with_tool: bool = False, with_compliance: bool = False,
+    fix: List[str] = ..., hayati: str = "auto", unidentifiable: str = "nominal",
+    correct_targets: Optional[str] = None,
+) -> Tuple[str, str]:
+    """One calibration in the library (the experiment built from these keywords, run once):
     (the report's JSON, its text)."""
 
 def run_cli(args: List[str], error: str = "armlab") -> str:

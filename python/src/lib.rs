@@ -13,6 +13,7 @@ use pyo3::prelude::*;
 
 mod arrays;
 mod batch;
+mod calibration;
 mod errors;
 mod figures;
 mod reports;
@@ -41,7 +42,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(reports::reach, m)?)?;
     m.add_function(wrap_pyfunction!(reports::self_motion, m)?)?;
     m.add_function(wrap_pyfunction!(reports::symbolic, m)?)?;
-    m.add_function(wrap_pyfunction!(reports::calibrate, m)?)?;
+    m.add_function(wrap_pyfunction!(calibration::calibrate, m)?)?;
     m.add_function(wrap_pyfunction!(reports::run_cli, m)?)?;
     m.add_function(wrap_pyfunction!(figures::svg_to_pdf, m)?)?;
     m.add_function(wrap_pyfunction!(figures::textbook_figure, m)?)?;

@@ -1,11 +1,10 @@
 //! The reports: workspace figures with their statistics, point queries, self-motions and the
 //! symbolic kinematics, each computed by the library and handed to Python as plain data (JSON
-//! for the nested ones; the Python layer makes objects of them); the calibration (the library's
-//! experiment, run once: its report as JSON and as text); and `run_cli`, the command line's own
+//! for the nested ones; the Python layer makes objects of them); and `run_cli`, the command line's own
 //! driver for `armlab info`, in process.
 
 use crate::arrays::{checked, pose_of};
-use crate::errors::{ArmlabError, CalibrationError, IntoPy, ModelError, value_error};
+use crate::errors::{ArmlabError, IntoPy, ModelError, value_error};
 use crate::figures::{Drawn, draw, size, theme, workspace_options};
 use crate::robot::CoreRobot;
 use armlab::figure::workspace::{paint, plan};
@@ -266,40 +265,4 @@ pub fn run_cli(py: Python<'_>, args: Vec<String>, error: &str) -> PyResult<Strin
     py.detach(|| armlab::cli::run(cli, &mut out))
         .map_err(|e| raise(e.to_string()))?;
     String::from_utf8(out).map_err(|e| raise(format!("the output is not UTF-8: {e}")))
-}
-
-/// Calibrates as `armlab calibrate ARGS...` describes: the flags parsed into the library's
-/// experiment, run once (`armlab::calibration::run`), and the files the flags ask for written;
-/// returns the one report as `(JSON, text)`, the JSON with the keys of `--format json`.
-/// `measurements` is the text of a plain measurement file (Python's `(Q, Y)` arrays), used
-/// instead of a `--measurements` file. An error raises `CalibrationError` with the command
-/// line's message.
-#[pyfunction]
-#[pyo3(signature = (args, measurements=None))]
-pub fn calibrate(
-    py: Python<'_>,
-    args: Vec<String>,
-    measurements: Option<String>,
-) -> PyResult<(String, String)> {
-    const ARRAYS: &str = "(Q, Y)";
-    let mut argv = vec!["armlab".to_string(), "calibrate".to_string()];
-    argv.extend(args);
-    let fit = measurements.map(|text| armlab::calibration::NamedText {
-        name: ARRAYS.into(),
-        text,
-    });
-    if fit.is_some() {
-        argv.extend(["--measurements".to_string(), ARRAYS.to_string()]);
-    }
-    let cli = armlab::cli::Cli::try_parse_from(argv).map_err(|e| value_error(e.to_string()))?;
-    let Some(armlab::cli::Command::Calibrate(args)) = cli.command else {
-        return Err(value_error("not a calibrate command"));
-    };
-    armlab::urdf::set_package_paths(cli.package_path);
-    let report = py
-        .detach(|| armlab::cli::calibrate::compute(&args, fit))
-        .map_err(|e| CalibrationError::new_err(e.to_string()))?;
-    let json = serde_json::to_string_pretty(&report)
-        .map_err(|e| CalibrationError::new_err(e.to_string()))?;
-    Ok((json, report.to_string()))
 }

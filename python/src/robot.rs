@@ -104,9 +104,18 @@ impl CoreRobot {
     }
 }
 
-/// One IK solution as Python receives it: (q, posture, within_limits, position_error,
-/// orientation_error, free joints as (index, why)).
-pub type SolutionTuple = (Vec<f64>, String, bool, f64, f64, Vec<(usize, &'static str)>);
+/// One IK solution as Python receives it: (q, posture label, within_limits, position_error,
+/// orientation_error, free joints as (index, why), the posture's fields as JSON (the
+/// `posture_parts` of `armlab ik --format json`), read when Python asks).
+pub type SolutionTuple = (
+    Vec<f64>,
+    String,
+    bool,
+    f64,
+    f64,
+    Vec<(usize, &'static str)>,
+    String,
+);
 
 /// An IK result as Python receives it: (status, distance to the workspace when unreachable,
 /// the solver that answered, the solutions).
@@ -124,6 +133,8 @@ fn ik_tuple(result: IkResult, used: &str) -> IkTuple {
         .into_iter()
         .map(|s| {
             let free = s.free_joints.iter().map(|f| (f.index, f.reason)).collect();
+            // A posture is plain data (enums, numbers): it always serialises.
+            let parts = serde_json::to_string(&s.posture).unwrap_or_default();
             (
                 s.q,
                 s.posture.to_string(),
@@ -131,6 +142,7 @@ fn ik_tuple(result: IkResult, used: &str) -> IkTuple {
                 s.position_error,
                 s.orientation_error,
                 free,
+                parts,
             )
         })
         .collect();

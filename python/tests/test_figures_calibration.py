@@ -54,9 +54,9 @@ def test_calibrate_computes_once_in_the_library(monkeypatch):
     calls = []
     library = armlab._core.calibrate
 
-    def once(*args):
+    def once(*args, **kwargs):
         calls.append(args)
-        return library(*args)
+        return library(*args, **kwargs)
 
     def no_cli(*args, **kwargs):
         raise AssertionError(f"calibrate ran the command line: {args}")
@@ -70,6 +70,51 @@ def test_calibrate_computes_once_in_the_library(monkeypatch):
     assert len(calls) == 2
     assert f"rank {rep.rank} of {rep.data['parameter_count']}" in rep.summary
     assert arrays.data["setup"] == "pose" and arrays.converged
+
+
+def test_every_keyword_means_what_its_flag_means(cli, tmp_path):
+    """The typed keywords build the same experiment as the command line's flags: a simulated
+    position-only run with the tool, a fixed parameter, plain DH, O1 selection, other noise and
+    tolerances, and target correction, compared key by key with `armlab calibrate --format json`."""
+    puma = armlab.Robot.builtin("puma560")
+    targets = tmp_path / "targets.txt"
+    Q = np.random.default_rng(8).uniform(-1.0, 1.0, (3, 6))
+    np.savetxt(targets, puma.fk(Q).reshape(3, 16), fmt="%.17g", delimiter=",")
+    rep = armlab.calibrate(
+        puma, simulate=True, poses=25, seed=9, select="o1", tolerance_mm=0.5, tolerance_deg=0.2,
+        noise_mm=0.02, noise_mrad=0.05, position_only=True, with_tool=True, fix=["d1", "theta6"],
+        hayati="off", unidentifiable="minimum-norm", correct_targets=targets)
+    theirs = cli("calibrate", "puma560", "--simulate", "--poses", "25", "--seed", "9",
+                 "--select", "o1", "--tolerance-mm", "0.5", "--tolerance-deg", "0.2",
+                 "--noise-mm", "0.02", "--noise-mrad", "0.05", "--position-only", "--with-tool",
+                 "--fix", "d1,theta6", "--hayati", "off", "--unidentifiable", "minimum-norm",
+                 "--correct-targets", str(targets), "--format", "json")
+    assert rep.data == theirs
+    assert rep.data["setup"] == "position"
+    fixed = {p["name"] for p in rep.parameters if p["fixed"]}
+    assert {"d1", "theta6"} <= fixed
+    # A pivot setup's scene keywords too.
+    rep = armlab.calibrate(puma, simulate=True, setup="sphere", poses=60, groups=4,
+                           sphere_radius_mm=30.0, seed=4)
+    theirs = cli("calibrate", "puma560", "--simulate", "--setup", "sphere", "--poses", "60",
+                 "--groups", "4", "--sphere-radius-mm", "30", "--seed", "4", "--format", "json")
+    assert rep.data == theirs
+
+
+def test_bad_keywords_and_files_are_named(tmp_path):
+    puma = armlab.Robot.builtin("puma560")
+    for kwargs, name in [({"setup": "laser"}, "setup"), ({"select": "best"}, "select"),
+                         ({"hayati": "on"}, "hayati"), ({"unidentifiable": "drop"}, "unidentifiable"),
+                         ({"noise_mm": -1.0}, "noise_mm"), ({"poses": 0}, "poses"),
+                         ({"sphere_radius_mm": 0.0}, "sphere_radius_mm")]:
+        with pytest.raises(ValueError, match=name):
+            armlab.calibrate(puma, simulate=True, **kwargs)
+    with pytest.raises(armlab.CalibrationError, match="missing.csv"):
+        armlab.calibrate(puma, tmp_path / "missing.csv")
+    bad = tmp_path / "targets.txt"
+    bad.write_text("1 2 3\n")
+    with pytest.raises(armlab.CalibrationError, match="targets.txt"):
+        armlab.calibrate(puma, simulate=True, poses=10, correct_targets=bad)
 
 
 def test_calibrate_from_a_cell_file_and_from_arrays(root):

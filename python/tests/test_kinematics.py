@@ -107,6 +107,14 @@ def test_puma_ik_gives_8_labelled_solutions_equal_to_the_command_line(cli):
     for mine, other in zip(sols, theirs):
         assert np.array_equal(mine.q, np.array(other["q"]))
         assert mine.within_limits == other["within_limits"]
+        assert mine.parts == other["posture_parts"]
+    # The fields spell the label (written here from the textbook's words, not by the library).
+    words = {"no_flip": "no flip"}
+    for s in sols:
+        p = s.parts
+        assert p["solver"] == "closed_form" and p["branch"] is None
+        label = f"shoulder {p['shoulder']}, elbow {p['elbow']}, wrist {words.get(p['wrist'], p['wrist'])}"
+        assert s.posture == label
     # The one asked for by posture, and the closest to a seed.
     one = r.ik(T, posture="shoulder left, elbow up, wrist flip")
     assert one.posture == "shoulder left, elbow up, wrist flip"
@@ -175,6 +183,7 @@ def test_numerical_ik_converges_and_reports():
     assert np.abs(r.fk(rep.q) - T).max() < 1e-9
     sol = r.ik(T)  # no closed form: the numerical solver, seeded from "ready"
     assert sol is not None and sol.posture.startswith("numerical")
+    assert sol.parts == {"solver": "numerical", "converged": True}
 
 
 def test_reach_equals_the_command_line(cli, tmp_path):
