@@ -6,8 +6,12 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 docs/pictures.sh ${ARMLAB:+"$ARMLAB"}
 if ! command -v mdbook >/dev/null 2>&1; then
+  # The book builder only (no `serve` or `watch`, whose web server and file watcher are most
+  # of its build), at opt-level 1: a tool, not the product.
   echo "installing mdbook from crates.io"
-  cargo install mdbook --version "^0.4" --locked --quiet
+  CARGO_PROFILE_RELEASE_OPT_LEVEL=1 CARGO_PROFILE_RELEASE_LTO=false \
+    CARGO_PROFILE_RELEASE_CODEGEN_UNITS=16 CARGO_PROFILE_RELEASE_DEBUG=false \
+    cargo install mdbook --version "^0.4" --locked --quiet --no-default-features --features search
 fi
 mdbook build docs
 python3 docs/check_links.py

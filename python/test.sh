@@ -14,6 +14,8 @@ start=$SECONDS
 
 target_dir=$(cargo metadata --format-version 1 --no-deps \
   | python3 -c 'import json, sys; print(json.load(sys.stdin)["target_directory"])')
+# cargo test and this build share their dependencies only with the same features (see the script).
+python3 python/same_features.py
 cargo clippy -p armlab-python --all-targets -- -D warnings
 # The command line the tests compare with (already built by `cargo test`).
 cargo build --bin armlab

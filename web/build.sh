@@ -19,7 +19,10 @@ BINARYEN_VERSION=132.0.0
 target_dir=$(cargo metadata --format-version 1 --no-deps \
   | python3 -c 'import json, sys; print(json.load(sys.stdin)["target_directory"])')
 export CARGO_TARGET_DIR="$target_dir/web"
-args=(rustc --lib --crate-type cdylib --profile web --target "$target" --no-default-features --features gui)
+# The cargo profile: `web` (fat LTO, one codegen unit: the smallest download) unless
+# ARMLAB_WEB_PROFILE names another (web/test.sh builds `web-test`, see Cargo.toml).
+profile="${ARMLAB_WEB_PROFILE:-web}"
+args=(rustc --lib --crate-type cdylib --profile "$profile" --target "$target" --no-default-features --features gui)
 
 if rustup target list --installed 2>/dev/null | grep -qx "$target"; then
   cargo "${args[@]}" -- -D warnings
@@ -37,14 +40,19 @@ fi
 want=$(grep -A1 '^name = "wasm-bindgen"$' Cargo.lock | sed -n 's/^version = "\(.*\)"/\1/p')
 have=$(wasm-bindgen --version 2>/dev/null | awk '{print $2}' || true)
 if [ "$have" != "$want" ]; then
-  echo "installing wasm-bindgen-cli $want (have: ${have:-none}; about 6 min on two cores)"
-  cargo install -q wasm-bindgen-cli --version "$want"
+  # A tool, not the product: built at opt-level 1 without LTO, and without its default TLS
+  # stack (rustls and ring, for its test runner's downloads, which armlab does not use); it
+  # still runs in seconds on armlab's module.
+  echo "installing wasm-bindgen-cli $want (have: ${have:-none}; about 3 min on two cores)"
+  CARGO_PROFILE_RELEASE_OPT_LEVEL=1 CARGO_PROFILE_RELEASE_LTO=false \
+    CARGO_PROFILE_RELEASE_CODEGEN_UNITS=16 CARGO_PROFILE_RELEASE_DEBUG=false \
+    cargo install -q wasm-bindgen-cli --version "$want" --no-default-features
 fi
 
 rm -rf "$out"
 mkdir -p "$out"
 wasm-bindgen --target web --no-typescript --out-dir "$out" --out-name armlab \
-  "$CARGO_TARGET_DIR/$target/web/armlab.wasm"
+  "$CARGO_TARGET_DIR/$target/$profile/armlab.wasm"
 if [ "${ARMLAB_WASM_OPT:-1}" != 0 ]; then
   binaryen="$CARGO_TARGET_DIR/binaryen-$BINARYEN_VERSION"
   if [ ! -x "$binaryen/node_modules/.bin/wasm-opt" ]; then
