@@ -78,7 +78,20 @@ pub enum UrdfError {
         #[source]
         source: std::io::Error,
     },
-    /// Not valid XML, or not valid URDF as far as `urdf-rs` is concerned.
+    /// Not well-formed XML (a truncated file, an unclosed tag), located where the XML parser
+    /// stopped.
+    #[error("{}:{line}:{column}: not well-formed XML: {problem}", path.display())]
+    Xml {
+        /// The file.
+        path: PathBuf,
+        /// 1-based line.
+        line: u32,
+        /// 1-based column.
+        column: u32,
+        /// What the XML parser found.
+        problem: String,
+    },
+    /// Well-formed XML that is not valid URDF as far as `urdf-rs` is concerned.
     #[error("invalid URDF: {source} ({})", path.display())]
     Parse {
         /// The file.
@@ -264,8 +277,34 @@ pub fn parse_urdf(text: &str, path: &Path) -> Result<Robot, UrdfError> {
     if has_xacro_markup(text) {
         return Err(UrdfError::Xacro { path: p() });
     }
-    let urdf =
-        urdf_rs::read_from_string(text).map_err(|source| UrdfError::Parse { path: p(), source })?;
+    let urdf = urdf_rs::read_from_string(text).map_err(|source| {
+        // urdf-rs says "No elements found" with no place: a well-formedness check finds it.
+        match roxmltree::Document::parse(text) {
+            // A file cut short: the place is its end (the parser reports 1:1).
+            Err(roxmltree::Error::UnclosedRootNode | roxmltree::Error::UnexpectedEndOfStream) => {
+                let line = text.lines().count().max(1);
+                let last = text.lines().last().unwrap_or("");
+                let ends_in_line = !text.ends_with('\n');
+                UrdfError::Xml {
+                    path: p(),
+                    line: (line + usize::from(!ends_in_line)) as u32,
+                    column: if ends_in_line {
+                        last.chars().count() as u32 + 1
+                    } else {
+                        1
+                    },
+                    problem: "the file ends before its elements are closed (cut short?)".into(),
+                }
+            }
+            Err(xml) => UrdfError::Xml {
+                path: p(),
+                line: xml.pos().row,
+                column: xml.pos().col,
+                problem: xml.to_string(),
+            },
+            Ok(_) => UrdfError::Parse { path: p(), source },
+        }
+    })?;
     let uj = &urdf.joints;
     if uj.is_empty() {
         return Err(UrdfError::NoJoints { path: p() });

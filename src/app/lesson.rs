@@ -20,6 +20,10 @@ pub struct LessonPlayer {
     pub file: String,
     /// The step shown (0-based).
     pub step: usize,
+    /// The step whose caption is being written: its editor stays until Done, whatever the
+    /// caption holds (it once vanished after the first character, and the keys that followed
+    /// ran as shortcuts).
+    pub editing: Option<usize>,
 }
 
 /// The camera preset a step names.
@@ -40,6 +44,7 @@ impl LessonPlayer {
             lesson,
             file: file.to_string(),
             step: 0,
+            editing: None,
         }
     }
 
@@ -144,18 +149,78 @@ impl LessonPlayer {
                 out.push(Action::CloseLesson);
             }
         });
-        if let Some(step) = self.lesson.steps.get_mut(i) {
-            if step.caption.is_empty() {
-                ui.add(
-                    egui::TextEdit::multiline(&mut step.caption)
-                        .hint_text("caption of this step (Markdown), saved with the next Save")
-                        .desired_rows(2)
-                        .desired_width(f32::INFINITY),
-                );
-            } else {
-                ui.add(egui::Label::new(RichText::new(&step.caption).size(size)).wrap());
-            }
+        self.caption(ui, i, size);
+        self.step_tools(ui, i, out);
+    }
+
+    /// Step `i`'s caption: large text with "Edit caption", or its editor, which keeps the
+    /// keyboard (and so the shortcuts off) until Done or Escape.
+    fn caption(&mut self, ui: &mut egui::Ui, i: usize, size: f32) {
+        let Some(step) = self.lesson.steps.get_mut(i) else {
+            return;
+        };
+        if step.caption.is_empty() {
+            self.editing = Some(i);
         }
+        if self.editing == Some(i) {
+            let edit = ui.add(
+                egui::TextEdit::multiline(&mut step.caption)
+                    .id_salt(("lesson caption", i))
+                    .hint_text("caption of this step (Markdown), saved with the next Save")
+                    .desired_rows(2)
+                    .desired_width(f32::INFINITY),
+            );
+            // Escape also leaves the field (egui drops its focus in the same frame).
+            let escape = (edit.has_focus() || edit.lost_focus())
+                && ui.input(|inp| inp.key_pressed(egui::Key::Escape));
+            if ui.button("Done").clicked() || escape {
+                self.editing = None;
+                edit.surrender_focus();
+            }
+        } else {
+            ui.horizontal_wrapped(|ui| {
+                ui.add(egui::Label::new(RichText::new(&step.caption).size(size)).wrap());
+                if ui.small_button("Edit caption").clicked() {
+                    self.editing = Some(i);
+                }
+            });
+        }
+    }
+
+    /// The step's order in the lesson: earlier, later, delete (the lesson's own state; the shell
+    /// shows the step that is then current).
+    fn step_tools(&mut self, ui: &mut egui::Ui, i: usize, out: &mut Actions) {
+        let n = self.lesson.steps.len();
+        if n == 0 {
+            return;
+        }
+        ui.horizontal(|ui| {
+            let steps = &mut self.lesson.steps;
+            if ui
+                .add_enabled(i > 0, egui::Button::new("Move step earlier"))
+                .clicked()
+            {
+                steps.swap(i, i - 1);
+                self.step = i - 1;
+                self.editing = None;
+            }
+            if ui
+                .add_enabled(i + 1 < n, egui::Button::new("Move step later"))
+                .clicked()
+            {
+                steps.swap(i, i + 1);
+                self.step = i + 1;
+                self.editing = None;
+            }
+            if ui.button("Delete step").clicked() {
+                steps.remove(i);
+                self.editing = None;
+                if !steps.is_empty() {
+                    out.push(Action::LessonStep(i.min(steps.len() - 1)));
+                }
+                self.step = i.min(steps.len().saturating_sub(1));
+            }
+        });
     }
 }
 

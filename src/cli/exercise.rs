@@ -1,10 +1,13 @@
-//! `armlab exercise new` and `armlab exercise check`: sheets with figures and answer keys, and
-//! grading by equivalence ([`crate::exercise`]).
+//! `armlab exercise new`, `check` and `grade`: sheets with figures and answer keys, grading by
+//! equivalence ([`crate::exercise`]), and a class's folder of answers graded at once.
 
 use super::CliError;
 use super::figures::{Size, framing_camera};
 use crate::camera::Preset;
-use crate::exercise::{Answer, Grade, Key, KeyAnswer, Kind, Sheet, generate, grade, grade_dh};
+use crate::exercise::{
+    Answer, ClassGrades, Grade, Key, KeyAnswer, Kind, Sheet, StudentGrade, generate, grade,
+    grade_dh, item_count,
+};
 use crate::figure::Theme;
 use crate::figure::figures::{Figures, Scene3d};
 use crate::headless::write_png;
@@ -28,6 +31,10 @@ pub enum ExerciseAction {
     New(NewArgs),
     /// Grade an answer against a key (or a DH table against a model with --against).
     Check(CheckArgs),
+    /// Grade a class: every key of KEYS_DIR against the answer of the same stem in ANSWERS_DIR
+    /// (`keys/student-07.json` and `answers/student-07.toml`); a CSV with one row per student
+    /// and a summary of the mistakes made.
+    Grade(GradeArgs),
 }
 
 /// The kinds on the command line.
@@ -100,11 +107,27 @@ pub struct CheckArgs {
     pub format: super::Format,
 }
 
+/// Arguments of `armlab exercise grade`.
+#[derive(Debug, clap::Args)]
+pub struct GradeArgs {
+    /// The keys' folder (`armlab exercise new`'s `keys/`).
+    pub keys_dir: PathBuf,
+    /// The answers' folder: one file per student, named as the student's key (any extension).
+    pub answers_dir: PathBuf,
+    /// Where to write the grades (CSV: student, answer, score, max, error, mistakes, items).
+    #[arg(long)]
+    pub out: PathBuf,
+    /// The summary's format (text, or JSON with every student's items).
+    #[arg(long, value_enum, default_value_t)]
+    pub format: super::Format,
+}
+
 /// Runs `armlab exercise`.
 pub(super) fn run(args: &ExerciseArgs, out: &mut dyn Write) -> Result<(), CliError> {
     match &args.action {
         ExerciseAction::New(a) => new(a, out),
         ExerciseAction::Check(a) => check(a, out),
+        ExerciseAction::Grade(a) => grade_class(a, out),
     }
 }
 
@@ -296,6 +319,150 @@ fn report(g: &Grade, format: super::Format, out: &mut dyn Write) -> Result<(), C
                 }
             }
         }
+    }
+    Ok(())
+}
+
+/// The files of `dir` (not folders, not hidden), by stem; two files of one stem are an error.
+fn files_by_stem(dir: &Path) -> Result<std::collections::BTreeMap<String, PathBuf>, CliError> {
+    let mut found = std::collections::BTreeMap::new();
+    let entries = std::fs::read_dir(dir).map_err(|e| io_error(dir, e))?;
+    for entry in entries {
+        let path = entry.map_err(|e| io_error(dir, e))?.path();
+        let Some(stem) = path.file_stem().and_then(|s| s.to_str()) else {
+            continue;
+        };
+        if !path.is_file() || stem.starts_with('.') {
+            continue;
+        }
+        if let Some(other) = found.insert(stem.to_string(), path.clone()) {
+            return Err(CliError::BadTarget {
+                source_name: dir.display().to_string(),
+                reason: format!(
+                    "two files for {stem}: {} and {}; keep one",
+                    other.display(),
+                    path.display()
+                ),
+            });
+        }
+    }
+    Ok(found)
+}
+
+/// Reads a key file.
+fn read_key(path: &Path) -> Result<Key, CliError> {
+    let text = std::fs::read_to_string(path).map_err(|e| io_error(path, e))?;
+    serde_json::from_str(&text).map_err(|e| CliError::BadTarget {
+        source_name: path.display().to_string(),
+        reason: format!("not an armlab exercise key: {e}"),
+    })
+}
+
+/// One student's line: the answer graded, or score 0 with why it could not be.
+fn grade_student(stem: &str, key: &Key, answer: Option<&PathBuf>) -> StudentGrade {
+    let zero = |error: String| {
+        let g = Grade {
+            score: 0,
+            max: item_count(key),
+            items: Vec::new(),
+        };
+        (g, error)
+    };
+    let Some(path) = answer else {
+        let (grade, error) = zero("no answer".into());
+        return StudentGrade {
+            student: stem.to_string(),
+            answer: None,
+            grade,
+            error: Some(error),
+        };
+    };
+    let graded = read_answer(&key.answer, path).and_then(|a| {
+        grade(key, &a).map_err(|e| CliError::BadTarget {
+            source_name: path.display().to_string(),
+            reason: e.to_string(),
+        })
+    });
+    let (grade, error) = match graded {
+        Ok(g) => (g, None),
+        Err(e) => {
+            let (g, e) = zero(e.to_string());
+            (g, Some(e))
+        }
+    };
+    StudentGrade {
+        student: stem.to_string(),
+        answer: path.file_name().map(|n| n.to_string_lossy().into_owned()),
+        grade,
+        error,
+    }
+}
+
+/// `armlab exercise grade`.
+fn grade_class(args: &GradeArgs, out: &mut dyn Write) -> Result<(), CliError> {
+    let keys = files_by_stem(&args.keys_dir)?;
+    let keys: Vec<(String, PathBuf)> = keys
+        .into_iter()
+        .filter(|(_, p)| p.extension().is_some_and(|e| e == "json"))
+        .collect();
+    if keys.is_empty() {
+        return Err(CliError::BadTarget {
+            source_name: args.keys_dir.display().to_string(),
+            reason: "no keys (*.json) here".into(),
+        });
+    }
+    let mut answers = files_by_stem(&args.answers_dir)?;
+    let mut students = Vec::new();
+    for (stem, key_path) in &keys {
+        let key = read_key(key_path)?;
+        let answer = answers.remove(stem);
+        students.push(grade_student(stem, &key, answer.as_ref()));
+    }
+    let unmatched = answers.values().map(|p| p.display().to_string()).collect();
+    let class = ClassGrades::new(students, unmatched);
+    std::fs::write(&args.out, class.csv()).map_err(|e| io_error(&args.out, e))?;
+    match args.format {
+        super::Format::Json => {
+            serde_json::to_writer_pretty(&mut *out, &class).map_err(std::io::Error::from)?;
+            writeln!(out)?;
+        }
+        super::Format::Text => summary(&class, &args.out, out)?,
+    }
+    Ok(())
+}
+
+/// The class summary in words: how many answers, the mean score, each named mistake with how
+/// many made it, what could not be graded.
+fn summary(class: &ClassGrades, csv: &Path, out: &mut dyn Write) -> Result<(), CliError> {
+    let n = class.students.len();
+    let graded = class.students.iter().filter(|s| s.error.is_none()).count();
+    let (score, max) = class
+        .students
+        .iter()
+        .fold((0, 0), |(s, m), g| (s + g.grade.score, m + g.grade.max));
+    writeln!(
+        out,
+        "graded {graded} of {n} students; {score} of {max} items right in all; wrote {}",
+        csv.display()
+    )?;
+    if class.mistakes.is_empty() {
+        writeln!(out, "no mistakes")?;
+    } else {
+        writeln!(out, "mistakes (students who made each):")?;
+        for (m, count) in &class.mistakes {
+            writeln!(out, "  {count:>3}  {m}")?;
+        }
+    }
+    for s in class.students.iter().filter(|s| s.error.is_some()) {
+        writeln!(
+            out,
+            "not graded: {}: {}",
+            s.student,
+            s.error.as_deref().unwrap_or_default()
+        )?;
+    }
+    for a in &class.unmatched_answers {
+        writeln!(out, "no key for the answer {a}")?;
     }
     Ok(())
 }

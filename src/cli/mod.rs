@@ -155,7 +155,8 @@ pub enum Command {
     /// app with Previous and Next, or rendered to one PNG per step with --render DIR.
     Lesson(lesson::LessonArgs),
     /// Exercises checked automatically: sheets with figures and answer keys for a class
-    /// (`new`), answers graded by equivalence with feedback in words (`check`).
+    /// (`new`), answers graded by equivalence with feedback in words (`check`), a class's
+    /// folder of answers graded at once (`grade`).
     Exercise(exercise::ExerciseArgs),
     /// The direct kinematics in symbols, in the textbook's notation: each A_i^{i-1}, the
     /// product T_n^0 and, for an arm with a spherical wrist, the wrist point p_W (Sect. 2.9).

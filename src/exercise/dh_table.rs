@@ -13,6 +13,7 @@
 //! places it is wrong; single-parameter repairs (a sign, a right angle, a swapped a and d) say
 //! which parameter, and grading goes on with the repaired row.
 
+use super::Mistake;
 use crate::kinematics::{Convention, DhJoint, JointKind, Pose, Robot};
 use nalgebra::Vector3;
 use std::f64::consts::{FRAC_PI_2, PI};
@@ -44,6 +45,8 @@ pub struct RowVerdict {
     pub correct: bool,
     /// What is wrong in words, or how the answer's variable relates to the figure's.
     pub feedback: String,
+    /// The mistake, named (None where the row is right or was not graded).
+    pub mistake: Option<Mistake>,
 }
 
 /// The verdict on a DH-table answer.
@@ -332,6 +335,7 @@ fn robot_from(conv: Convention, rows: &[DhJoint]) -> Option<Robot> {
 struct Repair {
     rows: Vec<DhJoint>,
     feedback: String,
+    mistake: Mistake,
 }
 
 /// Single-parameter changes of row `r` (0-based) that a student's slip would explain.
@@ -342,16 +346,21 @@ fn repairs(conv: Convention, rows: &[DhJoint], r: usize, reference: &[DhJoint]) 
         Convention::Modified => i - 1,
     };
     let mut out = Vec::new();
-    let mut push = |change: &dyn Fn(&mut DhJoint), feedback: String| {
+    let mut push = |change: &dyn Fn(&mut DhJoint), feedback: String, mistake: Mistake| {
         let mut rs = rows.to_vec();
         change(&mut rs[r]);
-        out.push(Repair { rows: rs, feedback });
+        out.push(Repair {
+            rows: rs,
+            feedback,
+            mistake,
+        });
     };
     let reference_row = reference.get(r).map(|d| d.row);
     let turn = format!("z{} turns into z{} the other way", i - 1, i);
     push(
         &|d| d.row.alpha = -d.row.alpha,
         format!("row {i}: alpha{j} has the wrong sign: {turn}"),
+        Mistake::AlphaSign,
     );
     let d_axis = match conv {
         Convention::Standard => format!("z{}", i - 1),
@@ -363,6 +372,7 @@ fn repairs(conv: Convention, rows: &[DhJoint], r: usize, reference: &[DhJoint]) 
             "row {i}: a{j} has the wrong sign: it is measured along x{j}, from z{} to z{i}",
             i - 1
         ),
+        Mistake::ASign,
     );
     push(
         &|d| d.row.d = -d.row.d,
@@ -370,10 +380,12 @@ fn repairs(conv: Convention, rows: &[DhJoint], r: usize, reference: &[DhJoint]) 
             "row {i}: d{i} has the wrong sign: it is measured along {d_axis}, from x{} to x{i}",
             i - 1
         ),
+        Mistake::DSign,
     );
     push(
         &|d| std::mem::swap(&mut d.row.a, &mut d.row.d),
         format!("row {i}: a{j} and d{i} are swapped"),
+        Mistake::ASwappedWithD,
     );
     for delta in [FRAC_PI_2, -FRAC_PI_2, PI] {
         push(
@@ -382,6 +394,7 @@ fn repairs(conv: Convention, rows: &[DhJoint], r: usize, reference: &[DhJoint]) 
                 "row {i}: alpha{j} is wrong: it is the angle from z{} to z{i} about x{j}",
                 i - 1
             ),
+            Mistake::AlphaWrong,
         );
     }
     out.extend(length_repairs(rows, r, reference_row, i, j, &d_axis));
@@ -432,6 +445,11 @@ fn length_repairs(
         out.push(Repair {
             rows: rs,
             feedback: text,
+            mistake: if what == "a" {
+                Mistake::AWrong
+            } else {
+                Mistake::DWrong
+            },
         });
     }
     out
@@ -452,23 +470,30 @@ fn responsible_rows(conv: Convention, level: usize, n: usize) -> Vec<usize> {
 /// Grades `answer` (a DH model) against `reference`: both with their base and end-effector 0.
 pub fn check(reference: &Robot, answer: &Robot, tol: Tolerance) -> DhVerdict {
     let n = reference.dof();
-    let fail_all = |text: String| DhVerdict {
+    let fail_all = |text: String, mistake: Option<Mistake>| DhVerdict {
         rows: vec![RowVerdict {
             row: 1,
             correct: false,
             feedback: text,
+            mistake,
         }],
         equivalent: false,
         mapping: None,
     };
     if answer.dof() != n {
-        return fail_all(format!(
-            "the answer has {} joint variables, the arm in the figure has {n}",
-            answer.dof()
-        ));
+        return fail_all(
+            format!(
+                "the answer has {} joint variables, the arm in the figure has {n}",
+                answer.dof()
+            ),
+            Some(Mistake::JointCount),
+        );
     }
     let Some((conv, table)) = answer.dh_table() else {
-        return fail_all("the answer is not a serial DH table".into());
+        return fail_all(
+            "the answer is not a serial DH table".into(),
+            Some(Mistake::NotDhTable),
+        );
     };
     let mut rows: Vec<DhJoint> = table
         .iter()
@@ -480,7 +505,7 @@ pub fn check(reference: &Robot, answer: &Robot, tol: Tolerance) -> DhVerdict {
         .map(|(_, t)| t.iter().map(|(k, r, _)| DhJoint::new(*k, *r)).collect())
         .unwrap_or_default();
     let Some((ref_axes, ref_tool)) = axes(reference, &vec![0.0; n]) else {
-        return fail_all("the reference arm cannot be evaluated".into());
+        return fail_all("the reference arm cannot be evaluated".into(), None);
     };
     let target = Target {
         reference,
@@ -506,12 +531,12 @@ pub fn check(reference: &Robot, answer: &Robot, tol: Tolerance) -> DhVerdict {
                 let fixed = explain(&target, conv, &rows, &reference_rows, level);
                 match fixed {
                     Some((r, rep)) => {
-                        verdicts[r].get_or_insert(rep.feedback);
+                        verdicts[r].get_or_insert((rep.feedback, rep.mistake));
                         rows = rep.rows;
                     }
                     None => {
                         let r = responsible_rows(conv, level, n)[0];
-                        verdicts[r].get_or_insert(unplaced(level, n));
+                        verdicts[r].get_or_insert((unplaced(level, n), Mistake::Unplaced));
                         ungraded_from = Some(r + 1);
                         break;
                     }
@@ -531,17 +556,18 @@ pub fn check(reference: &Robot, answer: &Robot, tol: Tolerance) -> DhVerdict {
 /// The verdicts per row: wrong with what was said, not graded after a row that could not be
 /// explained, otherwise right (saying how the variable maps where frames differ).
 fn row_verdicts(
-    verdicts: &[Option<String>],
+    verdicts: &[Option<(String, Mistake)>],
     ungraded_from: Option<usize>,
     mapping: Option<&[(f64, f64)]>,
     rows: &[DhJoint],
 ) -> Vec<RowVerdict> {
     (0..verdicts.len())
         .map(|r| match (&verdicts[r], ungraded_from) {
-            (Some(f), _) => RowVerdict {
+            (Some((f, mistake)), _) => RowVerdict {
                 row: r + 1,
                 correct: false,
                 feedback: f.clone(),
+                mistake: Some(*mistake),
             },
             (None, Some(u)) if r >= u => RowVerdict {
                 row: r + 1,
@@ -550,11 +576,13 @@ fn row_verdicts(
                     "row {}: not graded: the rows before it must be right first",
                     r + 1
                 ),
+                mistake: None,
             },
             (None, _) => RowVerdict {
                 row: r + 1,
                 correct: true,
                 feedback: mapping.map_or(String::new(), |m| describe_mapping(r, m[r], &rows[r])),
+                mistake: None,
             },
         })
         .collect()
@@ -562,8 +590,8 @@ fn row_verdicts(
 
 /// Rows whose joint type differs from the figure's get that type (and a verdict saying so),
 /// so that the rest of the table can still be graded.
-fn fix_joint_kinds(rows: &mut [DhJoint], target: &Target) -> Vec<Option<String>> {
-    let mut verdicts: Vec<Option<String>> = vec![None; rows.len()];
+fn fix_joint_kinds(rows: &mut [DhJoint], target: &Target) -> Vec<Option<(String, Mistake)>> {
+    let mut verdicts: Vec<Option<(String, Mistake)>> = vec![None; rows.len()];
     for (r, (ours, theirs)) in rows.iter_mut().zip(&target.axes).enumerate() {
         let figure_revolute = theirs.revolute;
         if (ours.kind == JointKind::Revolute) != figure_revolute {
@@ -572,10 +600,9 @@ fn fix_joint_kinds(rows: &mut [DhJoint], target: &Target) -> Vec<Option<String>>
             } else {
                 "prismatic"
             };
-            verdicts[r] = Some(format!(
-                "row {}: joint {} is {kind} in the figure",
-                r + 1,
-                r + 1
+            verdicts[r] = Some((
+                format!("row {}: joint {} is {kind} in the figure", r + 1, r + 1),
+                Mistake::JointKind,
             ));
             *ours = DhJoint::new(
                 if figure_revolute {

@@ -750,6 +750,89 @@ pub enum Answer {
     Words(Vec<String>),
 }
 
+/// A mistake, named: what a class summary counts (`armlab exercise grade`). Its JSON name is
+/// the variant in snake_case ("alpha_sign"); `Display` says it in a teacher's words.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Mistake {
+    /// A DH table with another number of joint variables than the arm's.
+    JointCount,
+    /// A model that is not a serial DH table.
+    NotDhTable,
+    /// A revolute joint written as prismatic, or the other way.
+    JointKind,
+    /// alpha with the wrong sign: z turned the other way.
+    AlphaSign,
+    /// a with the wrong sign.
+    ASign,
+    /// d with the wrong sign.
+    DSign,
+    /// a and d swapped.
+    ASwappedWithD,
+    /// alpha wrong by a right angle or a half turn.
+    AlphaWrong,
+    /// a wrong (not the common normal's length).
+    AWrong,
+    /// d wrong (not the distance along z).
+    DWrong,
+    /// A row whose frame no single change explains.
+    Unplaced,
+    /// An entry of T with the wrong sign.
+    TSign,
+    /// A position entry of T wrong.
+    TPosition,
+    /// A rotation entry of T wrong.
+    TRotation,
+    /// An IK solution missing.
+    MissingSolution,
+    /// An IK row that does not reach the target.
+    ExtraSolution,
+    /// A workspace point's number of postures wrong.
+    PostureCount,
+    /// The workspace's area wrong.
+    Area,
+    /// n (joints) wrong.
+    JointNumber,
+    /// m (operational space) wrong.
+    OperationalSpace,
+    /// r (task components) wrong.
+    TaskComponents,
+    /// An unidentifiable parameter missed.
+    MissedUnidentifiable,
+    /// An identifiable parameter named as unidentifiable.
+    NamedIdentifiable,
+}
+
+impl std::fmt::Display for Mistake {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Mistake::JointCount => "wrong number of joints",
+            Mistake::NotDhTable => "not a DH table",
+            Mistake::JointKind => "joint type (revolute or prismatic) wrong",
+            Mistake::AlphaSign => "alpha with the wrong sign (z turned the other way)",
+            Mistake::ASign => "a with the wrong sign",
+            Mistake::DSign => "d with the wrong sign",
+            Mistake::ASwappedWithD => "a and d swapped",
+            Mistake::AlphaWrong => "alpha wrong (the angle between the z axes)",
+            Mistake::AWrong => "a wrong (the length of the common normal)",
+            Mistake::DWrong => "d wrong (the distance along z)",
+            Mistake::Unplaced => "a frame no single change explains",
+            Mistake::TSign => "an entry of T with the wrong sign",
+            Mistake::TPosition => "a position entry of T wrong",
+            Mistake::TRotation => "a rotation entry of T wrong",
+            Mistake::MissingSolution => "an IK solution missing",
+            Mistake::ExtraSolution => "an IK row that does not reach the target",
+            Mistake::PostureCount => "a point's number of postures wrong",
+            Mistake::Area => "the workspace area wrong",
+            Mistake::JointNumber => "n (the number of joints) wrong",
+            Mistake::OperationalSpace => "m (the operational space) wrong",
+            Mistake::TaskComponents => "r (the task's components) wrong",
+            Mistake::MissedUnidentifiable => "an unidentifiable parameter missed",
+            Mistake::NamedIdentifiable => "an identifiable parameter named",
+        })
+    }
+}
+
 /// One graded item.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Item {
@@ -759,6 +842,8 @@ pub struct Item {
     pub correct: bool,
     /// In words.
     pub feedback: String,
+    /// The mistake, named (None where the item is right or was not graded).
+    pub mistake: Option<Mistake>,
 }
 
 /// A grade: `score` of `max` and the items.
@@ -812,24 +897,34 @@ pub fn grade(key: &Key, answer: &Answer) -> Result<Grade, ExerciseError> {
                 )));
             }
             let items = [
-                ("n", *n, "the number of joints"),
+                ("n", *n, "the number of joints", Mistake::JointNumber),
                 (
                     "m",
                     *m,
                     "the dimension of the operational space of the task's kind",
+                    Mistake::OperationalSpace,
                 ),
-                ("r", *r, "the number of components the task prescribes"),
+                (
+                    "r",
+                    *r,
+                    "the number of components the task prescribes",
+                    Mistake::TaskComponents,
+                ),
             ]
             .iter()
             .zip(&got)
-            .map(|((name, want, what), g)| Item {
-                item: name.to_string(),
-                correct: (*g - *want as f64).abs() < 1e-9,
-                feedback: if (*g - *want as f64).abs() < 1e-9 {
-                    "right".into()
-                } else {
-                    format!("{name} is wrong: it is {what}")
-                },
+            .map(|((name, want, what, mistake), g)| {
+                let ok = (*g - *want as f64).abs() < 1e-9;
+                Item {
+                    item: name.to_string(),
+                    correct: ok,
+                    feedback: if ok {
+                        "right".into()
+                    } else {
+                        format!("{name} is wrong: it is {what}")
+                    },
+                    mistake: (!ok).then_some(*mistake),
+                }
             })
             .collect();
             Ok(Grade::of(items))
@@ -891,6 +986,7 @@ fn grade_identifiability(
                 } else {
                     format!("missed: {}", why(p))
                 },
+                mistake: (!named).then_some(Mistake::MissedUnidentifiable),
             }
         })
         .collect();
@@ -900,6 +996,7 @@ fn grade_identifiability(
                 item: w.clone(),
                 correct: false,
                 feedback: format!("{w} can be identified with this setup"),
+                mistake: Some(Mistake::NamedIdentifiable),
             });
         }
     }
@@ -908,6 +1005,7 @@ fn grade_identifiability(
             item: "none".into(),
             correct: true,
             feedback: "right: every parameter is identifiable".into(),
+            mistake: None,
         });
     }
     Grade::of(items)
@@ -923,6 +1021,7 @@ pub fn grade_dh(reference: &Robot, answer: &Robot, tol: Tolerance) -> Grade {
                 item: format!("row {}", r.row),
                 correct: r.correct,
                 feedback: r.feedback,
+                mistake: r.mistake,
             })
             .collect(),
     )
@@ -950,12 +1049,13 @@ fn grade_fk(t: &[[f64; 4]; 4], rows: &[Vec<f64>], tol: Tolerance) -> Result<Grad
             let (want, g) = (t[i][j], got[4 * i + j]);
             let tol = if j == 3 { tol.length } else { tol.angle };
             let ok = (want - g).abs() <= tol;
+            let sign = (want + g).abs() <= tol;
             items.push(Item {
                 item: format!("T[{}][{}] ({})", i + 1, j + 1, names[i][j]),
                 correct: ok,
                 feedback: if ok {
                     "right".into()
-                } else if (want + g).abs() <= tol {
+                } else if sign {
                     format!("{} has the wrong sign", names[i][j])
                 } else if j == 3 {
                     format!(
@@ -967,6 +1067,12 @@ fn grade_fk(t: &[[f64; 4]; 4], rows: &[Vec<f64>], tol: Tolerance) -> Result<Grad
                         "{} is wrong: it is a component of a unit vector of the tool frame",
                         names[i][j]
                     )
+                },
+                mistake: match (ok, sign, j == 3) {
+                    (true, _, _) => None,
+                    (false, true, _) => Some(Mistake::TSign),
+                    (false, false, true) => Some(Mistake::TPosition),
+                    (false, false, false) => Some(Mistake::TRotation),
                 },
             });
         }
@@ -1015,6 +1121,7 @@ fn grade_ik(
                 } else {
                     format!("missing: the {posture} posture")
                 },
+                mistake: (!found).then_some(Mistake::MissingSolution),
             }
         })
         .collect();
@@ -1024,6 +1131,7 @@ fn grade_ik(
                 item: format!("answer row {}", i + 1),
                 correct: false,
                 feedback: format!("row {} does not reach the target", i + 1),
+                mistake: Some(Mistake::ExtraSolution),
             });
         }
     }
@@ -1061,6 +1169,7 @@ fn grade_workspace(
                 } else {
                     "wrong: compare its distance from the base with |a1 - a2| and a1 + a2".into()
                 },
+                mistake: (!ok).then_some(Mistake::PostureCount),
             }
         })
         .collect();
@@ -1075,6 +1184,160 @@ fn grade_workspace(
             "wrong: the workspace is the ring between the circles of radius |a1 - a2| and a1 + a2"
                 .into()
         },
+        mistake: (!ok).then_some(Mistake::Area),
     });
     Ok(Grade::of(items))
+}
+
+/// One student's line of a class's grades: the answer's stem, and its grade or why it could
+/// not be graded (no answer, an unreadable file).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct StudentGrade {
+    /// The stem shared by the key and the answer (`student-07`).
+    pub student: String,
+    /// The answer's file name, if there is one.
+    pub answer: Option<String>,
+    /// The grade; for an answer that could not be graded, score 0 of the key's items.
+    pub grade: Grade,
+    /// Why the answer could not be graded (none given, or what is wrong with the file).
+    pub error: Option<String>,
+}
+
+/// A class's grades (`armlab exercise grade`): one line per key, the answers that match no
+/// key, and how many made each named mistake.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ClassGrades {
+    /// Per student, in the order of the stems.
+    pub students: Vec<StudentGrade>,
+    /// Answer files whose stem matches no key.
+    pub unmatched_answers: Vec<String>,
+    /// Each named mistake and how many students made it (at least once), most made first.
+    pub mistakes: Vec<(Mistake, usize)>,
+}
+
+/// How many items grading `key` gives (the maximum score): a missing answer scores 0 of it.
+pub fn item_count(key: &Key) -> usize {
+    match &key.answer {
+        KeyAnswer::DhTable => key_robot(key).map_or(1, |r| r.dof()),
+        KeyAnswer::Fk { .. } => 12,
+        KeyAnswer::Ik { solutions, .. } => solutions.len(),
+        KeyAnswer::Workspace { postures, .. } => postures.len() + 1,
+        KeyAnswer::Redundancy { .. } => 3,
+        KeyAnswer::Identifiability { parameters, .. } => parameters.len().max(1),
+    }
+}
+
+impl ClassGrades {
+    /// The class's grades from each student's line and the answers without a key; counts the
+    /// mistakes (a student who made one twice counts once).
+    pub fn new(mut students: Vec<StudentGrade>, unmatched_answers: Vec<String>) -> Self {
+        students.sort_by(|a, b| a.student.cmp(&b.student));
+        let mut counts = std::collections::BTreeMap::<Mistake, usize>::new();
+        for s in &students {
+            let mut made: Vec<Mistake> = s.grade.items.iter().filter_map(|i| i.mistake).collect();
+            made.sort();
+            made.dedup();
+            for m in made {
+                *counts.entry(m).or_default() += 1;
+            }
+        }
+        let mut mistakes: Vec<(Mistake, usize)> = counts.into_iter().collect();
+        mistakes.sort_by(|a, b| b.1.cmp(&a.1).then(a.0.cmp(&b.0)));
+        Self {
+            students,
+            unmatched_answers,
+            mistakes,
+        }
+    }
+
+    /// The grades as CSV: a header, then one row per student: student, answer, score, max,
+    /// error, the named mistakes (`;`-separated JSON names), then one column per item
+    /// ("row 2: WRONG: row 2: alpha2 has the wrong sign ..."), as many as the longest sheet.
+    pub fn csv(&self) -> String {
+        let items = self
+            .students
+            .iter()
+            .map(|s| s.grade.items.len())
+            .max()
+            .unwrap_or(0);
+        let mut header = vec![
+            "student".to_string(),
+            "answer".into(),
+            "score".into(),
+            "max".into(),
+            "error".into(),
+            "mistakes".into(),
+        ];
+        header.extend((1..=items).map(|k| format!("item {k}")));
+        let mut out = csv_line(&header);
+        for s in &self.students {
+            let mut made: Vec<String> = s
+                .grade
+                .items
+                .iter()
+                .filter_map(|i| i.mistake)
+                .map(|m| mistake_name(m).to_string())
+                .collect();
+            made.sort();
+            made.dedup();
+            let mut row = vec![
+                s.student.clone(),
+                s.answer.clone().unwrap_or_default(),
+                s.grade.score.to_string(),
+                s.grade.max.to_string(),
+                s.error.clone().unwrap_or_default(),
+                made.join(";"),
+            ];
+            row.extend(s.grade.items.iter().map(|i| {
+                let mark = if i.correct { "ok" } else { "WRONG" };
+                format!("{}: {mark}: {}", i.item, i.feedback)
+            }));
+            out.push_str(&csv_line(&row));
+        }
+        out
+    }
+}
+
+/// The JSON name of a mistake ("alpha_sign").
+pub fn mistake_name(m: Mistake) -> &'static str {
+    match m {
+        Mistake::JointCount => "joint_count",
+        Mistake::NotDhTable => "not_dh_table",
+        Mistake::JointKind => "joint_kind",
+        Mistake::AlphaSign => "alpha_sign",
+        Mistake::ASign => "a_sign",
+        Mistake::DSign => "d_sign",
+        Mistake::ASwappedWithD => "a_swapped_with_d",
+        Mistake::AlphaWrong => "alpha_wrong",
+        Mistake::AWrong => "a_wrong",
+        Mistake::DWrong => "d_wrong",
+        Mistake::Unplaced => "unplaced",
+        Mistake::TSign => "t_sign",
+        Mistake::TPosition => "t_position",
+        Mistake::TRotation => "t_rotation",
+        Mistake::MissingSolution => "missing_solution",
+        Mistake::ExtraSolution => "extra_solution",
+        Mistake::PostureCount => "posture_count",
+        Mistake::Area => "area",
+        Mistake::JointNumber => "joint_number",
+        Mistake::OperationalSpace => "operational_space",
+        Mistake::TaskComponents => "task_components",
+        Mistake::MissedUnidentifiable => "missed_unidentifiable",
+        Mistake::NamedIdentifiable => "named_identifiable",
+    }
+}
+
+/// One CSV line (RFC 4180): fields with a comma, quote or line break quoted, quotes doubled.
+fn csv_line(fields: &[String]) -> String {
+    let quoted: Vec<String> = fields
+        .iter()
+        .map(|f| {
+            if f.contains([',', '"', '\n', '\r']) {
+                format!("\"{}\"", f.replace('"', "\"\""))
+            } else {
+                f.clone()
+            }
+        })
+        .collect();
+    quoted.join(",") + "\n"
 }

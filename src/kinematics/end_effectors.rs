@@ -99,10 +99,29 @@ pub fn is_tool_like(name: &str) -> bool {
     tool_rank(name) < 7
 }
 
-/// Whether a frame's name says it is not a tool: collision, visual, sensor, camera or head.
+/// Whether a frame's name says it is not a tool: collision, visual, a sensor (camera, lidar,
+/// force-torque, LED, IMU, depth), or the head.
 pub fn is_auxiliary_frame(name: &str) -> bool {
     let n = name.to_ascii_lowercase();
+    // Short names only as whole words ("led_link", "wrist_ft_frame", "cam0"), not inside others
+    // ("handled", "left"); a frame that also names itself a tool (`wrist_ft_tool_link`, the
+    // tool on a force-torque sensor) stays a tool.
+    let words = n.split(|c: char| !c.is_ascii_alphabetic());
+    let sensor_words = [
+        "led", "leds", "ft", "fts", "cam", "tof", "gps", "rgbd", "ir",
+    ];
+    if words.into_iter().any(|w| sensor_words.contains(&w)) && tool_rank(name) > 5 {
+        return true;
+    }
     [
+        "force_torque",
+        "forcetorque",
+        "wrench",
+        "rgb",
+        "depth",
+        "realsense",
+        "stereo",
+        "webcam",
         "collision",
         "visual",
         "camera",

@@ -625,12 +625,39 @@ impl Robot {
             })
     }
 
-    /// The "ready" configuration, or zero when the robot has none (rad or m): where tools
-    /// start, seeds come from, and joints off an arm's chain stay.
+    /// Whether the components of `q` that move end-effector `ee` (the joints on its chain) lie
+    /// inside their limits; the joints off that chain (another arm, a gripper's fingers) are
+    /// not asked. An unknown `ee` asks every joint.
+    pub fn within_limits_for(&self, ee: usize, q: &[f64], tol: f64) -> bool {
+        let Some(e) = self.end_effectors.get(ee) else {
+            return self.within_limits(q, tol);
+        };
+        let chain = self.chain_to(e.parent);
+        q.len() == self.dof()
+            && self.dof_joint.iter().zip(q).all(|(&j, &v)| {
+                let [lo, hi] = self.joints[j].limits;
+                !chain.contains(&j) || (v >= lo - tol && v <= hi + tol)
+            })
+    }
+
+    /// The "ready" configuration, or else zero moved into each joint's limits (rad or m): where
+    /// the app opens, tools start, seeds come from, and joints off an arm's chain stay. A
+    /// gripper's fingers limited to [0.015, 0.037] m start at 0.015 m, not at 0.
     pub fn ready_or_zero(&self) -> Vec<f64> {
         self.config("ready")
             .filter(|c| c.len() == self.dof())
-            .map_or_else(|| vec![0.0; self.dof()], <[f64]>::to_vec)
+            .map_or_else(
+                || {
+                    self.dof_joint
+                        .iter()
+                        .map(|&j| {
+                            let [lo, hi] = self.joints[j].limits;
+                            if lo <= hi { 0.0f64.clamp(lo, hi) } else { 0.0 }
+                        })
+                        .collect()
+                },
+                <[f64]>::to_vec,
+            )
     }
 
     /// A named configuration, if the robot has one by that name.

@@ -3,8 +3,9 @@
 //! every branch ([`LockedArm`]). SRS arms keep the arm angle and the Panda keeps q7; this covers
 //! the rest (a Kinova Gen3, a Baxter arm, an iiwa with offsets, a calibrated LWR).
 //!
-//! The parameter's range (the locked joint's limits, within [-pi, pi]) is swept; solutions at
-//! neighbouring values are joined into arcs (a branch is an arc along which the parameter moves
+//! The parameter's whole turn [-pi, pi] is swept (values beyond the locked joint's limits keep
+//! their solutions, flagged outside the limits); solutions at neighbouring values are joined
+//! into arcs (a branch is an arc along which the parameter moves
 //! monotonically); where an arc ends inside the range (a turning point, where two branches meet)
 //! or leaves the joint limits, the end is refined by bisection to [`REFINE`] rad.
 
@@ -156,8 +157,9 @@ impl LockedSelfMotion {
         };
         let arm = LockedArm::new(robot, k).ok_or_else(not)?;
         let limits = robot.limits();
-        let [lo, hi] = limits[k];
-        let (lo, hi) = (lo.max(-PI), hi.min(PI));
+        // The whole turn of the locked joint, as the arm angle and q7 are swept: values beyond
+        // its own limits keep their solutions, flagged outside the limits by `feasible`.
+        let (lo, hi) = (-PI, PI);
         let mut m = Self {
             arm,
             robot: robot.clone(),

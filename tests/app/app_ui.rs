@@ -524,3 +524,109 @@ fn a_remembered_workspace_overlay_computes_the_workspace() {
         "the overlay is on but no workspace is computed"
     );
 }
+
+/// Types `text` as a keyboard does: per character, its key down, its text, its key up, a frame
+/// each (a shortcut reads the key; a text field takes the text).
+fn type_like_a_keyboard(h: &mut Harness<'static, AppUi>, text: &str) {
+    for c in text.chars() {
+        let key = match c {
+            ' ' => Some(egui::Key::Space),
+            _ => egui::Key::from_name(&c.to_ascii_uppercase().to_string()),
+        };
+        if let Some(k) = key {
+            h.key_down(k);
+        }
+        h.event(egui::Event::Text(c.to_string()));
+        if let Some(k) = key {
+            h.key_up(k);
+        }
+        h.run();
+    }
+}
+
+/// What a stray shortcut would change: the display toggles, the layout (projector, side
+/// panels), the camera (presets, projection), the help window, the joints (Space: next posture).
+fn settings(app: &AppUi) -> String {
+    format!(
+        "{:?} {:?} {:?} {} {:?}",
+        app.state.display,
+        app.layout,
+        app.tabs.view3d.camera,
+        app.show_help,
+        app.state.q()
+    )
+}
+
+/// Issue 46, item 1: the caption editor took one character, then vanished, and every key after
+/// it fired a shortcut (posture lock, ortho, workspace, projector, Space's next posture).
+#[test]
+fn a_lesson_caption_takes_a_whole_sentence_and_no_key_fires_a_shortcut() {
+    use armlab::app::lesson::{LessonPlayer, current_step};
+    const SENTENCE: &str = "Elbow down: theta1 = alpha - beta, with q2 and q3 (Fig. 2.23)";
+    let mut app = AppUi::new(AppState::from_spec("puma560").unwrap());
+    let mut player = LessonPlayer::on(&app.state);
+    for _ in 0..2 {
+        player.append(current_step(
+            &app.state,
+            0,
+            false,
+            &app.tabs.view3d.camera,
+            "",
+        ));
+    }
+    player.step = 0;
+    app.lesson = Some(player);
+    let mut h = harness(app);
+    let before = settings(h.state());
+    h.get_by_role(egui::accesskit::Role::MultilineTextInput)
+        .click();
+    h.run();
+    type_like_a_keyboard(&mut h, SENTENCE);
+    let caption = |h: &Harness<'static, AppUi>, i: usize| {
+        h.state().lesson.as_ref().unwrap().lesson.steps[i]
+            .caption
+            .clone()
+    };
+    assert_eq!(caption(&h, 0), SENTENCE);
+    assert_eq!(
+        settings(h.state()),
+        before,
+        "a key typed into the caption fired a shortcut"
+    );
+    // Done shows the caption large, with a button to edit it again.
+    h.get_by_label("Done").click();
+    h.run();
+    assert!(h.query_by_label(SENTENCE).is_some());
+    h.get_by_label("Edit caption").click();
+    h.run();
+    h.get_by_role(egui::accesskit::Role::MultilineTextInput)
+        .click();
+    h.run();
+    h.key_press(egui::Key::End);
+    h.run();
+    type_like_a_keyboard(&mut h, " again");
+    assert_eq!(caption(&h, 0), format!("{SENTENCE} again"));
+    assert_eq!(settings(h.state()), before);
+    // Outside the field, the keys are shortcuts again (Escape leaves it).
+    h.key_press(egui::Key::Escape);
+    h.run();
+    h.key_press(egui::Key::G);
+    h.run();
+    assert_ne!(
+        settings(h.state()),
+        before,
+        "G toggles the grid outside a text field"
+    );
+    // The steps reorder and delete.
+    h.get_by_label("Move step later").click();
+    h.run();
+    let player = h.state().lesson.as_ref().unwrap();
+    assert_eq!(player.step, 1);
+    assert_eq!(player.lesson.steps[1].caption, format!("{SENTENCE} again"));
+    assert!(player.lesson.steps[0].caption.is_empty());
+    h.get_by_label("Delete step").click();
+    h.run();
+    let player = h.state().lesson.as_ref().unwrap();
+    assert_eq!(player.lesson.steps.len(), 1);
+    assert!(player.lesson.steps[0].caption.is_empty());
+}

@@ -120,7 +120,184 @@ fn the_issue_s_example_feedback() {
         wrong[0].feedback,
         "row 3: alpha3 has the wrong sign: z2 turns into z3 the other way"
     );
+    assert_eq!(wrong[0].mistake, Some(armlab::exercise::Mistake::AlphaSign));
     assert_eq!(g.score, 5);
+}
+
+/// Every mistake's CSV name is its JSON name.
+#[test]
+fn a_mistake_has_one_name() {
+    use armlab::exercise::{Mistake, mistake_name};
+    let all = [
+        Mistake::JointCount,
+        Mistake::NotDhTable,
+        Mistake::JointKind,
+        Mistake::AlphaSign,
+        Mistake::ASign,
+        Mistake::DSign,
+        Mistake::ASwappedWithD,
+        Mistake::AlphaWrong,
+        Mistake::AWrong,
+        Mistake::DWrong,
+        Mistake::Unplaced,
+        Mistake::TSign,
+        Mistake::TPosition,
+        Mistake::TRotation,
+        Mistake::MissingSolution,
+        Mistake::ExtraSolution,
+        Mistake::PostureCount,
+        Mistake::Area,
+        Mistake::JointNumber,
+        Mistake::OperationalSpace,
+        Mistake::TaskComponents,
+        Mistake::MissedUnidentifiable,
+        Mistake::NamedIdentifiable,
+    ];
+    for m in all {
+        assert_eq!(
+            serde_json::to_string(&m).unwrap(),
+            format!("\"{}\"", mistake_name(m))
+        );
+    }
+}
+
+/// A CSV file's rows (RFC 4180: quoted fields, doubled quotes), read here, not by armlab.
+#[cfg(feature = "app")]
+fn csv_rows(text: &str) -> Vec<Vec<String>> {
+    let (mut rows, mut row, mut field) = (Vec::new(), Vec::new(), String::new());
+    let mut chars = text.chars().peekable();
+    let mut quoted = false;
+    while let Some(c) = chars.next() {
+        match (quoted, c) {
+            (true, '"') if chars.peek() == Some(&'"') => {
+                chars.next();
+                field.push('"');
+            }
+            (true, '"') => quoted = false,
+            (true, c) => field.push(c),
+            (false, '"') => quoted = true,
+            (false, ',') => row.push(std::mem::take(&mut field)),
+            (false, '\n') => {
+                row.push(std::mem::take(&mut field));
+                rows.push(std::mem::take(&mut row));
+            }
+            (false, c) => field.push(c),
+        }
+    }
+    rows
+}
+
+/// Issue 46: the teacher grades a folder of answers at once. Four keys: a right answer, one
+/// with alpha3's sign flipped, none, an unreadable one; and an answer without a key.
+#[cfg(feature = "app")]
+#[test]
+fn a_class_is_graded_at_once() {
+    let dir = std::env::temp_dir().join(format!("armlab-grade-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let run = |args: &[&str]| {
+        let o = std::process::Command::new(env!("CARGO_BIN_EXE_armlab"))
+            .args(args)
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        String::from_utf8(o.stdout).unwrap()
+    };
+    let out = dir.join("class");
+    run(&[
+        "exercise",
+        "new",
+        "dh-table",
+        "--robot",
+        "puma560",
+        "--seed",
+        "3",
+        "--class",
+        "4",
+        "--out",
+        &out.to_string_lossy(),
+        "--size",
+        "160x120",
+    ]);
+    let answers = dir.join("answers");
+    std::fs::create_dir_all(&answers).unwrap();
+    let key = |s: usize| -> Key {
+        let path = out.join(format!("keys/student-{s:02}.json"));
+        serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+    };
+    std::fs::write(answers.join("student-01.toml"), key(1).model).unwrap();
+    let arm = armlab::model_file::parse_model(&key(2).model, "key.toml".as_ref()).unwrap();
+    let (conv, mut rows) = table(&arm);
+    rows[2].row.alpha = -rows[2].row.alpha;
+    let slip = armlab::model_file::to_toml(&build(conv, &rows)).unwrap();
+    std::fs::write(answers.join("student-02.toml"), slip).unwrap();
+    std::fs::write(answers.join("student-04.toml"), "this is not a model [").unwrap();
+    std::fs::write(answers.join("student-99.toml"), key(1).model).unwrap();
+    let csv = dir.join("grades.csv");
+    let summary = run(&[
+        "exercise",
+        "grade",
+        &out.join("keys").to_string_lossy(),
+        &answers.to_string_lossy(),
+        "--out",
+        &csv.to_string_lossy(),
+    ]);
+    let rows = csv_rows(&std::fs::read_to_string(&csv).unwrap());
+    assert_eq!(rows.len(), 5, "{rows:?}");
+    assert_eq!(
+        rows[0][..6],
+        ["student", "answer", "score", "max", "error", "mistakes"]
+    );
+    let by = |s: &str| rows.iter().find(|r| r[0] == s).unwrap().clone();
+    let (one, two, three, four) = (
+        by("student-01"),
+        by("student-02"),
+        by("student-03"),
+        by("student-04"),
+    );
+    assert_eq!(one[1..4], ["student-01.toml", "6", "6"]);
+    assert_eq!(one[4..6], ["", ""]);
+    assert_eq!(two[2..4], ["5", "6"]);
+    assert_eq!(two[5], "alpha_sign");
+    let wrong: Vec<&String> = two[6..].iter().filter(|c| c.contains("WRONG")).collect();
+    assert_eq!(wrong.len(), 1);
+    assert!(
+        wrong[0].starts_with("row 3: WRONG: row 3: alpha3 has the wrong sign"),
+        "{wrong:?}"
+    );
+    assert_eq!(three[1..5], ["", "0", "6", "no answer"]);
+    assert_eq!(four[2..4], ["0", "6"]);
+    assert!(four[4].contains("student-04.toml"), "{four:?}");
+    assert!(
+        summary.contains("graded 2 of 4 students; 11 of 24 items right"),
+        "{summary}"
+    );
+    assert!(
+        summary.contains("  1  alpha with the wrong sign (z turned the other way)"),
+        "{summary}"
+    );
+    assert!(
+        summary.contains("not graded: student-03: no answer"),
+        "{summary}"
+    );
+    assert!(summary.contains("no key for the answer"), "{summary}");
+    assert!(summary.contains("student-99.toml"), "{summary}");
+    // Two answers of one student is an error naming both.
+    std::fs::write(answers.join("student-01.txt"), "0").unwrap();
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_armlab"))
+        .args(["exercise", "grade"])
+        .arg(out.join("keys"))
+        .arg(&answers)
+        .arg("--out")
+        .arg(&csv)
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("student-01.toml") && err.contains("student-01.txt"),
+        "{err}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]

@@ -159,3 +159,177 @@ fn feasible_arm_angles_match_dense_sampling() {
         );
     }
 }
+
+/// Newton's method on the six free joints (the locked one held at `q[k]`) from `q`, with a
+/// finite-difference Jacobian of `robot.fk` and the rotation error from the skew part: the
+/// brute force's own solver, independent of armlab's IK. The solution, if it converges.
+fn newton_locked(robot: &Robot, target: &Pose, k: usize, mut q: Vec<f64>) -> Option<Vec<f64>> {
+    let residual = |q: &[f64]| -> [f64; 6] {
+        let p = robot.fk(q).unwrap();
+        let dp = target.translation.vector - p.translation.vector;
+        let d = (target.rotation * p.rotation.inverse()).into_inner();
+        [
+            dp.x,
+            dp.y,
+            dp.z,
+            0.5 * (d[(2, 1)] - d[(1, 2)]),
+            0.5 * (d[(0, 2)] - d[(2, 0)]),
+            0.5 * (d[(1, 0)] - d[(0, 1)]),
+        ]
+    };
+    let free: Vec<usize> = (0..7).filter(|&i| i != k).collect();
+    for _ in 0..60 {
+        let r = residual(&q);
+        let norm = r.iter().map(|v| v * v).sum::<f64>().sqrt();
+        if norm < 1e-12 {
+            // The skew part vanishes at a half turn too: the rotation itself must agree.
+            let p = robot.fk(&q).unwrap();
+            let (dp, dr) = pose_gap(&p, target);
+            return (dp < 1e-9 && dr < 1e-9).then_some(q);
+        }
+        let mut j = nalgebra::Matrix6::zeros();
+        for (c, &i) in free.iter().enumerate() {
+            let h = 1e-7;
+            let mut qh = q.clone();
+            qh[i] += h;
+            let rh = residual(&qh);
+            for row in 0..6 {
+                j[(row, c)] = (rh[row] - r[row]) / h;
+            }
+        }
+        let e = nalgebra::Vector6::from_row_slice(&r);
+        // Damped least squares: steady near singular configurations.
+        let jt = j.transpose();
+        let step = (jt * j + nalgebra::Matrix6::identity() * 1e-10)
+            .lu()
+            .solve(&(jt * e))?;
+        // Newton on the residual r(q) = 0: q <- q - J_r^-1 r.
+        for (c, &i) in free.iter().enumerate() {
+            q[i] -= step[c].clamp(-0.5, 0.5);
+        }
+    }
+    None
+}
+
+/// Whether two joint vectors are the same configuration (angles modulo 2 pi).
+fn same_configuration(a: &[f64], b: &[f64], tol: f64) -> bool {
+    a.iter().zip(b).all(|(x, y)| angle_gap(*x, *y) < tol)
+}
+
+/// The KUKA iiwa 14's URDF, its arm alone (the chain to its default end-effector), as
+/// `armlab self-motion --ee` makes it.
+fn iiwa14() -> Robot {
+    let whole = armlab::model_file::load_model(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/urdf_corpus/kuka_iiwa14.urdf"
+    ))
+    .unwrap();
+    let q = whole.ready_or_zero();
+    armlab::kinematics::arm::arm_of(&whole, 0, &q)
+        .unwrap()
+        .robot
+}
+
+/// Issue 46, item 12: with q3 (or q5) locked, an SRS arm is a six-joint arm with a spherical
+/// wrist, and every value of the locked joint gives every solution. Checked against a brute
+/// force written here: 300 Newton starts per pose and value; every configuration it finds is
+/// among armlab's, and each of armlab's meets the pose by forward kinematics. Values beyond the
+/// locked joint's limits give their solutions too (flagged by the self-motion).
+#[test]
+fn a_locked_srs_arm_gives_every_solution_at_every_value() {
+    use armlab::kinematics::ik::closed_form::{LockedArm, MAX_LOCKED_SOLUTIONS};
+    let iiwa = iiwa14();
+    let mut seed = 46u64;
+    for robot in [models().remove(1), iiwa] {
+        let lim = robot.limits();
+        for k in [2usize, 4] {
+            let arm = LockedArm::new(&robot, k).unwrap();
+            let (mut total, mut found) = (0, 0);
+            for _ in 0..3 {
+                let q0 = random_q(&lim, &mut seed);
+                let target = robot.fk(&q0).unwrap();
+                // The pose's own value, one elsewhere inside the limits, one beyond them.
+                for value in [q0[k], 0.6 * lim[k][0] + 0.1, lim[k][1] + 0.05] {
+                    let mut out = [[0.0; 7]; MAX_LOCKED_SOLUTIONS];
+                    let n = arm.solve_exact(&robot, &target, value, &mut out).unwrap();
+                    let ours = &out[..n];
+                    for q in ours {
+                        let (dp, dr) = pose_gap(&robot.fk(q).unwrap(), &target);
+                        assert!(
+                            dp < 1e-10 && dr < 1e-9,
+                            "{}: {q:?} misses by {dp}, {dr}",
+                            robot.name
+                        );
+                        assert_eq!(q[k], value);
+                    }
+                    let mut brute: Vec<Vec<f64>> = Vec::new();
+                    for _ in 0..300 {
+                        let mut start: Vec<f64> =
+                            (0..7).map(|_| (2.0 * lcg(&mut seed) - 1.0) * PI).collect();
+                        start[k] = value;
+                        if let Some(q) = newton_locked(&robot, &target, k, start)
+                            && !brute.iter().any(|b| same_configuration(b, &q, 1e-5))
+                        {
+                            brute.push(q);
+                        }
+                    }
+                    for b in &brute {
+                        assert!(
+                            ours.iter().any(|q| same_configuration(q, b, 1e-6)),
+                            "{} q{} locked at {value}: the brute force found {b:?}, armlab gave {ours:?}",
+                            robot.name,
+                            k + 1
+                        );
+                    }
+                    total += brute.len();
+                    found += n;
+                }
+            }
+            assert!(
+                total >= 9,
+                "{}: the brute force found only {total}",
+                robot.name
+            );
+            assert!(found >= total);
+        }
+    }
+}
+
+/// Issue 46, item 12: `self-motion --lock 3` and `--lock 5` on an SRS arm at the FK of
+/// configurations within the limits: never "out of reach for every value", and the
+/// configuration the pose came from lies on a branch.
+#[test]
+fn the_locked_self_motion_of_an_srs_arm_reaches_every_pose_it_came_from() {
+    use armlab::redundancy::sampler::sample_self_motion_locked;
+    let robot = iiwa14();
+    let lim = robot.limits();
+    let mut seed = 4646u64;
+    for k in [2usize, 4] {
+        for _ in 0..6 {
+            let q0 = random_q(&lim, &mut seed);
+            let target = robot.fk(&q0).unwrap();
+            let m = sample_self_motion_locked(&robot, 0, &target, 721, Some(k))
+                .unwrap_or_else(|e| panic!("q{} locked, q0 {q0:?}: {e}", k + 1));
+            let mut nearest = f64::INFINITY;
+            for (_, sols) in &m.samples {
+                for s in sols {
+                    let (dp, dr) = pose_gap(&robot.fk(&s.q).unwrap(), &target);
+                    assert!(dp < 1e-9 && dr < 1e-8);
+                    if angle_gap(s.q[k], q0[k]) < 0.005 {
+                        let d =
+                            s.q.iter()
+                                .zip(&q0)
+                                .map(|(a, b)| angle_gap(*a, *b))
+                                .fold(0.0, f64::max);
+                        nearest = nearest.min(d);
+                    }
+                }
+            }
+            assert!(
+                nearest < 0.2,
+                "q{} locked: no branch passes near q0 ({nearest})",
+                k + 1
+            );
+        }
+    }
+}

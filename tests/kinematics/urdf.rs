@@ -143,7 +143,13 @@ fn bad(text: &str) -> UrdfError {
     match parse_urdf(text, Path::new("robots/bad.urdf")) {
         Ok(_) => panic!("accepted:\n{text}"),
         Err(e) => {
-            assert!(e.to_string().ends_with("(robots/bad.urdf)"), "{e}");
+            // "... (robots/bad.urdf)", or "robots/bad.urdf:LINE:COLUMN: ..." where the XML
+            // itself is cut.
+            let text = e.to_string();
+            assert!(
+                text.ends_with("(robots/bad.urdf)") || text.starts_with("robots/bad.urdf:"),
+                "{e}"
+            );
             e
         }
     }
@@ -168,9 +174,20 @@ fn bad_urdfs_give_clear_errors() {
         "{e}"
     );
 
+    // Cut short: the XML error names where the text ends.
     let e = bad(r#"<robot name="x"><link name="a"/><joint name="j" type="revolute">"#);
-    assert!(matches!(e, UrdfError::Parse { .. }), "{e}");
-    assert!(e.to_string().starts_with("invalid URDF"), "{e}");
+    assert!(
+        matches!(
+            e,
+            UrdfError::Xml {
+                line: 1,
+                column: 65,
+                ..
+            }
+        ),
+        "{e}"
+    );
+    assert!(e.to_string().contains("not well-formed XML"), "{e}");
 
     let e = bad(&two_links(
         r#"<joint name="j" type="revolute"><parent link="a"/><child link="c"/></joint>"#,
@@ -332,4 +349,40 @@ fn limit_and_axis_quirks_are_warnings_naming_the_joint() {
     assert!(r.load_warnings.is_empty(), "{:?}", r.load_warnings);
     let e = parse_urdf(&urdf("0 0 0", lim, "revolute", lim), Path::new("q.urdf")).unwrap_err();
     assert!(e.to_string().contains("\"j1\""), "{e}");
+}
+
+/// Issue 46, item 10: a truncated URDF names the line and column where the XML stops, not only
+/// urdf-rs's "No elements found".
+#[test]
+fn a_truncated_urdf_names_its_line_and_column() {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/urdf_corpus/ur5_robot.urdf"
+    ))
+    .unwrap();
+    // Cut in the middle of a line, well inside the file.
+    let cut = text.len() / 2;
+    let cut = (cut..text.len())
+        .find(|&i| text.is_char_boundary(i))
+        .unwrap();
+    let truncated = &text[..cut];
+    let lines = truncated.lines().count() as u32;
+    let e = armlab::urdf::parse_urdf(truncated, std::path::Path::new("cut.urdf")).unwrap_err();
+    let msg = e.to_string();
+    let armlab::urdf::UrdfError::Xml { line, column, .. } = e else {
+        panic!("not an XML error: {msg}");
+    };
+    assert!(
+        msg.starts_with(&format!("cut.urdf:{line}:{column}: not well-formed XML")),
+        "{msg}"
+    );
+    // The parser stops at the end of what is there (or at the first element left open).
+    assert!(
+        line >= 1 && line <= lines + 1,
+        "line {line} of {lines}: {msg}"
+    );
+    // A well-formed file that is not URDF keeps urdf-rs's message.
+    let e = armlab::urdf::parse_urdf("<robot name=\"r\"><link/></robot>", "x.urdf".as_ref())
+        .unwrap_err();
+    assert!(!matches!(e, armlab::urdf::UrdfError::Xml { .. }), "{e}");
 }

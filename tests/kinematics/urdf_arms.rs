@@ -397,3 +397,117 @@ fn the_gen3_lites_rounded_axes_get_all_solutions_polished_on_the_exact_model() {
     }
     assert!(total >= 40, "{total} solutions over 20 poses");
 }
+
+/// A WidowX-like arm written here: six revolute joints (a spherical wrist), `ee_gripper_link`,
+/// two prismatic fingers limited to [0.015, 0.037] m, and sensor frames: a wrist camera, a
+/// force-torque frame, a status LED, a depth camera's optical frame.
+const WIDOWX_LIKE: &str = r#"<robot name="widowx_like">
+  <link name="base_link"/><link name="l1"/><link name="l2"/><link name="l3"/><link name="l4"/>
+  <link name="l5"/><link name="l6"/><link name="ee_gripper_link"/><link name="left_finger_link"/>
+  <link name="right_finger_link"/><link name="wrist_cam_link"/><link name="wrist_ft_frame"/>
+  <link name="status_led_link"/><link name="d435_rgb_optical_frame"/>
+  <joint name="waist" type="revolute"><parent link="base_link"/><child link="l1"/>
+    <origin xyz="0 0 0.1"/><axis xyz="0 0 1"/><limit lower="-3.1" upper="3.1" effort="1" velocity="1"/></joint>
+  <joint name="shoulder" type="revolute"><parent link="l1"/><child link="l2"/>
+    <origin xyz="0 0 0.1"/><axis xyz="0 1 0"/><limit lower="-1.9" upper="1.9" effort="1" velocity="1"/></joint>
+  <joint name="elbow" type="revolute"><parent link="l2"/><child link="l3"/>
+    <origin xyz="0.05 0 0.25"/><axis xyz="0 1 0"/><limit lower="-2.1" upper="1.6" effort="1" velocity="1"/></joint>
+  <joint name="forearm_roll" type="revolute"><parent link="l3"/><child link="l4"/>
+    <origin xyz="0.1 0 0"/><axis xyz="1 0 0"/><limit lower="-3.1" upper="3.1" effort="1" velocity="1"/></joint>
+  <joint name="wrist_angle" type="revolute"><parent link="l4"/><child link="l5"/>
+    <origin xyz="0.15 0 0"/><axis xyz="0 1 0"/><limit lower="-1.7" upper="2.1" effort="1" velocity="1"/></joint>
+  <joint name="wrist_rotate" type="revolute"><parent link="l5"/><child link="l6"/>
+    <origin xyz="0 0 0"/><axis xyz="1 0 0"/><limit lower="-3.1" upper="3.1" effort="1" velocity="1"/></joint>
+  <joint name="ee" type="fixed"><parent link="l6"/><child link="ee_gripper_link"/><origin xyz="0.09 0 0"/></joint>
+  <joint name="left_finger" type="prismatic"><parent link="ee_gripper_link"/><child link="left_finger_link"/>
+    <axis xyz="0 1 0"/><limit lower="0.015" upper="0.037" effort="1" velocity="1"/></joint>
+  <joint name="right_finger" type="prismatic"><parent link="ee_gripper_link"/><child link="right_finger_link"/>
+    <axis xyz="0 -1 0"/><limit lower="0.015" upper="0.037" effort="1" velocity="1"/></joint>
+  <joint name="cam" type="fixed"><parent link="l5"/><child link="wrist_cam_link"/><origin xyz="0.02 0 0.04"/></joint>
+  <joint name="ft" type="fixed"><parent link="l6"/><child link="wrist_ft_frame"/><origin xyz="0.01 0 0"/></joint>
+  <joint name="led" type="fixed"><parent link="l3"/><child link="status_led_link"/><origin xyz="0 0 0.03"/></joint>
+  <joint name="d435" type="fixed"><parent link="l2"/><child link="d435_rgb_optical_frame"/><origin xyz="0 0 0.1"/></joint>
+</robot>"#;
+
+/// Issue 46, item 11: real robots' frames. The sensor frames are "other frames", not tools; the
+/// default configuration is within every limit (the fingers at 0.015 m, not 0); and a joint off
+/// the arm's chain never makes the arm's IK solution infeasible: the flag is checked against the
+/// limits of the file, read here joint by joint.
+#[test]
+fn sensor_frames_fingers_and_limits_of_a_real_robot_s_frames() {
+    let robot = load_text(WIDOWX_LIKE);
+    let cat = catalog(&robot);
+    let name = |e: usize| robot.end_effectors()[e].name.clone();
+    assert_eq!(name(cat.default_ee()), "ee_gripper_link");
+    let other: Vec<String> = cat.other.iter().map(|&e| name(e)).collect();
+    for sensor in [
+        "wrist_cam_link",
+        "wrist_ft_frame",
+        "status_led_link",
+        "d435_rgb_optical_frame",
+    ] {
+        assert!(
+            other.iter().any(|o| o == sensor),
+            "{sensor} not among {other:?}"
+        );
+        assert!(
+            !cat.tools().iter().any(|&t| name(t) == sensor),
+            "{sensor} offered as a tool"
+        );
+    }
+    // The joint limits as the file states them, by joint name (q follows the file's order).
+    let limits: Vec<(&str, f64, f64)> = vec![
+        ("waist", -3.1, 3.1),
+        ("shoulder", -1.9, 1.9),
+        ("elbow", -2.1, 1.6),
+        ("forearm_roll", -3.1, 3.1),
+        ("wrist_angle", -1.7, 2.1),
+        ("wrist_rotate", -3.1, 3.1),
+        ("left_finger", 0.015, 0.037),
+        ("right_finger", 0.015, 0.037),
+    ];
+    assert_eq!(robot.dof(), limits.len());
+    let ready = robot.ready_or_zero();
+    for (k, (joint, lo, hi)) in limits.iter().enumerate() {
+        assert!(
+            ready[k] >= *lo && ready[k] <= *hi,
+            "{joint} starts at {}",
+            ready[k]
+        );
+    }
+    assert_eq!(&ready[6..], &[0.015, 0.015]);
+    assert!(robot.within_limits(&ready, 0.0));
+    // IK of poses the arm reaches within its limits: every solution whose six arm joints are
+    // inside their limits is flagged feasible, whatever the fingers hold.
+    let ee = cat.default_ee();
+    use rand::{Rng, SeedableRng};
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(46);
+    let mut feasible = 0;
+    for _ in 0..20 {
+        let mut q = ready.clone();
+        for (k, (_, lo, hi)) in limits.iter().take(6).enumerate() {
+            q[k] = rng.random_range(lo * 0.9..hi * 0.9);
+        }
+        let t = robot.fk_ee(&q, ee).unwrap();
+        let (result, _) = solve(
+            &robot,
+            ee,
+            &Target::Pose(t),
+            None,
+            SolverChoice::Auto,
+            &NumericalOptions::default(),
+        )
+        .unwrap();
+        assert!(!result.solutions.is_empty());
+        for s in &result.solutions {
+            let arm_inside = limits
+                .iter()
+                .take(6)
+                .enumerate()
+                .all(|(k, (_, lo, hi))| s.q[k] >= lo - 1e-9 && s.q[k] <= hi + 1e-9);
+            assert_eq!(s.within_limits, arm_inside, "{:?} {}", s.q, s.posture);
+            feasible += usize::from(arm_inside);
+        }
+    }
+    assert!(feasible >= 20, "{feasible} feasible solutions in 20 poses");
+}

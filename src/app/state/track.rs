@@ -318,7 +318,7 @@ impl AppState {
                 s.position_error = pe;
                 s.orientation_error = oe;
             }
-            s.within_limits = self.robot.within_limits(&q, LIMIT_SLACK);
+            s.within_limits = self.robot.within_limits_for(0, &q, LIMIT_SLACK);
             s.q = q;
         }
     }
@@ -389,7 +389,7 @@ impl AppState {
             (rep.position_error, rep.orientation_error)
         };
         let sol = IkSolution {
-            within_limits: self.robot.within_limits(&q, LIMIT_SLACK),
+            within_limits: self.robot.within_limits_for(ee, &q, LIMIT_SLACK),
             q,
             posture: SolutionPosture::Numerical { converged: true },
             position_error,

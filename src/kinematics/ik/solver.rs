@@ -396,7 +396,10 @@ fn solve_arm(
         let mut full = base.clone();
         arm.expand(&s.q, &mut full);
         s.q = full;
-        s.within_limits = robot.within_limits(&s.q, 1e-12);
+        // The arm's own joints decide (the arm's solve set the flag on them): a joint off the
+        // chain, a gripper's finger at 0 below its [0.015, 0.037] m, never makes an arm's
+        // solution infeasible.
+        s.within_limits = robot.within_limits_for(ee, &s.q, 1e-12);
         for f in &mut s.free_joints {
             f.index = arm.free[f.index];
         }

@@ -1,13 +1,19 @@
 //! A seven-revolute arm with one joint locked: the six-revolute arm left is solved by the
-//! general elimination ([`super::general6`]), so every value of the locked joint gives every
-//! solution, exactly (as ssik reduces a 7R arm to 6R). The locked joint is merged into its
+//! closed form of its family where it has one (an SRS arm locked at q3 or q5 leaves a
+//! spherical wrist: Pieper's case), else by the general elimination ([`super::general6`]), so
+//! every value of the locked joint gives every solution, exactly (as ssik reduces a 7R arm to
+//! 6R). The elimination alone missed three quarters of an SRS arm's solutions at q3: its
+//! resultant degenerates on such special geometry. The locked joint is merged into its
 //! neighbour: `A_(k-1) A_k = Rz(theta_(k-1)) [L_(k-1) Rz(theta_k) L_k]`; locking the first or
 //! the last joint moves it into the base or the tool.
 
 use super::chain;
+use super::family::Family;
 use super::general6::{General6, Link, MAX_BRANCHES};
-use crate::kinematics::ik::IkError;
-use crate::kinematics::{Pose, Robot};
+use crate::kinematics::dh_derive::derive_dh;
+use crate::kinematics::hold::{Held, hold_joints};
+use crate::kinematics::ik::{IkError, Target};
+use crate::kinematics::{Convention, Pose, Robot};
 use nalgebra::{Matrix6, Vector6};
 
 /// A solution on the exact robot meets the pose to this (m and rad).
@@ -56,6 +62,9 @@ pub struct LockedArm {
     locked: usize,
     /// The order of the elimination's loop solved first (see [`General6::starting_at`]).
     first: usize,
+    /// Whether the six-joint arm left belongs to a family with its own closed form (found at
+    /// two generic values of the locked joint), which then solves every value.
+    by_family: bool,
 }
 
 impl LockedArm {
@@ -77,6 +86,7 @@ impl LockedArm {
             tool_inv: chain.tool.inverse(),
             locked,
             first: 0,
+            by_family: false,
         };
         // The first sound order at a generic value and pose (angles well away from 0 and from
         // each other: an arm stretched out is singular).
@@ -89,6 +99,9 @@ impl LockedArm {
                 acc.then(&Link::rz(t.cos(), t.sin()).then(l))
             });
         arm.first = General6::from_links(six).sound_order(&goal).unwrap_or(0);
+        arm.by_family = [0.61, -1.07]
+            .iter()
+            .all(|&v| arm.family_of(robot, v).is_some());
         Some(arm)
     }
 
@@ -172,6 +185,49 @@ impl LockedArm {
         six
     }
 
+    /// The six-joint arm left at `value` (rad) as a robot of its own, with its closed form,
+    /// where that is a family's and not the general elimination.
+    ///
+    /// The held joint is a fixed row between moving ones, which no family reads: the six-joint
+    /// arm is read through its derived DH table (same FK, same q), as a URDF arm is.
+    fn family_of(&self, robot: &Robot, value: f64) -> Option<(Held, Robot, super::ClosedForm)> {
+        let mut q = [0.0; 7];
+        q[self.locked] = value;
+        let mut held = [false; 7];
+        held[self.locked] = true;
+        let six = hold_joints(robot, &q, &held)?;
+        let dh = derive_dh(&six.robot, 0, Convention::Standard)
+            .ok()?
+            .robot(&robot.name)
+            .ok()?;
+        let cf = super::ClosedForm::detect(&dh).ok()?;
+        (!matches!(cf.family(), Family::General6)).then_some((six, dh, cf))
+    }
+
+    /// Every solution at `value` by the six-joint arm's family closed form (all its postures,
+    /// within the limits or not); `None` where there is none (then the elimination solves).
+    fn solve_by_family(
+        &self,
+        robot: &Robot,
+        world_from_tool: &Pose,
+        value: f64,
+        out: &mut [[f64; 7]; MAX_LOCKED_SOLUTIONS],
+    ) -> Option<usize> {
+        if !self.by_family {
+            return None;
+        }
+        let (six, dh, cf) = self.family_of(robot, value)?;
+        let result = cf.solve(&dh, &Target::Pose(*world_from_tool)).ok()?;
+        let mut n = 0;
+        for (o, s) in out.iter_mut().zip(&result.solutions) {
+            *o = [0.0; 7];
+            o[self.locked] = value;
+            six.expand(&s.q, o);
+            n += 1;
+        }
+        Some(n)
+    }
+
     /// [`Self::solve`], then each solution checked by `robot`'s own forward kinematics and
     /// polished by Newton's method over the six free joints where it misses by more than
     /// [`EXACT_CHECK`] (a chain read from a URDF is solved on its derived DH table, exact only to
@@ -183,7 +239,10 @@ impl LockedArm {
         value: f64,
         out: &mut [[f64; 7]; MAX_LOCKED_SOLUTIONS],
     ) -> Result<usize, IkError> {
-        let n = self.solve(world_from_tool, value, out)?;
+        let n = match self.solve_by_family(robot, world_from_tool, value, out) {
+            Some(n) => n,
+            None => self.solve(world_from_tool, value, out)?,
+        };
         let mut kept = 0;
         for i in 0..n {
             let mut q = out[i];
