@@ -161,6 +161,17 @@ impl SingularityReport {
         } else {
             "a"
         };
+        let full_rank = self
+            .conditions
+            .iter()
+            .all(|c| matches!(c.kind, SingularityKind::RankDeficient { rank, of } if rank >= of));
+        if full_rank {
+            return format!(
+                "{at} a singular configuration: {} (sigma_min/sigma_max = {:.1e})",
+                details.join("; "),
+                self.ratio
+            );
+        }
         format!(
             "{at} {article} {kinds} singularity: {} (sigma_min/sigma_max = {:.1e})",
             details.join("; "),
@@ -351,10 +362,19 @@ impl SingularityAnalyzer {
                         of,
                     },
                     measure: ratio,
-                    detail: format!(
-                        "the Jacobian has rank {} of {of}; no named kind applies to this arm",
-                        a.rank.min(of)
-                    ),
+                    detail: if a.rank < of {
+                        format!(
+                            "the Jacobian has rank {} of {of}; none of the named kinds (wrist, \
+                             elbow, shoulder) applies to this arm",
+                            a.rank.min(of)
+                        )
+                    } else {
+                        // Full rank, but close to losing it: say what a student sees, not
+                        // "rank 6 of 6", which reads as no singularity at all.
+                        "one direction of the hand barely moves as the joints turn; none of the \
+                         named kinds (wrist, elbow, shoulder) applies to this arm"
+                            .to_string()
+                    },
                 }),
             }
         }

@@ -82,3 +82,30 @@ fn singularities_are_named_by_kind() {
         rep.message()
     );
 }
+
+/// Issue 46, item 9: near (not at) a singularity no named kind explains, the words do not say
+/// "rank 6 of 6 ... singularity" (which contradicts itself): they say what the hand does.
+#[test]
+fn an_unnamed_near_singularity_says_what_the_hand_does() {
+    let r = armlab::kinematics::models::dlr();
+    let mut seen = 0;
+    for k in 1..=60 {
+        let t = 0.002 * k as f64;
+        let q = [0.0, t, 0.0, 0.5 * t, 0.0, t, 0.0];
+        let Some(rep) = classify(&r, &q, 0).unwrap() else {
+            continue;
+        };
+        let full = rep
+            .kinds()
+            .iter()
+            .all(|k| matches!(k, SingularityKind::RankDeficient { rank, of } if rank >= of));
+        let msg = rep.message();
+        if full {
+            seen += 1;
+            assert!(!msg.contains("rank 6 of 6"), "{msg}");
+            assert!(msg.contains("barely moves"), "{msg}");
+            assert!(msg.contains("a singular configuration:"), "{msg}");
+        }
+    }
+    assert!(seen > 0, "no near, full-rank report along the path");
+}
