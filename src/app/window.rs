@@ -125,7 +125,10 @@ pub fn status_bar(
                     Level::Warning => egui::Color32::from_rgb(180, 90, 0),
                     Level::Error => egui::Color32::from_rgb(190, 0, 0),
                 };
-                ui.colored_label(color, &m.text);
+                // A long message wraps onto more lines instead of running off the window, and
+                // its whole text shows on hover too (a status line was cut at 1280 px).
+                ui.add(egui::Label::new(egui::RichText::new(&m.text).color(color)).wrap())
+                    .on_hover_text(&m.text);
                 // The bar is redrawn when the message is due to go.
                 ui.ctx()
                     .request_repaint_after(std::time::Duration::from_secs(1));

@@ -630,3 +630,28 @@ fn a_lesson_caption_takes_a_whole_sentence_and_no_key_fires_a_shortcut() {
     assert_eq!(player.lesson.steps.len(), 1);
     assert!(player.lesson.steps[0].caption.is_empty());
 }
+
+/// Issue 46, item 10: a long status message wraps inside the 1280 px window instead of being
+/// cut at its edge, and its whole text is one label (readable in full, also on hover).
+#[test]
+fn a_long_status_message_wraps_inside_the_window() {
+    use armlab::app::state::Level;
+    let long = "the model file robots/very_long_folder_name/another_folder/arm.urdf: joint \
+                \"shoulder_pan_joint\": the limit's lower bound is above its upper bound, so the \
+                joint was given its whole turn instead, and the workspace and every figure \
+                drawn from it use that turn; fix the file and open it again to use its own limits";
+    let mut app = AppUi::new(AppState::from_spec("puma560").unwrap());
+    app.state.push_message(Level::Warning, long.to_string());
+    let h = harness(app);
+    let label = h.get_by_label(long);
+    let rect = label.accesskit_node().bounding_box().unwrap();
+    assert!(
+        rect.x1 <= 1280.0,
+        "the message runs off the window: {rect:?}"
+    );
+    assert!(
+        rect.y1 - rect.y0 > 20.0,
+        "one line of {} px: not wrapped",
+        rect.x1 - rect.x0
+    );
+}
