@@ -271,40 +271,44 @@ fn unique_names(urdf: &urdf_rs::Robot, path: &Path) -> Result<(), UrdfError> {
     Ok(())
 }
 
+/// Why urdf-rs refused `text`: where it stops being well-formed XML (urdf-rs says "No elements
+/// found" with no place; roxmltree finds it), else urdf-rs's own message.
+fn read_error(text: &str, path: &Path, source: urdf_rs::UrdfError) -> UrdfError {
+    let p = || path.to_path_buf();
+    match roxmltree::Document::parse(text) {
+        // A file cut short: the place is its end (the parser reports 1:1).
+        Err(roxmltree::Error::UnclosedRootNode | roxmltree::Error::UnexpectedEndOfStream) => {
+            let line = text.lines().count().max(1);
+            let last = text.lines().last().unwrap_or("");
+            let ends_in_line = !text.ends_with('\n');
+            UrdfError::Xml {
+                path: p(),
+                line: (line + usize::from(!ends_in_line)) as u32,
+                column: if ends_in_line {
+                    last.chars().count() as u32 + 1
+                } else {
+                    1
+                },
+                problem: "the file ends before its elements are closed (cut short?)".into(),
+            }
+        }
+        Err(xml) => UrdfError::Xml {
+            path: p(),
+            line: xml.pos().row,
+            column: xml.pos().col,
+            problem: xml.to_string(),
+        },
+        Ok(_) => UrdfError::Parse { path: p(), source },
+    }
+}
+
 /// Reads URDF text into a [`Robot`]; `path` is only used in messages and the description.
 pub fn parse_urdf(text: &str, path: &Path) -> Result<Robot, UrdfError> {
     let p = || path.to_path_buf();
     if has_xacro_markup(text) {
         return Err(UrdfError::Xacro { path: p() });
     }
-    let urdf = urdf_rs::read_from_string(text).map_err(|source| {
-        // urdf-rs says "No elements found" with no place: a well-formedness check finds it.
-        match roxmltree::Document::parse(text) {
-            // A file cut short: the place is its end (the parser reports 1:1).
-            Err(roxmltree::Error::UnclosedRootNode | roxmltree::Error::UnexpectedEndOfStream) => {
-                let line = text.lines().count().max(1);
-                let last = text.lines().last().unwrap_or("");
-                let ends_in_line = !text.ends_with('\n');
-                UrdfError::Xml {
-                    path: p(),
-                    line: (line + usize::from(!ends_in_line)) as u32,
-                    column: if ends_in_line {
-                        last.chars().count() as u32 + 1
-                    } else {
-                        1
-                    },
-                    problem: "the file ends before its elements are closed (cut short?)".into(),
-                }
-            }
-            Err(xml) => UrdfError::Xml {
-                path: p(),
-                line: xml.pos().row,
-                column: xml.pos().col,
-                problem: xml.to_string(),
-            },
-            Ok(_) => UrdfError::Parse { path: p(), source },
-        }
-    })?;
+    let urdf = urdf_rs::read_from_string(text).map_err(|source| read_error(text, path, source))?;
     let uj = &urdf.joints;
     if uj.is_empty() {
         return Err(UrdfError::NoJoints { path: p() });

@@ -326,6 +326,22 @@ fn place(t: &Target, answer: &Robot) -> Result<Vec<f64>, usize> {
     }
 }
 
+impl DhVerdict {
+    /// The whole answer wrong for one reason (given on row 1).
+    fn wrong(feedback: String, mistake: Option<Mistake>) -> Self {
+        DhVerdict {
+            rows: vec![RowVerdict {
+                row: 1,
+                correct: false,
+                feedback,
+                mistake,
+            }],
+            equivalent: false,
+            mapping: None,
+        }
+    }
+}
+
 /// A serial DH robot from a table (convention, rows), base and tool identity.
 fn robot_from(conv: Convention, rows: &[DhJoint]) -> Option<Robot> {
     Robot::from_dh("answer", conv, rows, Pose::identity(), Pose::identity()).ok()
@@ -470,18 +486,8 @@ fn responsible_rows(conv: Convention, level: usize, n: usize) -> Vec<usize> {
 /// Grades `answer` (a DH model) against `reference`: both with their base and end-effector 0.
 pub fn check(reference: &Robot, answer: &Robot, tol: Tolerance) -> DhVerdict {
     let n = reference.dof();
-    let fail_all = |text: String, mistake: Option<Mistake>| DhVerdict {
-        rows: vec![RowVerdict {
-            row: 1,
-            correct: false,
-            feedback: text,
-            mistake,
-        }],
-        equivalent: false,
-        mapping: None,
-    };
     if answer.dof() != n {
-        return fail_all(
+        return DhVerdict::wrong(
             format!(
                 "the answer has {} joint variables, the arm in the figure has {n}",
                 answer.dof()
@@ -490,7 +496,7 @@ pub fn check(reference: &Robot, answer: &Robot, tol: Tolerance) -> DhVerdict {
         );
     }
     let Some((conv, table)) = answer.dh_table() else {
-        return fail_all(
+        return DhVerdict::wrong(
             "the answer is not a serial DH table".into(),
             Some(Mistake::NotDhTable),
         );
@@ -505,7 +511,7 @@ pub fn check(reference: &Robot, answer: &Robot, tol: Tolerance) -> DhVerdict {
         .map(|(_, t)| t.iter().map(|(k, r, _)| DhJoint::new(*k, *r)).collect())
         .unwrap_or_default();
     let Some((ref_axes, ref_tool)) = axes(reference, &vec![0.0; n]) else {
-        return fail_all("the reference arm cannot be evaluated".into(), None);
+        return DhVerdict::wrong("the reference arm cannot be evaluated".into(), None);
     };
     let target = Target {
         reference,

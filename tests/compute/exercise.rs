@@ -124,6 +124,17 @@ fn the_issue_s_example_feedback() {
     assert_eq!(g.score, 5);
 }
 
+/// Runs the armlab binary; its standard output (the run must succeed).
+#[cfg(feature = "app")]
+fn run(args: &[&str]) -> String {
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_armlab"))
+        .args(args)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    String::from_utf8(o.stdout).unwrap()
+}
+
 /// Every mistake's CSV name is its JSON name.
 #[test]
 fn a_mistake_has_one_name() {
@@ -194,14 +205,6 @@ fn csv_rows(text: &str) -> Vec<Vec<String>> {
 fn a_class_is_graded_at_once() {
     let dir = std::env::temp_dir().join(format!("armlab-grade-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
-    let run = |args: &[&str]| {
-        let o = std::process::Command::new(env!("CARGO_BIN_EXE_armlab"))
-            .args(args)
-            .output()
-            .unwrap();
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-        String::from_utf8(o.stdout).unwrap()
-    };
     let out = dir.join("class");
     run(&[
         "exercise",
@@ -438,14 +441,6 @@ fn fk_ik_workspace_and_redundancy_sheets_grade_the_key_right_and_a_slip_wrong() 
 fn the_cli_writes_a_class_and_grades_from_files() {
     let dir = std::env::temp_dir().join(format!("armlab-exercise-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
-    let run = |args: &[&str]| {
-        let o = std::process::Command::new(env!("CARGO_BIN_EXE_armlab"))
-            .args(args)
-            .output()
-            .unwrap();
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-        String::from_utf8(o.stdout).unwrap()
-    };
     let out = dir.to_string_lossy().to_string();
     run(&[
         "exercise", "new", "dh-table", "--random", "--seed", "11", "--class", "30", "--out", &out,
