@@ -72,7 +72,7 @@ impl Frame {
             k: 0,
         };
         f.paint(None);
-        f.app.fit();
+        f.app.tabs.view3d.fit(&f.app.state);
         f
     }
 

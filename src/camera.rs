@@ -54,6 +54,13 @@ const FAR_FACTOR: f32 = 20.0;
 /// Largest elevation; exactly pi/2 makes the up vector degenerate.
 const MAX_PITCH: f32 = std::f32::consts::FRAC_PI_2 - 1e-4;
 
+impl Camera {
+    /// The perspective view's vertical field of view (rad): 35 degrees.
+    pub fn default_fov() -> f32 {
+        35f32.to_radians()
+    }
+}
+
 impl Default for Camera {
     fn default() -> Self {
         let mut c = Self {

@@ -63,6 +63,28 @@ pub struct CameraSpec {
     /// Distance from the target point (m); absent: framed to fit the arm.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub distance: Option<f64>,
+    /// The point looked at (world frame, m); absent: the arm's centre.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub target: Option<[f64; 3]>,
+    /// An orthographic view showing this height of the world (m), instead of a perspective one.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub orthographic_height: Option<f64>,
+}
+
+/// The app's central tab a step shows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum LessonTab {
+    /// The 3D view.
+    View3d,
+    /// The workspace figure (with `figure` naming which).
+    Workspace,
+    /// The self-motion plots.
+    SelfMotion,
+    /// Calibration.
+    Calibration,
+    /// The exercise sheet.
+    Exercise,
 }
 
 /// One step of a lesson.
@@ -93,6 +115,19 @@ pub struct Step {
     /// What is drawn; absent: the arm with its frames and labels.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub overlays: Option<Vec<Overlay>>,
+    /// What is explicitly not drawn ("Save as lesson" writes every overlay in one list or
+    /// the other, so that nothing the app remembers from another session shows on replay).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub overlays_off: Option<Vec<Overlay>>,
+    /// The central tab shown; absent: the tab stays as it is.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tab: Option<LessonTab>,
+    /// The Workspace tab's figure: `this-model`, or an excerpt figure's number (`2.30`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub figure: Option<String>,
+    /// The construction's step shown (1-based), with the construction overlay.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub construction_step: Option<usize>,
 }
 
 /// A lesson as in its file.
@@ -176,6 +211,21 @@ impl Lesson {
                     step: i + 1,
                     message: format!("view {v:?}: the views are front, side, top, iso"),
                 });
+            }
+            let step_error = |message: String| LessonError::Step {
+                file: file.into(),
+                step: i + 1,
+                message,
+            };
+            if let (Some(on), Some(off)) = (&s.overlays, &s.overlays_off)
+                && let Some(o) = on.iter().find(|o| off.contains(o))
+            {
+                return Err(step_error(format!(
+                    "overlay {o:?} is both in overlays and in overlays_off"
+                )));
+            }
+            if s.construction_step == Some(0) {
+                return Err(step_error("construction_step counts from 1".to_string()));
             }
         }
         Ok(lesson)

@@ -90,6 +90,10 @@ pub enum Action {
         /// Distance from the camera's centre (m).
         distance: Option<f32>,
     },
+    /// Show this figure in the Workspace tab: `this-model` or an excerpt figure's number.
+    WorkspaceFigure(String),
+    /// The whole camera, as a lesson saved it (look-at point, distance, angles, projection).
+    SetCamera(crate::camera::Camera),
     /// Frame everything the arm can reach (a workspace overlay seen whole).
     FitReach,
     /// Fit the robot (and its ghosts and targets) in the view.
@@ -120,6 +124,13 @@ pub enum Action {
     OpenExercise(String),
     /// Close the exercise sheet: the panels show everything again.
     CloseExercise,
+    /// Write an exam's answer (`text`) to `path` (a download in a browser).
+    SaveAnswer {
+        /// The file (`student-NN.toml` or `.txt`).
+        path: String,
+        /// Its contents.
+        text: String,
+    },
     /// A message for the status bar.
     Message(Level, String),
 }
@@ -137,5 +148,28 @@ impl Actions {
     /// Adds a message for the status bar.
     pub fn message(&mut self, level: Level, text: impl Into<String>) {
         self.0.push(Action::Message(level, text.into()));
+    }
+}
+
+impl Action {
+    /// Why this action is refused while a sheet hides what `hidden` says: in an exam,
+    /// everything that would carry the arm or its answer out of the app (saving the model or a
+    /// lesson, pictures); the workspace overlay on a workspace sheet.
+    pub fn refusal(&self, hidden: &Hidden) -> Option<&'static str> {
+        let carries_out = matches!(
+            self,
+            Action::SaveDialog
+                | Action::SaveModel(_)
+                | Action::SaveAsLesson
+                | Action::Screenshot
+                | Action::Record
+        );
+        if hidden.exam && carries_out {
+            return Some("off during the exam: close the sheet in the Exercise tab first");
+        }
+        if hidden.workspace && matches!(self, Action::ToggleWorkspace) {
+            return Some("the workspace is what the sheet asks for: it stays hidden");
+        }
+        None
     }
 }

@@ -13,8 +13,9 @@ use std::path::{Path, PathBuf};
 /// What a file opened in the app turned out to be.
 #[derive(Debug)]
 pub enum Opening {
-    /// An exercise sheet's key (`armlab exercise new` writes them): its text.
-    Key(String),
+    /// A student's exercise sheet (`student-NN/sheet.json`) or a teacher's key
+    /// (`keys/student-NN.json`), both written by `armlab exercise new`: its text.
+    Exercise(String),
     /// A lesson, or why it could not be read.
     Lesson(Result<Lesson, String>),
     /// A model: its text where the file came as bytes (`None`: loaded by its name, a built-in
@@ -43,8 +44,8 @@ pub fn open_bytes(name: &str, bytes: &[u8]) -> Opening {
 /// What `text`, the contents of the file `name`, holds (a model keeps its text with
 /// `model_text`).
 fn of_text(text: String, name: &str, model_text: bool) -> Opening {
-    if text.contains(crate::exercise::KEY_FORMAT) {
-        return Opening::Key(text);
+    if text.contains(crate::exercise::KEY_FORMAT) || text.contains(crate::exercise::SHEET_FORMAT) {
+        return Opening::Exercise(text);
     }
     match Lesson::detect(&text, name) {
         Some(lesson) => Opening::Lesson(lesson),
@@ -63,12 +64,32 @@ fn lesson_or_key_text(path: &str) -> Option<String> {
         .flatten()
 }
 
-/// The exercise key at `path` (the Exercise tab's "Open sheet"), whatever its extension.
+/// The exercise sheet or key at `path` (the Exercise tab's "Open sheet"), whatever its
+/// extension.
 pub fn open_key(path: &str) -> Opening {
     match std::fs::read_to_string(path) {
-        Ok(text) => Opening::Key(text),
+        Ok(text) => Opening::Exercise(text),
         Err(e) => Opening::Unreadable(format!("{path}: {e}")),
     }
+}
+
+/// Writes an exam's answer to `path` (a download named as its file in a browser); the message
+/// for the status bar.
+pub fn write_answer(picker: &mut dyn FilePicker, path: &str, text: &str) -> Result<String, String> {
+    if path.is_empty() {
+        return Err("give the answer's file name (student-NN.toml or .txt)".into());
+    }
+    let name = Path::new(path)
+        .file_name()
+        .map_or("answer.txt".into(), |n| n.to_string_lossy().into_owned());
+    if picker.download(&name, "text/plain", text.as_bytes()) {
+        return Ok(format!("downloading {name}: hand it in"));
+    }
+    std::fs::write(path, text).map_err(|e| format!("cannot write {path}: {e}"))?;
+    Ok(format!(
+        "answer saved in {}: hand it in",
+        full_path(Path::new(path)).display()
+    ))
 }
 
 /// The paths of the files dropped onto the window in this frame (a file without a path, as a

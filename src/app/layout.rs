@@ -68,14 +68,20 @@ impl Layout {
         }
     }
 
-    /// One key hides both side panels, or shows both again.
+    /// One key hides both side panels, or shows both again. In projector mode, where two
+    /// panels leave each too narrow to read (the left one wrapped "Open" as "Ope n"), it shows
+    /// one at a time, each as wide as in normal mode or wider: the right one (the readouts),
+    /// then the left one (the model and joints), then none.
     pub fn toggle_side_panels(&mut self) {
+        let projector = self.projector;
         let s = self.sides_mut();
-        let open = !(s.left || s.right);
-        *s = Sides {
-            left: open,
-            right: open,
+        let (left, right) = match (projector, s.left, s.right) {
+            (false, l, r) => (!(l || r), !(l || r)),
+            (true, false, true) => (true, false),
+            (true, true, false) => (false, false),
+            (true, _, _) => (false, true),
         };
+        *s = Sides { left, right };
     }
 
     /// The egui ids of the left and right panels in the current mode: each mode's panels keep

@@ -5,9 +5,9 @@
 
 use super::action::{Action, Actions};
 use super::state::{AppState, Level};
-use crate::camera::{Camera, Preset};
+use crate::camera::{Camera, Preset, Projection};
 use crate::kinematics::orientation::{rotation_from_rpy, rpy_from_rotation};
-use crate::lesson::{CameraSpec, Lesson, Overlay, Step};
+use crate::lesson::{CameraSpec, Lesson, LessonTab, Overlay, Step};
 use egui::RichText;
 use nalgebra::Vector3;
 
@@ -92,13 +92,19 @@ impl LessonPlayer {
         });
         let overlays = lesson.overlays(i);
         overlay_actions(&overlays, state, &mut out);
+        if let Some(k) = step.construction_step {
+            out.push(Action::ShowConstruction(true));
+            out.push(Action::ConstructionStep(k.saturating_sub(1)));
+        }
+        if let Some(f) = &step.figure {
+            out.push(Action::WorkspaceFigure(f.clone()));
+        }
+        if let Some(t) = step.tab {
+            out.push(Action::ShowTab(tab_index(t)));
+        }
         out.push(
             match (&step.camera, step.view.as_deref().and_then(preset)) {
-                (Some(c), _) => Action::LookFrom {
-                    yaw: c.azimuth_deg.to_radians() as f32,
-                    pitch: c.elevation_deg.to_radians() as f32,
-                    distance: c.distance.map(|d| d as f32),
-                },
+                (Some(c), _) => camera_action(c),
                 (None, Some(p)) => Action::CameraPreset(p),
                 (None, None) => Action::Fit,
             },
@@ -224,6 +230,60 @@ impl LessonPlayer {
     }
 }
 
+/// The camera a step names: the whole camera where it gives the look-at point and the
+/// distance (as "Save as lesson" writes it), else its angles around the arm.
+fn camera_action(c: &CameraSpec) -> Action {
+    let (yaw, pitch) = (
+        c.azimuth_deg.to_radians() as f32,
+        c.elevation_deg.to_radians() as f32,
+    );
+    match (c.target, c.distance) {
+        (Some(t), Some(distance)) => Action::SetCamera(Camera {
+            target: nalgebra::Point3::new(t[0] as f32, t[1] as f32, t[2] as f32),
+            distance: distance as f32,
+            yaw,
+            pitch,
+            projection: match c.orthographic_height {
+                Some(height) => Projection::Orthographic {
+                    height: height as f32,
+                },
+                None => Projection::Perspective {
+                    fov_y: Camera::default_fov(),
+                },
+            },
+        }),
+        _ => Action::LookFrom {
+            yaw,
+            pitch,
+            distance: c.distance.map(|d| d as f32),
+        },
+    }
+}
+
+/// The app's tab index of a lesson's tab.
+fn tab_index(t: LessonTab) -> usize {
+    use super::tabs;
+    match t {
+        LessonTab::View3d => tabs::VIEW3D,
+        LessonTab::Workspace => tabs::WORKSPACE,
+        LessonTab::SelfMotion => tabs::SELF_MOTION,
+        LessonTab::Calibration => tabs::CALIBRATION,
+        LessonTab::Exercise => tabs::EXERCISE,
+    }
+}
+
+/// The lesson's name of the app's tab `index`.
+fn lesson_tab(index: usize) -> LessonTab {
+    use super::tabs;
+    match index {
+        tabs::WORKSPACE => LessonTab::Workspace,
+        tabs::SELF_MOTION => LessonTab::SelfMotion,
+        tabs::CALIBRATION => LessonTab::Calibration,
+        tabs::EXERCISE => LessonTab::Exercise,
+        _ => LessonTab::View3d,
+    }
+}
+
 /// The overlays a step asks for, and no others.
 fn overlay_actions(overlays: &[Overlay], state: &AppState, out: &mut Actions) {
     let has = |o| overlays.contains(&o);
@@ -239,17 +299,43 @@ fn overlay_actions(overlays: &[Overlay], state: &AppState, out: &mut Actions) {
     out.push(Action::ShowConstruction(has(Overlay::Construction)));
 }
 
+/// What the class sees besides the state: the 3D view's camera, the tab, the Workspace tab's
+/// figure, the construction's step (`None`: the construction is not shown).
+#[derive(Debug, Clone)]
+pub struct Seen {
+    /// The 3D view's camera.
+    pub camera: Camera,
+    /// The central tab's index.
+    pub tab: usize,
+    /// The Workspace tab's figure (`this-model`, `2.30`).
+    pub figure: String,
+    /// The construction's step shown (0-based), if the construction is.
+    pub construction: Option<usize>,
+}
+
+impl Seen {
+    /// What the window shows: `tabs` with tab `tab` open, and the construction panel.
+    pub fn of(
+        tabs: &super::tabs::Tabs,
+        tab: usize,
+        construction: &super::panels::construction::ConstructionPanel,
+    ) -> Self {
+        Self {
+            camera: tabs.view3d.camera,
+            tab,
+            figure: tabs.workspace.figure_name(),
+            construction: construction.shown.then_some(construction.step),
+        }
+    }
+}
+
 /// The app's current setup as a lesson step (what "Save as lesson" appends): the joints, the
-/// target of `ee`, the overlays shown (`construction`: the construction overlay), the camera.
-pub fn current_step(
-    state: &AppState,
-    ee: usize,
-    construction: bool,
-    cam: &Camera,
-    caption: &str,
-) -> Step {
+/// target of `ee`, every overlay on or off, the construction's step, the tab and its figure,
+/// the whole camera.
+pub fn current_step(state: &AppState, ee: usize, seen: &Seen, caption: &str) -> Step {
+    let (cam, construction) = (&seen.camera, seen.construction.is_some());
     let d = &state.display;
-    let mut overlays = Vec::new();
+    let (mut overlays, mut off) = (Vec::new(), Vec::new());
     for (on, o) in [
         (d.workspace, Overlay::Workspace),
         (construction, Overlay::Construction),
@@ -260,6 +346,8 @@ pub fn current_step(
     ] {
         if on {
             overlays.push(o);
+        } else {
+            off.push(o);
         }
     }
     let target = state.target(ee).ok().map(|t| t.world_from_tool);
@@ -277,7 +365,16 @@ pub fn current_step(
             azimuth_deg: (cam.yaw as f64).to_degrees(),
             elevation_deg: (cam.pitch as f64).to_degrees(),
             distance: Some(cam.distance as f64),
+            target: Some(cam.target.coords.map(f64::from).into()),
+            orthographic_height: match cam.projection {
+                Projection::Orthographic { height } => Some(height.into()),
+                Projection::Perspective { .. } => None,
+            },
         }),
         overlays: Some(overlays),
+        overlays_off: Some(off),
+        tab: Some(lesson_tab(seen.tab)),
+        figure: Some(seen.figure.to_string()),
+        construction_step: seen.construction.map(|k| k + 1),
     }
 }

@@ -69,6 +69,8 @@ fn copy_of(live: &AppUi, opts: &ScreenshotOptions) -> (AppUi, crate::camera::Cam
     app.tabs.calibration.lab = live.tabs.calibration.lab.clone();
     app.ik.ee = live.ik.ee;
     app.ik.construction = live.ik.construction;
+    // the lesson's bar, as the class sees it
+    app.lesson = live.lesson.clone();
     (app, live.tabs.view3d.camera)
 }
 
@@ -157,7 +159,7 @@ fn render_window(
             if app.lesson.as_ref().is_some_and(LessonPlayer::frames_reach) {
                 app.tabs.view3d.fit_reach(&app.state);
             } else {
-                app.fit();
+                app.tabs.view3d.fit(&app.state);
             }
         }
     }

@@ -13,9 +13,7 @@ use super::panels::ik::IkPanel;
 use super::panels::model::ModelPanel;
 use super::state::{AppState, Level, StateError};
 use super::tabs::{self, TabContext, Tabs};
-use super::viewport::{
-    TextureRegistry, Viewport3d, ViewportImage, add_self_motion_of, build_scene,
-};
+use super::viewport::{TextureRegistry, Viewport3d, ViewportImage, scene_of};
 use super::{shortcuts, window};
 use crate::lesson::{Lesson, RobotSource, resolve_spec};
 pub use window::PanelRects;
@@ -163,6 +161,9 @@ impl AppUi {
     /// The view's, the window's, the files' and the lessons' actions (they never fail: what
     /// goes wrong is said in the status bar).
     fn apply_other(&mut self, action: Action) {
+        if let Some(why) = action.refusal(&self.state.hidden) {
+            return self.state.push_message(Level::Warning, why);
+        }
         let (view, s) = (&mut self.tabs.view3d, &self.state);
         match action {
             Action::CameraPreset(p) => view.preset(p, s),
@@ -172,9 +173,15 @@ impl AppUi {
                 pitch,
                 distance,
             } => view.look_from(yaw, pitch, distance, s),
+            Action::SetCamera(c) => view.set_camera(c),
+            Action::WorkspaceFigure(name) => {
+                if let Err(e) = self.tabs.workspace.choose_figure(&name, &self.state) {
+                    self.state.push_message(Level::Warning, e);
+                }
+            }
             Action::FitReach => view.fit_reach(s),
             Action::ToggleProjection => view.toggle_projection(s),
-            Action::ToggleWorkspace => self.toggle_workspace(),
+            Action::ToggleWorkspace => self.tabs.workspace.toggle_overlay(&mut self.state),
             Action::ToggleProjector => self.layout.projector ^= true,
             Action::ToggleSidePanels => self.layout.toggle_side_panels(),
             Action::Screenshot => self.screenshot_requested = true,
@@ -199,6 +206,10 @@ impl AppUi {
             Action::CloseExercise => {
                 let shown = self.tabs.exercise.close(&self.state);
                 self.apply_all(shown);
+            }
+            Action::SaveAnswer { path, text } => {
+                let saved = files::write_answer(self.file_picker.as_mut(), &path, &text);
+                self.report(saved);
             }
             _ => {} // the state's actions: `try_apply`
         }
@@ -231,7 +242,7 @@ impl AppUi {
     /// the status says why.
     fn open(&mut self, name: &str, opening: Opening) {
         let opened = match opening {
-            Opening::Key(text) => self.open_exercise_text(name, &text),
+            Opening::Exercise(text) => self.open_exercise_text(name, &text),
             Opening::Lesson(lesson) => {
                 let opened = lesson.and_then(|l| self.open_lesson(l, name));
                 return self.report(opened.map(|()| format!("lesson {name}")));
@@ -355,9 +366,8 @@ impl AppUi {
     /// Appends the current setup to the lesson (a new lesson on this robot if none is open)
     /// and writes it: to the lesson's file, else `lesson.toml`; a download in a browser.
     pub fn save_as_lesson(&mut self) -> Result<String, String> {
-        let cam = self.tabs.view3d.camera;
-        let shown = self.ik.construction.shown;
-        let step = lesson::current_step(&self.state, self.ee(), shown, &cam, "");
+        let seen = lesson::Seen::of(&self.tabs, self.tab, &self.ik.construction);
+        let step = lesson::current_step(&self.state, self.ee(), &seen, "");
         let player = self
             .lesson
             .get_or_insert_with(|| LessonPlayer::on(&self.state));
@@ -365,14 +375,16 @@ impl AppUi {
         files::write_lesson(self.file_picker.as_mut(), player)
     }
 
-    /// Opens a sheet from its key's text (`name` for messages): loads its arm at its q, hides
-    /// what the sheet asks for, shows the Exercise tab. The app keeps its state on an error.
+    /// Opens a student's sheet (exam) or a teacher's key (practice) from its text (`name` for
+    /// messages): loads its arm at its q, hides what the sheet asks for (in an exam every way
+    /// out of the answer too), shows the Exercise tab. The app keeps its state on an error.
     pub fn open_exercise_text(&mut self, name: &str, text: &str) -> Result<(), String> {
-        let key = tabs::exercise::parse_key(name, text)?;
-        let loaded = self.load_model("sheet.toml", Some(&key.model));
-        loaded.map_err(|e| format!("{name}: the key's model: {e}"))?;
-        let sheet = self.tabs.exercise.open(key, &self.state);
-        self.apply_all(sheet);
+        let opening = tabs::exercise::Opening::read(name, text)?;
+        let (model, arm) = opening.arm();
+        let loaded = self.load_model(model, Some(arm));
+        loaded.map_err(|e| format!("{name}: the sheet's arm: {e}"))?;
+        let opened = self.tabs.exercise.open(opening, name, &self.state);
+        self.apply_all(opened);
         Ok(())
     }
 
@@ -380,11 +392,6 @@ impl AppUi {
     /// [`tabs::view3d::View3d::gizmo_grip`]).
     pub fn gizmo_grip(&self) -> Option<egui::Pos2> {
         self.tabs.view3d.gizmo_grip(&self.state, self.ee())
-    }
-
-    /// Frames the arm in the 3D view.
-    pub fn fit(&mut self) {
-        self.tabs.view3d.fit(&self.state);
     }
 
     /// Renders the 3D scene (the arm, its ghosts and targets, and every overlay the tabs and
@@ -397,10 +404,12 @@ impl AppUi {
     ) -> Option<ViewportImage> {
         self.tabs.view3d.frame_if_needed(&self.state);
         let ee = self.ee();
-        let mut scene = build_scene(&self.state, ee, self.layout.projector);
-        self.tabs.decorate(&self.state, &mut scene);
-        self.ik.decorate(&self.state, ee, &mut scene);
-        add_self_motion_of(&mut scene, &mut self.state, ee);
+        let scene = scene_of(
+            &mut self.state,
+            (&self.tabs, &mut self.ik),
+            ee,
+            self.layout.projector,
+        );
         #[cfg(feature = "app")]
         if let Some(rec) = &mut self.recorder {
             let view = &self.tabs.view3d;
@@ -410,13 +419,6 @@ impl AppUi {
         image
             .map_err(|e| self.state.push_message(Level::Error, e))
             .ok()
-    }
-
-    fn toggle_workspace(&mut self) {
-        self.state.display.workspace ^= true;
-        if self.state.display.workspace {
-            self.tabs.workspace.ensure_started(&self.state);
-        }
     }
 
     /// Lays out the whole window in `ui`; `viewport` is the image of the 3D view. The parts
@@ -458,19 +460,16 @@ impl AppUi {
                 follow: &mut self.tabs.view3d.follow,
                 #[cfg(feature = "app")]
                 recording: self.recorder.as_ref().map(super::recorder::Recorder::len),
+                exam: self.state.hidden.exam,
             };
             super::toolbar::show(&mut cx, ui, &mut out);
         });
         self.rects.top = top.response.rect;
         let (ee, job) = (self.ee(), self.tabs.workspace.job.as_ref());
-        let progress = job.and_then(|j| j.progress());
-        let bottom = egui::Panel::bottom("status").show(ui, |ui| {
-            window::status_bar(ui, &self.state, ee, progress, &mut self.message_seen);
-        });
-        self.rects.bottom = bottom.response.rect;
-        if let Some(player) = &mut self.lesson {
-            egui::Panel::bottom("lesson").show(ui, |ui| player.bar(ui, &mut out));
-        }
+        let status = (&self.state, ee, job.and_then(|j| j.progress()));
+        let lesson = self.lesson.as_mut();
+        self.rects.bottom =
+            window::bottom_bars(ui, status, &mut self.message_seen, lesson, &mut out);
         let panels = (&mut self.model, &mut self.ik, &mut self.rects);
         window::side_panels(ui, &self.layout, panels, &mut self.state, &mut out);
         let ee = self.ee();

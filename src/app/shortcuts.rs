@@ -20,7 +20,9 @@ pub fn read(
     out: &mut Actions,
 ) {
     command_shortcuts(ctx, out);
-    if ctx.egui_wants_keyboard_input() {
+    // A text field has the keyboard, or a list is open (the model list: a click meant for a
+    // text field that lands on it must not turn the typed path into shortcuts).
+    if ctx.egui_wants_keyboard_input() || egui::Popup::is_any_open(ctx) {
         return;
     }
     let pressed = |k: Key| ctx.input(|i| i.key_pressed(k));

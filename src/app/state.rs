@@ -145,9 +145,19 @@ pub struct Hidden {
     pub pose: bool,
     /// The IK solutions (an ik sheet).
     pub solutions: bool,
+    /// The workspace figure and overlay (a workspace sheet).
+    pub workspace: bool,
+    /// An exam (a student's sheet file, no key): besides, every way out of the answer is off
+    /// (saving the model or a lesson, the symbols, figure export, screenshots and recordings).
+    pub exam: bool,
 }
 
 impl AppState {
+    /// Counts the models loaded (a tab's cache of the model is stale when it changes).
+    pub fn generation(&self) -> u64 {
+        self.generation
+    }
+
     /// The state for `robot` (loaded from `spec`, a built-in name or a path): q at the "ready"
     /// configuration if the robot has one (else zero), clamped into the limits; each target at
     /// its end-effector; lock off; degrees.

@@ -26,6 +26,8 @@ pub struct ToolbarContext<'a> {
     /// Frames recorded so far while the 3D view is being recorded.
     #[cfg(feature = "app")]
     pub recording: Option<usize>,
+    /// An exam sheet is open: no screenshot, no recording.
+    pub exam: bool,
 }
 
 /// Lays the toolbar out.
@@ -47,7 +49,12 @@ pub fn show(app: &mut ToolbarContext<'_>, ui: &mut egui::Ui, out: &mut Actions) 
         // Large text or a narrow window: the presets fold into a menu, so the row still fits
         // (the buttons take about 280 points, and about 470 follow them, the model name shrinking).
         if projector || ui.available_width() < 760.0 {
-            ui.menu_button("View", |ui| view_buttons(app, ui, out));
+            ui.menu_button("View", |ui| {
+                view_buttons(app, ui, out);
+                // In projector mode the left panel is usually closed: the model list is here.
+                ui.separator();
+                ui.menu_button("Model", |ui| model_menu(ui, out));
+            });
         } else {
             view_buttons(app, ui, out);
         }
@@ -69,8 +76,9 @@ pub fn show(app: &mut ToolbarContext<'_>, ui: &mut egui::Ui, out: &mut Actions) 
             out.push(Action::ToggleProjector);
         }
         if ui
-            .button("Screenshot")
+            .add_enabled(!app.exam, egui::Button::new("Screenshot"))
             .on_hover_text("Save the window as armlab-<model>-<n>.png in the current folder")
+            .on_disabled_hover_text("Off during an exam")
             .clicked()
         {
             out.push(Action::Screenshot);
@@ -78,7 +86,7 @@ pub fn show(app: &mut ToolbarContext<'_>, ui: &mut egui::Ui, out: &mut Actions) 
         // Record, except in projector mode where the row has no room for it (1200 px); a
         // recording in progress always shows its Stop.
         #[cfg(feature = "app")]
-        if app.recording.is_some() || !projector || ui.available_width() > 130.0 {
+        if app.recording.is_some() || (!app.exam && (!projector || ui.available_width() > 130.0)) {
             let (label, hint) = match app.recording {
                 None => (
                     "Record".to_string(),
@@ -142,4 +150,23 @@ fn show_menu(app: &mut ToolbarContext<'_>, ui: &mut egui::Ui, out: &mut Actions)
         }
         ui.checkbox(app.follow, "Camera follows the target");
     });
+}
+
+/// The projector's model menu: every built-in model, and a model file.
+fn model_menu(ui: &mut egui::Ui, out: &mut Actions) {
+    egui::ScrollArea::vertical()
+        .max_height(ui.ctx().content_rect().height() * 0.7)
+        .show(ui, |ui| {
+            for b in crate::kinematics::models::BUILT_INS {
+                if ui.button(b.name).on_hover_text(b.summary).clicked() {
+                    out.push(Action::Load(b.name.to_string()));
+                    ui.close();
+                }
+            }
+        });
+    ui.separator();
+    if ui.button("Open file...").clicked() {
+        out.push(Action::OpenDialog);
+        ui.close();
+    }
 }

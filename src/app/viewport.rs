@@ -313,6 +313,21 @@ pub fn add_measured_poses(scene: &mut Scene, robot: &crate::kinematics::Robot, p
     }
 }
 
+/// The whole 3D scene of the window: [`build_scene`], what every tab and the right panel
+/// add over it, and the self-motion's path of `ee`.
+pub fn scene_of(
+    state: &mut AppState,
+    (tabs, ik): (&super::tabs::Tabs, &mut super::panels::ik::IkPanel),
+    ee: usize,
+    projector: bool,
+) -> Scene {
+    let mut scene = build_scene(state, ee, projector);
+    tabs.decorate(state, &mut scene);
+    ik.decorate(state, ee, &mut scene);
+    add_self_motion_of(&mut scene, state, ee);
+    scene
+}
+
 /// The app's 3D scene for the current state: the arm, ghosts of the other solutions labelled
 /// with their posture (greyed when outside the limits), the targets and trails (the tabs add
 /// their overlays: the workspace dots, the measured poses). `ee` is the end-effector the IK
@@ -320,13 +335,21 @@ pub fn add_measured_poses(scene: &mut Scene, robot: &crate::kinematics::Robot, p
 pub fn build_scene(state: &AppState, ee: usize, projector: bool) -> Scene {
     let robot = state.robot();
     let d = state.display;
+    // A dh-table sheet hides the joints' frames (they are its answer): only frames 0 and n,
+    // as the sheet's figure draws them.
+    let hide_dh = state.hidden.dh_table;
     let style = ArmStyle {
-        frames: d.frames,
-        frame_labels: d.labels,
+        frames: d.frames && !hide_dh,
+        frame_labels: d.labels && !hide_dh,
         grid: d.grid,
         ..ArmStyle::default()
     };
     let mut scene = arm_scene(robot, state.q(), &style).unwrap_or_default();
+    if hide_dh && let Ok(tool) = robot.fk(state.q()) {
+        let len = 0.18 * robot.characteristic_length().max(0.1);
+        crate::scene::frame_triad(&mut scene, &robot.base, "0", len);
+        crate::scene::frame_triad(&mut scene, &tool, &robot.dof().to_string(), len);
+    }
     if !d.all_labels && robot.end_effectors().len() > 1 {
         crate::scene::label_driven_chain_only(&mut scene, robot, ee);
     }

@@ -65,7 +65,7 @@ pub fn side_panels(
             .size_range(Layout::width_range(width, window, other))
             .show(ui, |ui| {
                 fit_to_panel(ui);
-                model.ui(state, ui, layout.projector, out);
+                model.ui(state, ik.ee, ui, layout.projector, out);
             });
         rects.left = Some(r.response.rect);
     }
@@ -89,6 +89,25 @@ fn fit_to_panel(ui: &mut egui::Ui) {
     ui.style_mut().wrap_mode = Some(egui::TextWrapMode::Wrap);
     let w = ui.available_width();
     ui.set_max_width(w);
+}
+
+/// The bars at the window's bottom: the status bar ([`status_bar`], with its state, end-effector
+/// and the workspace job's progress) and, above it, the lesson's bar when a lesson is open.
+/// Returns the status bar's rectangle.
+pub fn bottom_bars(
+    ui: &mut egui::Ui,
+    (state, ee, progress): (&AppState, usize, Option<f32>),
+    seen: &mut (u64, f64),
+    lesson: Option<&mut super::lesson::LessonPlayer>,
+    out: &mut Actions,
+) -> egui::Rect {
+    let bottom = egui::Panel::bottom("status").show(ui, |ui| {
+        status_bar(ui, state, ee, progress, seen);
+    });
+    if let Some(player) = lesson {
+        egui::Panel::bottom("lesson").show(ui, |ui| player.bar(ui, out));
+    }
+    bottom.response.rect
 }
 
 /// The status bar: the workspace job's `progress` (0 to 1), and the newest message of `state`

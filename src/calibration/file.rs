@@ -124,7 +124,7 @@ pub fn parse_setup(
                 source_name: source_name.into(),
                 line: 0,
                 problem: format!(
-                    "a robot_cal_tools YAML file holds full poses: use --setup pose or tracker, not {}",
+                    "a robot_cal_tools YAML file holds full poses: read it with the pose or tracker setup, not {}",
                     setup.name()
                 ),
             });
@@ -688,6 +688,13 @@ impl Parser<'_> {
             }
         }
         if let Some(r) = row.radius {
+            // As a `# radius_m R` line: a contact radius is positive.
+            if r <= 0.0 {
+                return Err(self.err(
+                    line,
+                    format!("radius {r} m: the contact radius must be positive"),
+                ));
+            }
             self.radius = Some(r);
         }
         let [qa, qb] = q;

@@ -247,7 +247,7 @@ fn parallel_reason(model: &ParameterModel, ka: Kind, ja: usize, kb: Kind, jb: us
         let hint = if model.hayati_rows().contains(&ja) {
             String::new()
         } else {
-            format!("; Hayati's beta{ja} instead of d{ja} (--hayati auto) removes the ambiguity")
+            format!("; Hayati's beta{ja} instead of d{ja} removes the ambiguity")
         };
         format!(" (axes {ja} and {jb} are parallel: plain DH cannot place the common normal{hint})")
     } else {

@@ -36,6 +36,7 @@
 mod accuracy;
 mod chain;
 mod correct;
+mod doubt;
 mod experiment;
 mod file;
 mod identify;
@@ -50,6 +51,7 @@ mod yaml;
 pub use accuracy::{AccuracyMap, accuracy_map};
 pub use chain::{dh_form, with_calibrated_origins};
 pub use correct::{TargetCorrection, correct_targets};
+pub use doubt::{Doubt, DoubtfulParameter, doubt_header, doubtful_parameters};
 pub use experiment::{
     Corrections, Experiment, ExperimentError, ModelOptions, NamedText, Selection, Simulation,
     Source, dh_robot, measurement_template, run,

@@ -32,8 +32,10 @@ pub(super) fn parse_rct_yaml(
         line,
         problem,
     };
-    let docs = YamlLoader::load_from_str(text)
-        .map_err(|e| err(e.marker().line(), format!("not YAML: {e}")))?;
+    let docs = YamlLoader::load_from_str(text).map_err(|e| {
+        let problem = format!("not YAML: {} (column {})", e.info(), e.marker().col() + 1);
+        err(text_line(text, e.marker().line()), problem)
+    })?;
     let Some(Yaml::Hash(map)) = docs.first() else {
         return Err(err(
             0,
@@ -110,6 +112,27 @@ fn numbers(y: &Yaml) -> Option<Vec<f64>> {
         Yaml::BadValue | Yaml::Null => Some(Vec::new()),
         _ => None,
     }
+}
+
+/// The line of `text`, as `str::lines` counts them (the line numbers of every other error),
+/// where YAML's line `yaml_line` starts (1-based; YAML also breaks lines at a lone `\r`).
+fn text_line(text: &str, yaml_line: usize) -> usize {
+    let (mut yaml, mut line) = (1, 1);
+    let bytes = text.as_bytes();
+    for (i, &c) in bytes.iter().enumerate() {
+        if yaml >= yaml_line {
+            break;
+        }
+        match c {
+            b'\n' => {
+                yaml += 1;
+                line += 1;
+            }
+            b'\r' if bytes.get(i + 1) != Some(&b'\n') => yaml += 1,
+            _ => {}
+        }
+    }
+    line
 }
 
 /// The 1-based line where an observation's key starts (0 when not found).

@@ -85,7 +85,9 @@ pub struct NewArgs {
     /// Number of students: one sheet each, all different.
     #[arg(long, default_value_t = 1)]
     pub class: usize,
-    /// Folder to write `student-NN/sheet.md`, `student-NN/figure.png` and `keys/student-NN.json`.
+    /// Folder to write each student's `student-NN/sheet.md`, `student-NN/figure.png` and
+    /// `student-NN/sheet.json` (the sheet the app opens in exam mode: no answer in it), and
+    /// the teacher's `keys/student-NN.json`.
     #[arg(long)]
     pub out: PathBuf,
     /// Figure size in pixels, WIDTHxHEIGHT.
@@ -167,6 +169,14 @@ fn new(args: &NewArgs, out: &mut dyn Write) -> Result<(), CliError> {
             sheet.markdown, args.class, args.seed
         );
         std::fs::write(&md, text).map_err(|e| io_error(&md, e))?;
+        let sheet_path = dir.join("sheet.json");
+        let sheet_file =
+            crate::exercise::SheetFile::of(&sheet).map_err(|e| CliError::BadTarget {
+                source_name: "exercise new".into(),
+                reason: e.to_string(),
+            })?;
+        let json = serde_json::to_string_pretty(&sheet_file).map_err(std::io::Error::from)?;
+        std::fs::write(&sheet_path, json + "\n").map_err(|e| io_error(&sheet_path, e))?;
         let png = dir.join("figure.png");
         let img = figure(&mut figures, &sheet, args.size.0)?;
         write_png(&img, &png)?;
@@ -175,8 +185,9 @@ fn new(args: &NewArgs, out: &mut dyn Write) -> Result<(), CliError> {
         std::fs::write(&key_path, json + "\n").map_err(|e| io_error(&key_path, e))?;
         writeln!(
             out,
-            "wrote {}, {} and {} ({})",
+            "wrote {}, {}, {} and {} ({})",
             md.display(),
+            sheet_path.display(),
             png.display(),
             key_path.display(),
             sheet.robot.name

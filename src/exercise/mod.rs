@@ -9,6 +9,7 @@
 //! workspace), `redundancy` (n, m, r for a stated task).
 
 pub mod dh_table;
+pub mod sheet_file;
 
 use crate::kinematics::ik::Target;
 use crate::kinematics::ik::closed_form::{ClosedForm, Solutions, Verify};
@@ -16,11 +17,13 @@ use crate::kinematics::models::built_in;
 use crate::kinematics::pose::pose_to_rows;
 use crate::kinematics::redundancy::{Redundancy, Task};
 use crate::kinematics::{Convention, DhJoint, DhRow, JointKind, Pose, Robot};
+use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 use thiserror::Error;
 
 pub use dh_table::Tolerance;
+pub use sheet_file::{SHEET_FORMAT, SheetFile};
 
 /// The format tag written into every key.
 pub const KEY_FORMAT: &str = "armlab exercise key 1";
@@ -319,7 +322,7 @@ pub fn generate(
                 "# Direct kinematics\n\n{}\n\nThe figure shows the arm with its DH frames; its table:\n\n{}\n\
                  Compute the end-effector pose T = T_n^0(q) (2.50) at\n\n    q = {shown}\n\n\
                  Answer with a text file of four rows of four numbers (the rows of T, metres), \
-                 then `armlab exercise check KEY ANSWER`.\n",
+                 hand it in: the app's Exercise tab saves it under your sheet's name (`student-NN.txt`).\n",
                 arm.name,
                 dh_table_markdown(&arm)
             );
@@ -380,6 +383,37 @@ fn dh_table_markdown(robot: &Robot) -> String {
     s
 }
 
+/// Each actuated joint's axis at `q` in the base frame: a point on it and its direction (z of
+/// the frame before the joint; for the modified convention z of the joint's own frame). (m)
+pub(crate) fn joint_axes(arm: &Robot, q: &[f64]) -> Vec<(Vector3<f64>, Vector3<f64>)> {
+    let frames = arm.fk_frames(q).unwrap_or_default();
+    (0..arm.dof())
+        .map(|k| {
+            let j = arm.dof_joint(k);
+            let parent = j.parent.map_or(Pose::identity(), |p| frames[p]);
+            let axis_frame = parent * j.pre;
+            let (f, axis) = match j.geometry {
+                crate::kinematics::JointGeometry::Dh {
+                    convention: Convention::Modified,
+                    row,
+                } => (
+                    axis_frame
+                        * crate::kinematics::pose::rot_x(row.alpha)
+                        * crate::kinematics::pose::trans_x(row.a),
+                    Vector3::z(),
+                ),
+                crate::kinematics::JointGeometry::Dh { .. } => (axis_frame, Vector3::z()),
+                // A URDF joint: its origin, and its own axis in that frame.
+                crate::kinematics::JointGeometry::Origin {
+                    parent_from_joint,
+                    axis,
+                } => (axis_frame * parent_from_joint, axis.into_inner()),
+            };
+            (f.translation.vector, f.rotation * axis)
+        })
+        .collect()
+}
+
 /// The dh-table question: the arm's joint axes in the base frame at the drawn q (so that the
 /// lengths can be read off), the tool frame, and what to hand in.
 fn dh_question(arm: &Robot, q: &[f64], shown: &str) -> String {
@@ -391,31 +425,11 @@ fn dh_question(arm: &Robot, q: &[f64], shown: &str) -> String {
         arm.dof(),
         arm.dof()
     );
-    let frames = arm.fk_frames(q).unwrap_or_default();
-    for k in 0..arm.dof() {
-        let j = arm.dof_joint(k);
-        // the axis of joint k is z of the frame before it (its parent's output frame)
-        let parent = j.parent.map_or(Pose::identity(), |p| frames[p]);
-        let axis_frame = parent * j.pre;
-        let (p, z) = match j.geometry {
-            crate::kinematics::JointGeometry::Dh {
-                convention: Convention::Modified,
-                row,
-            } => {
-                let f = axis_frame
-                    * crate::kinematics::pose::rot_x(row.alpha)
-                    * crate::kinematics::pose::trans_x(row.a);
-                (f.translation.vector, f.rotation * nalgebra::Vector3::z())
-            }
-            _ => (
-                axis_frame.translation.vector,
-                axis_frame.rotation * nalgebra::Vector3::z(),
-            ),
-        };
+    for (k, (p, z)) in joint_axes(arm, q).iter().enumerate() {
         s.push_str(&format!(
             "| {} | {} | ({:.3}, {:.3}, {:.3}) | ({:.3}, {:.3}, {:.3}) |\n",
             k + 1,
-            j.kind.as_str(),
+            arm.dof_joint(k).kind.as_str(),
             p.x,
             p.y,
             p.z,
@@ -442,7 +456,7 @@ fn dh_question(arm: &Robot, q: &[f64], shown: &str) -> String {
          (`name`, `convention`, one `[[joints]]` per row with `type`, `a`, `alpha`, `d`, and \
          `offset` where your q differs from the figure's), with frame 0 the base frame and frame \
          n the tool frame. Any valid choice of the z axes' directions and of the x axes is \
-         accepted. Check it with `armlab exercise check KEY answer.toml`.\n",
+         accepted. Hand it in as `student-NN.toml` (the app's Exercise tab writes it from the grid).\n",
     );
     s
 }
@@ -465,7 +479,7 @@ fn redundancy_sheet(sheet: &mut Sheet, arm: &Robot, rng: &mut Rng, key: Key) {
         "# Redundancy\n\n{} ({} joints, figure). The task: {} ({}).\n\n\
          Give n (joint-space dimension), m (operational-space dimension) and r (the \
          components the task prescribes), Sect. 2.10.2, as one row `n m r`; then \
-         `armlab exercise check KEY ANSWER`.\n",
+         hand it in: the app's Exercise tab saves it under your sheet's name (`student-NN.txt`).\n",
         arm.name,
         arm.dof(),
         task.name(),
@@ -530,7 +544,7 @@ fn identifiability_sheet(
          of {what}, at many well spread joint vectors, with every DH parameter free. Which \
          parameters can the measurements not identify on their own? Answer with their names \
          (`d2`, `theta6`, ...), one per line or separated by commas (nothing for none); then \
-         `armlab exercise check KEY ANSWER`.\n",
+         hand it in: the app's Exercise tab saves it under your sheet's name (`student-NN.txt`).\n",
         arm.name,
         dh_table_markdown(arm)
     );
@@ -564,7 +578,7 @@ fn ik_sheet(sheet: &mut Sheet, arm: &Robot, rng: &mut Rng, key: Key) -> Result<(
         "# Inverse kinematics\n\n{}; its DH table:\n\n{}\nFind every joint vector q that puts the \
          end-effector at the pose (rows of T, m; the frame drawn in the figure)\n\n    {}\n\n\
          Answer with one row per solution (radians; a first line `# deg` for degrees), in any \
-         order; then `armlab exercise check KEY ANSWER`.\n",
+         order; hand it in: the app's Exercise tab saves it under your sheet's name (`student-NN.txt`).\n",
         arm.name,
         dh_table_markdown(arm),
         target
@@ -637,7 +651,7 @@ fn workspace_sheet(
              that turn fully (Sect. 2.10.1). For each point of the plane below, how many postures \
              reach it (0, 1 or 2)? And what is the area of the workspace (m^2)?\n\n{}\n\n\
              Answer with six rows of one number (the counts, in order) and a seventh row with \
-             the area; then `armlab exercise check KEY ANSWER`.\n",
+             the area; hand it in: the app's Exercise tab saves it under your sheet's name (`student-NN.txt`).\n",
         list.join("\n")
     );
     Ok(Sheet {
@@ -732,6 +746,11 @@ pub fn parse_rows(text: &str, file: &str) -> Result<Vec<Vec<f64>>, ExerciseError
             let v: f64 = field.parse().map_err(|_| ExerciseError::Answer {
                 reason: format!("{file}: line {}: {field:?} is not a number", i + 1),
             })?;
+            if !v.is_finite() {
+                return Err(ExerciseError::Answer {
+                    reason: format!("{file}: line {}: {field:?} is not a finite number", i + 1),
+                });
+            }
             row.push(if degrees { v.to_radians() } else { v });
         }
         rows.push(row);

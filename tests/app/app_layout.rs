@@ -429,3 +429,49 @@ fn the_construction_steps_come_into_view_when_shown() {
         );
     }
 }
+
+/// Issue 46, item 8: V in projector mode showed both panels, the left one so narrow that it
+/// wrapped "Open" as "Ope n". Now it shows one panel at a time, the left one at least as wide
+/// as in normal mode, every layout invariant kept; the model list is in the toolbar too.
+#[test]
+fn v_in_projector_mode_gives_a_readable_panel_and_the_model_list_is_in_the_toolbar() {
+    let size = [1280.0, 800.0];
+    let normal = harness(AppUi::new(AppState::from_spec("puma560").unwrap()), size);
+    let normal_left = normal.state().rects.left.unwrap().width();
+    let mut app = AppUi::new(AppState::from_spec("puma560").unwrap());
+    app.layout.projector = true;
+    let mut h = harness(app, size);
+    assert!(h.state().rects.left.is_none() && h.state().rects.right.is_some());
+    h.key_press(egui::Key::V);
+    settle(&mut h);
+    let r = h.state().rects;
+    let left = r.left.expect("V shows the left panel");
+    assert!(r.right.is_none(), "one panel at a time in projector mode");
+    assert!(
+        left.width() >= normal_left,
+        "left panel {} px, {normal_left} px in normal mode",
+        left.width()
+    );
+    let bad = check(&h, size, "projector, V");
+    assert!(bad.is_empty(), "{bad:#?}");
+    // the Open button is one line: as high as the Help button
+    let height = |h: &Harness<'static, AppUi>, label: &str| {
+        rect_of(&h.get_by_label(label)).unwrap().height()
+    };
+    let (open, help) = (height(&h, "Open"), height(&h, "Help (H)"));
+    assert!(open <= help + 0.5, "Open {open} px high, Help {help} px");
+    h.key_press(egui::Key::V);
+    settle(&mut h);
+    assert!(h.state().rects.left.is_none() && h.state().rects.right.is_none());
+    h.key_press(egui::Key::V);
+    settle(&mut h);
+    assert!(h.state().rects.left.is_none() && h.state().rects.right.is_some());
+    // the model list without any panel
+    h.get_by_label("View").click();
+    settle(&mut h);
+    h.get_by_label("Model").click();
+    settle(&mut h);
+    h.get_by_label("stanford").click();
+    settle(&mut h);
+    assert_eq!(h.state().state.spec(), "stanford");
+}

@@ -731,3 +731,107 @@ fn a_general_arm_under_the_posture_lock_keeps_its_branch_by_continuity() {
         prev = s.q().to_vec();
     }
 }
+
+/// Issue 46, item 10: a drag through the wrist singularity (q5 from +0.05 to -0.05 rad on the
+/// Puma) makes the closest solution another posture: unlocked, the arm takes it and the status
+/// bar says so, naming L; dragging on within the posture says nothing more.
+#[test]
+fn a_posture_replaced_during_a_drag_is_announced_with_the_lock_key() {
+    let mut s = state("puma560");
+    let robot = s.robot().clone();
+    let q = [0.2, -0.6, 0.4, 0.3, 0.05, 0.1];
+    s.set_q(&q).unwrap();
+    s.set_target(0, robot.fk(&q).unwrap()).unwrap();
+    let before = s.target(0).unwrap().posture;
+    let said = |s: &AppState| {
+        s.messages()
+            .iter()
+            .filter(|m| m.text.contains("L locks"))
+            .count()
+    };
+    assert_eq!(said(&s), 0);
+    // the drag, in small steps across q5 = 0
+    for k in 1..=10 {
+        let mut p = q;
+        p[5] = 0.1 + 0.01 * f64::from(k);
+        p[4] = 0.05 - 0.01 * f64::from(k);
+        p[3] = 0.3;
+        s.set_target(0, robot.fk(&p).unwrap()).unwrap();
+    }
+    let after = s.target(0).unwrap().posture;
+    assert!(
+        !before.unwrap().same_label(&after.unwrap()),
+        "{before:?} -> {after:?}: the drag did not change the posture"
+    );
+    assert_eq!(said(&s), 1, "{:?}", s.messages());
+    // the same drag with the lock on: no silent change, and no such message
+    let mut s = state("puma560");
+    s.set_q(&q).unwrap();
+    s.set_target(0, robot.fk(&q).unwrap()).unwrap();
+    s.set_lock(true);
+    for k in 1..=10 {
+        let mut p = q;
+        p[4] = 0.05 - 0.01 * f64::from(k);
+        s.set_target(0, robot.fk(&p).unwrap()).unwrap();
+    }
+    // locked, the branch continues through the singularity and says so in its own words
+    assert_eq!(said(&s), 0);
+    let locked = |s: &AppState| {
+        s.messages()
+            .iter()
+            .any(|m| m.text.starts_with("posture lock"))
+    };
+    assert!(
+        before
+            .unwrap()
+            .same_label(&s.target(0).unwrap().posture.unwrap())
+            || locked(&s),
+        "{:?}",
+        s.messages()
+    );
+}
+
+/// Issue 46, item 9: every robot description opens at a regular pose, as the built-ins do
+/// (the Panda opened at its near-singular zero pose). Checked independently: the Jacobian by
+/// finite differences of the tool pose, linear rows over the arm's reach, and its smallest
+/// singular value against its largest (above 1e-2, the app's "near" threshold).
+#[test]
+fn every_robot_description_opens_at_a_regular_pose() {
+    let mut bad = Vec::new();
+    for entry in std::fs::read_dir("tests/data/urdf_corpus").unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_none_or(|e| e != "urdf") {
+            continue;
+        }
+        let s = AppState::from_spec(path.to_str().unwrap()).unwrap();
+        let robot = s.robot();
+        let arm = armlab::kinematics::arm::arm_of(robot, 0, s.q()).unwrap();
+        let n = arm.robot.dof();
+        if n < 6 {
+            continue; // a hand or gripper: no six-dimensional task
+        }
+        let q: Vec<f64> = arm.free.iter().map(|&k| s.q()[k]).collect();
+        let reach = arm.robot.longest_chain_length().max(0.1);
+        let at = |q: &[f64]| arm.robot.fk(q).unwrap();
+        let t0 = at(&q);
+        let h = 1e-6;
+        let mut jac = nalgebra::DMatrix::<f64>::zeros(6, n);
+        for k in 0..n {
+            let mut qp = q.clone();
+            qp[k] += h;
+            let t = at(&qp);
+            let dp = (t.translation.vector - t0.translation.vector) / (h * reach);
+            let dr = (t.rotation * t0.rotation.inverse()).scaled_axis() / h;
+            for r in 0..3 {
+                jac[(r, k)] = dp[r];
+                jac[(r + 3, k)] = dr[r];
+            }
+        }
+        let sv = jac.svd(false, false).singular_values;
+        let ratio = sv.min() / sv.max();
+        if ratio < 1e-2 {
+            bad.push(format!("{}: ratio {ratio:.1e} at {q:?}", path.display()));
+        }
+    }
+    assert!(bad.is_empty(), "{bad:#?}");
+}

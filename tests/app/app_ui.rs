@@ -561,18 +561,18 @@ fn settings(app: &AppUi) -> String {
 /// it fired a shortcut (posture lock, ortho, workspace, projector, Space's next posture).
 #[test]
 fn a_lesson_caption_takes_a_whole_sentence_and_no_key_fires_a_shortcut() {
-    use armlab::app::lesson::{LessonPlayer, current_step};
+    use armlab::app::lesson::{LessonPlayer, Seen, current_step};
     const SENTENCE: &str = "Elbow down: theta1 = alpha - beta, with q2 and q3 (Fig. 2.23)";
     let mut app = AppUi::new(AppState::from_spec("puma560").unwrap());
     let mut player = LessonPlayer::on(&app.state);
     for _ in 0..2 {
-        player.append(current_step(
-            &app.state,
-            0,
-            false,
-            &app.tabs.view3d.camera,
-            "",
-        ));
+        let seen = Seen {
+            camera: app.tabs.view3d.camera,
+            tab: 0,
+            figure: "this-model".into(),
+            construction: None,
+        };
+        player.append(current_step(&app.state, 0, &seen, ""));
     }
     player.step = 0;
     app.lesson = Some(player);
@@ -653,5 +653,241 @@ fn a_long_status_message_wraps_inside_the_window() {
         rect.y1 - rect.y0 > 20.0,
         "one line of {} px: not wrapped",
         rect.x1 - rect.x0
+    );
+}
+
+/// Issue 46, item 2 (exam mode): the student's sheet file opens the arm and the question with
+/// no key; Save, Save as, Save as lesson, the Symbols and the screenshot do nothing; the grid's
+/// answer is saved beside the sheet as `student-01.toml`, and the teacher's class grading gives
+/// it full marks from the key the student never had.
+#[test]
+fn an_exam_sheet_opens_without_its_key_and_nothing_can_be_copied_out() {
+    use armlab::exercise::{Kind, SheetFile, generate};
+    let dir = std::env::temp_dir().join(format!("armlab-exam-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let puma = armlab::kinematics::models::built_in("puma560").unwrap();
+    let sheet = generate(Kind::DhTable, Some(&puma), 5, 1).unwrap();
+    let student = dir.join("student-01");
+    std::fs::create_dir_all(&student).unwrap();
+    let sheet_path = student.join("sheet.json");
+    let file = serde_json::to_string(&SheetFile::of(&sheet).unwrap()).unwrap();
+    std::fs::write(&sheet_path, &file).unwrap();
+    // the sheet holds no key (the arm's form is checked in the compute tests)
+    for word in [
+        "armlab exercise key",
+        "\"answer\"",
+        "\"model\"",
+        "tolerance",
+    ] {
+        assert!(!file.contains(word), "the sheet file holds {word:?}");
+    }
+    let mut app = AppUi::new(AppState::from_spec("planar3").unwrap());
+    app.load(sheet_path.to_str().unwrap());
+    assert!(app.state.hidden.exam && app.state.hidden.dh_table);
+    assert_eq!(app.state.robot().dof(), 6);
+    let opened = app.tabs.exercise.sheet.as_ref().unwrap();
+    assert!(opened.key.is_none());
+    assert_eq!(
+        std::path::Path::new(&opened.answer_path),
+        student.join("student-01.toml")
+    );
+    // the arm drawn is the key's arm at the sheet's q (independently: the key's own model)
+    let tool = app.state.robot().fk(app.state.q()).unwrap();
+    let want = sheet.robot.fk(&sheet.q).unwrap();
+    assert!((tool.to_homogeneous() - want.to_homogeneous()).amax() < 1e-12);
+    // the student types the Puma's table (z1 the other way round)
+    let (_, table) = puma.dh_table().unwrap();
+    let open = app.tabs.exercise.sheet.as_mut().unwrap();
+    for (row, (_, r, _)) in open.rows.iter_mut().zip(&table) {
+        row.a = r.a.to_string();
+        row.alpha_deg = r.alpha.to_degrees().to_string();
+        row.d = r.d.to_string();
+    }
+    open.rows[0].alpha_deg = "-90".into();
+    let mut h = Harness::builder()
+        .with_size(egui::vec2(1280.0, 1600.0))
+        .build_ui_state(|ui, app: &mut AppUi| app.show(ui, None), app);
+    h.run();
+    assert!(
+        h.query_by_label("Check").is_none(),
+        "an exam grades nothing"
+    );
+    assert!(
+        h.query_by_label("Off while the exercise is answered")
+            .is_some()
+    );
+    for button in ["Screenshot", "Save model as...", "Save as lesson", "Save"] {
+        h.get_by_label(button).click();
+        h.run();
+    }
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::S);
+    h.run();
+    assert!(!h.state().screenshot_requested);
+    let written: Vec<_> = std::fs::read_dir(&student).unwrap().collect();
+    assert_eq!(
+        written.len(),
+        1,
+        "only the sheet is in the student's folder"
+    );
+    h.get_by_label("Save answer").click();
+    h.run();
+    assert!(student.join("student-01.toml").is_file());
+    // the teacher grades the folder with the key
+    let keys = dir.join("keys");
+    let answers = dir.join("answers");
+    std::fs::create_dir_all(&keys).unwrap();
+    std::fs::create_dir_all(&answers).unwrap();
+    std::fs::write(
+        keys.join("student-01.json"),
+        serde_json::to_string(&sheet.key).unwrap(),
+    )
+    .unwrap();
+    std::fs::copy(
+        student.join("student-01.toml"),
+        answers.join("student-01.toml"),
+    )
+    .unwrap();
+    let key = serde_json::from_str(&std::fs::read_to_string(keys.join("student-01.json")).unwrap())
+        .unwrap();
+    let answer =
+        armlab::model_file::load_model(answers.join("student-01.toml").to_str().unwrap()).unwrap();
+    let g =
+        armlab::exercise::grade(&key, &armlab::exercise::Answer::Model(Box::new(answer))).unwrap();
+    assert_eq!((g.score, g.max), (6, 6), "{:?}", g.items);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Issue 46, item 10: the derived DH table follows the chosen end-effector (it showed Baxter's
+/// right arm after the left was picked).
+#[test]
+fn the_derived_dh_table_follows_the_chosen_end_effector() {
+    let mut app = AppUi::new(AppState::from_spec("tests/data/urdf_corpus/baxter.urdf").unwrap());
+    let ees = app.state.robot().end_effectors();
+    let left = ees.iter().position(|e| e.name == "left_gripper").unwrap();
+    let right = ees.iter().position(|e| e.name == "right_gripper").unwrap();
+    for (ee, side, other) in [(left, "left", "right"), (right, "right", "left")] {
+        app.apply(armlab::app::action::Action::SelectEe(ee));
+        let h = harness(app);
+        let shown = h
+            .query_by_label_contains("The arm of")
+            .expect("the arm's line")
+            .accesskit_node()
+            .value()
+            .unwrap_or_default();
+        assert!(shown.contains(&format!("{side}_")), "{side}: {shown}");
+        assert!(!shown.contains(&format!("{other}_")), "{side}: {shown}");
+        app = h.into_state();
+    }
+}
+
+/// Issue 46, item 5: "Save as lesson" writes what the class saw, and the lesson sets it again:
+/// the camera's look-at point and distance, the open tab, the Workspace tab's figure, the
+/// construction's step, and every overlay on or off (an app that remembered the workspace
+/// overlay from another session does not show it on step 1).
+#[test]
+fn a_lesson_saves_and_replays_the_tab_the_figure_the_construction_and_the_camera() {
+    use armlab::app::lesson::LessonPlayer;
+    use armlab::app::tabs::{VIEW3D, WORKSPACE};
+    let dir = std::env::temp_dir().join(format!("armlab-lesson-seen-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("seen.toml");
+    let mut live = AppUi::new(AppState::from_spec("planar2_fig2_30").unwrap());
+    live.tabs
+        .workspace
+        .choose_figure("2.30", &live.state)
+        .unwrap();
+    live.tab = WORKSPACE;
+    live.ik.construction.shown = true;
+    live.ik.construction.step = 1;
+    live.state.display.frames = false;
+    let mut cam = live.tabs.view3d.camera;
+    cam.target = nalgebra::Point3::new(0.2, -0.1, 0.05);
+    cam.distance = 2.5;
+    live.tabs.view3d.set_camera(cam);
+    let mut player = LessonPlayer::on(&live.state);
+    player.file = file.to_string_lossy().into_owned();
+    live.lesson = Some(player);
+    live.save_as_lesson().unwrap();
+    let text = std::fs::read_to_string(&file).unwrap();
+    for line in [
+        "tab = \"workspace\"",
+        "figure = \"2.30\"",
+        "construction_step = 2",
+        "overlays_off = [",
+    ] {
+        assert!(text.contains(line), "{line} not in:\n{text}");
+    }
+    // another app, on another model, with the workspace overlay remembered and the 3D view
+    let mut replay = AppUi::new(AppState::from_spec("puma560").unwrap());
+    replay.state.display.workspace = true;
+    replay.state.display.frames = true;
+    assert_eq!(replay.tab, VIEW3D);
+    replay.load(file.to_str().unwrap());
+    assert_eq!(replay.state.spec(), "planar2_fig2_30");
+    assert_eq!(replay.tab, WORKSPACE);
+    assert_eq!(replay.tabs.workspace.figure_name(), "2.30");
+    assert!(replay.ik.construction.shown && replay.ik.construction.step == 1);
+    assert!(!replay.state.display.workspace && !replay.state.display.frames);
+    assert_eq!(replay.state.display, live.state.display);
+    let got = replay.tabs.view3d.camera;
+    assert!((got.target - cam.target).norm() < 1e-6, "{got:?}");
+    assert!((got.distance - cam.distance).abs() < 1e-6);
+    assert!((got.yaw - cam.yaw).abs() < 1e-6 && (got.pitch - cam.pitch).abs() < 1e-6);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Issue 46, item 9: a warning that appears while a pointer button is down (a drag) moves
+/// nothing under the pointer: its space is frozen until the release, then fits the warning.
+/// The Puma's wrist singularity (q5 = 0) brings the Jacobian's warning above the inverse
+/// kinematics section; the section stays where it was until the button is released.
+#[test]
+fn a_warning_during_a_drag_moves_nothing_under_the_pointer() {
+    let mut state = AppState::from_spec("puma560").unwrap();
+    state.set_q(&[0.2, -0.5, 0.4, 0.3, 0.6, 0.1]).unwrap();
+    let mut h = harness(AppUi::new(state));
+    let y_of = |h: &Harness<'static, AppUi>, label: &str| {
+        let b = h
+            .get_by_label(label)
+            .accesskit_node()
+            .bounding_box()
+            .unwrap();
+        b.y0
+    };
+    let before = y_of(&h, "Inverse kinematics");
+    let pose = h
+        .get_by_label("Pose")
+        .accesskit_node()
+        .bounding_box()
+        .unwrap();
+    let at = egui::pos2(pose.x0 as f32 + 2.0, pose.y0 as f32 + 2.0);
+    h.event(egui::Event::PointerMoved(at));
+    h.event(egui::Event::PointerButton {
+        pos: at,
+        button: egui::PointerButton::Primary,
+        pressed: true,
+        modifiers: egui::Modifiers::NONE,
+    });
+    h.run();
+    h.state_mut()
+        .state
+        .set_q(&[0.2, -0.5, 0.4, 0.3, 0.0, 0.1])
+        .unwrap();
+    h.run();
+    assert!(
+        (y_of(&h, "Inverse kinematics") - before).abs() < 0.5,
+        "the IK heading moved from {before} to {} during the drag",
+        y_of(&h, "Inverse kinematics")
+    );
+    h.event(egui::Event::PointerButton {
+        pos: at,
+        button: egui::PointerButton::Primary,
+        pressed: false,
+        modifiers: egui::Modifiers::NONE,
+    });
+    h.run();
+    h.run();
+    assert!(
+        y_of(&h, "Inverse kinematics") > before + 10.0,
+        "after the release the warning has its room"
     );
 }

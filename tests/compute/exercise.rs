@@ -5,7 +5,7 @@
 //! forward kinematics agree at random joint vectors.
 
 use armlab::exercise::{
-    Answer, Key, KeyAnswer, Kind, Tolerance, generate, grade, grade_dh, sheet_arm,
+    Answer, Key, KeyAnswer, Kind, Rng, Tolerance, generate, grade, grade_dh, sheet_arm,
 };
 use armlab::kinematics::dh::standard_to_modified;
 use armlab::kinematics::models::built_in;
@@ -449,7 +449,15 @@ fn the_cli_writes_a_class_and_grades_from_files() {
     for s in 1..=30 {
         assert!(dir.join(format!("student-{s:02}/sheet.md")).is_file());
         assert!(dir.join(format!("student-{s:02}/figure.png")).is_file());
+        assert!(dir.join(format!("student-{s:02}/sheet.json")).is_file());
         assert!(dir.join(format!("keys/student-{s:02}.json")).is_file());
+        // a key is never where the student's sheet is
+        for f in std::fs::read_dir(dir.join(format!("student-{s:02}"))).unwrap() {
+            let bytes = std::fs::read(f.unwrap().path()).unwrap();
+            let text = String::from_utf8_lossy(&bytes);
+            assert!(!text.contains(armlab::exercise::KEY_FORMAT));
+            assert!(!text.contains("\"answer\"") && !text.contains("\"model\""));
+        }
     }
     let key_path = dir.join("keys/student-05.json");
     let key: Key = serde_json::from_str(&std::fs::read_to_string(&key_path).unwrap()).unwrap();
@@ -502,4 +510,73 @@ fn identifiability_sheets_name_the_parallel_axes_lesson() {
     let extra = g.items.iter().find(|i| i.item == "a2").unwrap();
     assert!(!extra.correct && extra.feedback.contains("can be identified"));
     assert!(sheet.markdown.contains("Identifiability"));
+}
+
+/// Issue 46, item 2: a student's sheet file, for every kind, carries the question, the arm and
+/// its q and nothing of the answer: no key field, no DH row, no convention; its arm (a URDF of
+/// axes) is the key's arm, checked by the FK of both at random joint vectors.
+#[test]
+fn a_sheet_file_carries_its_arm_and_question_and_no_answer() {
+    use armlab::exercise::{SheetFile, key_robot};
+    let kinds = [
+        Kind::DhTable,
+        Kind::Fk,
+        Kind::Ik,
+        Kind::Workspace,
+        Kind::Redundancy,
+        Kind::Identifiability,
+    ];
+    for kind in kinds {
+        for student in 1..=4 {
+            let sheet = generate(kind, None, 17, student).unwrap();
+            let file = SheetFile::of(&sheet).unwrap();
+            let json = serde_json::to_string_pretty(&file).unwrap();
+            assert_no_answer(&json, &sheet.markdown);
+            let back = SheetFile::parse("sheet.json", &json).unwrap();
+            assert_eq!(back, file);
+            assert_eq!(
+                back.answer_file_name(),
+                format!(
+                    "student-{student:02}.{}",
+                    if kind == Kind::DhTable { "toml" } else { "txt" }
+                )
+            );
+            let arm = back.robot().unwrap();
+            let reference = key_robot(&sheet.key).unwrap();
+            assert_eq!(arm.dof(), reference.dof());
+            let mut rng = Rng::new(3, student);
+            for _ in 0..20 {
+                let q: Vec<f64> = (0..arm.dof()).map(|_| 6.0 * rng.uniform() - 3.0).collect();
+                let a = arm.fk(&q).unwrap().to_homogeneous();
+                let b = reference.fk(&q).unwrap().to_homogeneous();
+                assert!(
+                    (a - b).amax() < 1e-9,
+                    "{kind:?} sheet {student}: {a} vs {b}"
+                );
+            }
+        }
+    }
+    assert!(SheetFile::parse("x.json", "{}").is_err());
+}
+
+/// A sheet file's JSON holds the question (what `sheet.md` says), the arm and q, and nothing
+/// else: no key field, and an arm made of axes alone (every joint origin without rotation, no
+/// DH word).
+fn assert_no_answer(json: &str, question: &str) {
+    let v: serde_json::Value = serde_json::from_str(json).unwrap();
+    let mut keys: Vec<&str> = v.as_object().unwrap().keys().map(String::as_str).collect();
+    keys.sort_unstable();
+    assert_eq!(
+        keys,
+        ["arm", "format", "kind", "q", "question", "seed", "student"]
+    );
+    assert_eq!(v["question"], question);
+    let arm = v["arm"].as_str().unwrap();
+    for word in ["alpha", "convention", "theta", "dh", "DH"] {
+        assert!(!arm.contains(word), "the arm holds {word:?}: {arm}");
+    }
+    let joints = arm.split("<joint ").skip(1);
+    for j in joints.filter(|j| !j.contains("type=\"fixed\"")) {
+        assert!(j.contains("rpy=\"0 0 0\""), "a rotated joint origin: {j}");
+    }
 }

@@ -152,9 +152,9 @@ fn ik_section(state: &AppState, ui: &mut egui::Ui, ee: usize, out: &mut Actions)
     let Ok(target) = state.target(ee) else {
         return;
     };
-    if let Some(msg) = target.reach.message() {
-        ui.colored_label(Color32::from_rgb(200, 0, 0), msg);
-    }
+    let reach = target.reach.message();
+    let reach = reach.map(|m| RichText::new(m).color(Color32::from_rgb(200, 0, 0)));
+    super::reserved_warning(ui, "reach", reach);
     if let Some(result) = &target.result {
         solution_list(state, ui, ee, target, result, out);
     }
@@ -234,7 +234,9 @@ fn named(r: &egui::Response, name: String, value: f64) -> &egui::Response {
     r
 }
 
-/// The pose readouts (T, p, phi) and the Jacobian's rank, manipulability and singularity.
+/// The pose readouts (T, p, phi) and the Jacobian's rank, manipulability and singularity. The
+/// numbers have fixed widths, so that a line keeps its length (and its wrapping) as they change
+/// during a drag: "phi" wrapped at one pose and not at the next, and moved what was below.
 fn pose_readouts(state: &mut AppState, ui: &mut egui::Ui, ee: usize) {
     ui.heading("Pose");
     let Ok(r) = state.readouts(ee) else { return };
@@ -247,29 +249,28 @@ fn pose_readouts(state: &mut AppState, ui: &mut egui::Ui, ee: usize) {
         });
     let mm = |v: f64| without_negative_zero(v * 1e3, 1);
     ui.monospace(format!(
-        "p = [{:.1}, {:.1}, {:.1}] mm",
+        "p = [{:7.1}, {:7.1}, {:7.1}] mm",
         mm(r.p.x),
         mm(r.p.y),
         mm(r.p.z)
     ));
     let kind = r.phi_kind.as_str().to_uppercase();
-    let deg = |v: f64| without_negative_zero(v.to_degrees(), 2);
+    let deg = |v: f64| without_negative_zero(v.to_degrees(), 1);
     ui.monospace(format!(
-        "phi {kind} = [{:.2}, {:.2}, {:.2}] deg",
+        "phi {kind} = [{:6.1},{:6.1},{:6.1}] deg",
         deg(r.phi.x),
         deg(r.phi.y),
         deg(r.phi.z)
     ));
-    if r.phi_singular {
-        ui.label(
-            RichText::new(format!(
-                "{kind} is at its representation singularity (gimbal lock): only the sum or \
-                 difference of the first and last angles is defined"
-            ))
-            .small()
-            .color(Color32::from_rgb(180, 90, 0)),
-        );
-    }
+    let gimbal = r.phi_singular.then(|| {
+        RichText::new(format!(
+            "{kind} is at its representation singularity (gimbal lock): only the sum or \
+             difference of the first and last angles is defined"
+        ))
+        .small()
+        .color(Color32::from_rgb(180, 90, 0))
+    });
+    super::reserved_warning(ui, "gimbal", gimbal);
     ui.horizontal(|ui| {
         ui.radio_value(
             &mut state.orientation,
@@ -287,12 +288,12 @@ fn pose_readouts(state: &mut AppState, ui: &mut egui::Ui, ee: usize) {
     ui.monospace(format!("rank {} of {}", r.rank, r.task_rank));
     ui.monospace(format!("manipulability {:.5}", r.manipulability));
     ui.monospace(format!("smallest singular value {:.2e}", r.min_sv));
-    if let Some(s) = &r.singularity {
-        ui.colored_label(
-            Color32::from_rgb(200, 60, 0),
-            RichText::new(format!("(!) {}", s.message())).strong(),
-        );
-    }
+    let singular = r.singularity.as_ref().map(|s| {
+        RichText::new(format!("(!) {}", s.message()))
+            .strong()
+            .color(Color32::from_rgb(200, 60, 0))
+    });
+    super::reserved_warning(ui, "singularity", singular);
 }
 
 /// The closed-form solutions, counted from 1, each with its posture colour and short label,

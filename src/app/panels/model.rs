@@ -27,8 +27,16 @@ pub struct ModelPanel {
 }
 
 impl ModelPanel {
-    /// The whole panel.
-    pub fn ui(&mut self, state: &AppState, ui: &mut egui::Ui, projector: bool, out: &mut Actions) {
+    /// The whole panel; `ee` is the end-effector the right panel drives (a tree's derived DH
+    /// table is its arm's).
+    pub fn ui(
+        &mut self,
+        state: &AppState,
+        ee: usize,
+        ui: &mut egui::Ui,
+        projector: bool,
+        out: &mut Actions,
+    ) {
         if self.save_for != state.spec() {
             // A new model: the Save row never points at another model's file.
             self.save_path = suggested_model_name(&state.robot().name);
@@ -59,7 +67,7 @@ impl ModelPanel {
                 } else {
                     egui::CollapsingHeader::new("DH table (derived from the URDF's axes)")
                         .default_open(!projector)
-                        .show(ui, |ui| derived_dh_table(state, ui));
+                        .show(ui, |ui| derived_dh_table(state, ee, ui));
                 }
                 self.save_row(state, ui, out);
             });
@@ -85,10 +93,11 @@ impl ModelPanel {
             });
         combo.response.labelled_by(heading.id);
         ui.horizontal(|ui| {
+            let open_room = button_room(ui, "Open");
             let r = ui.add(
                 egui::TextEdit::singleline(&mut self.load_path)
                     .hint_text("path/to/robot.toml or .urdf")
-                    .desired_width((ui.available_width() - 70.0).max(40.0)),
+                    .desired_width((ui.available_width() - open_room).max(40.0)),
             );
             let enter = r.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
             if ui
@@ -100,6 +109,7 @@ impl ModelPanel {
                 out.push(Action::Load(self.load_path.trim().to_string()));
             }
         });
+        let exam = state.hidden.exam;
         ui.horizontal(|ui| {
             if ui
                 .button("Open file...")
@@ -109,7 +119,8 @@ impl ModelPanel {
                 out.push(Action::OpenDialog);
             }
             if ui
-                .button("Save model as...")
+                .add_enabled(!exam, egui::Button::new("Save model as..."))
+                .on_disabled_hover_text("Off during an exam")
                 .on_hover_text(
                     "Write the current (edited) model as a TOML model file, or URDF for a .urdf \
                      name (Ctrl+S)",
@@ -120,7 +131,8 @@ impl ModelPanel {
             }
         });
         if ui
-            .button("Save as lesson")
+            .add_enabled(!exam, egui::Button::new("Save as lesson"))
+            .on_disabled_hover_text("Off during an exam")
             .on_hover_text(
                 "Append the current joints, target, view and overlays as a step of a lesson \
                  file (the open lesson's, else lesson.toml)",
@@ -134,22 +146,26 @@ impl ModelPanel {
     /// The Save row: a file name that follows the model, and Save (or Enter).
     fn save_row(&mut self, state: &AppState, ui: &mut egui::Ui, out: &mut Actions) {
         ui.horizontal(|ui| {
+            let save_room = button_room(ui, "Save");
             let r = ui.add(
                 egui::TextEdit::singleline(&mut self.save_path)
                     .hint_text("save as robot.urdf or robot.toml")
-                    .desired_width((ui.available_width() - 70.0).max(40.0)),
+                    .desired_width((ui.available_width() - save_room).max(40.0)),
             );
             let enter = r.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
-            let save = ui.add_enabled(!state.dh_has_errors(), egui::Button::new("Save"));
+            let can = !state.dh_has_errors() && !state.hidden.exam;
+            let save = ui.add_enabled(can, egui::Button::new("Save"));
             let save = save
                 .on_hover_text(
                     "Write the model as URDF (a name ending in .urdf) or as a TOML model file; \
                      the edited DH table is what is written",
                 )
-                .on_disabled_hover_text(
-                    "Red cells hold values that are not applied: correct them first",
-                );
-            if save.clicked() || (enter && !state.dh_has_errors()) {
+                .on_disabled_hover_text(if state.hidden.exam {
+                    "Off during an exam"
+                } else {
+                    "Red cells hold values that are not applied: correct them first"
+                });
+            if save.clicked() || (enter && can) {
                 out.push(Action::SaveModel(self.save_path.trim().to_string()));
             }
         });
@@ -312,10 +328,10 @@ fn configurations(state: &AppState, ui: &mut egui::Ui, out: &mut Actions) {
 }
 
 /// The DH table derived from a URDF chain's joint axes (read-only; millimetres and degrees),
-/// its base and tool, or why there is none: on a tree, the table of the default end-effector's
-/// arm (computed when the robot was loaded, [`AppState::arm_report`]).
-fn derived_dh_table(state: &AppState, ui: &mut egui::Ui) {
-    let Some(report) = state.arm_report(0) else {
+/// its base and tool, or why there is none: on a tree, the table of end-effector `ee`'s arm
+/// (computed when the robot was loaded, [`AppState::arm_report`]).
+fn derived_dh_table(state: &AppState, ee: usize, ui: &mut egui::Ui) {
+    let Some(report) = state.arm_report(ee).or_else(|| state.arm_report(0)) else {
         return;
     };
     if state.robot().end_effectors().len() > 1 {
@@ -423,4 +439,16 @@ fn edit_buttons(state: &AppState, ui: &mut egui::Ui, out: &mut Actions) {
             out.push(Action::ResetEdits);
         }
     });
+}
+
+/// The width a button labelled `text` takes after a field in a row, spacing included: in
+/// projector mode's larger text a fixed 70 points wrapped "Open" as "Ope n".
+fn button_room(ui: &mut egui::Ui, text: &str) -> f32 {
+    let font = egui::TextStyle::Button.resolve(ui.style());
+    let w = ui.fonts_mut(|f| {
+        f.layout_no_wrap(text.to_string(), font, Color32::WHITE)
+            .size()
+            .x
+    });
+    w + 2.0 * ui.spacing().button_padding.x + ui.spacing().item_spacing.x + 4.0
 }

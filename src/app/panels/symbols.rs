@@ -53,6 +53,10 @@ impl SymbolsPanel {
     /// The Symbols section of the right panel.
     pub fn ui(&mut self, state: &AppState, ui: &mut egui::Ui, ee: usize) {
         ui.heading("Symbols");
+        if state.hidden.dh_table {
+            ui.label("Off while the exercise is answered");
+            return;
+        }
         ui.checkbox(&mut self.shown, "Show the kinematics in symbols");
         if !self.shown {
             return;
@@ -131,7 +135,7 @@ impl SymbolsPanel {
 
     /// Adds the frame of the partial product shown, and the links up to it, to the scene.
     pub fn decorate(&mut self, state: &AppState, ee: usize, scene: &mut Scene) {
-        if !self.shown {
+        if !self.shown || state.hidden.dh_table {
             return;
         }
         let step = self.step;

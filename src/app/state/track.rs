@@ -232,15 +232,24 @@ impl AppState {
         let mut note = None;
         if !label.is_merged() {
             let old = t.posture.replace(label);
-            if follow
-                && lock
-                && let Some(old) = old
+            if let Some(old) = old
                 && !old.same_label(&label)
+                && !old.is_merged()
             {
-                note = Some(format!(
-                    "posture lock: through the singularity the branch continues as \"{label}\" \
-                     (was \"{old}\")"
-                ));
+                note = if follow && lock {
+                    Some(format!(
+                        "posture lock: through the singularity the branch continues as \
+                         \"{label}\" (was \"{old}\")"
+                    ))
+                } else if !lock {
+                    // the closest solution is another posture: said, never silent
+                    Some(format!(
+                        "the posture changed to \"{label}\" (was \"{old}\"), the closest \
+                         solution; L locks the posture"
+                    ))
+                } else {
+                    None
+                };
             }
         }
         let was_reached = t.reach.is_reached();

@@ -1,12 +1,14 @@
-//! The Exercise tab: opens a sheet's key (`armlab exercise new` writes them), shows its
-//! question, hides from the panels what the sheet asks for (the DH table and the frames, the
-//! pose readouts, the IK solutions and ghosts), takes the answer (a DH table in a grid, or rows
-//! of numbers) and shows the grade item by item. Grading is [`crate::exercise`]'s.
+//! The Exercise tab: opens a student's sheet (`armlab exercise new` writes `sheet.json`) in exam
+//! mode, or a teacher's key for practice; shows its question, hides from the panels what the
+//! sheet asks for (the DH table and the frames, the pose readouts, the IK solutions and ghosts),
+//! takes the answer (a DH table in a grid, or rows of numbers); an exam saves it to be handed in
+//! (`armlab exercise grade` grades the class), practice grades it here item by item. Grading
+//! is [`crate::exercise`]'s.
 
 use super::super::action::{Action, Actions};
 use super::super::state::{AppState, Hidden, Level};
 use super::{Tab, TabContext};
-use crate::exercise::{Answer, Grade, Key, KeyAnswer, grade, parse_rows};
+use crate::exercise::{Answer, Grade, Key, KeyAnswer, Kind, SheetFile, grade, parse_rows};
 use crate::kinematics::{Convention, DhJoint, DhRow, JointKind, Pose, Robot};
 use egui::{Color32, RichText};
 
@@ -40,8 +42,15 @@ impl Default for AnswerRow {
 /// The sheet being answered.
 #[derive(Debug, Clone)]
 pub struct OpenSheet {
-    /// Its key.
-    pub key: Key,
+    /// What the sheet asks for.
+    pub kind: Kind,
+    /// The question (Markdown).
+    pub question: String,
+    /// Practice (a key was opened): the key, and Check grades here. Exam (a sheet file was
+    /// opened): `None`, and the answer is saved to be handed in.
+    pub key: Option<Key>,
+    /// Exam: where "Save answer" writes (`student-NN.toml` or `.txt` beside the sheet).
+    pub answer_path: String,
     /// The DH-table answer (dh-table sheets).
     pub rows: Vec<AnswerRow>,
     /// The modified convention instead of the standard one.
@@ -55,7 +64,7 @@ pub struct OpenSheet {
 /// The Exercise tab's own state.
 #[derive(Debug, Default)]
 pub struct ExerciseTab {
-    /// The key file's path typed in the tab.
+    /// The sheet's (or key's) path typed in the tab.
     pub key_path: String,
     /// The sheet being answered.
     pub sheet: Option<OpenSheet>,
@@ -71,35 +80,70 @@ impl Tab for ExerciseTab {
     }
 }
 
+/// A student's sheet (exam) or a teacher's key (practice), read before its arm is loaded.
+#[derive(Debug, Clone)]
+pub enum Opening {
+    /// A key: practice, graded in the tab.
+    Practice(Box<Key>),
+    /// A student's sheet: an exam, the answer saved to be handed in.
+    Exam(Box<SheetFile>),
+}
+
+impl Opening {
+    /// Reads a sheet (by its format tag) or else a key; `name` (the file) for messages.
+    pub fn read(name: &str, text: &str) -> Result<Self, String> {
+        if text.contains(crate::exercise::SHEET_FORMAT) {
+            let sheet = SheetFile::parse(name, text).map_err(|e| e.to_string())?;
+            return Ok(Self::Exam(Box::new(sheet)));
+        }
+        parse_key(name, text).map(|k| Self::Practice(Box::new(k)))
+    }
+
+    /// The arm to load: a model file's name (its format) and text.
+    pub fn arm(&self) -> (&'static str, &str) {
+        match self {
+            Self::Practice(k) => ("sheet.toml", &k.model),
+            Self::Exam(s) => ("sheet.urdf", &s.arm),
+        }
+    }
+}
+
 impl ExerciseTab {
-    /// Opens the sheet of `key`, whose arm `state` has just loaded: returns what the sheet sets
-    /// up (the key's q and the target on the tool, what the sheet asks for hidden, the Exercise
-    /// tab shown).
-    pub fn open(&mut self, key: Key, state: &AppState) -> Actions {
-        let mut out = Actions::default();
-        out.push(Action::SetQ(key.q.clone()));
-        out.push(Action::TargetToTool(0));
-        let dh = matches!(key.answer, KeyAnswer::DhTable);
-        let ik = matches!(key.answer, KeyAnswer::Ik { .. });
-        out.push(Action::SetHidden(Hidden {
-            dh_table: dh,
-            pose: matches!(key.answer, KeyAnswer::Fk { .. }),
-            solutions: ik,
-        }));
-        let mut d = state.display;
-        d.frames = !dh;
-        d.labels = !dh;
-        d.ghosts = !ik;
-        out.push(Action::SetDisplay(d));
-        out.push(Action::ShowConstruction(false));
-        out.push(Action::ShowTab(super::EXERCISE));
-        self.sheet = Some(OpenSheet {
-            rows: vec![AnswerRow::default(); if dh { state.robot().dof() } else { 0 }],
-            key,
-            modified: false,
-            text: String::new(),
-            result: None,
-        });
+    /// Opens `opening` (read from the file `path`), whose arm `state` has just loaded.
+    pub fn open(&mut self, opening: Opening, path: &str, state: &AppState) -> Actions {
+        match opening {
+            Opening::Practice(key) => self.open_key(*key, state),
+            Opening::Exam(sheet) => self.open_exam(&sheet, path, state),
+        }
+    }
+
+    /// Opens the key `key` for practice (its arm `state` has just loaded): returns what the
+    /// sheet sets up (the key's q and the target on the tool, what the sheet asks for hidden,
+    /// the Exercise tab shown). Check grades the answer against the key.
+    pub fn open_key(&mut self, key: Key, state: &AppState) -> Actions {
+        let out = setup(key.kind, &key.q, false, state);
+        self.sheet = Some(OpenSheet::new(key.kind, key.question.clone(), state));
+        if let Some(s) = &mut self.sheet {
+            s.key = Some(key);
+        }
+        out
+    }
+
+    /// Opens the student's sheet file `sheet` (read from `path`; its arm `state` has just
+    /// loaded) in exam mode: the same set-up as a key's, and besides every way out of the
+    /// answer disabled (saving the model, the symbols, the figure export); the answer is saved
+    /// beside the sheet as `student-NN.toml` or `.txt` to be handed in.
+    pub fn open_exam(&mut self, sheet: &SheetFile, path: &str, state: &AppState) -> Actions {
+        let out = setup(sheet.kind, &sheet.q, true, state);
+        let mut open = OpenSheet::new(sheet.kind, sheet.question.clone(), state);
+        let dir = std::path::Path::new(path)
+            .parent()
+            .unwrap_or(std::path::Path::new(""));
+        open.answer_path = dir
+            .join(sheet.answer_file_name())
+            .to_string_lossy()
+            .into_owned();
+        self.sheet = Some(open);
         out
     }
 
@@ -117,12 +161,14 @@ impl ExerciseTab {
 
     fn contents(&mut self, ui: &mut egui::Ui, out: &mut Actions) {
         ui.horizontal(|ui| {
-            ui.label("Key:");
-            let r = ui.add(
-                egui::TextEdit::singleline(&mut self.key_path)
-                    .hint_text("keys/student-01.json")
-                    .desired_width(320.0),
-            );
+            let l = ui.label("Sheet:");
+            let r = ui
+                .add(
+                    egui::TextEdit::singleline(&mut self.key_path)
+                        .hint_text("student-01/sheet.json")
+                        .desired_width(320.0),
+                )
+                .labelled_by(l.id);
             let enter = r.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
             if ui.button("Open sheet").clicked() || enter {
                 out.push(Action::OpenExercise(self.key_path.clone()));
@@ -133,17 +179,27 @@ impl ExerciseTab {
         });
         let Some(sheet) = &mut self.sheet else {
             ui.label(
-                "Open the key of a sheet made by `armlab exercise new` (or drop it on the window): \
-                 its question shows here, what it asks for is hidden in the panels, and the \
-                 answer is graded here.",
+                "Open your sheet (`student-NN/sheet.json`, made by `armlab exercise new`) or \
+                 drop it on the window: its question shows here, what it asks for is hidden in \
+                 the panels, and your answer is saved beside it to be handed in. A teacher's \
+                 key (`keys/student-NN.json`) opens the same sheet for practice, graded here.",
             );
             return;
         };
         ui.separator();
-        ui.add(egui::Label::new(RichText::new(&sheet.key.question).size(15.0)).wrap());
+        if sheet.key.is_none() {
+            ui.label(
+                RichText::new(
+                    "Exam: saving the model, the symbols and figure export are off until the \
+                     sheet is closed.",
+                )
+                .color(Color32::from_rgb(150, 90, 0)),
+            );
+        }
+        ui.add(egui::Label::new(RichText::new(&sheet.question).size(15.0)).wrap());
         ui.separator();
         ui.heading("Your answer");
-        if matches!(sheet.key.answer, KeyAnswer::DhTable) {
+        if sheet.kind == Kind::DhTable {
             dh_grid(ui, sheet);
         } else {
             ui.add(
@@ -153,23 +209,107 @@ impl ExerciseTab {
                     .font(egui::TextStyle::Monospace),
             );
         }
-        if ui.button("Check").clicked() {
-            sheet.result = Some(check(sheet));
-            if let Some(Ok(g)) = &sheet.result {
-                out.message(
-                    Level::Info,
-                    format!("exercise: score {} of {}", g.score, g.max),
-                );
-            }
-        }
-        match &sheet.result {
-            Some(Ok(g)) => feedback(ui, g),
-            Some(Err(e)) => {
-                ui.colored_label(Color32::from_rgb(180, 40, 30), e);
-            }
-            None => {}
+        if sheet.key.is_some() {
+            check_row(ui, sheet, out);
+        } else {
+            save_row(ui, sheet, out);
         }
     }
+}
+
+/// What opening a sheet of `kind` at `q` sets up: the arm at q, the target on its tool, what
+/// the sheet asks for hidden (and in an exam every way out of the answer), the tab shown.
+fn setup(kind: Kind, q: &[f64], exam: bool, state: &AppState) -> Actions {
+    let mut out = Actions::default();
+    out.push(Action::SetQ(q.to_vec()));
+    out.push(Action::TargetToTool(0));
+    let dh = kind == Kind::DhTable;
+    let ik = kind == Kind::Ik;
+    out.push(Action::SetHidden(Hidden {
+        dh_table: dh || exam,
+        pose: kind == Kind::Fk,
+        solutions: ik,
+        workspace: kind == Kind::Workspace,
+        exam,
+    }));
+    let mut d = state.display;
+    d.frames = !dh;
+    d.labels = !dh;
+    d.ghosts = !ik;
+    d.workspace = false;
+    out.push(Action::SetDisplay(d));
+    out.push(Action::ShowConstruction(false));
+    out.push(Action::ShowTab(super::EXERCISE));
+    out
+}
+
+impl OpenSheet {
+    fn new(kind: Kind, question: String, state: &AppState) -> Self {
+        let dh = kind == Kind::DhTable;
+        Self {
+            kind,
+            question,
+            key: None,
+            answer_path: String::new(),
+            rows: vec![AnswerRow::default(); if dh { state.robot().dof() } else { 0 }],
+            modified: false,
+            text: String::new(),
+            result: None,
+        }
+    }
+}
+
+/// Practice: Check grades the answer against the key, item by item.
+fn check_row(ui: &mut egui::Ui, sheet: &mut OpenSheet, out: &mut Actions) {
+    if ui.button("Check").clicked() {
+        sheet.result = Some(check(sheet));
+        if let Some(Ok(g)) = &sheet.result {
+            out.message(
+                Level::Info,
+                format!("exercise: score {} of {}", g.score, g.max),
+            );
+        }
+    }
+    match &sheet.result {
+        Some(Ok(g)) => feedback(ui, g),
+        Some(Err(e)) => {
+            ui.colored_label(Color32::from_rgb(180, 40, 30), e);
+        }
+        None => {}
+    }
+}
+
+/// Exam: the answer's file name and Save answer (a DH table as a model file, rows as typed).
+fn save_row(ui: &mut egui::Ui, sheet: &mut OpenSheet, out: &mut Actions) {
+    ui.horizontal(|ui| {
+        let l = ui.label("Hand in as:");
+        ui.add(egui::TextEdit::singleline(&mut sheet.answer_path).desired_width(320.0))
+            .labelled_by(l.id);
+        if ui.button("Save answer").clicked() {
+            match answer_text(sheet) {
+                Ok(text) => {
+                    sheet.result = None;
+                    out.push(Action::SaveAnswer {
+                        path: sheet.answer_path.trim().to_string(),
+                        text,
+                    });
+                }
+                Err(e) => sheet.result = Some(Err(e)),
+            }
+        }
+    });
+    if let Some(Err(e)) = &sheet.result {
+        ui.colored_label(Color32::from_rgb(180, 40, 30), e);
+    }
+}
+
+/// The answer as the file handed in: the typed DH table as a model file, else the text.
+fn answer_text(sheet: &OpenSheet) -> Result<String, String> {
+    if sheet.kind != Kind::DhTable {
+        return Ok(sheet.text.clone());
+    }
+    crate::model_file::to_toml(&answer_robot(sheet)?)
+        .ok_or_else(|| "the typed table is no DH model file".to_string())
 }
 
 /// The DH-table answer: one editable row per joint, and the convention.
@@ -280,14 +420,18 @@ fn answer_robot(sheet: &OpenSheet) -> Result<Robot, String> {
 
 /// Grades the answer typed in the tab.
 fn check(sheet: &OpenSheet) -> Result<Grade, String> {
-    let answer = match sheet.key.answer {
+    let key = sheet
+        .key
+        .as_ref()
+        .ok_or("a sheet is graded by the teacher")?;
+    let answer = match key.answer {
         KeyAnswer::DhTable => Answer::Model(Box::new(answer_robot(sheet)?)),
         KeyAnswer::Identifiability { .. } => {
             Answer::Words(crate::exercise::parse_words(&sheet.text))
         }
         _ => Answer::Rows(parse_rows(&sheet.text, "answer").map_err(|e| e.to_string())?),
     };
-    grade(&sheet.key, &answer).map_err(|e| e.to_string())
+    grade(key, &answer).map_err(|e| e.to_string())
 }
 
 /// The grade, item by item: right in green, wrong in red with what is wrong.

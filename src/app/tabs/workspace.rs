@@ -114,6 +114,41 @@ impl Default for WorkspaceTab {
 }
 
 impl WorkspaceTab {
+    /// The figure shown, as a lesson names it: `this-model`, or the excerpt figure's number.
+    pub fn figure_name(&self) -> String {
+        match self.preset {
+            Preset::ThisModel => "this-model".into(),
+            Preset::Textbook { name, .. } => name.into(),
+        }
+    }
+
+    /// Shows the figure a lesson names (see [`Self::figure_name`]), computed for `state`'s
+    /// model; an unknown name is refused with the names there are.
+    pub fn choose_figure(&mut self, name: &str, state: &AppState) -> Result<(), String> {
+        let found = PRESETS.iter().map(|(_, p)| *p).find(|p| match p {
+            Preset::ThisModel => name == "this-model",
+            Preset::Textbook { name: n, .. } => *n == name,
+        });
+        let Some(p) = found else {
+            let names: Vec<String> = PRESETS
+                .iter()
+                .map(|(_, p)| match p {
+                    Preset::ThisModel => "this-model".to_string(),
+                    Preset::Textbook { name, .. } => name.to_string(),
+                })
+                .collect();
+            return Err(format!(
+                "figure {name:?}: the figures are {}",
+                names.join(", ")
+            ));
+        };
+        if p != self.preset || self.job.is_none() {
+            self.preset = p;
+            self.start(state);
+        }
+        Ok(())
+    }
+
     /// Starts the job for the current model and preset (cancelling a running one).
     pub fn start(&mut self, state: &AppState) {
         if let Some(old) = self.job.take() {
@@ -160,6 +195,14 @@ impl WorkspaceTab {
         ));
     }
 
+    /// The W key: the 3D view's workspace overlay on or off (computed when it comes on).
+    pub fn toggle_overlay(&mut self, state: &mut AppState) {
+        state.display.workspace ^= true;
+        if state.display.workspace {
+            self.ensure_started(state);
+        }
+    }
+
     /// The job, started if there is none.
     pub fn ensure_started(&mut self, state: &AppState) {
         if self.job.is_none() {
@@ -199,8 +242,12 @@ impl WorkspaceTab {
                 }
             }
             let save = ui
-                .button("Save figure (PNG)")
-                .on_hover_text("The figure at its full size, as the command line writes it");
+                .add_enabled(
+                    !cx.state.hidden.exam,
+                    egui::Button::new("Save figure (PNG)"),
+                )
+                .on_hover_text("The figure at its full size, as the command line writes it")
+                .on_disabled_hover_text("Off during an exam");
             if save.clicked()
                 && let Some(img) = self.job.as_ref().and_then(|j| j.figure())
             {
@@ -314,6 +361,12 @@ impl Tab for WorkspaceTab {
     }
 
     fn ui(&mut self, cx: &mut TabContext<'_>, ui: &mut egui::Ui, out: &mut Actions) {
+        if cx.state.hidden.workspace {
+            ui.label(
+                "The workspace is what the exercise asks for: hidden until the sheet is closed.",
+            );
+            return;
+        }
         self.preset_row(cx, ui, out);
         let area = ui.available_size();
         let size = Self::size_for(area, ui.ctx().pixels_per_point());

@@ -109,6 +109,11 @@ pub struct LabResult {
     /// The robot's own base when the model's base is a tracker's pose (the tracker setup): the
     /// calibrated robot gets it back.
     pub robot_base: Option<Pose>,
+    /// The arm calibrated when it is not a DH table (a URDF arm, calibrated through its
+    /// derived table): a URDF is written back as this chain with its joint origins updated.
+    pub chain: Option<Robot>,
+    /// The nominal DH robot calibrated, with its own base (the chain's DH form for a URDF arm).
+    pub nominal_robot: Robot,
 }
 
 impl LabResult {
@@ -125,6 +130,26 @@ impl LabResult {
     }
 }
 
+/// The tab's last message, with its tone.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Said {
+    /// Something was written or is being downloaded.
+    Done(String),
+    /// Done, with a warning (a model saved with doubtful estimates), or not done on purpose.
+    Warned(String),
+    /// Why it could not be done.
+    Failed(String),
+}
+
+impl Said {
+    /// The words.
+    pub fn text(&self) -> &str {
+        match self {
+            Said::Done(t) | Said::Warned(t) | Said::Failed(t) => t,
+        }
+    }
+}
+
 /// The Calibration tab.
 #[derive(Debug, Clone, Default)]
 pub struct CalibrationLab {
@@ -133,7 +158,7 @@ pub struct CalibrationLab {
     /// The last successful run.
     pub result: Option<LabResult>,
     /// The last message (an error, or what was saved).
-    pub message: Option<String>,
+    pub said: Option<Said>,
     /// Path typed for measurement files.
     pub measurements_path: String,
     /// Path typed for saving the calibrated model.
@@ -151,8 +176,14 @@ pub struct CalibrationLab {
     pub maps_generation: u64,
     /// Draw the measured poses of the last run in the 3D view (tool points, some as ghosts).
     pub show_poses: bool,
-    /// What the lesson just run asks the class to look at (one sentence), until another run.
+    /// What the lesson just run asks the class to look at (one sentence), until it ends.
     pub lesson: Option<&'static str>,
+    /// The user's own settings while a lesson runs with its own: they come back when the
+    /// lesson ends (a lesson is a sandbox).
+    pub before_lesson: Option<LabSettings>,
+    /// "Save calibrated model" was pressed on a model with doubtful estimates: the panel asks
+    /// before writing it.
+    pub confirm_save: bool,
 }
 
 fn options(s: &LabSettings) -> CalibrationOptions {
@@ -194,6 +225,8 @@ fn lab_result(title: String, r: Report) -> LabResult {
             .map(<[f64]>::to_vec)
             .collect(),
         robot_base: r.tracker_from_base.map(|_| r.nominal_robot.base),
+        chain: r.chain,
+        nominal_robot: r.nominal_robot,
         model: r.model,
         report: r.calibration,
         truth: r.truth,
@@ -205,18 +238,76 @@ fn lab_result(title: String, r: Report) -> LabResult {
 
 impl CalibrationLab {
     /// Simulates a "real" `robot` with the settings, measures it, calibrates; `q_now` is the
-    /// arm's configuration (the centre of the "alike" poses).
+    /// arm's configuration (the centre of the "alike" poses). Within a lesson, with the
+    /// lesson's settings as changed since: the lesson goes on.
     pub fn run_simulated(&mut self, robot: &Robot, q_now: &[f64]) {
         match self.simulated(robot, q_now) {
-            Ok(r) => {
-                self.result = Some(r);
-                self.maps = None;
-                self.message = None;
-                self.lesson = None;
-                self.corrections = None;
-            }
-            Err(e) => self.message = Some(e),
+            Ok(r) => self.install(r),
+            Err(e) => self.fail(e),
         }
+    }
+
+    /// Says why something could not be done.
+    pub fn fail(&mut self, why: String) {
+        self.said = Some(Said::Failed(why));
+    }
+
+    /// Says what saving the calibrated model did: written (with a warning when it carries
+    /// doubtful estimates), or why not.
+    pub fn saved(&mut self, written: Result<String, String>) {
+        let doubts = self.doubts();
+        self.said = Some(match written {
+            Ok(m) if doubts.is_empty() => Said::Done(m),
+            Ok(m) => {
+                let names: Vec<&str> = doubts.iter().map(|d| d.name.as_str()).collect();
+                Said::Warned(format!(
+                    "{m}, with a warning in its header: {} not to be trusted",
+                    names.join(", ")
+                ))
+            }
+            Err(e) => Said::Failed(e),
+        });
+    }
+
+    /// The last message's words, if any.
+    pub fn message(&self) -> Option<&str> {
+        self.said.as_ref().map(Said::text)
+    }
+
+    /// A new result: what belonged to the old one goes.
+    fn install(&mut self, r: LabResult) {
+        self.result = Some(r);
+        self.maps = None;
+        self.said = None;
+        self.corrections = None;
+        self.confirm_save = false;
+    }
+
+    /// Starts a lesson with `settings`: the user's own are kept until it ends.
+    fn start_lesson(&mut self, settings: LabSettings) {
+        self.before_lesson.get_or_insert(self.settings);
+        self.settings = settings;
+    }
+
+    /// Ends the lesson, if one runs: the user's settings come back and the lesson's result
+    /// goes (nothing of it can be saved or corrected by mistake afterwards).
+    pub fn end_lesson(&mut self) {
+        if let Some(s) = self.before_lesson.take() {
+            self.settings = s;
+            self.result = None;
+            self.maps = None;
+            self.corrections = None;
+            self.confirm_save = false;
+        }
+        self.lesson = None;
+    }
+
+    /// The estimates of the last result not to be trusted (see
+    /// [`crate::calibration::doubtful_parameters`]).
+    pub fn doubts(&self) -> Vec<crate::calibration::DoubtfulParameter> {
+        self.result.as_ref().map_or_else(Vec::new, |r| {
+            crate::calibration::doubtful_parameters(&r.report)
+        })
     }
 
     /// The accuracy maps of the last result (`cells` per side, `samples` joint vectors): the
@@ -224,7 +315,7 @@ impl CalibrationLab {
     /// (calibrated against nominal) for measured data.
     pub fn compute_maps(&mut self, cells: usize, samples: usize) {
         let Some(r) = &self.result else {
-            self.message = Some("run a calibration first".into());
+            self.fail("run a calibration first".into());
             return;
         };
         let nominal = r.model.nominal();
@@ -242,7 +333,7 @@ impl CalibrationLab {
                 self.maps = Some(m);
                 self.maps_generation += 1;
             }
-            Err(e) => self.message = Some(e),
+            Err(e) => self.fail(e),
         }
     }
 
@@ -289,28 +380,31 @@ impl CalibrationLab {
         Ok(lab_result(title, r))
     }
 
-    /// Calibrates `robot` from the measurement file typed in `measurements_path`.
+    /// Calibrates `robot` from the measurement file typed in `measurements_path` (a lesson
+    /// running ends first: real data are read with the user's own settings).
     pub fn run_file(&mut self, robot: &Robot) {
+        self.end_lesson();
         let path = self.measurements_path.trim().to_string();
         if path.is_empty() {
-            self.message = Some("type the path of a measurement file (or Browse...)".into());
+            self.fail("type the path of a measurement file (or Browse...)".into());
             return;
         }
         match crate::input::read_data_text(std::path::Path::new(&path)) {
             Ok(text) => self.run_text(robot, &path, &text),
-            Err(e) => self.message = Some(e.to_string()),
+            Err(e) => self.fail(e.to_string()),
         }
     }
 
     /// Calibrates `robot` from a measurement file handed over as bytes (a browser's file
     /// picker), or says that it is no text.
     pub fn run_bytes(&mut self, robot: &Robot, name: &str, bytes: &[u8]) {
+        self.end_lesson();
         match std::str::from_utf8(bytes) {
             Ok(text) => {
                 self.measurements_path = name.to_string();
                 self.run_text(robot, name, text);
             }
-            Err(_) => self.message = Some(format!("{name}: not a text file")),
+            Err(_) => self.fail(format!("{name}: not a text file")),
         }
     }
 
@@ -330,45 +424,77 @@ impl CalibrationLab {
             .map(|r| lab_result(name.to_string(), r))
             .map_err(|e| e.to_string());
         match result {
-            Ok(r) => {
-                self.result = Some(r);
-                self.maps = None;
-                self.message = None;
-                self.corrections = None;
-            }
-            Err(e) => self.message = Some(e),
+            Ok(r) => self.install(r),
+            Err(e) => self.fail(e),
         }
     }
 
-    /// The calibrated robot as the text of a TOML model file.
+    /// The calibrated robot as the text of a model file, its doubtful estimates (if any) named
+    /// in a header: a URDF for a name ending in `.urdf` (a URDF arm is written back as its own
+    /// chain with the calibrated joint origins, as `armlab calibrate --write-urdf` does), else
+    /// TOML.
     pub fn calibrated_text(&self) -> Result<String, String> {
         let Some(r) = &self.result else {
             return Err("run a calibration first".into());
         };
-        r.calibrated_robot().and_then(|robot| {
-            crate::model_file::to_toml(&robot)
-                .ok_or_else(|| "the calibrated robot is not a DH model file".to_string())
+        let robot = r.calibrated_robot()?;
+        let urdf = std::path::Path::new(self.save_path.trim())
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("urdf"));
+        let header = crate::calibration::doubt_header(&self.doubts(), urdf);
+        if !urdf {
+            return crate::model_file::to_toml(&robot)
+                .map(|t| header + &t)
+                .ok_or_else(|| "the calibrated robot is not a DH model file".to_string());
+        }
+        let carried = match &r.chain {
+            Some(chain) => {
+                let nominal = &r.nominal_robot;
+                let c = crate::calibration::with_calibrated_origins(chain, nominal, &robot);
+                Some(c.map_err(|e| e.to_string())?)
+            }
+            None => None,
+        };
+        let text =
+            crate::urdf::to_urdf(carried.as_ref().unwrap_or(&robot)).map_err(|e| e.to_string())?;
+        // the warning goes after the XML declaration, which must come first
+        Ok(match text.split_once('\n') {
+            Some((decl, rest)) if decl.starts_with("<?xml") => format!("{decl}\n{header}{rest}"),
+            _ => header + &text,
         })
     }
 
-    /// Writes the calibrated robot to `save_path` as a model file.
+    /// "Save calibrated model": writes at once when every estimate is to be trusted; else asks
+    /// first (`confirm_save`, answered by [`Self::save_model`] or [`Self::cancel_save`]).
+    pub fn request_save(&mut self) -> bool {
+        if self.result.is_some() && !self.doubts().is_empty() && !self.confirm_save {
+            self.confirm_save = true;
+            return false;
+        }
+        self.confirm_save = false;
+        true
+    }
+
+    /// The question about doubtful estimates is answered no.
+    pub fn cancel_save(&mut self) {
+        self.confirm_save = false;
+        self.said = Some(Said::Warned("not saved".into()));
+    }
+
+    /// Writes the calibrated robot to `save_path` as a model file (with the doubts' header).
     pub fn save_model(&mut self) {
+        self.confirm_save = false;
         let path = self.save_path.trim().to_string();
         if path.is_empty() {
-            self.message =
-                Some("type a file name for the calibrated model (e.g. calibrated.toml)".into());
+            self.fail("type a file name for the calibrated model (e.g. calibrated.toml)".into());
             return;
         }
         // The full path, so the message says where the file went.
         let path = std::path::absolute(&path).map_or(path, |p| p.display().to_string());
-        self.message = Some(
-            match self.calibrated_text().and_then(|t| {
-                std::fs::write(&path, t).map_err(|e| format!("cannot write {path}: {e}"))
-            }) {
-                Ok(()) => format!("saved the calibrated model to {path}"),
-                Err(e) => e,
-            },
-        );
+        let written = self.calibrated_text().and_then(|t| {
+            std::fs::write(&path, t).map_err(|e| format!("cannot write {path}: {e}"))
+        });
+        self.saved(written.map(|()| format!("saved the calibrated model to {path}")));
     }
 
     /// An annotated measurement-file template for the settings' setup and `robot` (headered CSV,
@@ -395,20 +521,17 @@ impl CalibrationLab {
     pub fn save_template(&mut self, robot: &Robot) {
         let path = self.template_path.trim().to_string();
         if path.is_empty() {
-            self.message = Some("type a file name for the template (e.g. measurements.csv)".into());
+            self.fail("type a file name for the template (e.g. measurements.csv)".into());
             return;
         }
-        self.message = Some(
-            match self.template_text(robot).and_then(|t| {
-                std::fs::write(&path, t).map_err(|e| format!("cannot write {path}: {e}"))
-            }) {
-                Ok(()) => format!(
-                    "saved the {} template to {path}",
-                    self.settings.setup.name()
-                ),
-                Err(e) => e,
-            },
-        );
+        let written = self.template_text(robot).and_then(|t| {
+            std::fs::write(&path, t).map_err(|e| format!("cannot write {path}: {e}"))
+        });
+        let setup = self.settings.setup.name();
+        self.said = Some(match written {
+            Ok(()) => Said::Done(format!("saved the {setup} template to {path}")),
+            Err(e) => Said::Failed(e),
+        });
     }
 
     /// The target correction of the poses in the file typed in `targets_path` on the last
@@ -416,13 +539,13 @@ impl CalibrationLab {
     pub fn correct(&mut self, robot: &Robot) {
         let path = self.targets_path.trim().to_string();
         if path.is_empty() {
-            self.message = Some("type the path of a file of desired tool poses".into());
+            self.fail("type the path of a file of desired tool poses".into());
             return;
         }
         let text = match crate::input::read_data_text(std::path::Path::new(&path)) {
             Ok(t) => t,
             Err(e) => {
-                self.message = Some(e.to_string());
+                self.fail(e.to_string());
                 return;
             }
         };
@@ -432,7 +555,7 @@ impl CalibrationLab {
     /// The target correction of the desired poses in `text` (named `name` in errors).
     pub fn correct_text(&mut self, robot: &Robot, name: &str, text: &str) {
         let Some(r) = &self.result else {
-            self.message = Some("run a calibration first".into());
+            self.fail("run a calibration first".into());
             return;
         };
         let rows = parse_targets(text, name)
@@ -444,9 +567,9 @@ impl CalibrationLab {
         match rows {
             Ok(rows) => {
                 self.corrections = Some(rows);
-                self.message = None;
+                self.said = None;
             }
-            Err(e) => self.message = Some(e),
+            Err(e) => self.fail(e),
         }
     }
 
@@ -459,11 +582,11 @@ impl CalibrationLab {
 
     /// The lesson "converged is not accurate": poses all alike around the current configuration.
     pub fn lesson_alike(&mut self, robot: &Robot, q_now: &[f64]) {
-        self.settings = LabSettings {
+        self.start_lesson(LabSettings {
             choice: PoseChoice::Alike,
             poses: 40,
             ..LabSettings::default()
-        };
+        });
         self.run_simulated(robot, q_now);
         self.lesson = Some(
             "Look at the validation line against the fit line: 40 poses all alike fit with a small \
@@ -477,14 +600,14 @@ impl CalibrationLab {
     /// held-out error stays above the noise, what no DH parameter can absorb), then with a
     /// compliance per joint.
     pub fn lesson_compliance(&mut self, robot: &Robot, q_now: &[f64], estimate: bool) {
-        self.settings = LabSettings {
+        self.start_lesson(LabSettings {
             poses: 120,
             noise_mm: 0.002,
             noise_mrad: 0.005,
             bend: true,
             with_compliance: estimate,
             ..LabSettings::default()
-        };
+        });
         self.run_simulated(robot, q_now);
         if self.result.is_some() {
             self.lesson = Some(if estimate {
@@ -502,20 +625,20 @@ impl CalibrationLab {
     /// The lesson "parallel axes": plain DH on an arm with parallel axes (the Puma's 2 and 3);
     /// switch `hayati` on to see what beta does.
     pub fn lesson_parallel(&mut self, robot: &Robot, q_now: &[f64], hayati: bool) {
-        self.settings = LabSettings {
+        self.start_lesson(LabSettings {
             poses: 60,
             hayati,
             // Plain DH with every parameter estimated: what the default protects against.
             minimum_norm: !hayati,
             ..LabSettings::default()
-        };
+        });
         self.run_simulated(robot, q_now);
         self.lesson = Some(if hayati {
             "Look at the parameter table: with Hayati's beta on the parallel pair every \
              parameter is marked identifiable and lands near its true value."
         } else {
             "Look at the parameter table: with plain DH on parallel axes, d2 and d3 are marked \
-             not identifiable and run far from their true values, though the fit is good."
+             red, not identifiable, and run far from their true values, though the fit is good."
         });
     }
 }

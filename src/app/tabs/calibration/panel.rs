@@ -1,7 +1,7 @@
 //! The Calibration tab's widgets: settings, the lessons, files, and the report of the last run
 //! (iterations, identifiability in words, O1-O4, the parameter table, held-out errors).
 
-use super::lab::{CalibrationLab, LabResult, PoseChoice};
+use super::lab::{CalibrationLab, LabResult, PoseChoice, Said};
 use crate::app::file_picker::{FileKind, FilePicker};
 use crate::calibration::{Fit, Setup};
 use crate::kinematics::Robot;
@@ -37,6 +37,19 @@ pub fn show(
             )
             .small(),
         );
+        if lab.before_lesson.is_some() {
+            ui.horizontal_wrapped(|ui| {
+                ui.label(
+                    RichText::new(
+                        "A lesson runs with its own settings: yours come back when it ends.",
+                    )
+                    .color(Color32::from_rgb(0, 70, 140)),
+                );
+                if ui.button("End lesson").clicked() {
+                    lab.end_lesson();
+                }
+            });
+        }
         settings(lab, ui);
         actions(lab, robot, q, ui);
         files(lab, robot, picker, ui);
@@ -50,13 +63,13 @@ pub fn show(
                 .wrap(),
             );
         }
-        if let Some(m) = &lab.message {
-            let color = if m.starts_with("saved") {
-                Color32::from_rgb(0, 110, 0)
-            } else {
-                Color32::from_rgb(190, 0, 0)
+        if let Some(m) = &lab.said {
+            let color = match m {
+                Said::Done(_) => Color32::from_rgb(0, 110, 0),
+                Said::Warned(_) => Color32::from_rgb(170, 90, 0),
+                Said::Failed(_) => Color32::from_rgb(190, 0, 0),
             };
-            ui.colored_label(color, m);
+            ui.add(egui::Label::new(RichText::new(m.text()).color(color)).wrap());
         }
         if lab.result.is_some() {
             ui.separator();
@@ -117,16 +130,16 @@ fn corrections(
                 n => format!("{}-corrected.csv", n.trim_end_matches(".csv")),
             };
             let text = lab.corrections_text(robot).unwrap_or_default();
-            lab.message = Some(if picker.downloads() {
+            lab.said = Some(if picker.downloads() {
                 if picker.download(&name, "text/csv", text.as_bytes()) {
-                    format!("downloading the table as {name}")
+                    Said::Done(format!("downloading the table as {name}"))
                 } else {
-                    format!("the browser refused the download of {name}")
+                    Said::Failed(format!("the browser refused the download of {name}"))
                 }
             } else {
                 match std::fs::write(&name, text) {
-                    Ok(()) => format!("saved the table to {name}"),
-                    Err(e) => format!("cannot write {name}: {e}"),
+                    Ok(()) => Said::Done(format!("saved the table to {name}")),
+                    Err(e) => Said::Failed(format!("cannot write {name}: {e}")),
                 }
             });
         }
@@ -412,23 +425,56 @@ fn files(lab: &mut CalibrationLab, robot: &Robot, picker: &mut dyn FilePicker, u
                 .desired_width(200.0),
         )
         .labelled_by(l.id);
-        if ui.button("Save calibrated model").clicked() {
-            if picker.downloads() {
-                let name = match lab.save_path.trim() {
-                    "" => "calibrated.toml",
-                    n => n,
-                };
-                lab.message = Some(match lab.calibrated_text() {
-                    Ok(t) if picker.download(name, "application/toml", t.as_bytes()) => {
-                        format!("downloading the calibrated model as {name}")
-                    }
-                    Ok(_) => format!("the browser refused the download of {name}"),
-                    Err(e) => e,
-                });
-            } else {
-                lab.save_model();
-            }
+        if ui.button("Save calibrated model").clicked() && lab.request_save() {
+            save_calibrated(lab, picker);
         }
+    });
+    if lab.confirm_save {
+        confirm_save(lab, picker, ui);
+    }
+}
+
+/// Writes the calibrated model (a download in a browser).
+fn save_calibrated(lab: &mut CalibrationLab, picker: &mut dyn FilePicker) {
+    if !picker.downloads() {
+        return lab.save_model();
+    }
+    lab.confirm_save = false;
+    let name = match lab.save_path.trim() {
+        "" => "calibrated.toml".to_string(),
+        n => n.to_string(),
+    };
+    let written = lab.calibrated_text().and_then(|t| {
+        if picker.download(&name, "application/toml", t.as_bytes()) {
+            Ok(format!("downloading the calibrated model as {name}"))
+        } else {
+            Err(format!("the browser refused the download of {name}"))
+        }
+    });
+    lab.saved(written);
+}
+
+/// The question before saving a model with doubtful estimates: each named with its reason.
+fn confirm_save(lab: &mut CalibrationLab, picker: &mut dyn FilePicker, ui: &mut egui::Ui) {
+    let red = Color32::from_rgb(190, 0, 0);
+    egui::Frame::group(ui.style()).show(ui, |ui| {
+        ui.label(
+            RichText::new("These estimates are not to be trusted:")
+                .strong()
+                .color(red),
+        );
+        for d in lab.doubts() {
+            ui.add(egui::Label::new(RichText::new(d.to_string()).color(red)).wrap());
+        }
+        ui.label("Save the model anyway? Its file will name them in a warning at the top.");
+        ui.horizontal(|ui| {
+            if ui.button("Save with the warning").clicked() {
+                save_calibrated(lab, picker);
+            }
+            if ui.button("Don't save").clicked() {
+                lab.cancel_save();
+            }
+        });
     });
 }
 
@@ -457,12 +503,12 @@ fn template(
                     "" => "measurements.csv",
                     n => n,
                 };
-                lab.message = Some(match lab.template_text(robot) {
+                lab.said = Some(match lab.template_text(robot) {
                     Ok(t) if picker.download(name, "text/csv", t.as_bytes()) => {
-                        format!("downloading the template as {name}")
+                        Said::Done(format!("downloading the template as {name}"))
                     }
-                    Ok(_) => format!("the browser refused the download of {name}"),
-                    Err(e) => e,
+                    Ok(_) => Said::Failed(format!("the browser refused the download of {name}")),
+                    Err(e) => Said::Failed(e),
                 });
             } else {
                 lab.save_template(robot);
@@ -606,6 +652,7 @@ fn unknowns(r: &LabResult, ui: &mut egui::Ui) {
 
 fn parameters(r: &LabResult, ui: &mut egui::Ui) {
     let rep = &r.report;
+    let doubts = crate::calibration::doubtful_parameters(rep);
     let correlated = |name: &str| {
         rep.correlations
             .iter()
@@ -621,19 +668,20 @@ fn parameters(r: &LabResult, ui: &mut egui::Ui) {
             for (k, p) in rep.parameters.iter().enumerate() {
                 let (scale, unit) = p.kind.display();
                 let kept = rep.auto_fixed.iter().any(|(n, _)| *n == p.name);
+                let doubt = doubts.iter().find(|d| d.index == k);
                 let state = if kept {
                     (
-                        "kept nominal: not identifiable",
+                        "kept nominal: not identifiable".to_string(),
                         Color32::from_rgb(0, 70, 140),
                     )
                 } else if p.fixed {
-                    ("fixed", Color32::GRAY)
-                } else if !rep.at_estimate.identifiable[k] {
-                    ("not identifiable", Color32::from_rgb(190, 0, 0))
+                    ("fixed".into(), Color32::GRAY)
+                } else if let Some(d) = doubt {
+                    (d.reason(), Color32::from_rgb(190, 0, 0))
                 } else if correlated(&p.name) {
-                    ("correlated > 0.9", Color32::from_rgb(200, 110, 0))
+                    ("correlated > 0.9".into(), Color32::from_rgb(200, 110, 0))
                 } else {
-                    ("", Color32::GRAY)
+                    (String::new(), Color32::GRAY)
                 };
                 ui.label(format!("{} [{unit}]", p.name));
                 ui.label(format!("{:.4}", p.nominal * scale));
@@ -646,7 +694,7 @@ fn parameters(r: &LabResult, ui: &mut egui::Ui) {
                 );
                 ui.label(format!("{:.4}", rep.estimate[k] * scale));
                 ui.label(rep.std[k].map_or("-".into(), |s| format!("{:.2e}", s * scale)));
-                ui.colored_label(state.1, state.0);
+                ui.add(egui::Label::new(RichText::new(state.0).color(state.1)).wrap());
                 ui.end_row();
             }
         });
