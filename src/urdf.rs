@@ -339,6 +339,12 @@ pub fn parse_urdf(text: &str, path: &Path) -> Result<Robot, UrdfError> {
         .collect();
     let mut robot = Robot::new(name, Pose::identity(), joints, sorted)
         .map_err(|source| UrdfError::Model { path: p(), source })?;
+    // Every link keeps its frame: `--ee` takes any of them by name.
+    robot.link_frames = uj
+        .iter()
+        .enumerate()
+        .map(|(i, j)| (j.child.link.clone(), new_id[i]))
+        .collect();
     let (visuals, warnings) =
         visuals::read(&urdf, path, |link| child_of.get(link).map(|&s| new_id[s]));
     robot.visuals = visuals;

@@ -780,7 +780,11 @@ impl Row {
             Some(rotation_from_rpy(&Vector3::new(a[2], a[1], a[0])))
         } else if any(&self.rotvec) {
             let a = all(&self.rotvec).ok_or("a rotation vector needs rx, ry and rz")?;
-            Some(Rotation3::new(Vector3::new(a[0], a[1], a[2])))
+            let v = Vector3::new(a[0], a[1], a[2]);
+            if !v.norm().is_finite() {
+                return Err("the rotation vector's length is not a finite angle".into());
+            }
+            Some(Rotation3::new(v))
         } else {
             None
         };

@@ -85,7 +85,7 @@ pub enum UnidentifiableArg {
 pub struct CalibrateArgs {
     /// Built-in name or path to a .toml model (a serial DH chain).
     pub model: String,
-    /// End-effector, by name or 0-based index (default: the tool of the longest arm). On a
+    /// End-effector, by name (any link of a URDF) or 0-based index (default: the tool of the longest arm). On a
     /// robot with several, the command works on the chain from the root to it alone.
     #[arg(long)]
     pub ee: Option<String>,

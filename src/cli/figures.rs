@@ -91,7 +91,7 @@ impl From<ViewpointArg> for Preset {
 pub struct RenderArgs {
     /// Built-in name or path to a .toml / .urdf model.
     pub model: String,
-    /// End-effector, by name or 0-based index (default: the tool of the longest arm): on a
+    /// End-effector, by name (any link of a URDF) or 0-based index (default: the tool of the longest arm): on a
     /// robot with several, only the frames of the chain to it are labelled (with --frames).
     #[arg(long)]
     pub ee: Option<String>,
@@ -138,7 +138,8 @@ pub(crate) fn framing_camera(
 
 /// Runs `render`.
 pub(super) fn render(args: &RenderArgs, out: &mut dyn std::io::Write) -> Result<(), CliError> {
-    let robot = super::load_model(&args.model)?;
+    let mut robot = super::load_model(&args.model)?;
+    let ee = super::ik::end_effector(&mut robot, args.ee.as_deref())?;
     let fallback = if robot.config("ready").is_some() {
         "ready"
     } else {
@@ -151,7 +152,6 @@ pub(super) fn render(args: &RenderArgs, out: &mut dyn std::io::Write) -> Result<
         ..ArmStyle::default()
     };
     let mut scene = arm_scene(&robot, &q, &style)?;
-    let ee = super::ik::end_effector(&robot, args.ee.as_deref())?;
     if robot.end_effectors().len() > 1 {
         crate::scene::label_driven_chain_only(&mut scene, &robot, ee);
     }
@@ -231,7 +231,7 @@ pub enum PointArg {
 pub struct WorkspaceArgs {
     /// Built-in name or path to a .toml / .urdf model.
     pub model: String,
-    /// End-effector, by name or 0-based index (default: the tool of the longest arm). On a
+    /// End-effector, by name (any link of a URDF) or 0-based index (default: the tool of the longest arm). On a
     /// robot with several, the command works on the chain from the root to it alone.
     #[arg(long)]
     pub ee: Option<String>,

@@ -16,8 +16,8 @@ pub(super) fn run(
     format: Format,
     out: &mut dyn Write,
 ) -> Result<(), CliError> {
-    let robot = super::load_model(model)?;
-    let ee = super::ik::end_effector(&robot, ee)?;
+    let mut robot = super::load_model(model)?;
+    let ee = super::ik::end_effector(&mut robot, ee)?;
     let rows = joint_vectors(&robot, model, joints, None)?;
     let mut results = Vec::with_capacity(rows.len());
     for q in &rows {

@@ -81,7 +81,7 @@ pub struct IkArgs {
     /// Joint vector that seeds the numerical solver and picks the closest solution.
     #[arg(long, allow_hyphen_values = true)]
     pub seed_q: Option<String>,
-    /// End-effector, by name or 0-based index (the humanoid has two hands).
+    /// End-effector, by name (any link of a URDF) or 0-based index (the humanoid has two hands).
     #[arg(long)]
     pub ee: Option<String>,
     /// Which solver.
@@ -198,27 +198,31 @@ fn targets(args: &IkArgs) -> Result<Vec<(String, Target)>, CliError> {
         .collect()
 }
 
-/// The index of end-effector `spec` (a name or an index; the first without one).
-pub(super) fn end_effector(robot: &Robot, spec: Option<&str>) -> Result<usize, CliError> {
+/// The index of end-effector `spec` (a name or an index; the first without one). A name may
+/// be any link of a robot description: a link that is no end-effector is made one
+/// ([`Robot::end_effector_at`]). The error lists the end-effectors (the leaf-like links) first,
+/// then the other links.
+pub(super) fn end_effector(robot: &mut Robot, spec: Option<&str>) -> Result<usize, CliError> {
     let Some(s) = spec else { return Ok(0) };
-    let names = || {
-        robot
-            .end_effectors()
-            .iter()
-            .map(|e| e.name.clone())
-            .collect::<Vec<_>>()
-            .join(", ")
-    };
     if let Ok(i) = s.parse::<usize>() {
         if i < robot.end_effectors().len() {
             return Ok(i);
         }
-    } else if let Some(i) = robot.end_effectors().iter().position(|e| e.name == s) {
+    } else if let Some(i) = robot.end_effector_at(s) {
         return Ok(i);
+    }
+    let ees: Vec<&str> = robot.end_effectors().iter().map(|e| e.name.as_str()).collect();
+    let others: Vec<&str> = (robot.link_frames.iter())
+        .map(|(l, _)| l.as_str())
+        .filter(|l| !ees.contains(l))
+        .collect();
+    let mut available = ees.join(", ");
+    if !others.is_empty() {
+        available.push_str(&format!("; any other link: {}", others.join(", ")));
     }
     Err(CliError::UnknownEndEffector {
         name: s.into(),
-        available: names(),
+        available,
     })
 }
 
@@ -257,9 +261,9 @@ fn solver_setup(args: &IkArgs) -> Result<(SolverChoice, NumericalOptions), CliEr
 }
 
 pub(super) fn run(args: &IkArgs, out: &mut dyn Write) -> Result<(), CliError> {
-    let robot = super::load_model(&args.model)?;
+    let mut robot = super::load_model(&args.model)?;
     let targets = targets(args)?;
-    let ee = end_effector(&robot, args.ee.as_deref())?;
+    let ee = end_effector(&mut robot, args.ee.as_deref())?;
     let seed = match &args.seed_q {
         Some(t) => Some(parse_row(t, "--seed-q", robot.dof(), "joint values")?),
         None => None,

@@ -57,7 +57,11 @@ pub(super) fn run(
     out: &mut dyn Write,
 ) -> Result<(), CliError> {
     let spec = model.unwrap_or(DEFAULT_MODEL);
-    let robot = super::load_model(spec)?;
+    let mut robot = super::load_model(spec)?;
+    let only = match ee {
+        Some(_) => Some(super::ik::end_effector(&mut robot, ee)?),
+        None => None,
+    };
     let fallback = if robot.config("ready").is_some() {
         "ready"
     } else {
@@ -66,10 +70,6 @@ pub(super) fn run(
     let rows = joint_vectors(&robot, spec, joints, Some(fallback))?;
     let Some(q) = rows.first() else {
         return Err(CliError::Usage("no joint vector given"));
-    };
-    let only = match ee {
-        Some(_) => Some(super::ik::end_effector(&robot, ee)?),
-        None => None,
     };
     let poses = robot.fk_all_ee(q)?;
     let analyses: Vec<_> = (0..poses.len())

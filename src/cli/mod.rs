@@ -102,7 +102,7 @@ pub enum Command {
         /// Joint vector to evaluate (default: the "ready" configuration).
         #[command(flatten)]
         joints: JointInput,
-        /// Only this end-effector (a name or an index; default: every one, the model-level
+        /// Only this end-effector (a name, any link of a URDF, or an index; default: every one, the model-level
         /// lines about the tool of the longest arm).
         #[arg(long)]
         ee: Option<String>,
@@ -120,7 +120,7 @@ pub enum Command {
         /// Add every joint frame T_i^0.
         #[arg(long)]
         frames: bool,
-        /// The end-effector whose pose is "T" (a name or an index; default: the tool of the
+        /// The end-effector whose pose is "T" (a name, any link of a URDF, or an index; default: the tool of the
         /// longest arm, end-effector 0).
         #[arg(long)]
         ee: Option<String>,
@@ -263,8 +263,8 @@ pub(crate) fn load_model(spec: &str) -> Result<Robot, CliError> {
 /// `spec` names; with several, the arm of end-effector `spec` (default: the tool of the longest
 /// arm, end-effector 0) as a robot of its own ([`crate::kinematics::arm`]), its joints off the
 /// chain at the "ready" configuration (or zero), and index 0.
-pub(crate) fn arm_robot(robot: Robot, spec: Option<&str>) -> Result<(Robot, usize), CliError> {
-    let ee = ik::end_effector(&robot, spec)?;
+pub(crate) fn arm_robot(mut robot: Robot, spec: Option<&str>) -> Result<(Robot, usize), CliError> {
+    let ee = ik::end_effector(&mut robot, spec)?;
     if robot.end_effectors().len() == 1 {
         return Ok((robot, ee));
     }

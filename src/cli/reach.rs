@@ -9,7 +9,7 @@ use std::path::PathBuf;
 pub struct ReachArgs {
     /// Built-in name or path to a .toml / .urdf model.
     pub model: String,
-    /// End-effector, by name or 0-based index (default: the tool of the longest arm). On a
+    /// End-effector, by name (any link of a URDF) or 0-based index (default: the tool of the longest arm). On a
     /// robot with several, the command works on the chain from the root to it alone.
     #[arg(long)]
     pub ee: Option<String>,

@@ -14,7 +14,7 @@ pub struct SelfMotionArgs {
     /// position task uses its position in the arm plane.
     #[arg(long, allow_hyphen_values = true)]
     pub pose: String,
-    /// End-effector, by name or 0-based index (default: the tool of the longest arm); on a
+    /// End-effector, by name (any link of a URDF) or 0-based index (default: the tool of the longest arm); on a
     /// robot with several, the self-motion of the chain from the root to it alone.
     #[arg(long)]
     pub ee: Option<String>,

@@ -45,8 +45,8 @@ pub const GRAMMAR: &str = "names: cK, sK = cos, sin of joint variable qK; c23, s
 
 /// Runs `armlab symbolic`.
 pub(super) fn run(args: &SymbolicArgs, out: &mut dyn Write) -> Result<(), CliError> {
-    let robot = super::load_model(&args.model)?;
-    let ee = super::ik::end_effector(&robot, args.ee.as_deref())?;
+    let mut robot = super::load_model(&args.model)?;
+    let ee = super::ik::end_effector(&mut robot, args.ee.as_deref())?;
     let options = Options {
         numbers: args.numbers,
     };

@@ -46,10 +46,10 @@ pub struct ViewArgs {
 /// Runs `view`.
 pub(super) fn run(args: &ViewArgs, out: &mut dyn std::io::Write) -> Result<(), CliError> {
     let spec = args.model.as_deref().unwrap_or(DEFAULT_MODEL);
-    let state = AppState::from_spec(spec)
-        .map_err(|e| CliError::App(crate::app::AppError::Model(e.to_string())))?;
+    let mut robot = super::load_model(spec)?;
+    let ee = super::ik::end_effector(&mut robot, args.ee.as_deref())?;
+    let state = AppState::new(robot, spec);
     let dof = state.robot().dof();
-    let ee = super::ik::end_effector(state.robot(), args.ee.as_deref())?;
     let q = match &args.q {
         Some(t) => Some(parse_row(t, "--q", dof, "joint values")?),
         None => None,

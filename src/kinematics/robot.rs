@@ -300,6 +300,10 @@ pub struct Robot {
     /// The links' masses as points (a URDF's `<inertial>`, a model file's `mass` and `com`):
     /// what gravity pulls on, for the joints' compliance in calibration; empty when unknown.
     pub masses: Vec<PointMass>,
+    /// Every link of a robot description with the joint whose output frame is the link's frame
+    /// (a URDF joint's child link), in file order: any of them can be made an end-effector by
+    /// name ([`Robot::end_effector_at`]). Empty for a DH model.
+    pub link_frames: Vec<(String, JointId)>,
     pub(crate) lowered: Vec<Lowered>,
     /// `dof_joint[k]` = joint driven by `q[k]`.
     pub(crate) dof_joint: Vec<JointId>,
@@ -377,6 +381,7 @@ impl Robot {
             visuals: Vec::new(),
             load_warnings: Vec::new(),
             masses: Vec::new(),
+            link_frames: Vec::new(),
             lowered,
             dof_joint,
             chains,
@@ -658,6 +663,42 @@ impl Robot {
                 },
                 <[f64]>::to_vec,
             )
+    }
+
+    /// The end-effector named `name`: one the robot has, or else a link of its description
+    /// (see [`Robot::link_frames`]) made one, with an identity tool, and appended. `None` when
+    /// neither has that name.
+    ///
+    /// ```
+    /// use armlab::model_file::parse_model_text;
+    ///
+    /// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+    /// let urdf = r#"<robot name="arm">
+    ///   <link name="base"/> <link name="forearm"/> <link name="hand"/>
+    ///   <joint name="j1" type="continuous"><parent link="base"/><child link="forearm"/>
+    ///     <axis xyz="0 0 1"/></joint>
+    ///   <joint name="j2" type="continuous"><parent link="forearm"/><child link="hand"/>
+    ///     <origin xyz="0.5 0 0"/><axis xyz="0 0 1"/></joint>
+    /// </robot>"#;
+    /// let mut robot = parse_model_text("arm.urdf", urdf)?;
+    /// assert_eq!(robot.end_effectors().len(), 1); // the leaf, "hand"
+    /// let ee = robot.end_effector_at("forearm").expect("a link");
+    /// assert_eq!(robot.end_effectors()[ee].name, "forearm");
+    /// assert!(robot.end_effector_at("elbow").is_none());
+    /// # Ok(())
+    /// # }
+    /// ```
+    pub fn end_effector_at(&mut self, name: &str) -> Option<usize> {
+        if let Some(i) = self.end_effectors.iter().position(|e| e.name == name) {
+            return Some(i);
+        }
+        let &(_, joint) = self.link_frames.iter().find(|(l, _)| l == name)?;
+        self.end_effectors.push(EndEffector {
+            name: name.to_string(),
+            parent: joint,
+            tool: Pose::identity(),
+        });
+        Some(self.end_effectors.len() - 1)
     }
 
     /// A named configuration, if the robot has one by that name.

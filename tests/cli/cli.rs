@@ -1648,3 +1648,67 @@ fn ik_lists_the_reversed_chain_postures_of_a_ball_shoulder() {
         assert!(s["position_error"].as_f64().unwrap() < 1e-9, "{s}");
     }
 }
+
+/// Issue 46, item 11: `--ee` takes any link of a robot description by name, not only the
+/// leaf-like ones offered as end-effectors (`--ee l_hand` on Atlas was refused: the hand
+/// carries fingers). Checked against the chain's FK written out here; an unknown name lists
+/// the end-effectors first, then every other link.
+#[test]
+fn ee_takes_any_link_by_name() {
+    const URDF: &str = r#"<robot name="two_arms">
+  <link name="pelvis"/> <link name="l_upper_arm"/> <link name="l_forearm"/> <link name="l_hand"/>
+  <link name="l_finger"/> <link name="l_hand_camera"/> <link name="r_upper_arm"/> <link name="r_hand"/>
+  <joint name="l_shoulder" type="revolute"><parent link="pelvis"/><child link="l_upper_arm"/>
+    <origin xyz="0 0.2 1"/><axis xyz="0 0 1"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+  <joint name="l_elbow" type="revolute"><parent link="l_upper_arm"/><child link="l_forearm"/>
+    <origin xyz="0 0.3 0"/><axis xyz="0 1 0"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+  <joint name="l_wrist" type="revolute"><parent link="l_forearm"/><child link="l_hand"/>
+    <origin xyz="0 0 -0.3"/><axis xyz="1 0 0"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+  <joint name="l_grip" type="prismatic"><parent link="l_hand"/><child link="l_finger"/>
+    <origin xyz="0 0 -0.1"/><axis xyz="0 1 0"/><limit lower="0" upper="0.04" effort="1" velocity="1"/></joint>
+  <joint name="l_cam" type="fixed"><parent link="l_hand"/><child link="l_hand_camera"/>
+    <origin xyz="0.05 0 0"/></joint>
+  <joint name="r_shoulder" type="revolute"><parent link="pelvis"/><child link="r_upper_arm"/>
+    <origin xyz="0 -0.2 1"/><axis xyz="0 0 1"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+  <joint name="r_elbow" type="revolute"><parent link="r_upper_arm"/><child link="r_hand"/>
+    <origin xyz="0 -0.3 0"/><axis xyz="0 1 0"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+</robot>"#;
+    let dir = std::env::temp_dir().join(format!("armlab-ee-link-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("two_arms.urdf");
+    std::fs::write(&file, URDF).unwrap();
+    let f = file.to_str().unwrap();
+    let (q1, q2, q3): (f64, f64, f64) = (0.4, -0.7, 0.3);
+    let q = format!("{q1},{q2},{q3},0.01,0.5,-0.2");
+    // world_from_forearm = T(0, 0.2, 1) Rz(q1) T(0, 0.3, 0) Ry(q2): the elbow's axis point
+    let (c, s) = (q1.cos(), q1.sin());
+    let elbow = [0.0 - s * 0.3, 0.2 + c * 0.3, 1.0];
+    let v = json(&armlab(&["fk", f, "--q", &q, "--ee", "l_forearm", "--format", "json"]));
+    for k in 0..3 {
+        let got = v[0]["p"][k].as_f64().unwrap();
+        assert!((got - elbow[k]).abs() < 1e-12, "p[{k}] = {got}, want {}", elbow[k]);
+    }
+    // the hand (with fingers and a camera below it): world_from_hand = ... Ry(q2) T(0, 0, -0.3)
+    let down = [q2.sin() * -0.3, 0.0, q2.cos() * -0.3]; // Ry(q2) (0, 0, -0.3)
+    let hand = [
+        elbow[0] + c * down[0] - s * down[1],
+        elbow[1] + s * down[0] + c * down[1],
+        elbow[2] + down[2],
+    ];
+    let v = json(&armlab(&["fk", f, "--q", &q, "--ee", "l_hand", "--format", "json"]));
+    for k in 0..3 {
+        let got = v[0]["p"][k].as_f64().unwrap();
+        assert!((got - hand[k]).abs() < 1e-12, "p[{k}] = {got}, want {}", hand[k]);
+    }
+    // any link works for the other commands too
+    let o = armlab(&["ik", f, "--ee", "l_forearm", "--position", "0,0.5,1"]);
+    assert!(o.status.success(), "{o:?}");
+    // an unknown name: the end-effectors first, then the other links
+    let o = armlab(&["fk", f, "--q", &q, "--ee", "l_elbow_link"]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    let (ees, links) = err.split_once("any other link").expect(&err);
+    assert!(ees.contains("l_finger") && ees.contains("r_hand"), "{err}");
+    assert!(links.contains("l_forearm") && links.contains("l_upper_arm"), "{err}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
