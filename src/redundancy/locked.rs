@@ -173,6 +173,12 @@ impl LockedSelfMotion {
         };
         m.sweep(lo, hi);
         if m.arcs.is_empty() {
+            if let Some(value) = fixed_by_pose(robot, target, k) {
+                return Err(RedundancyError::LockedJointFixedByPose {
+                    parameter: NAMES[k],
+                    value_deg: value.to_degrees(),
+                });
+            }
             return Err(RedundancyError::OutOfReachForEveryValue {
                 parameter: NAMES[k],
             });
@@ -436,4 +442,30 @@ impl LockedSelfMotion {
         }
         out
     }
+}
+
+/// Joint `k`'s value where the pose fixes it: the pose is reached (a numerical solution from
+/// a few starts) and the Jacobian's null space there leaves joint `k` still (its component of
+/// the null vector below 1e-9 of the vector), so the self-motion keeps `q[k]` (an SRS arm's
+/// elbow). `None` when the pose is not reached or joint `k` moves with the self-motion.
+fn fixed_by_pose(robot: &Robot, target: &Pose, k: usize) -> Option<f64> {
+    use crate::kinematics::ik::Target;
+    use crate::kinematics::ik::numerical::{NumericalOptions, solve};
+    let starts = [
+        robot.ready_or_zero(),
+        vec![0.3; robot.dof()],
+        vec![-0.6; robot.dof()],
+    ];
+    let q = starts.iter().find_map(|seed| {
+        let opts = NumericalOptions::default();
+        let rep = solve(robot, 0, &Target::Pose(*target), seed, &opts).ok()?;
+        rep.converged.then_some(rep.q)
+    })?;
+    let j = robot.jacobian(&q, 0).ok()?;
+    let jm = nalgebra::DMatrix::from_fn(6, j.ncols(), |r, c| j[(r, c)]);
+    // the null vector: the eigenvector of J^T J of the smallest eigenvalue
+    let e = (jm.transpose() * &jm).symmetric_eigen();
+    let i = e.eigenvalues.argmin().0;
+    let null = e.eigenvectors.column(i);
+    (null[k].abs() < 1e-9 * null.norm()).then_some(q[k])
 }

@@ -64,6 +64,19 @@ pub enum RedundancyError {
         /// The parameter, e.g. "q3 (locked)".
         parameter: &'static str,
     },
+    /// A seven-joint arm with a locked joint that the pose fixes: it keeps one value along the
+    /// whole self-motion (an SRS arm's elbow, q4), so it cannot be the self-motion's parameter.
+    #[error(
+        "{parameter} keeps one value along each branch of this self-motion ({value_deg:.3} deg \
+         on one: the hand's pose fixes it, as it fixes an SRS arm's elbow), so it cannot be the \
+         parameter; lock another joint, or leave the lock out"
+    )]
+    LockedJointFixedByPose {
+        /// The parameter, e.g. "q4 (locked)".
+        parameter: &'static str,
+        /// Its value on one branch (deg).
+        value_deg: f64,
+    },
     /// The null space of the Jacobian is empty at the start of a numerical self-motion.
     #[error(
         "{robot} has no self-motion at this configuration for this task (the null space of its \

@@ -333,3 +333,84 @@ fn the_locked_self_motion_of_an_srs_arm_reaches_every_pose_it_came_from() {
         }
     }
 }
+
+/// Issue 46, item 12: any locked joint of a seven-joint arm gives every solution, on an SRS
+/// arm (the iiwa 14) and on the Panda (an offset elbow, no SRS), at each joint 1 to 7 but the
+/// SRS arm's elbow (q4, which the pose fixes: locking it is refused with that reason). The
+/// same brute force as above: 200 Newton starts per pose and value, each configuration it finds
+/// among armlab's; values beyond the joint's limits included.
+#[test]
+fn any_locked_joint_of_a_seven_joint_arm_gives_every_solution() {
+    use armlab::kinematics::ik::closed_form::{LockedArm, MAX_LOCKED_SOLUTIONS};
+    use armlab::redundancy::RedundancyError;
+    use armlab::redundancy::locked::LockedSelfMotion;
+    let mut seed = 4612u64;
+    for robot in [iiwa14(), built_in("panda").unwrap()] {
+        let lim = robot.limits();
+        let srs = robot.name.contains("iiwa");
+        for k in 0..7usize {
+            let q0 = random_q(&lim, &mut seed);
+            let target = robot.fk(&q0).unwrap();
+            if srs && k == 3 {
+                match LockedSelfMotion::new(&robot, &target, Some(k)) {
+                    Err(RedundancyError::LockedJointFixedByPose { value_deg, .. }) => {
+                        // the elbow's angle, on one branch or the other
+                        let v = value_deg.to_radians().abs();
+                        assert!((v - q0[3].abs()).abs() < 1e-6, "{value_deg} vs {}", q0[3]);
+                    }
+                    other => panic!("q4 of an SRS arm: {:?}", other.map(|_| ())),
+                }
+                continue;
+            }
+            let arm = LockedArm::new(&robot, k)
+                .unwrap_or_else(|| panic!("{}: q{} cannot be locked", robot.name, k + 1));
+            let (mut total, mut found) = (0, 0);
+            for value in [q0[k], 0.5 * lim[k][0] + 0.2, lim[k][1] + 0.05] {
+                let mut out = [[0.0; 7]; MAX_LOCKED_SOLUTIONS];
+                let n = arm.solve_exact(&robot, &target, value, &mut out).unwrap();
+                let ours = &out[..n];
+                for q in ours {
+                    let (dp, dr) = pose_gap(&robot.fk(q).unwrap(), &target);
+                    assert!(
+                        dp < 1e-9 && dr < 1e-8,
+                        "{}: {q:?} misses by {dp}, {dr}",
+                        robot.name
+                    );
+                }
+                let mut brute: Vec<Vec<f64>> = Vec::new();
+                for _ in 0..200 {
+                    let mut start: Vec<f64> =
+                        (0..7).map(|_| (2.0 * lcg(&mut seed) - 1.0) * PI).collect();
+                    start[k] = value;
+                    if let Some(q) = newton_locked(&robot, &target, k, start)
+                        && !brute.iter().any(|b| same_configuration(b, &q, 1e-5))
+                    {
+                        brute.push(q);
+                    }
+                }
+                for b in &brute {
+                    assert!(
+                        ours.iter().any(|q| same_configuration(q, b, 1e-6)),
+                        "{} q{} locked at {value}: the brute force found {b:?}, armlab gave {ours:?}",
+                        robot.name,
+                        k + 1
+                    );
+                }
+                total += brute.len();
+                found += n;
+            }
+            assert!(
+                total >= 1,
+                "{} q{}: the brute force found nothing",
+                robot.name,
+                k + 1
+            );
+            assert!(
+                found >= total,
+                "{} q{}: {found} < {total}",
+                robot.name,
+                k + 1
+            );
+        }
+    }
+}
