@@ -72,6 +72,7 @@ impl eframe::App for ArmlabApp {
             let [w, h] = self.ui.window_points;
             let ppp = ui.ctx().pixels_per_point();
             let size = [(w * ppp).round() as u32, (h * ppp).round() as u32];
+            self.ui.state.drag_held = true;
             if p.frame(&mut self.ui.state, size) {
                 ui.ctx().send_viewport_cmd(egui::ViewportCommand::Close);
             }

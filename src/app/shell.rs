@@ -425,6 +425,7 @@ impl AppUi {
     /// return what they want done, applied once all are laid out.
     pub fn show(&mut self, ui: &mut egui::Ui, viewport: Option<ViewportImage>) {
         let ctx = ui.ctx().clone();
+        self.state.dragging = self.state.drag_held || ctx.input(|i| i.pointer.any_down());
         let r = ui.max_rect();
         self.window_points = [r.width(), r.height()];
         layout::apply_style(&ctx, &self.layout);

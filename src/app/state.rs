@@ -89,6 +89,11 @@ pub struct AppState {
     pub display: DisplayToggles,
     /// What an exercise sheet asks for, hidden from the panels while it is being answered.
     pub hidden: Hidden,
+    /// A drag is in progress (a pointer button held, or the frame probe's drag): a self-motion
+    /// that takes long to compute (a locked joint swept) waits for its end.
+    pub dragging: bool,
+    /// The frame probe drags the target with no pointer: the state counts as dragged.
+    pub drag_held: bool,
     angle_unit: AngleUnit,
     /// Orientation representation of the readouts (ZYZ or RPY).
     pub orientation: EulerKind,
@@ -173,6 +178,8 @@ impl AppState {
             dh,
             display: DisplayToggles::default(),
             hidden: Hidden::default(),
+            dragging: false,
+            drag_held: false,
             angle_unit: AngleUnit::default(),
             orientation: EulerKind::Zyz,
             trails: Vec::new(),

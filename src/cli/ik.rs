@@ -211,7 +211,11 @@ pub(super) fn end_effector(robot: &mut Robot, spec: Option<&str>) -> Result<usiz
     } else if let Some(i) = robot.end_effector_at(s) {
         return Ok(i);
     }
-    let ees: Vec<&str> = robot.end_effectors().iter().map(|e| e.name.as_str()).collect();
+    let ees: Vec<&str> = robot
+        .end_effectors()
+        .iter()
+        .map(|e| e.name.as_str())
+        .collect();
     let others: Vec<&str> = (robot.link_frames.iter())
         .map(|(l, _)| l.as_str())
         .filter(|l| !ees.contains(l))

@@ -205,6 +205,13 @@ impl ExactSelfMotion {
         }
     }
 
+    /// Whether it was computed by sweeping a locked joint over its whole turn through a general
+    /// six-joint elimination (tens to hundreds of milliseconds, where the SRS and offset-elbow
+    /// arms' closed forms take well under one): a live view recomputes it only after a drag.
+    pub fn is_swept(&self) -> bool {
+        matches!(self.solver, Solver::Locked(_))
+    }
+
     /// The parameter's name: "arm angle", "q7", "phi", or for a locked joint e.g. "q3
     /// (locked)".
     pub fn parameter(&self) -> &'static str {

@@ -414,3 +414,31 @@ fn on_a_tree_the_slider_moves_the_chosen_arm_alone() {
         "the hand is held: {dp:e} m, {dr:e} rad"
     );
 }
+
+/// Issue 46, item 7: during a drag a self-motion swept over a locked joint (Baxter's arm) is
+/// not recomputed at every move (it cost 110-200 ms a frame); it is after the drag. One that
+/// the closed form gives at once (the DLR arm's arm angle) follows the drag live.
+#[test]
+fn a_swept_self_motion_waits_for_the_end_of_a_drag() {
+    let mut b = AppState::from_spec("tests/data/urdf_corpus/baxter.urdf").unwrap();
+    assert!(b.self_motion(0).is_ok());
+    let q = b.q().to_vec();
+    let mut moved = q.clone();
+    moved[0] += 0.05;
+    b.dragging = true;
+    b.set_q(&moved).unwrap();
+    let t = std::time::Instant::now();
+    let during = b.self_motion(0);
+    assert!(during.is_err(), "recomputed during the drag");
+    assert!(t.elapsed().as_millis() < 20, "{:?}", t.elapsed());
+    b.dragging = false;
+    let after = b.self_motion(0).expect("after the drag");
+    assert!(after.exact);
+    let mut d = AppState::from_spec("dlr").unwrap();
+    assert!(d.self_motion(0).is_ok());
+    let mut q = d.q().to_vec();
+    q[0] += 0.05;
+    d.dragging = true;
+    d.set_q(&q).unwrap();
+    assert!(d.self_motion(0).is_ok(), "the closed form follows the drag");
+}

@@ -208,6 +208,19 @@ impl AppState {
     /// self-motion started, kept while q changes by the self-motion alone (never the current,
     /// possibly drifted, pose): a new one starts when the robot, the task or the end-effector
     /// changed, or when anything else moved q.
+    /// Whether the self-motion of `ee` is stale and slow to recompute (its last one was swept
+    /// over a locked joint, [`ExactSelfMotion::is_swept`]): Baxter's arm took 110-200 ms a
+    /// frame while its target was dragged, 7-9 times the Puma's.
+    fn self_motion_waits(&self, ee: usize) -> bool {
+        self.self_motion.as_ref().is_some_and(|c| {
+            c.generation == self.generation
+                && c.ee == ee
+                && c.task == self.task
+                && c.epoch != self.q_epoch
+                && matches!(&c.kind, Kind::Exact(m) if m.is_swept())
+        })
+    }
+
     fn self_motion_cache(&mut self, ee: usize) -> Option<&mut SelfMotionCache> {
         let fresh = self.self_motion.as_ref().is_some_and(|c| {
             c.generation == self.generation
@@ -278,6 +291,9 @@ impl AppState {
 
     /// What the self-motion slider of `ee` shows, or why there is none.
     pub fn self_motion(&mut self, ee: usize) -> Result<SelfMotionView, String> {
+        if self.dragging && self.self_motion_waits(ee) {
+            return Err("the self-motion follows when the drag ends".into());
+        }
         let q = self.q.clone();
         let robot = self.robot.clone();
         let cache = self
