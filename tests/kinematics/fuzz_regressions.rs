@@ -51,3 +51,18 @@ fn angle_inputs() {
 fn mesh_inputs() {
     replay("mesh", checks::mesh);
 }
+
+#[test]
+fn lesson_inputs() {
+    replay("lesson", checks::lesson);
+}
+
+#[test]
+fn exercise_inputs() {
+    replay("exercise", checks::exercise);
+}
+
+#[test]
+fn calibration_files_inputs() {
+    replay("calibration_files", checks::calibration_files);
+}
