@@ -22,6 +22,7 @@ pub fn workspace_figure(
     opts: &WsFigureOptions,
     progress: &(dyn Fn(f32) + Sync),
 ) -> Result<WsFigure, FigureError> {
+    figs.text_scale = opts.text_scale;
     let plan = plan(figs, robot, title, opts)?;
     let data = compute_figure_data(robot, &plan.request, progress)?;
     let figure = paint(figs, robot, &plan, &data)?;
@@ -42,6 +43,7 @@ pub fn workspace_figure_forming(
     every: std::time::Duration,
     shown: &mut dyn FnMut(image::RgbaImage, PlotFrame),
 ) -> Result<WsFigure, FigureError> {
+    figs.text_scale = opts.text_scale;
     let plan = plan(figs, robot, title, opts)?;
     let mut painter = Painter {
         figs,

@@ -224,6 +224,9 @@ impl Lesson {
                     "overlay {o:?} is both in overlays and in overlays_off"
                 )));
             }
+            if let Some(field) = non_finite(s) {
+                return Err(step_error(format!("{field}: every number must be finite")));
+            }
             if s.construction_step == Some(0) {
                 return Err(step_error("construction_step counts from 1".to_string()));
             }
@@ -304,6 +307,28 @@ impl Lesson {
             .clone()
             .unwrap_or_else(|| vec![Overlay::Frames, Overlay::Labels])
     }
+}
+
+/// The first field of `step` holding a number that is not finite (NaN or infinite), if any.
+fn non_finite(step: &Step) -> Option<&'static str> {
+    let bad = |v: &[f64]| v.iter().any(|x| !x.is_finite());
+    let camera = step.camera.map(|c| {
+        let mut v = vec![c.azimuth_deg, c.elevation_deg];
+        v.extend(c.distance);
+        v.extend(c.target.into_iter().flatten());
+        v.extend(c.orthographic_height);
+        v
+    });
+    [
+        ("q", step.q.clone()),
+        ("q_deg", step.q_deg.clone()),
+        ("target_position", step.target_position.map(|p| p.to_vec())),
+        ("target_rpy_deg", step.target_rpy_deg.map(|p| p.to_vec())),
+        ("camera", camera),
+    ]
+    .into_iter()
+    .find(|(_, v)| v.as_deref().is_some_and(bad))
+    .map(|(name, _)| name)
 }
 
 /// Resolves a robot spec written in a lesson at `lesson_path`: a built-in name stays, a

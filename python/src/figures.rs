@@ -211,6 +211,7 @@ pub fn workspace_options(
         end_effector: 0,
         point,
         caption: String::new(),
+        text_scale: 1.0,
     })
 }
 

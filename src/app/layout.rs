@@ -147,10 +147,31 @@ impl Layout {
     }
 }
 
+/// The smallest text projector mode allows (px at one pixel per point): read from the back of
+/// a room.
+pub const PROJECTOR_MIN_TEXT: f32 = 16.0;
+
+/// Where [`apply_style`] keeps the current mode's smallest text size.
+const TEXT_FLOOR: &str = "armlab text floor";
+
+/// The smallest text size the current mode allows (points): [`PROJECTOR_MIN_TEXT`] in projector
+/// mode, 0 otherwise. Text sized by hand (a subscript, a label painted over the 3D view) takes
+/// at least this.
+pub fn text_floor(ctx: &egui::Context) -> f32 {
+    ctx.data(|d| d.get_temp(egui::Id::unique(TEXT_FLOOR)))
+        .unwrap_or(0.0)
+}
+
 /// Applies the fonts and visuals of the mode to `ctx`: larger text in projector mode, square
 /// widgets (crisp on a projector, and cheap on a software rasterizer), panels painted over the
 /// cleared window.
 pub fn apply_style(ctx: &egui::Context, layout: &Layout) {
+    let floor = if layout.projector {
+        PROJECTOR_MIN_TEXT
+    } else {
+        0.0
+    };
+    ctx.data_mut(|d| d.insert_temp(egui::Id::unique(TEXT_FLOOR), floor));
     let scale = layout.text_scale();
     ctx.global_style_mut(|s| {
         use egui::{FontId, TextStyle};
@@ -160,8 +181,14 @@ pub fn apply_style(ctx: &egui::Context, layout: &Layout) {
             .insert(TextStyle::Body, FontId::proportional(13.5 * scale));
         s.text_styles
             .insert(TextStyle::Button, FontId::proportional(13.5 * scale));
+        // In projector mode nothing is under 16 px, small text included (11 x 1.4 = 15.4).
+        let small = if layout.projector {
+            (11.0 * scale).max(PROJECTOR_MIN_TEXT)
+        } else {
+            11.0
+        };
         s.text_styles
-            .insert(TextStyle::Small, FontId::proportional(11.0 * scale));
+            .insert(TextStyle::Small, FontId::proportional(small));
         s.text_styles
             .insert(TextStyle::Monospace, FontId::monospace(12.5 * scale));
         // Visible handles on the panels' edges.

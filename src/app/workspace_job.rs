@@ -26,8 +26,9 @@ pub const OVERLAY_SAMPLES: usize = 100_000;
 pub enum JobFigure {
     /// A workspace figure with these options.
     Workspace(WsFigureOptions),
-    /// One of the excerpt's figures that is not a workspace figure (Figs 2.31-2.33), by name.
-    Textbook(&'static str),
+    /// One of the excerpt's figures that is not a workspace figure (Figs 2.31-2.33), by name,
+    /// with its text scale (see [`crate::figure::workspace::WsFigureOptions::text_scale`]).
+    Textbook(&'static str, f32),
 }
 
 /// What the job produces.
@@ -259,6 +260,7 @@ impl WorkspaceJob {
                     "after {source} of Siciliano et al., Robotics: Modelling, Planning and Control"
                 )
             }),
+            text_scale: 1.0,
         }
     }
 
@@ -465,7 +467,7 @@ impl WorkspaceJob {
     pub fn view(&self) -> Option<(WsView, TrackedPoint)> {
         match &self.figure {
             JobFigure::Workspace(o) => Some((o.view, o.point)),
-            JobFigure::Textbook(_) => None,
+            JobFigure::Textbook(..) => None,
         }
     }
 
@@ -553,9 +555,10 @@ impl Slices {
         }
         let Some(plan) = &f.plan else {
             // A drawing of the excerpt: made here, in one slice.
-            let JobFigure::Textbook(name) = which else {
+            let JobFigure::Textbook(name, text_scale) = which else {
                 return Some(Err("no figure planned".into()));
             };
+            f.figs.text_scale = *text_scale;
             return Some(
                 crate::headless::textbook_figure(&mut f.figs, name, [1200, 900], Theme::Light)
                     .map(|img| (img, None))
@@ -611,7 +614,7 @@ impl Slices {
             JobFigure::Workspace(o) => {
                 Some(plan(&mut figs, &self.robot, &self.title, o).map_err(|e| e.to_string())?)
             }
-            JobFigure::Textbook(_) => None,
+            JobFigure::Textbook(..) => None,
         };
         Ok(FigureSlices {
             figs,
@@ -652,7 +655,8 @@ fn compute(
                 )
                 .map(|WsFigure { image, frame, .. }| (image, frame))
                 .map_err(|e| e.to_string()),
-                JobFigure::Textbook(name) => {
+                JobFigure::Textbook(name, text_scale) => {
+                    figs.text_scale = *text_scale;
                     crate::headless::textbook_figure(&mut figs, name, [1200, 900], Theme::Light)
                         .map(|img| (img, None))
                         .map_err(|e| e.to_string())

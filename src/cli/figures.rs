@@ -303,6 +303,7 @@ pub(super) fn workspace(
             PointArg::Flange => crate::workspace::TrackedPoint::Flange,
         },
         caption: String::new(),
+        text_scale: 1.0,
     };
     let bar = crate::headless::Progress::new(1000, "workspace");
     let mut figures = crate::headless::figures_for(&args.out)?;

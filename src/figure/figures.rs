@@ -2,7 +2,11 @@
 //! figures of plots and of 3D scenes with their titles, legends and labels.
 
 use super::plot2d::{self, Plot2d};
-use super::{FigureError, Theme, apply_style, pixels_per_point};
+use super::{FigureError, Theme, apply_style_scaled, pixels_per_point};
+
+/// The smallest text a 3D figure draws, in pixels of its own frame: readable at the size it is
+/// recorded or written at.
+pub const MIN_TEXT_PX: f32 = 16.0;
 use crate::camera::Camera;
 use crate::render::{Gpu, RenderSettings, RenderTarget, Renderer, ViewUniforms};
 use crate::scene::Scene;
@@ -62,6 +66,9 @@ pub struct Figures {
     renderer: Renderer,
     /// A multi-panel figure's composed vectors ([`Self::set_composite`]).
     composite: Option<super::vector::VectorPage>,
+    /// Every text size times this (1: as laid out for the 800-point canvas); see
+    /// [`super::apply_style_scaled`].
+    pub text_scale: f32,
 }
 
 impl Figures {
@@ -79,6 +86,7 @@ impl Figures {
             offscreen,
             renderer,
             composite: None,
+            text_scale: 1.0,
         })
     }
 
@@ -131,7 +139,7 @@ impl Figures {
         plot: &Plot2d,
         raster: Option<egui::ColorImage>,
     ) -> Result<image::RgbaImage, FigureError> {
-        apply_style(&self.offscreen.ctx, theme);
+        apply_style_scaled(&self.offscreen.ctx, theme, self.text_scale);
         let tex = raster.map(|img| {
             self.offscreen
                 .ctx
@@ -158,7 +166,7 @@ impl Figures {
         theme: Theme,
         plot: &Plot2d,
     ) -> Result<PlotFrame, FigureError> {
-        apply_style(&self.offscreen.ctx, theme);
+        apply_style_scaled(&self.offscreen.ctx, theme, self.text_scale);
         let ppp = pixels_per_point(size[0]);
         let mut frame = None;
         self.offscreen.layout(&self.gpu.device, size, ppp, |ui| {
@@ -189,7 +197,7 @@ impl Figures {
         plot: &Plot2d,
         raster: Option<(egui::ColorImage, [f64; 4])>,
     ) -> Result<(image::RgbaImage, PlotFrame), FigureError> {
-        apply_style(&self.offscreen.ctx, theme);
+        apply_style_scaled(&self.offscreen.ctx, theme, self.text_scale);
         let ppp = pixels_per_point(size[0]);
         let tex = raster.map(|(img, bounds)| {
             let t = self
@@ -219,7 +227,7 @@ impl Figures {
         theme: Theme,
         fig: &Scene3d<'_>,
     ) -> Result<image::RgbaImage, FigureError> {
-        apply_style(&self.offscreen.ctx, theme);
+        apply_style_scaled(&self.offscreen.ctx, theme, self.text_scale);
         let [w, h] = size;
         let target = RenderTarget::new(&self.gpu, w, h, FIGURE_MSAA)?;
         let mut settings = RenderSettings::default();
@@ -246,20 +254,27 @@ impl Figures {
                     egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0)),
                     Color32::WHITE,
                 );
+                // Sized for the frame it is drawn into: at least MIN_TEXT_PX pixels whatever
+                // the size (a recording's 640-pixel frame had 9-pixel labels).
+                let font = |pt: f32| {
+                    let mut f = super::font(ui.ctx(), pt);
+                    f.size = f.size.max(MIN_TEXT_PX / ppp);
+                    f
+                };
                 super::labels::draw_labels(
                     painter,
                     rect,
                     ([w, h], &fig.camera),
                     &fig.scene.labels,
                     &[],
-                    &egui::FontId::proportional(13.0),
+                    &font(13.0),
                 );
                 let text = ui.visuals().text_color();
                 painter.text(
                     rect.center_top() + egui::vec2(0.0, 8.0),
                     egui::Align2::CENTER_TOP,
                     &fig.title,
-                    egui::FontId::proportional(20.0),
+                    font(20.0),
                     text,
                 );
                 if !fig.subtitle.is_empty() {
@@ -267,11 +282,12 @@ impl Figures {
                         rect.center_top() + egui::vec2(0.0, 34.0),
                         egui::Align2::CENTER_TOP,
                         &fig.subtitle,
-                        egui::FontId::proportional(12.0),
+                        font(12.0),
                         text,
                     );
                 }
-                paint_caption_and_legend(painter, rect, fig, text, ui.visuals().weak_text_color());
+                let weak = ui.visuals().weak_text_color();
+                paint_caption_and_legend(painter, rect, fig, (text, weak), &font);
             });
         if self.offscreen.take_capture().is_some_and(|mut c| {
             // A vector figure embeds the 3D view as an image under its vector text.
@@ -298,15 +314,15 @@ fn paint_caption_and_legend(
     painter: &egui::Painter,
     rect: egui::Rect,
     fig: &Scene3d<'_>,
-    text: Color32,
-    weak: Color32,
+    (text, weak): (Color32, Color32),
+    font: &dyn Fn(f32) -> egui::FontId,
 ) {
     if !fig.caption.is_empty() {
         painter.text(
             rect.right_bottom() - egui::vec2(10.0, 8.0),
             egui::Align2::RIGHT_BOTTOM,
             &fig.caption,
-            egui::FontId::proportional(11.0),
+            font(11.0),
             weak,
         );
     }
@@ -319,7 +335,7 @@ fn paint_caption_and_legend(
             swatch.right_center() + egui::vec2(6.0, 0.0),
             egui::Align2::LEFT_CENTER,
             name,
-            egui::FontId::proportional(13.0),
+            font(13.0),
             text,
         );
         y += 20.0;

@@ -61,24 +61,45 @@ pub enum Theme {
 /// Sets egui's visuals and text sizes for figures: the layout is made for an 800-point-wide
 /// canvas, and `pixels_per_point` scales it to the requested size.
 pub fn apply_style(ctx: &egui::Context, theme: Theme) {
+    apply_style_scaled(ctx, theme, 1.0);
+}
+
+/// Where [`apply_style_scaled`] keeps the text scale for [`font`].
+const TEXT_SCALE: &str = "armlab figure text scale";
+
+/// [`apply_style`] with every text size times `text_scale`: a figure shown smaller than its
+/// canvas (the app's Workspace tab beside its panels, in projector mode) keeps its text
+/// readable at the size it is seen.
+pub fn apply_style_scaled(ctx: &egui::Context, theme: Theme, text_scale: f32) {
+    ctx.data_mut(|d| d.insert_temp(egui::Id::unique(TEXT_SCALE), text_scale));
     ctx.set_visuals(match theme {
         Theme::Light => egui::Visuals::light(),
         Theme::Dark => egui::Visuals::dark(),
     });
     ctx.global_style_mut(|s| {
         use egui::{FontId, TextStyle};
+        let k = text_scale;
         s.text_styles
-            .insert(TextStyle::Heading, FontId::proportional(20.0));
+            .insert(TextStyle::Heading, FontId::proportional(20.0 * k));
         s.text_styles
-            .insert(TextStyle::Body, FontId::proportional(14.0));
+            .insert(TextStyle::Body, FontId::proportional(14.0 * k));
         s.text_styles
-            .insert(TextStyle::Small, FontId::proportional(12.0));
+            .insert(TextStyle::Small, FontId::proportional(12.0 * k));
         s.text_styles
-            .insert(TextStyle::Button, FontId::proportional(14.0));
+            .insert(TextStyle::Button, FontId::proportional(14.0 * k));
         s.text_styles
-            .insert(TextStyle::Monospace, FontId::monospace(13.0));
+            .insert(TextStyle::Monospace, FontId::monospace(13.0 * k));
         s.animation_time = 0.0;
     });
+}
+
+/// A proportional font of `size` points times the figure's text scale
+/// ([`apply_style_scaled`]).
+pub fn font(ctx: &egui::Context, size: f32) -> egui::FontId {
+    let k: f32 = ctx
+        .data(|d| d.get_temp(egui::Id::unique(TEXT_SCALE)))
+        .unwrap_or(1.0);
+    egui::FontId::proportional(size * k)
 }
 
 /// Pixels per egui point for a figure `width` pixels wide (layouts are designed at 800).

@@ -150,7 +150,7 @@ fn colorbar(ui: &mut egui::Ui, bar: &ColorBar) {
                 egui::pos2(x, rect.bottom() + 5.0),
                 egui::Align2::CENTER_TOP,
                 format!("{}", (t * 1e6).round() / 1e6),
-                egui::FontId::proportional(11.0),
+                super::font(ui.ctx(), 11.0),
                 text,
             );
         }
@@ -355,12 +355,13 @@ fn draw_items(
         );
     }
     add_curves(pui, plot, capturing);
+    let size = super::font(pui.ctx(), 15.0).size;
     for (text, at) in &plot.labels {
         pui.text(
             Text::new(
                 "",
                 PlotPoint::new(at[0], at[1]),
-                egui::RichText::new(text).strong().size(15.0),
+                egui::RichText::new(text).strong().size(size),
             )
             .color(text_color),
         );

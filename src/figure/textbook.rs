@@ -56,6 +56,7 @@ pub fn workspace_options<'s>(
         end_effector: 0,
         point: crate::workspace::TrackedPoint::WristCentre,
         caption: after(Subject::source(name)),
+        text_scale: 1.0,
     };
     Some((robot, title, opts))
 }

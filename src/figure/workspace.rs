@@ -71,6 +71,17 @@ pub struct WsFigureOptions {
     pub point: TrackedPoint,
     /// A small caption naming the figure's source (empty for none).
     pub caption: String,
+    /// Every text size times this (1: the print layout; the app's projector mode makes the
+    /// figure's text readable at the size the tab shows it).
+    pub text_scale: f32,
+}
+
+impl WsFigureOptions {
+    /// These options with every text size times `text_scale`.
+    pub fn scaled(mut self, text_scale: f32) -> Self {
+        self.text_scale = text_scale;
+        self
+    }
 }
 
 /// A figure and the statistics it was drawn from.

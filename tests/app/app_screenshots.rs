@@ -309,3 +309,107 @@ fn baxter_drags_at_most_twice_as_slowly_as_the_puma() {
     }
     panic!("Baxter's frame against the Puma's, three tries: {ratios:?}");
 }
+
+/// Every text of a figure's vector capture: (its size in pixels of the figure, the text).
+fn figure_texts(page: &armlab::figure::vector::VectorPage) -> Vec<(f32, String)> {
+    fn walk(shape: &egui::Shape, ppp: f32, out: &mut Vec<(f32, String)>) {
+        match shape {
+            egui::Shape::Vec(v) => v.iter().for_each(|s| walk(s, ppp, out)),
+            egui::Shape::Text(t) if !t.galley.job.text.trim().is_empty() => {
+                for s in &t.galley.job.sections {
+                    out.push((s.format.font_id.size * ppp, t.galley.job.text.clone()));
+                }
+            }
+            _ => {}
+        }
+    }
+    let mut out = Vec::new();
+    for p in &page.panels {
+        for c in &p.capture.shapes {
+            walk(&c.shape, p.capture.pixels_per_point, &mut out);
+        }
+    }
+    out
+}
+
+/// Issue 46, item 4: in projector mode at 1280x800 the Workspace tab's figures (Fig. 2.30, a
+/// workspace figure; Fig. 2.31, a drawing) keep every text at least 16 px at the size the tab
+/// shows them (it was 7-10 px), and a recording's labels are sized for the frame they are
+/// recorded into (about 9 px in a 640-pixel frame).
+#[test]
+fn projector_figures_and_recordings_have_readable_text() {
+    use armlab::app::AppUi;
+    use armlab::app::tabs::workspace::projector_text_scale;
+    use armlab::app::workspace_job::WorkspaceJob;
+    use armlab::figure::figures::Figures;
+    use armlab::figure::workspace::WsView;
+    // the width the tab shows its figure at, from the window's own layout
+    let mut app = AppUi::new(AppState::from_spec("planar2_fig2_30").unwrap());
+    app.layout.projector = true;
+    app.tab = armlab::app::tabs::WORKSPACE;
+    let mut h = egui_kittest::Harness::builder()
+        .with_size(egui::vec2(1280.0, 800.0))
+        .build_ui_state(|ui, app: &mut AppUi| app.show(ui, None), app);
+    h.run();
+    h.run();
+    let shown = h.state().rects.central.width() - 16.0;
+    let k = projector_text_scale(shown);
+    assert!(k > 1.0, "{shown} px");
+    let robot = armlab::kinematics::models::built_in("planar2_fig2_30").unwrap();
+    let mut figs = Figures::new().unwrap();
+    figs.capture_vectors(true);
+    let size = [1200, 800];
+    let opts = WorkspaceJob::options_for(&robot, WsView::Plane, size, Some("2.30")).scaled(k);
+    armlab::headless::workspace_figure(&mut figs, &robot, "fig 2.30", &opts, &|_| {}).unwrap();
+    let page = figs.take_vector().expect("the vectors");
+    let mut small = Vec::new();
+    for (px, text) in figure_texts(&page) {
+        let seen = px * shown / size[0] as f32;
+        if seen < 16.0 - 0.05 {
+            small.push(format!("{seen:.1} px: {text:?}"));
+        }
+    }
+    figs.text_scale = k;
+    let img = armlab::headless::textbook_figure(&mut figs, "2.31", size, Default::default());
+    assert!(img.is_ok());
+    let page = figs.take_vector().expect("the drawing's vectors");
+    for (px, text) in figure_texts(&page) {
+        let seen = px * shown / size[0] as f32;
+        if seen < 16.0 - 0.05 {
+            small.push(format!("Fig. 2.31: {seen:.1} px: {text:?}"));
+        }
+    }
+    // a recording's frame: the 3D view at 640 px (the recorder draws its frames with
+    // Figures::scene), its frame labels sized for it
+    figs.text_scale = 1.0;
+    let puma = armlab::kinematics::models::built_in("puma560").unwrap();
+    let q = [0.3, 0.5, -1.2, 0.4, 0.8, -0.6];
+    let style = armlab::scene::ArmStyle {
+        frames: true,
+        frame_labels: true,
+        ..Default::default()
+    };
+    let scene = armlab::scene::arm_scene(&puma, &q, &style).unwrap();
+    assert!(!scene.labels.is_empty());
+    let mut camera = armlab::camera::Camera::default();
+    let points = armlab::scene::arm_points(&puma, &q).unwrap();
+    camera.fit_points(&points, 640, 480, 0.75);
+    let fig = armlab::figure::figures::Scene3d {
+        title: String::new(),
+        subtitle: String::new(),
+        scene: &scene,
+        camera,
+        legend: Vec::new(),
+        caption: String::new(),
+    };
+    figs.scene([640, 480], Default::default(), &fig).unwrap();
+    let page = figs.take_vector().expect("the frame's vectors");
+    let labels = figure_texts(&page);
+    assert!(!labels.is_empty());
+    for (px, text) in labels {
+        if px < 16.0 - 0.05 {
+            small.push(format!("640-px frame: {px:.1} px: {text:?}"));
+        }
+    }
+    assert!(small.is_empty(), "{}", small.join("\n"));
+}

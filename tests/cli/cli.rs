@@ -1683,10 +1683,23 @@ fn ee_takes_any_link_by_name() {
     // world_from_forearm = T(0, 0.2, 1) Rz(q1) T(0, 0.3, 0) Ry(q2): the elbow's axis point
     let (c, s) = (q1.cos(), q1.sin());
     let elbow = [0.0 - s * 0.3, 0.2 + c * 0.3, 1.0];
-    let v = json(&armlab(&["fk", f, "--q", &q, "--ee", "l_forearm", "--format", "json"]));
+    let v = json(&armlab(&[
+        "fk",
+        f,
+        "--q",
+        &q,
+        "--ee",
+        "l_forearm",
+        "--format",
+        "json",
+    ]));
     for k in 0..3 {
         let got = v[0]["p"][k].as_f64().unwrap();
-        assert!((got - elbow[k]).abs() < 1e-12, "p[{k}] = {got}, want {}", elbow[k]);
+        assert!(
+            (got - elbow[k]).abs() < 1e-12,
+            "p[{k}] = {got}, want {}",
+            elbow[k]
+        );
     }
     // the hand (with fingers and a camera below it): world_from_hand = ... Ry(q2) T(0, 0, -0.3)
     let down = [q2.sin() * -0.3, 0.0, q2.cos() * -0.3]; // Ry(q2) (0, 0, -0.3)
@@ -1695,10 +1708,16 @@ fn ee_takes_any_link_by_name() {
         elbow[1] + s * down[0] + c * down[1],
         elbow[2] + down[2],
     ];
-    let v = json(&armlab(&["fk", f, "--q", &q, "--ee", "l_hand", "--format", "json"]));
+    let v = json(&armlab(&[
+        "fk", f, "--q", &q, "--ee", "l_hand", "--format", "json",
+    ]));
     for k in 0..3 {
         let got = v[0]["p"][k].as_f64().unwrap();
-        assert!((got - hand[k]).abs() < 1e-12, "p[{k}] = {got}, want {}", hand[k]);
+        assert!(
+            (got - hand[k]).abs() < 1e-12,
+            "p[{k}] = {got}, want {}",
+            hand[k]
+        );
     }
     // any link works for the other commands too
     let o = armlab(&["ik", f, "--ee", "l_forearm", "--position", "0,0.5,1"]);
@@ -1709,6 +1728,9 @@ fn ee_takes_any_link_by_name() {
     let err = String::from_utf8_lossy(&o.stderr);
     let (ees, links) = err.split_once("any other link").expect(&err);
     assert!(ees.contains("l_finger") && ees.contains("r_hand"), "{err}");
-    assert!(links.contains("l_forearm") && links.contains("l_upper_arm"), "{err}");
+    assert!(
+        links.contains("l_forearm") && links.contains("l_upper_arm"),
+        "{err}"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -146,3 +146,36 @@ fn the_shipped_lessons_render_to_png() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A lesson's numbers must be finite (the fuzzer's lessons took `nan` and `inf` in q, the
+/// target and the camera); overlays both on and off, and a construction step 0, are refused
+/// too, each naming the step and the field.
+#[test]
+fn a_lesson_with_a_non_finite_number_or_a_contradiction_is_refused() {
+    let head = "title = \"t\"\nrobot = \"planar2\"\n[[steps]]\n";
+    for (step, field) in [
+        ("q = [nan, 0.0]", "q"),
+        ("q_deg = [0.0, inf]", "q_deg"),
+        ("target_position = [1.0, -inf, 0.0]", "target_position"),
+        (
+            "camera = { azimuth_deg = nan, elevation_deg = 10.0 }",
+            "camera",
+        ),
+        (
+            "camera = { azimuth_deg = 0.0, elevation_deg = 10.0, target = [0.0, nan, 0.0] }",
+            "camera",
+        ),
+    ] {
+        let e = Lesson::parse(&format!("{head}{step}\n"), "l.toml")
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("l.toml: step 1: "), "{e}");
+        assert!(e.contains(field) && e.contains("finite"), "{e}");
+    }
+    let both = format!("{head}overlays = [\"ghosts\"]\noverlays_off = [\"ghosts\"]\n");
+    let e = Lesson::parse(&both, "l.toml").unwrap_err().to_string();
+    assert!(e.contains("both in overlays and in overlays_off"), "{e}");
+    let zero = format!("{head}construction_step = 0\n");
+    let e = Lesson::parse(&zero, "l.toml").unwrap_err().to_string();
+    assert!(e.contains("construction_step counts from 1"), "{e}");
+}

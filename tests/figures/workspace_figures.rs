@@ -42,6 +42,7 @@ fn sized(
         end_effector: 0,
         point: TrackedPoint::WristCentre,
         caption: String::new(),
+        text_scale: 1.0,
     };
     workspace_figure(&mut f, robot, &robot.name.to_lowercase(), &opts, &|_| {}).unwrap()
 }
@@ -208,6 +209,7 @@ fn dexterous_workspace_is_shown() {
         end_effector: 0,
         point: TrackedPoint::Flange,
         caption: String::new(),
+        text_scale: 1.0,
     };
     let fig = workspace_figure(&mut f, &robot, "arm", &opts, &|_| {}).unwrap();
     let yellow = fig

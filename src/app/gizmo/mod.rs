@@ -539,7 +539,9 @@ impl Gizmo {
                     painter.line_segment([from, base], Stroke::new(width(*h), c));
                     let head = vec![tip, base + side, base - side];
                     painter.add(Shape::convex_polygon(head, c, Stroke::NONE));
-                    let font = FontId::proportional(13.0);
+                    let font = FontId::proportional(
+                        13f32.max(crate::app::layout::text_floor(painter.ctx())),
+                    );
                     painter.text(
                         tip + dir * 9.0,
                         Align2::CENTER_CENTER,
@@ -586,7 +588,11 @@ impl Gizmo {
             Readout::Offset(v) => format!("Δ = ({:+.4}, {:+.4}, {:+.4}) m", v.x, v.y, v.z),
             Readout::Angle(i, a) => format!("θ{} = {:+.2}°", AXIS_NAMES[i], a.to_degrees()),
         };
-        let (at, font) = (p + egui::vec2(14.0, -14.0), FontId::monospace(13.0));
+        let floor = crate::app::layout::text_floor(painter.ctx());
+        let (at, font) = (
+            p + egui::vec2(14.0, -14.0),
+            FontId::monospace(13f32.max(floor)),
+        );
         for (off, c) in [(1.0, Color32::BLACK), (0.0, Color32::WHITE)] {
             painter.text(
                 at + egui::vec2(off, off),

@@ -228,6 +228,8 @@ fn matrix_grid(ui: &mut egui::Ui, id: (&str, usize), m: &SymMatrix, separate: bo
 /// operators and parentheses as they are; a minus as U+2212.
 pub fn math(text: &str, ui: &egui::Ui) -> LayoutJob {
     let size = egui::TextStyle::Body.resolve(ui.style()).size;
+    // a subscript is smaller, but never under the projector's floor
+    let floor = crate::app::layout::text_floor(ui.ctx());
     let color = ui.visuals().text_color();
     let normal = TextFormat {
         font_id: FontId::proportional(size),
@@ -235,7 +237,7 @@ pub fn math(text: &str, ui: &egui::Ui) -> LayoutJob {
         ..Default::default()
     };
     let sub = TextFormat {
-        font_id: FontId::proportional(size * 0.7),
+        font_id: FontId::proportional((size * 0.7).max(floor)),
         color,
         valign: egui::Align::BOTTOM,
         ..Default::default()

@@ -196,7 +196,8 @@ impl ExerciseTab {
                 .color(Color32::from_rgb(150, 90, 0)),
             );
         }
-        ui.add(egui::Label::new(RichText::new(&sheet.question).size(15.0)).wrap());
+        let size = 15f32.max(super::super::layout::text_floor(ui.ctx()));
+        ui.add(egui::Label::new(RichText::new(&sheet.question).size(size)).wrap());
         ui.separator();
         ui.heading("Your answer");
         if sheet.kind == Kind::DhTable {

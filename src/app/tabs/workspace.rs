@@ -97,6 +97,9 @@ pub struct WorkspaceTab {
     texture_is_preview: bool,
     /// The figure's pixel size the job was started for.
     size: [u32; 2],
+    /// The figure's text scale the job was started for: 1, or in projector mode what makes its
+    /// smallest text at least 16 px at the size the tab shows it.
+    text_scale: f32,
 }
 
 impl Default for WorkspaceTab {
@@ -109,6 +112,7 @@ impl Default for WorkspaceTab {
             texture_is_previous: false,
             texture_is_preview: false,
             size: [1200, 900],
+            text_scale: 1.0,
         }
     }
 }
@@ -162,29 +166,25 @@ impl WorkspaceTab {
         let figure = match self.preset {
             Preset::Textbook {
                 view: None, name, ..
-            } => JobFigure::Textbook(name),
+            } => JobFigure::Textbook(name, self.text_scale),
             Preset::Textbook {
                 view: Some(view),
                 name,
                 ..
-            } => JobFigure::Workspace(WorkspaceJob::options_for(
-                state.robot(),
-                view,
-                self.size,
-                Some(name),
-            )),
+            } => JobFigure::Workspace(
+                WorkspaceJob::options_for(state.robot(), view, self.size, Some(name))
+                    .scaled(self.text_scale),
+            ),
             Preset::ThisModel => {
                 let view = if planar_frame(state.robot(), 0).is_some() {
                     WsView::Plane
                 } else {
                     WsView::Top
                 };
-                JobFigure::Workspace(WorkspaceJob::options_for(
-                    state.robot(),
-                    view,
-                    self.size,
-                    None,
-                ))
+                JobFigure::Workspace(
+                    WorkspaceJob::options_for(state.robot(), view, self.size, None)
+                        .scaled(self.text_scale),
+                )
             }
         };
         self.job = Some(WorkspaceJob::start(
@@ -331,7 +331,7 @@ impl WorkspaceTab {
                 at + egui::vec2(9.0, -9.0),
                 egui::Align2::LEFT_BOTTOM,
                 "tool",
-                egui::FontId::proportional(13.0),
+                egui::FontId::proportional(13f32.max(super::super::layout::text_floor(ui.ctx()))),
                 ink,
             );
         }
@@ -348,7 +348,7 @@ impl WorkspaceTab {
                 at + egui::vec2(9.0, 9.0),
                 egui::Align2::LEFT_TOP,
                 "target",
-                egui::FontId::proportional(13.0),
+                egui::FontId::proportional(13f32.max(super::super::layout::text_floor(ui.ctx()))),
                 red,
             );
         }
@@ -369,7 +369,17 @@ impl Tab for WorkspaceTab {
         }
         self.preset_row(cx, ui, out);
         let area = ui.available_size();
-        let size = Self::size_for(area, ui.ctx().pixels_per_point());
+        let ppp = ui.ctx().pixels_per_point();
+        let size = Self::size_for(area, ppp);
+        let scale = if cx.layout.projector {
+            projector_text_scale(area.x * ppp)
+        } else {
+            1.0
+        };
+        if (scale - self.text_scale).abs() > 0.01 {
+            self.text_scale = scale;
+            self.size = [0, 0]; // the figure is drawn again for its new text
+        }
         let resized = size != self.size
             && self
                 .job
@@ -446,6 +456,15 @@ impl Tab for WorkspaceTab {
         self.texture_is_previous = false;
         self.texture_is_preview = false;
     }
+}
+
+/// The text scale that makes a figure's smallest text (10 points of its 800-point layout: the
+/// marks' letters; ticks and captions are 11) at least
+/// [`crate::app::layout::PROJECTOR_MIN_TEXT`] pixels when it is shown `shown_px` pixels wide:
+/// a figure's text is `points x scale x shown_px / 800` pixels whatever size it is drawn at.
+pub fn projector_text_scale(shown_px: f32) -> f32 {
+    let min = crate::app::layout::PROJECTOR_MIN_TEXT;
+    (min * 800.0 / (10.0 * shown_px.max(1.0))).max(1.0)
 }
 
 /// A figure's pixels as a texture.
