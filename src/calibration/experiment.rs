@@ -289,7 +289,7 @@ pub fn run(e: &Experiment) -> Result<Report, ExperimentError> {
     if derived {
         data.warnings.push(format!(
             "{} is not a DH table: calibrated through its derived standard DH table (same FK); \
-             --write-urdf / --write-model FILE.urdf carry the result into its joint origins",
+             the calibrated model written as URDF carries the result into its joint origins",
             e.robot.name
         ));
     }

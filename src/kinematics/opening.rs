@@ -45,6 +45,9 @@ struct Scorer<'a> {
     analyzer: SingularityAnalyzer,
     closed: Option<ClosedForm>,
     ready: &'a [f64],
+    /// The end-effectors that must be away from singularities: every arm's tool (a tree's
+    /// arms each open regular, not only the default one: Baxter's left arm opened near one).
+    tools: Vec<usize>,
 }
 
 impl Scorer<'_> {
@@ -52,7 +55,10 @@ impl Scorer<'_> {
     /// analysed (or its pose is out of reach of the closed form).
     fn score(&self, q: &[f64]) -> Option<(Score, usize)> {
         let robot = self.robot;
-        let regular = self.analyzer.classify(robot, q, 0).ok()?.is_none();
+        let mut regular = true;
+        for &ee in &self.tools {
+            regular &= self.analyzer.classify(robot, q, ee).ok()?.is_none();
+        }
         let closeness = -q
             .iter()
             .zip(self.ready)
@@ -102,6 +108,10 @@ pub fn opening_pose(robot: &Robot) -> OpeningPose {
             None
         },
         ready: &ready,
+        tools: {
+            let tools = super::end_effectors::catalog(robot).tools();
+            if tools.is_empty() { vec![0] } else { tools }
+        },
     };
     let ready_score = scorer.score(&ready);
     if let Some((s, _)) = ready_score

@@ -390,6 +390,12 @@ fn the_tab_calibrates_a_urdf_arm_of_a_tree_and_writes_it_back() {
     assert!(r.report.parameters.len() >= 28);
     let (before, after) = r.validation.unwrap();
     assert!(after.position_rms < 0.05 * before.position_rms);
+    // the tab's words cite no command-line flag (the derived table's warning did)
+    assert!(
+        r.warnings.iter().all(|w| !w.contains("--")),
+        "{:?}",
+        r.warnings
+    );
     let chain = r
         .chain
         .clone()

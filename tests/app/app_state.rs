@@ -805,32 +805,38 @@ fn every_robot_description_opens_at_a_regular_pose() {
         }
         let s = AppState::from_spec(path.to_str().unwrap()).unwrap();
         let robot = s.robot();
-        let arm = armlab::kinematics::arm::arm_of(robot, 0, s.q()).unwrap();
-        let n = arm.robot.dof();
-        if n < 6 {
-            continue; // a hand or gripper: no six-dimensional task
-        }
-        let q: Vec<f64> = arm.free.iter().map(|&k| s.q()[k]).collect();
-        let reach = arm.robot.longest_chain_length().max(0.1);
-        let at = |q: &[f64]| arm.robot.fk(q).unwrap();
-        let t0 = at(&q);
-        let h = 1e-6;
-        let mut jac = nalgebra::DMatrix::<f64>::zeros(6, n);
-        for k in 0..n {
-            let mut qp = q.clone();
-            qp[k] += h;
-            let t = at(&qp);
-            let dp = (t.translation.vector - t0.translation.vector) / (h * reach);
-            let dr = (t.rotation * t0.rotation.inverse()).scaled_axis() / h;
-            for r in 0..3 {
-                jac[(r, k)] = dp[r];
-                jac[(r + 3, k)] = dr[r];
+        for tool in armlab::kinematics::end_effectors::catalog(robot).tools() {
+            let arm = armlab::kinematics::arm::arm_of(robot, tool, s.q()).unwrap();
+            let n = arm.robot.dof();
+            if n < 6 {
+                continue; // a hand or gripper: no six-dimensional task
             }
-        }
-        let sv = jac.svd(false, false).singular_values;
-        let ratio = sv.min() / sv.max();
-        if ratio < 1e-2 {
-            bad.push(format!("{}: ratio {ratio:.1e} at {q:?}", path.display()));
+            let q: Vec<f64> = arm.free.iter().map(|&k| s.q()[k]).collect();
+            let reach = arm.robot.longest_chain_length().max(0.1);
+            let at = |q: &[f64]| arm.robot.fk(q).unwrap();
+            let t0 = at(&q);
+            let h = 1e-6;
+            let mut jac = nalgebra::DMatrix::<f64>::zeros(6, n);
+            for k in 0..n {
+                let mut qp = q.clone();
+                qp[k] += h;
+                let t = at(&qp);
+                let dp = (t.translation.vector - t0.translation.vector) / (h * reach);
+                let dr = (t.rotation * t0.rotation.inverse()).scaled_axis() / h;
+                for r in 0..3 {
+                    jac[(r, k)] = dp[r];
+                    jac[(r + 3, k)] = dr[r];
+                }
+            }
+            let sv = jac.svd(false, false).singular_values;
+            let ratio = sv.min() / sv.max();
+            if ratio < 1e-2 {
+                let name = &robot.end_effectors()[tool].name;
+                bad.push(format!(
+                    "{} ({name}): ratio {ratio:.1e} at {q:?}",
+                    path.display()
+                ));
+            }
         }
     }
     assert!(bad.is_empty(), "{bad:#?}");
