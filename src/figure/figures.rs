@@ -4,7 +4,7 @@
 use super::plot2d::{self, Plot2d};
 use super::{FigureError, Theme, apply_style_scaled, pixels_per_point};
 
-/// The smallest text a 3D figure draws, in pixels of its own frame: readable at the size it is
+/// The smallest label a 3D figure draws, in pixels of its own frame: readable at the size it is
 /// recorded or written at.
 pub const MIN_TEXT_PX: f32 = 16.0;
 use crate::camera::Camera;
@@ -254,20 +254,19 @@ impl Figures {
                     egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0)),
                     Color32::WHITE,
                 );
-                // Sized for the frame it is drawn into: at least MIN_TEXT_PX pixels whatever
-                // the size (a recording's 640-pixel frame had 9-pixel labels).
-                let font = |pt: f32| {
-                    let mut f = super::font(ui.ctx(), pt);
-                    f.size = f.size.max(MIN_TEXT_PX / ppp);
-                    f
-                };
+                let font = |pt: f32| super::font(ui.ctx(), pt);
+                // The labels are sized for the frame they are drawn into: at least MIN_TEXT_PX
+                // pixels whatever its size (a recording's 640-pixel frame had 9-pixel labels).
+                // Titles and captions keep the layout's scale: they must fit their panel.
+                let mut label_font = font(13.0);
+                label_font.size = label_font.size.max(MIN_TEXT_PX / ppp);
                 super::labels::draw_labels(
                     painter,
                     rect,
                     ([w, h], &fig.camera),
                     &fig.scene.labels,
                     &[],
-                    &font(13.0),
+                    &label_font,
                 );
                 let text = ui.visuals().text_color();
                 painter.text(

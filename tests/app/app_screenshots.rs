@@ -406,6 +406,7 @@ fn projector_figures_and_recordings_have_readable_text() {
     let page = figs.take_vector().expect("the frame's vectors");
     let labels = figure_texts(&page);
     assert!(!labels.is_empty());
+    // (the frame has no title nor caption: the recorder draws none)
     for (px, text) in labels {
         if px < 16.0 - 0.05 {
             small.push(format!("640-px frame: {px:.1} px: {text:?}"));

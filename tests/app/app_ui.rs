@@ -459,6 +459,25 @@ fn the_symbols_section_steps_through_the_product() {
     assert!(scene.labels.iter().any(|l| l.text == "frame 6"));
 }
 
+/// Types `table` (a, alpha, d per row) into the open sheet's grid, with z1 chosen the other
+/// way round (alpha1 = -90 deg): a right answer written with other frames.
+fn type_table_z1_flipped(
+    app: &mut AppUi,
+    table: &[(
+        armlab::kinematics::JointKind,
+        armlab::kinematics::DhRow,
+        f64,
+    )],
+) {
+    let open = app.tabs.exercise.sheet.as_mut().unwrap();
+    for (row, (_, r, _)) in open.rows.iter_mut().zip(table) {
+        row.a = r.a.to_string();
+        row.alpha_deg = r.alpha.to_degrees().to_string();
+        row.d = r.d.to_string();
+    }
+    open.rows[0].alpha_deg = "-90".into();
+}
+
 /// The Exercise tab: a sheet's key opens its arm with the DH table and frames hidden, the
 /// answer typed in the grid is graded by equivalence, with feedback per row.
 #[test]
@@ -473,13 +492,7 @@ fn the_exercise_tab_grades_a_typed_dh_table() {
     assert_eq!(app.tab, armlab::app::tabs::EXERCISE);
     // the answer: the Puma's table with z1 chosen the other way (alpha1 = -90 deg)
     let (_, table) = puma.dh_table().unwrap();
-    let open = app.tabs.exercise.sheet.as_mut().unwrap();
-    for (row, (_, r, _)) in open.rows.iter_mut().zip(&table) {
-        row.a = r.a.to_string();
-        row.alpha_deg = r.alpha.to_degrees().to_string();
-        row.d = r.d.to_string();
-    }
-    open.rows[0].alpha_deg = "-90".into();
+    type_table_z1_flipped(&mut app, &table);
     let app = {
         let mut h = Harness::builder()
             .with_size(egui::vec2(1280.0, 1600.0))
@@ -697,13 +710,7 @@ fn an_exam_sheet_opens_without_its_key_and_nothing_can_be_copied_out() {
     assert!((tool.to_homogeneous() - want.to_homogeneous()).amax() < 1e-12);
     // the student types the Puma's table (z1 the other way round)
     let (_, table) = puma.dh_table().unwrap();
-    let open = app.tabs.exercise.sheet.as_mut().unwrap();
-    for (row, (_, r, _)) in open.rows.iter_mut().zip(&table) {
-        row.a = r.a.to_string();
-        row.alpha_deg = r.alpha.to_degrees().to_string();
-        row.d = r.d.to_string();
-    }
-    open.rows[0].alpha_deg = "-90".into();
+    type_table_z1_flipped(&mut app, &table);
     let mut h = Harness::builder()
         .with_size(egui::vec2(1280.0, 1600.0))
         .build_ui_state(|ui, app: &mut AppUi| app.show(ui, None), app);

@@ -211,6 +211,38 @@ fn newton_locked(robot: &Robot, target: &Pose, k: usize, mut q: Vec<f64>) -> Opt
     None
 }
 
+/// The brute force: `starts` Newton starts from random joint vectors with joint `k` held at
+/// `value`; every distinct configuration it finds must be among `ours` (armlab's). Returns how
+/// many it found.
+fn brute_force_within(
+    robot: &Robot,
+    target: &Pose,
+    (k, value): (usize, f64),
+    ours: &[[f64; 7]],
+    starts: usize,
+    seed: &mut u64,
+) -> usize {
+    let mut brute: Vec<Vec<f64>> = Vec::new();
+    for _ in 0..starts {
+        let mut start: Vec<f64> = (0..7).map(|_| (2.0 * lcg(seed) - 1.0) * PI).collect();
+        start[k] = value;
+        if let Some(q) = newton_locked(robot, target, k, start)
+            && !brute.iter().any(|b| same_configuration(b, &q, 1e-5))
+        {
+            brute.push(q);
+        }
+    }
+    for b in &brute {
+        assert!(
+            ours.iter().any(|q| same_configuration(q, b, 1e-6)),
+            "{} q{} locked at {value}: the brute force found {b:?}, armlab gave {ours:?}",
+            robot.name,
+            k + 1
+        );
+    }
+    brute.len()
+}
+
 /// Whether two joint vectors are the same configuration (angles modulo 2 pi).
 fn same_configuration(a: &[f64], b: &[f64], tol: f64) -> bool {
     a.iter().zip(b).all(|(x, y)| angle_gap(*x, *y) < tol)
@@ -262,26 +294,7 @@ fn a_locked_srs_arm_gives_every_solution_at_every_value() {
                         );
                         assert_eq!(q[k], value);
                     }
-                    let mut brute: Vec<Vec<f64>> = Vec::new();
-                    for _ in 0..300 {
-                        let mut start: Vec<f64> =
-                            (0..7).map(|_| (2.0 * lcg(&mut seed) - 1.0) * PI).collect();
-                        start[k] = value;
-                        if let Some(q) = newton_locked(&robot, &target, k, start)
-                            && !brute.iter().any(|b| same_configuration(b, &q, 1e-5))
-                        {
-                            brute.push(q);
-                        }
-                    }
-                    for b in &brute {
-                        assert!(
-                            ours.iter().any(|q| same_configuration(q, b, 1e-6)),
-                            "{} q{} locked at {value}: the brute force found {b:?}, armlab gave {ours:?}",
-                            robot.name,
-                            k + 1
-                        );
-                    }
-                    total += brute.len();
+                    total += brute_force_within(&robot, &target, (k, value), ours, 300, &mut seed);
                     found += n;
                 }
             }
@@ -377,26 +390,7 @@ fn any_locked_joint_of_a_seven_joint_arm_gives_every_solution() {
                         robot.name
                     );
                 }
-                let mut brute: Vec<Vec<f64>> = Vec::new();
-                for _ in 0..200 {
-                    let mut start: Vec<f64> =
-                        (0..7).map(|_| (2.0 * lcg(&mut seed) - 1.0) * PI).collect();
-                    start[k] = value;
-                    if let Some(q) = newton_locked(&robot, &target, k, start)
-                        && !brute.iter().any(|b| same_configuration(b, &q, 1e-5))
-                    {
-                        brute.push(q);
-                    }
-                }
-                for b in &brute {
-                    assert!(
-                        ours.iter().any(|q| same_configuration(q, b, 1e-6)),
-                        "{} q{} locked at {value}: the brute force found {b:?}, armlab gave {ours:?}",
-                        robot.name,
-                        k + 1
-                    );
-                }
-                total += brute.len();
+                total += brute_force_within(&robot, &target, (k, value), ours, 200, &mut seed);
                 found += n;
             }
             assert!(

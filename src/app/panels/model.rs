@@ -93,7 +93,7 @@ impl ModelPanel {
             });
         combo.response.labelled_by(heading.id);
         ui.horizontal(|ui| {
-            let open_room = button_room(ui, "Open");
+            let open_room = button_room(ui, "Open").max(70.0);
             let r = ui.add(
                 egui::TextEdit::singleline(&mut self.load_path)
                     .hint_text("path/to/robot.toml or .urdf")
@@ -146,7 +146,7 @@ impl ModelPanel {
     /// The Save row: a file name that follows the model, and Save (or Enter).
     fn save_row(&mut self, state: &AppState, ui: &mut egui::Ui, out: &mut Actions) {
         ui.horizontal(|ui| {
-            let save_room = button_room(ui, "Save");
+            let save_room = button_room(ui, "Save").max(70.0);
             let r = ui.add(
                 egui::TextEdit::singleline(&mut self.save_path)
                     .hint_text("save as robot.urdf or robot.toml")
