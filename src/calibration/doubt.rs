@@ -17,7 +17,7 @@ pub enum Doubt {
         combination: String,
     },
     /// The standard deviation exceeds the estimate's own size (or, for an estimate near zero,
-    /// [`floor`]'s size: 1 mm, 1 mrad, 1 urad/Nm).
+    /// 1 mm, 1 mrad or 1 urad/Nm).
     Uncertain {
         /// The standard deviation (m, rad or rad/Nm).
         std: f64,
