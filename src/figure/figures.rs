@@ -246,47 +246,7 @@ impl Figures {
         let result = self
             .offscreen
             .render(&self.gpu.device, &self.gpu.queue, size, ppp, |ui| {
-                let rect = ui.max_rect();
-                let painter = ui.painter();
-                painter.image(
-                    id,
-                    rect,
-                    egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0)),
-                    Color32::WHITE,
-                );
-                let font = |pt: f32| super::font(ui.ctx(), pt);
-                // The labels are sized for the frame they are drawn into: at least MIN_TEXT_PX
-                // pixels whatever its size (a recording's 640-pixel frame had 9-pixel labels).
-                // Titles and captions keep the layout's scale: they must fit their panel.
-                let mut label_font = font(13.0);
-                label_font.size = label_font.size.max(MIN_TEXT_PX / ppp);
-                super::labels::draw_labels(
-                    painter,
-                    rect,
-                    ([w, h], &fig.camera),
-                    &fig.scene.labels,
-                    &[],
-                    &label_font,
-                );
-                let text = ui.visuals().text_color();
-                painter.text(
-                    rect.center_top() + egui::vec2(0.0, 8.0),
-                    egui::Align2::CENTER_TOP,
-                    &fig.title,
-                    font(20.0),
-                    text,
-                );
-                if !fig.subtitle.is_empty() {
-                    painter.text(
-                        rect.center_top() + egui::vec2(0.0, 34.0),
-                        egui::Align2::CENTER_TOP,
-                        &fig.subtitle,
-                        font(12.0),
-                        text,
-                    );
-                }
-                let weak = ui.visuals().weak_text_color();
-                paint_caption_and_legend(painter, rect, fig, (text, weak), &font);
+                paint_scene_overlay(ui, fig, id, (size, ppp));
             });
         if self.offscreen.take_capture().is_some_and(|mut c| {
             // A vector figure embeds the 3D view as an image under its vector text.
@@ -306,6 +266,58 @@ impl Figures {
         self.offscreen.free_texture(id);
         Ok(result?)
     }
+}
+
+/// A 3D figure's egui pass: the rendered view (texture `id`), its labels, title, subtitle,
+/// caption and legend, on a canvas of `size` pixels at `ppp` pixels per point.
+fn paint_scene_overlay(
+    ui: &mut egui::Ui,
+    fig: &Scene3d<'_>,
+    id: egui::TextureId,
+    (size, ppp): ([u32; 2], f32),
+) {
+    let [w, h] = size;
+    let rect = ui.max_rect();
+    let painter = ui.painter();
+    painter.image(
+        id,
+        rect,
+        egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0)),
+        Color32::WHITE,
+    );
+    let font = |pt: f32| super::font(ui.ctx(), pt);
+    // The labels are sized for the frame they are drawn into: at least MIN_TEXT_PX
+    // pixels whatever its size (a recording's 640-pixel frame had 9-pixel labels).
+    // Titles and captions keep the layout's scale: they must fit their panel.
+    let mut label_font = font(13.0);
+    label_font.size = label_font.size.max(MIN_TEXT_PX / ppp);
+    super::labels::draw_labels(
+        painter,
+        rect,
+        ([w, h], &fig.camera),
+        &fig.scene.labels,
+        &[],
+        &label_font,
+    );
+    let text = ui.visuals().text_color();
+    painter.text(
+        rect.center_top() + egui::vec2(0.0, 8.0),
+        egui::Align2::CENTER_TOP,
+        &fig.title,
+        font(20.0),
+        text,
+    );
+    if !fig.subtitle.is_empty() {
+        painter.text(
+            rect.center_top() + egui::vec2(0.0, 34.0),
+            egui::Align2::CENTER_TOP,
+            &fig.subtitle,
+            font(12.0),
+            text,
+        );
+    }
+    let weak = ui.visuals().weak_text_color();
+    paint_caption_and_legend(painter, rect, fig, (text, weak), &font);
 }
 
 /// The caption (bottom right) and the legend swatches (top right) of a 3D figure.

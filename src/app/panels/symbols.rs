@@ -86,51 +86,7 @@ impl SymbolsPanel {
             }
         });
         self.step = self.step.min(n - 1);
-        let step = self.step;
-        let link = &sk.links[step];
-        let (lo, _) = span(&sk);
-        ui.label(math(
-            &format!(
-                "A_{}^{}(q{}), joint {}:",
-                link.to, link.from, link.to, link.joint
-            ),
-            ui,
-        ));
-        matrix_grid(ui, ("A", step), &link.matrix, sk.separate_indices);
-        let product: Vec<String> = sk.links[..=step]
-            .iter()
-            .map(|l| format!("A_{}^{}", l.to, l.from))
-            .collect();
-        ui.label(math(
-            &format!("T_{}^{lo} = {}:", link.to, product.join(" ")),
-            ui,
-        ));
-        ui.label(
-            RichText::new(format!(
-                "frame {} highlighted in the 3D view, the links of the product in orange",
-                link.to
-            ))
-            .small(),
-        );
-        matrix_grid(ui, ("T", step), &sk.partials[step], sk.separate_indices);
-        if let Some((k, w)) = &sk.wrist {
-            let p = document::vector(w, Style::Text, sk.separate_indices);
-            ui.label(format!("wrist point p_W (origin of frame {k}):"));
-            for (axis, e) in ["x", "y", "z"].iter().zip(p) {
-                ui.label(math(&format!("p_W{axis} = {e}"), ui));
-            }
-        }
-        ui.horizontal(|ui| {
-            if ui.button("Copy as LaTeX").clicked() {
-                ui.ctx().copy_text(document::latex(&sk));
-            }
-            if ui.button("Copy this T as LaTeX").clicked() {
-                ui.ctx().copy_text(document::latex_matrix(
-                    &sk.partials[step],
-                    sk.separate_indices,
-                ));
-            }
-        });
+        product_step(ui, &sk, self.step);
     }
 
     /// Adds the frame of the partial product shown, and the links up to it, to the scene.
@@ -293,4 +249,53 @@ pub fn math(text: &str, ui: &egui::Ui) -> LayoutJob {
         job.append(&shown, 0.0, format.clone());
     }
     job
+}
+
+/// Step `step` of the product: A_i, the partial product T and what it highlights, the wrist
+/// point, and the LaTeX buttons.
+fn product_step(ui: &mut egui::Ui, sk: &SymbolicKinematics, step: usize) {
+    let link = &sk.links[step];
+    let (lo, _) = span(sk);
+    ui.label(math(
+        &format!(
+            "A_{}^{}(q{}), joint {}:",
+            link.to, link.from, link.to, link.joint
+        ),
+        ui,
+    ));
+    matrix_grid(ui, ("A", step), &link.matrix, sk.separate_indices);
+    let product: Vec<String> = sk.links[..=step]
+        .iter()
+        .map(|l| format!("A_{}^{}", l.to, l.from))
+        .collect();
+    ui.label(math(
+        &format!("T_{}^{lo} = {}:", link.to, product.join(" ")),
+        ui,
+    ));
+    ui.label(
+        RichText::new(format!(
+            "frame {} highlighted in the 3D view, the links of the product in orange",
+            link.to
+        ))
+        .small(),
+    );
+    matrix_grid(ui, ("T", step), &sk.partials[step], sk.separate_indices);
+    if let Some((k, w)) = &sk.wrist {
+        let p = document::vector(w, Style::Text, sk.separate_indices);
+        ui.label(format!("wrist point p_W (origin of frame {k}):"));
+        for (axis, e) in ["x", "y", "z"].iter().zip(p) {
+            ui.label(math(&format!("p_W{axis} = {e}"), ui));
+        }
+    }
+    ui.horizontal(|ui| {
+        if ui.button("Copy as LaTeX").clicked() {
+            ui.ctx().copy_text(document::latex(sk));
+        }
+        if ui.button("Copy this T as LaTeX").clicked() {
+            ui.ctx().copy_text(document::latex_matrix(
+                &sk.partials[step],
+                sk.separate_indices,
+            ));
+        }
+    });
 }
