@@ -106,6 +106,10 @@ pub enum Action {
     ToggleProjector,
     /// Show or hide both side panels.
     ToggleSidePanels,
+    /// Enter or leave "present this figure" (F5; Escape leaves).
+    TogglePresent,
+    /// Leave "present this figure" (Escape).
+    EndPresent,
     /// Save the window as a PNG.
     Screenshot,
     /// Start recording the 3D view, or stop and save the recording as a GIF.

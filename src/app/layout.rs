@@ -31,6 +31,11 @@ pub struct Layout {
     /// The panels open in projector mode (by default only the right one: the lesson's
     /// readouts, with the 3D view as large as it can be).
     pub presenting: Sides,
+    /// "Present this figure": the tab's figure (the 3D view, the workspace plot) fills the
+    /// window, with no toolbar, side panel, status bar or tab controls; F5 or Escape leaves.
+    /// Not remembered: a window never opens without its toolbar.
+    #[serde(skip)]
+    pub present: bool,
 }
 
 impl Default for Layout {
@@ -45,6 +50,7 @@ impl Default for Layout {
                 left: false,
                 right: true,
             },
+            present: false,
         }
     }
 }

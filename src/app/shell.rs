@@ -57,7 +57,7 @@ pub struct AppUi {
     /// The lesson being played, if any.
     pub lesson: Option<LessonPlayer>,
     /// The newest message seen and when it came (s, egui time).
-    message_seen: (u64, f64),
+    pub(super) message_seen: (u64, f64),
 }
 
 impl AppUi {
@@ -184,6 +184,8 @@ impl AppUi {
             Action::ToggleWorkspace => self.tabs.workspace.toggle_overlay(&mut self.state),
             Action::ToggleProjector => self.layout.projector ^= true,
             Action::ToggleSidePanels => self.layout.toggle_side_panels(),
+            Action::TogglePresent => self.layout.present ^= true,
+            Action::EndPresent => self.layout.present = false,
             Action::Screenshot => self.screenshot_requested = true,
             #[cfg(feature = "app")]
             Action::Record => {
@@ -446,33 +448,12 @@ impl AppUi {
         for path in files::dropped_paths(&ctx) {
             out.push(Action::Load(path));
         }
-        let top = egui::Panel::top("top").show(ui, |ui| {
-            let robot = self.state.robot();
-            let (name, dof) = (robot.name.clone(), robot.dof());
-            let mut cx = super::toolbar::ToolbarContext {
-                layout: &self.layout,
-                tabs: (
-                    self.tabs.all().iter().map(|t| t.title()).collect(),
-                    self.tab,
-                ),
-                model: (&name, dof),
-                projection: self.tabs.view3d.camera.projection,
-                display: &mut self.state.display,
-                follow: &mut self.tabs.view3d.follow,
-                #[cfg(feature = "app")]
-                recording: self.recorder.as_ref().map(super::recorder::Recorder::len),
-                exam: self.state.hidden.exam,
-            };
-            super::toolbar::show(&mut cx, ui, &mut out);
-        });
-        self.rects.top = top.response.rect;
-        let (ee, job) = (self.ee(), self.tabs.workspace.job.as_ref());
-        let status = (&self.state, ee, job.and_then(|j| j.progress()));
-        let lesson = self.lesson.as_mut();
-        self.rects.bottom =
-            window::bottom_bars(ui, status, &mut self.message_seen, lesson, &mut out);
-        let panels = (&mut self.model, &mut self.ik, &mut self.rects);
-        window::side_panels(ui, &self.layout, panels, &mut self.state, &mut out);
+        // "Present this figure": the tab alone fills the window.
+        if self.layout.present {
+            self.rects = window::PanelRects::default();
+        } else {
+            self.bars_and_panels(ui, &mut out);
+        }
         let ee = self.ee();
         let sm = (self.tab == tabs::SELF_MOTION).then(|| self.state.self_motion(ee));
         let central = egui::CentralPanel::default().show(ui, |ui| {
@@ -489,6 +470,7 @@ impl AppUi {
             }
         });
         self.rects.central = central.response.rect;
+        window::present_hint(&ctx, self.layout.present, self.layout.text_scale());
         shortcuts::help_window(&ctx, &mut self.show_help);
         if let Some(path) = self.browser.ui(&ctx) {
             self.model.load_path = path.to_string_lossy().into_owned();

@@ -41,6 +41,8 @@ pub fn read(
         (Key::O, Action::ToggleProjection),
         (Key::P, Action::ToggleProjector),
         (Key::V, Action::ToggleSidePanels),
+        (Key::F5, Action::TogglePresent),
+        (Key::Escape, Action::EndPresent),
         (Key::W, Action::ToggleWorkspace),
         (Key::Space, Action::NextSolution),
     ];
@@ -153,6 +155,10 @@ fn help(ui: &mut egui::Ui) {
             ("W", "workspace overlay"),
             ("V", "hide / show both side panels"),
             ("P", "projector mode (large fonts, the 3D view large)"),
+            (
+                "F5, Esc",
+                "present this figure: the tab fills the window; F5 or Esc leaves",
+            ),
             ("H, F1", "this help"),
             ("Ctrl+Z / Ctrl+Shift+Z", "undo / redo a model edit"),
             (

@@ -149,6 +149,17 @@ fn show_menu(app: &mut ToolbarContext<'_>, ui: &mut egui::Ui, out: &mut Actions)
             out.push(Action::ToggleWorkspace);
         }
         ui.checkbox(app.follow, "Camera follows the target");
+        ui.separator();
+        if ui
+            .button("Present this figure (F5)")
+            .on_hover_text(
+                "The tab's figure fills the window, without bars or panels; F5 or Esc leaves",
+            )
+            .clicked()
+        {
+            out.push(Action::TogglePresent);
+            ui.close();
+        }
     });
 }
 

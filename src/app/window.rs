@@ -161,3 +161,65 @@ pub fn status_bar(
         }
     });
 }
+
+impl super::shell::AppUi {
+    /// The toolbar, the status and lesson bars and the side panels (all but the central tab),
+    /// with their rectangles recorded for the tests.
+    pub(super) fn bars_and_panels(&mut self, ui: &mut egui::Ui, out: &mut Actions) {
+        let top = egui::Panel::top("top").show(ui, |ui| {
+            let robot = self.state.robot();
+            let (name, dof) = (robot.name.clone(), robot.dof());
+            let mut cx = super::toolbar::ToolbarContext {
+                layout: &self.layout,
+                tabs: (
+                    self.tabs.all().iter().map(|t| t.title()).collect(),
+                    self.tab,
+                ),
+                model: (&name, dof),
+                projection: self.tabs.view3d.camera.projection,
+                display: &mut self.state.display,
+                follow: &mut self.tabs.view3d.follow,
+                #[cfg(feature = "app")]
+                recording: self.recorder.as_ref().map(super::recorder::Recorder::len),
+                exam: self.state.hidden.exam,
+            };
+            super::toolbar::show(&mut cx, ui, out);
+        });
+        self.rects.top = top.response.rect;
+        let (ee, job) = (self.ee(), self.tabs.workspace.job.as_ref());
+        let status = (&self.state, ee, job.and_then(|j| j.progress()));
+        let lesson = self.lesson.as_mut();
+        self.rects.bottom = bottom_bars(ui, status, &mut self.message_seen, lesson, out);
+        let panels = (&mut self.model, &mut self.ik, &mut self.rects);
+        side_panels(ui, &self.layout, panels, &mut self.state, out);
+    }
+}
+
+/// How long (s) the way out of "present this figure" is shown after entering it.
+const PRESENT_HINT_SECONDS: f64 = 4.0;
+
+/// While presenting, says for a few seconds in the window's lower right corner how to leave
+/// (then the figure is clean for the room); `presenting` is the layout's flag.
+pub fn present_hint(ctx: &egui::Context, presenting: bool, text_scale: f32) {
+    let id = egui::Id::unique("present since");
+    let now = ctx.input(|i| i.time);
+    if !presenting {
+        ctx.data_mut(|d| d.remove::<f64>(id));
+        return;
+    }
+    let since = ctx.data_mut(|d| *d.get_temp_mut_or(id, now));
+    let left = PRESENT_HINT_SECONDS - (now - since);
+    if left <= 0.0 {
+        return;
+    }
+    ctx.request_repaint_after(std::time::Duration::from_secs_f64(left));
+    egui::Area::new(egui::Id::unique("present hint"))
+        .anchor(egui::Align2::RIGHT_BOTTOM, egui::vec2(-12.0, -12.0))
+        .interactable(false)
+        .show(ctx, |ui| {
+            egui::Frame::popup(ui.style()).show(ui, |ui| {
+                let size = 14.0 * text_scale.max(1.0);
+                ui.label(egui::RichText::new("F5 or Esc: leave the presentation").size(size));
+            });
+        });
+}

@@ -541,3 +541,58 @@ fn projector_text_is_at_least_16_px_in_every_tab() {
         bad.join("\n")
     );
 }
+
+/// Issue 46, item 4: "present this figure" fills the window with the tab's figure: F5 (or the
+/// Show menu's button) hides the toolbar, the side panels, the status bar and the workspace
+/// tab's controls; the central area is the whole window; Esc restores every rectangle. In
+/// projector mode the way out is said in text of at least 16 px.
+#[test]
+fn present_this_figure_fills_the_window_and_esc_restores_the_layout() {
+    let size = [1280.0, 800.0];
+    for (tab, projector) in [(0, false), (1, false), (0, true)] {
+        let mut app = AppUi::new(AppState::from_spec("planar2").unwrap());
+        app.layout.projector = projector;
+        app.tab = tab;
+        let mut h = harness(app, size);
+        let before = h.state().rects;
+        assert!(before.central.width() < size[0] - 100.0 || projector);
+        if tab == 0 {
+            h.get_by_label("Show").click();
+            settle(&mut h);
+            h.get_by_label("Present this figure (F5)").click();
+        } else {
+            h.key_press(egui::Key::F5);
+        }
+        settle(&mut h);
+        let r = h.state().rects;
+        assert!(h.state().layout.present, "tab {tab}: presenting");
+        assert!(r.left.is_none() && r.right.is_none(), "tab {tab}: {r:?}");
+        // the central panel is the window, less egui's margin
+        assert!(
+            r.central.width() >= size[0] - 20.0 && r.central.height() >= size[1] - 20.0,
+            "tab {tab}: central {:?}",
+            r.central
+        );
+        for gone in ["Projector (P)", "Show", "Figure:"] {
+            assert!(
+                h.query_by_label(gone).is_none(),
+                "tab {tab}: {gone} still shown while presenting"
+            );
+        }
+        let hint = painted_text(&h)
+            .into_iter()
+            .find(|(_, t)| t.contains("Esc"))
+            .expect("the way out is said");
+        if projector {
+            assert!(hint.0 >= 16.0, "hint {} px", hint.0);
+        }
+        h.key_press(egui::Key::Escape);
+        settle(&mut h);
+        assert!(!h.state().layout.present);
+        assert_eq!(
+            h.state().rects,
+            before,
+            "tab {tab}: Esc restores every rectangle"
+        );
+    }
+}

@@ -292,22 +292,29 @@ fn median_frame_ms(model: &str) -> f64 {
 /// Puma in the same runs (its arm's self-motion, a locked joint swept through a general
 /// six-joint elimination, was recomputed every frame of the drag). Now it waits for the drag's
 /// end, and Baxter's frame is at most twice the Puma's, measured in the real window one after
-/// the other (best of three tries: these machines drift 20-40 % between runs).
+/// the other (best of three tries: these machines drift 20-40 % between runs). The two other
+/// robots of the corpus that were over twice the Puma (Sawyer 2.4x, Romeo 3.1x, 2026-12-06)
+/// are held to the same goal.
 #[test]
-fn baxter_drags_at_most_twice_as_slowly_as_the_puma() {
-    let baxter = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/tests/data/urdf_corpus/baxter.urdf"
-    );
-    let mut ratios = Vec::new();
-    for _ in 0..3 {
-        let (p, b) = (median_frame_ms("puma560"), median_frame_ms(baxter));
-        ratios.push(b / p);
-        if b / p <= 2.0 {
-            return;
+fn big_robots_drag_at_most_twice_as_slowly_as_the_puma() {
+    for name in ["baxter", "sawyer", "romeo"] {
+        let path = format!(
+            "{}/tests/data/urdf_corpus/{name}.urdf",
+            env!("CARGO_MANIFEST_DIR")
+        );
+        let mut ratios = Vec::new();
+        for _ in 0..3 {
+            let (p, b) = (median_frame_ms("puma560"), median_frame_ms(&path));
+            ratios.push(b / p);
+            if b / p <= 2.0 {
+                break;
+            }
         }
+        assert!(
+            ratios.last().is_some_and(|r| *r <= 2.0),
+            "{name}'s frame against the Puma's, three tries: {ratios:?}"
+        );
     }
-    panic!("Baxter's frame against the Puma's, three tries: {ratios:?}");
 }
 
 /// Every text of a figure's vector capture: (its size in pixels of the figure, the text).

@@ -367,7 +367,10 @@ impl Tab for WorkspaceTab {
             );
             return;
         }
-        self.preset_row(cx, ui, out);
+        // Presenting, the figure alone fills the window.
+        if !cx.layout.present {
+            self.preset_row(cx, ui, out);
+        }
         let area = ui.available_size();
         let ppp = ui.ctx().pixels_per_point();
         let size = Self::size_for(area, ppp);
