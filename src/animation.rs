@@ -14,6 +14,8 @@
 //! - [`Motion::Path`]: a straight tool path at constant speed, solved by the closed form
 //!   (the posture nearest the previous sample) or the numerical solver, with the joint rates.
 
+pub mod rotation;
+
 use crate::kinematics::dh::Convention;
 use crate::kinematics::ik::Target;
 use crate::kinematics::ik::solver::{self, SolverChoice};

@@ -38,17 +38,24 @@ pub enum Overlay {
     Labels,
     /// The self-motion's traced path and its tab (Sect. 2.10.2).
     SelfMotion,
+    /// The floor grid. Unlike the others, a step that names it in neither list leaves it as
+    /// it is (lessons written before it existed keep the grid the viewer had).
+    Grid,
+    /// The tool's trail. Left as it is when neither list names it, as the grid.
+    Trail,
 }
 
 impl Overlay {
     /// Every overlay, in the file's spelling order.
-    pub const ALL: [Overlay; 6] = [
+    pub const ALL: [Overlay; 8] = [
         Overlay::Workspace,
         Overlay::Construction,
         Overlay::Ghosts,
         Overlay::Frames,
         Overlay::Labels,
         Overlay::SelfMotion,
+        Overlay::Grid,
+        Overlay::Trail,
     ];
 }
 
@@ -85,6 +92,8 @@ pub enum LessonTab {
     Calibration,
     /// The exercise sheet.
     Exercise,
+    /// The orientation lab (Sects. 2.2-2.6).
+    Orientation,
 }
 
 /// One step of a lesson.
@@ -128,6 +137,131 @@ pub struct Step {
     /// The construction's step shown (1-based), with the construction overlay.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub construction_step: Option<usize>,
+    /// The Orientation tab's setup (with `tab = "orientation"`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub orientation: Option<OrientationStep>,
+}
+
+/// What the Orientation tab shows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum OrientationMode {
+    /// One representation edited, the others shown.
+    #[default]
+    Turn,
+    /// A composition of elementary rotations, step by step.
+    Compose,
+    /// Problem 2.15: a sum of two orientations in both orders.
+    Sum,
+    /// Problem 2.16: the commutator against the angle.
+    Small,
+}
+
+/// A representation the Orientation tab edits.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum OrientationRep {
+    /// ZYZ Euler angles (2.18).
+    Zyz,
+    /// ZXZ Euler angles (Problem 2.1).
+    Zxz,
+    /// Roll, pitch, yaw (2.21).
+    Rpy,
+    /// Angle and axis (2.25).
+    AxisAngle,
+    /// Unit quaternion (2.33).
+    Quaternion,
+}
+
+impl OrientationRep {
+    /// How many values it takes: 3 angles, or theta and r, or eta and epsilon.
+    pub fn value_count(self) -> usize {
+        match self {
+            OrientationRep::AxisAngle | OrientationRep::Quaternion => 4,
+            _ => 3,
+        }
+    }
+}
+
+/// One elementary rotation of a lesson's sequence, its angle in degrees.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SequenceStep {
+    /// About the current or the fixed frame.
+    pub frame: crate::kinematics::orientation::StepFrame,
+    /// The axis.
+    pub axis: crate::kinematics::orientation::Axis,
+    /// The angle (deg).
+    pub angle_deg: f64,
+}
+
+/// The Orientation tab's setup in a lesson step:
+///
+/// ```toml
+/// [steps.orientation]
+/// mode = "turn"                 # turn, compose, sum, small
+/// edit = "zyz"                  # zyz, zxz, rpy, axis-angle, quaternion
+/// values = [30, 45, 60]         # degrees for angles (theta of angle-axis too)
+/// sequence = [{ frame = "current", axis = "z", angle_deg = 30 }]
+/// shown = 1                     # the composition's steps applied
+/// ```
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OrientationStep {
+    /// What the tab shows.
+    #[serde(default)]
+    pub mode: OrientationMode,
+    /// The representation edited.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub edit: Option<OrientationRep>,
+    /// Its values (degrees for angles).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub values: Option<Vec<f64>>,
+    /// The composition's sequence, in the order stated.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sequence: Option<Vec<SequenceStep>>,
+    /// How many of its steps are applied (absent: all).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shown: Option<usize>,
+}
+
+impl OrientationStep {
+    /// What is wrong with it, if anything.
+    fn check(&self) -> Option<String> {
+        let values = self.values.as_deref().unwrap_or_default();
+        if let Some(v) = self.values.as_ref()
+            && v.iter().any(|x| !x.is_finite())
+        {
+            return Some("orientation.values: every number must be finite".into());
+        }
+        if let Some(rep) = self.edit
+            && self.values.is_some()
+            && values.len() != rep.value_count()
+        {
+            return Some(format!(
+                "orientation.values: {:?} takes {} values, {} given",
+                rep,
+                rep.value_count(),
+                values.len()
+            ));
+        }
+        if self.values.is_some() && self.edit.is_none() {
+            return Some(
+                "orientation.values: say which representation they are (edit = ...)".into(),
+            );
+        }
+        let seq = self.sequence.as_deref().unwrap_or_default();
+        if seq.iter().any(|s| !s.angle_deg.is_finite()) {
+            return Some("orientation.sequence: every angle must be finite".into());
+        }
+        match self.shown {
+            Some(k) if k > seq.len() => Some(format!(
+                "orientation.shown: {k} steps shown of a sequence of {}",
+                seq.len()
+            )),
+            _ => None,
+        }
+    }
 }
 
 /// A lesson as in its file.
@@ -230,6 +364,9 @@ impl Lesson {
             if s.construction_step == Some(0) {
                 return Err(step_error("construction_step counts from 1".to_string()));
             }
+            if let Some(message) = s.orientation.as_ref().and_then(OrientationStep::check) {
+                return Err(step_error(message));
+            }
         }
         Ok(lesson)
     }
@@ -298,6 +435,11 @@ impl Lesson {
             });
         }
         Ok(Some(q))
+    }
+
+    /// The overlays step `i` turns off explicitly (`overlays_off`; none when absent).
+    pub fn overlays_off(&self, i: usize) -> Vec<Overlay> {
+        self.steps[i].overlays_off.clone().unwrap_or_default()
     }
 
     /// The overlays of step `i` (default: frames and labels).

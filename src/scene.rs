@@ -11,6 +11,8 @@ use crate::mesh::TriMesh;
 use nalgebra::{Matrix4, Point3, Rotation3, Unit, Vector3};
 use std::sync::Arc;
 
+pub mod orientation;
+
 /// RGBA colour, each channel in [0, 1] (linear).
 pub type Rgba = [f32; 4];
 

@@ -509,6 +509,19 @@ pub fn exercise(data: &[u8]) {
         KeyAnswer::Identifiability { parameters, .. } => {
             full(&Answer::Words(parameters.clone()), "identifiability")
         }
+        // An orientation key's own reference need not match a fuzzed question: graded or
+        // refused cleanly.
+        KeyAnswer::Euler(_)
+        | KeyAnswer::Compose(_)
+        | KeyAnswer::AxisAngle(_)
+        | KeyAnswer::Quaternion(_)
+        | KeyAnswer::FromQuestion => {
+            grade_checked(
+                &key,
+                &Answer::Rows(vec![vec![0.5; 9]]),
+                "orientation numbers",
+            );
+        }
     }
     // Answers of every shape: graded or refused cleanly.
     grade_checked(&key, &Answer::Rows(Vec::new()), "no rows");
@@ -520,6 +533,10 @@ pub fn exercise(data: &[u8]) {
         return;
     };
     // The answer as `armlab exercise check` reads it for this key.
+    if key.kind.is_orientation() {
+        orientation_answer(&key, answer);
+        return;
+    }
     match &key.answer {
         KeyAnswer::DhTable => match armlab::model_file::parse_model_text("answer.toml", answer) {
             Ok(a) => {
@@ -533,6 +550,25 @@ pub fn exercise(data: &[u8]) {
         _ => {
             if let Some(rows) = exercise_rows(answer) {
                 grade_checked(&key, &Answer::Rows(rows), "answer rows");
+            }
+        }
+    }
+}
+
+/// An orientation answer file (`exercise::orientation::parse_answer`): graded or refused with
+/// the file named and a line of the text.
+fn orientation_answer(key: &armlab::exercise::Key, text: &str) {
+    use armlab::exercise::{Answer, ExerciseError, orientation::parse_answer};
+    match parse_answer(key.kind, text, "answer.txt") {
+        Ok(a) => {
+            grade_checked(key, &Answer::Orientation(a), "answer orientation");
+        }
+        Err(e) => {
+            let message = e.to_string();
+            assert!(message.contains("answer.txt"), "no file named: {message}");
+            match e {
+                ExerciseError::AnswerField { line, .. } => check_line(text, line, &message),
+                other => panic!("not a field's error: {other}"),
             }
         }
     }

@@ -13,8 +13,10 @@ in and out, SI units (m) and radians, poses as (4, 4) homogeneous transforms ``w
 
 Batch calls take stacks: ``r.fk(Q)`` with Q of shape (N, dof) gives (N, 4, 4), ``r.ik(Ts)`` with
 Ts of shape (N, 4, 4) gives an :class:`IkBatch`; both release the GIL and use every core.
-Figures (:meth:`Robot.figure`, :meth:`Robot.workspace`, :meth:`Robot.self_motion`,
-:func:`textbook_figure`) show inline in Jupyter and save as PNG, SVG or PDF.
+Rotations in batches (matrices to Euler, RPY, angle-axis and quaternions, and back) are in
+:mod:`armlab.rotation`. Figures (:meth:`Robot.figure`, :meth:`Robot.workspace`,
+:meth:`Robot.self_motion`, :func:`textbook_figure`) show inline in Jupyter and save as PNG, SVG
+or PDF.
 
 Errors are armlab's own, with the library's messages: :class:`ModelError` (a model that cannot
 be loaded: file, line and field named), :class:`IkError`, :class:`KinematicsError`,
@@ -44,6 +46,7 @@ from ._core import (
     ModelError,
     WorkspaceError,
 )
+from . import rotation
 
 __version__: str = _core.__version__
 
@@ -64,6 +67,7 @@ __all__ = [
     "calibrate",
     "textbook_figure",
     "posture_label",
+    "rotation",
     "ArmlabError",
     "ModelError",
     "KinematicsError",

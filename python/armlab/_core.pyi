@@ -169,3 +169,11 @@ def svg_to_pdf(svg: str) -> bytes:
 
 def textbook_figure(name: str, width: int = 1200, height: int = 900, theme: str = "light") -> Tuple[bytes, str]:
     """(png, svg) of a figure of the excerpt."""
+
+def rotation_to(rs: F64, to: str, second: bool = False, out: Optional[F64] = None) -> F64:
+    """Rotation matrices (N, 3, 3) in representation ``to`` ("zyz", "zxz", "rpy": (N, 3) rad;
+    "axis_angle": (N, 4) (theta, rx, ry, rz); "quaternion": (N, 4) (eta, ex, ey, ez), eta >= 0);
+    ``second``: the other Euler solution. Each matrix orthonormal to 1e-6 with det +1."""
+
+def rotation_from(xs: F64, kind: str, out: Optional[F64] = None) -> F64:
+    """Rotation matrices (N, 3, 3) of rows (N, 3) or (N, 4) in representation ``kind``."""

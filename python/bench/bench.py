@@ -36,6 +36,26 @@ def per_batch(stmt, repeat: int = 9) -> float:
     return statistics.median(times)
 
 
+def rotations(rng) -> list:
+    """armlab.rotation on 1,000,000 rotation matrices (issue 47: >= 20 M/s on two cores)."""
+    from armlab import rotation
+
+    n = 1_000_000
+    R = rotation.from_zyz(rng.uniform(-np.pi, np.pi, (n, 3)))
+    rows = []
+    for kind in ("zyz", "zxz", "rpy", "axis_angle", "quaternion"):
+        out = np.empty((n, 3 if kind in ("zyz", "zxz", "rpy") else 4))
+        t = per_batch(lambda: rotation.convert_to(R, kind, out=out), repeat=5)
+        rows.append((f"`armlab.rotation`: 1,000,000 matrices to {kind} into `out=`", f"{n / t / 1e6:.1f} M/s"))
+        X = out.copy()
+        back = np.empty((n, 3, 3))
+        t = per_batch(lambda: rotation.convert_from(X, kind, out=back), repeat=5)
+        rows.append((f"`armlab.rotation`: 1,000,000 {kind} rows to matrices into `out=`", f"{n / t / 1e6:.1f} M/s"))
+    t = per_batch(lambda: rotation.to_zyz(R), repeat=5)
+    rows.append(("`armlab.rotation`: 1,000,000 matrices to zyz (a new (N, 3) array)", f"{n / t / 1e6:.1f} M/s"))
+    return rows
+
+
 def main() -> None:
     cores = os.cpu_count()
     threads = os.environ.get("RAYON_NUM_THREADS", str(cores))
@@ -69,6 +89,8 @@ def main() -> None:
     T = Ts[0]
     t = per_call(lambda: puma.ik(T, all=True), 5_000)
     rows.append(("`ik(T, all=True)`, Puma 560: 8 labelled, FK-checked solutions (one call)", f"{t * 1e6:.1f} µs"))
+
+    rows.extend(rotations(rng))
 
     try:
         import roboticstoolbox as rtb  # the peer, when installed

@@ -1,13 +1,14 @@
 //! `armlab._core`: the extension module behind the `armlab` Python package.
 //!
 //! It wraps the graphics-free library (FK, Jacobians, labelled closed-form and numerical IK,
-//! point queries, self-motions, symbolic kinematics) and the headless figures, NumPy in and out,
-//! SI units and radians. The Python layer (`armlab/__init__.py`) turns its plain results into
-//! documented objects; everything that computes is here or in the armlab crate.
+//! point queries, self-motions, symbolic kinematics, rotation conversions) and the headless
+//! figures, NumPy in and out, SI units and radians. The Python layer (`armlab/__init__.py`,
+//! `armlab/rotation.py`) turns its plain results into documented objects; everything that
+//! computes is here or in the armlab crate.
 //!
-//! Batch calls (`fk_batch`, `ik_batch`) release the GIL and spread the rows over every core
-//! (rayon). Inputs are checked here (shape, NaN); a bad one raises `ValueError` naming the
-//! argument and the offending index, never a panic.
+//! Batch calls (`fk_batch`, `ik_batch`, `rotation_to`, `rotation_from`) release the GIL and
+//! spread the rows over every core (rayon). Inputs are checked here (shape, NaN); a bad one
+//! raises `ValueError` naming the argument and the offending index, never a panic.
 
 use pyo3::prelude::*;
 
@@ -18,6 +19,7 @@ mod errors;
 mod figures;
 mod reports;
 mod robot;
+mod rotation;
 
 /// The module `armlab._core`.
 #[pymodule]
@@ -46,6 +48,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(reports::run_cli, m)?)?;
     m.add_function(wrap_pyfunction!(figures::svg_to_pdf, m)?)?;
     m.add_function(wrap_pyfunction!(figures::textbook_figure, m)?)?;
+    m.add_function(wrap_pyfunction!(rotation::rotation_to, m)?)?;
+    m.add_function(wrap_pyfunction!(rotation::rotation_from, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

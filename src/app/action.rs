@@ -72,6 +72,8 @@ pub enum Action {
     ShowConstruction(bool),
     /// Show construction step `k` (0-based).
     ConstructionStep(usize),
+    /// Set the Orientation tab up as a lesson step says.
+    Orientation(Box<crate::lesson::OrientationStep>),
     /// What the 3D view draws.
     SetDisplay(DisplayToggles),
     /// What the panels hide while an exercise sheet is answered.

@@ -74,6 +74,19 @@ impl Layout {
         }
     }
 
+    /// Applies a layout action (projector mode, the side panels, presenting); others are
+    /// ignored.
+    pub fn apply(&mut self, action: &super::action::Action) {
+        use super::action::Action;
+        match action {
+            Action::ToggleProjector => self.projector ^= true,
+            Action::ToggleSidePanels => self.toggle_side_panels(),
+            Action::TogglePresent => self.present ^= true,
+            Action::EndPresent => self.present = false,
+            _ => {}
+        }
+    }
+
     /// One key hides both side panels, or shows both again. In projector mode, where two
     /// panels leave each too narrow to read (the left one wrapped "Open" as "Ope n"), it shows
     /// one at a time, each as wide as in normal mode or wider: the right one (the readouts),

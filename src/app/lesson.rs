@@ -90,7 +90,7 @@ impl LessonPlayer {
             position,
             rotation,
         });
-        let overlays = lesson.overlays(i);
+        let overlays = (lesson.overlays(i), lesson.overlays_off(i));
         overlay_actions(&overlays, state, &mut out);
         if let Some(k) = step.construction_step {
             out.push(Action::ShowConstruction(true));
@@ -101,6 +101,9 @@ impl LessonPlayer {
         }
         if let Some(t) = step.tab {
             out.push(Action::ShowTab(tab_index(t)));
+        }
+        if let Some(o) = &step.orientation {
+            out.push(Action::Orientation(Box::new(o.clone())));
         }
         out.push(
             match (&step.camera, step.view.as_deref().and_then(preset)) {
@@ -269,6 +272,7 @@ fn tab_index(t: LessonTab) -> usize {
         LessonTab::SelfMotion => tabs::SELF_MOTION,
         LessonTab::Calibration => tabs::CALIBRATION,
         LessonTab::Exercise => tabs::EXERCISE,
+        LessonTab::Orientation => tabs::ORIENTATION,
     }
 }
 
@@ -280,18 +284,23 @@ fn lesson_tab(index: usize) -> LessonTab {
         tabs::SELF_MOTION => LessonTab::SelfMotion,
         tabs::CALIBRATION => LessonTab::Calibration,
         tabs::EXERCISE => LessonTab::Exercise,
+        tabs::ORIENTATION => LessonTab::Orientation,
         _ => LessonTab::View3d,
     }
 }
 
-/// The overlays a step asks for, and no others.
-fn overlay_actions(overlays: &[Overlay], state: &AppState, out: &mut Actions) {
-    let has = |o| overlays.contains(&o);
+/// The overlays a step asks for (`on`), and no others; the grid and the trail as the step
+/// names them in `on` or `off`, else as they are.
+fn overlay_actions((on, off): &(Vec<Overlay>, Vec<Overlay>), state: &AppState, out: &mut Actions) {
+    let has = |o| on.contains(&o);
+    let named = |o, now: bool| has(o) || (now && !off.contains(&o));
     let mut d = state.display;
     d.ghosts = has(Overlay::Ghosts);
     d.frames = has(Overlay::Frames);
     d.labels = has(Overlay::Labels);
     d.self_motion_path = has(Overlay::SelfMotion);
+    d.grid = named(Overlay::Grid, d.grid);
+    d.trail = named(Overlay::Trail, d.trail);
     out.push(Action::SetDisplay(d));
     if d.workspace != has(Overlay::Workspace) {
         out.push(Action::ToggleWorkspace);
@@ -311,6 +320,8 @@ pub struct Seen {
     pub figure: String,
     /// The construction's step shown (0-based), if the construction is.
     pub construction: Option<usize>,
+    /// The Orientation tab's setup, when it is the tab shown.
+    pub orientation: Option<crate::lesson::OrientationStep>,
 }
 
 impl Seen {
@@ -325,6 +336,7 @@ impl Seen {
             tab,
             figure: tabs.workspace.figure_name(),
             construction: construction.shown.then_some(construction.step),
+            orientation: (tab == super::tabs::ORIENTATION).then(|| tabs.orientation.lesson_step()),
         }
     }
 }
@@ -343,6 +355,8 @@ pub fn current_step(state: &AppState, ee: usize, seen: &Seen, caption: &str) -> 
         (d.frames, Overlay::Frames),
         (d.labels, Overlay::Labels),
         (d.self_motion_path, Overlay::SelfMotion),
+        (d.grid, Overlay::Grid),
+        (d.trail, Overlay::Trail),
     ] {
         if on {
             overlays.push(o);
@@ -376,5 +390,6 @@ pub fn current_step(state: &AppState, ee: usize, seen: &Seen, caption: &str) -> 
         tab: Some(lesson_tab(seen.tab)),
         figure: Some(seen.figure.to_string()),
         construction_step: seen.construction.map(|k| k + 1),
+        orientation: seen.orientation.clone(),
     }
 }

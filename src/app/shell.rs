@@ -57,7 +57,7 @@ pub struct AppUi {
     /// The lesson being played, if any.
     pub lesson: Option<LessonPlayer>,
     /// The newest message seen and when it came (s, egui time).
-    pub(super) message_seen: (u64, f64),
+    message_seen: (u64, f64),
 }
 
 impl AppUi {
@@ -151,6 +151,7 @@ impl AppUi {
             Action::ClearTrails => s.clear_trails(),
             Action::ShowConstruction(on) => self.ik.construction.shown = on,
             Action::ConstructionStep(k) => self.ik.construction.step = k,
+            Action::Orientation(o) => self.tabs.orientation.apply_lesson(&o),
             Action::Message(level, text) => s.push_message(level, text),
             Action::LessonStep(k) => self.go_to_step(k),
             _ => self.apply_other(action),
@@ -182,10 +183,6 @@ impl AppUi {
             Action::FitReach => view.fit_reach(s),
             Action::ToggleProjection => view.toggle_projection(s),
             Action::ToggleWorkspace => self.tabs.workspace.toggle_overlay(&mut self.state),
-            Action::ToggleProjector => self.layout.projector ^= true,
-            Action::ToggleSidePanels => self.layout.toggle_side_panels(),
-            Action::TogglePresent => self.layout.present ^= true,
-            Action::EndPresent => self.layout.present = false,
             Action::Screenshot => self.screenshot_requested = true,
             #[cfg(feature = "app")]
             Action::Record => {
@@ -213,7 +210,8 @@ impl AppUi {
                 let saved = files::write_answer(self.file_picker.as_mut(), &path, &text);
                 self.report(saved);
             }
-            _ => {} // the state's actions: `try_apply`
+            // the layout's (P, V, F5, Esc); the state's are `try_apply`'s
+            _ => self.layout.apply(&action),
         }
     }
 
@@ -378,13 +376,15 @@ impl AppUi {
     }
 
     /// Opens a student's sheet (exam) or a teacher's key (practice) from its text (`name` for
-    /// messages): loads its arm at its q, hides what the sheet asks for (in an exam every way
-    /// out of the answer too), shows the Exercise tab. The app keeps its state on an error.
+    /// messages): loads its arm at its q (an orientation sheet has none: the arm stays),
+    /// hides what the sheet asks for (in an exam every way out of the answer too), shows the
+    /// Exercise tab. The app keeps its state on an error.
     pub fn open_exercise_text(&mut self, name: &str, text: &str) -> Result<(), String> {
         let opening = tabs::exercise::Opening::read(name, text)?;
-        let (model, arm) = opening.arm();
-        let loaded = self.load_model(model, Some(arm));
-        loaded.map_err(|e| format!("{name}: the sheet's arm: {e}"))?;
+        if let Some((model, arm)) = opening.arm() {
+            let loaded = self.load_model(model, Some(arm));
+            loaded.map_err(|e| format!("{name}: the sheet's arm: {e}"))?;
+        }
         let opened = self.tabs.exercise.open(opening, name, &self.state);
         self.apply_all(opened);
         Ok(())
@@ -406,6 +406,13 @@ impl AppUi {
     ) -> Option<ViewportImage> {
         self.tabs.view3d.frame_if_needed(&self.state);
         let ee = self.ee();
+        if self.tab == tabs::ORIENTATION {
+            let (p, tab) = (self.layout.projector, &mut self.tabs.orientation);
+            let image = tab.render(&self.state, ee, p, (vp, registry, dark));
+            return image
+                .map_err(|e| self.state.push_message(Level::Error, e))
+                .ok();
+        }
         let scene = scene_of(
             &mut self.state,
             (&self.tabs, &mut self.ik),
@@ -448,11 +455,23 @@ impl AppUi {
         for path in files::dropped_paths(&ctx) {
             out.push(Action::Load(path));
         }
-        // "Present this figure": the tab alone fills the window.
         if self.layout.present {
             self.rects = window::PanelRects::default();
         } else {
-            self.bars_and_panels(ui, &mut out);
+            #[cfg(feature = "app")]
+            let rec = self.recorder.as_ref().map(super::recorder::Recorder::len);
+            #[cfg(not(feature = "app"))]
+            let rec = None;
+            let tabs = (&mut self.tabs, self.tab);
+            let top = super::toolbar::bar(ui, &self.layout, tabs, &mut self.state, rec, &mut out);
+            self.rects.top = top;
+            let (ee, job) = (self.ee(), self.tabs.workspace.job.as_ref());
+            let status = (&self.state, ee, job.and_then(|j| j.progress()));
+            let lesson = self.lesson.as_mut();
+            self.rects.bottom =
+                window::bottom_bars(ui, status, &mut self.message_seen, lesson, &mut out);
+            let panels = (&mut self.model, &mut self.ik, &mut self.rects);
+            window::side_panels(ui, &self.layout, panels, &mut self.state, &mut out);
         }
         let ee = self.ee();
         let sm = (self.tab == tabs::SELF_MOTION).then(|| self.state.self_motion(ee));

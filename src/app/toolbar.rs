@@ -30,6 +30,37 @@ pub struct ToolbarContext<'a> {
     pub exam: bool,
 }
 
+/// The toolbar as a top panel of the window: what it shows is read from `layout`, the tabs
+/// (`tabs`, the one shown) and `state`; it changes only the display toggles and the 3D view's
+/// "follow" directly, the rest through `out`. Returns its rectangle.
+pub fn bar(
+    ui: &mut egui::Ui,
+    layout: &Layout,
+    (tabs, tab): (&mut super::tabs::Tabs, usize),
+    state: &mut super::state::AppState,
+    recording: Option<usize>,
+    out: &mut Actions,
+) -> egui::Rect {
+    let _ = recording; // without the app feature there is no recorder
+    let top = egui::Panel::top("top").show(ui, |ui| {
+        let robot = state.robot();
+        let (name, dof) = (robot.name.clone(), robot.dof());
+        let mut cx = ToolbarContext {
+            layout,
+            tabs: (tabs.all().iter().map(|t| t.title()).collect(), tab),
+            model: (&name, dof),
+            projection: tabs.view3d.camera.projection,
+            display: &mut state.display,
+            follow: &mut tabs.view3d.follow,
+            #[cfg(feature = "app")]
+            recording,
+            exam: state.hidden.exam,
+        };
+        show(&mut cx, ui, out);
+    });
+    top.response.rect
+}
+
 /// Lays the toolbar out.
 pub fn show(app: &mut ToolbarContext<'_>, ui: &mut egui::Ui, out: &mut Actions) {
     let projector = app.layout.projector;
@@ -54,6 +85,9 @@ pub fn show(app: &mut ToolbarContext<'_>, ui: &mut egui::Ui, out: &mut Actions) 
                 // In projector mode the left panel is usually closed: the model list is here.
                 ui.separator();
                 ui.menu_button("Model", |ui| model_menu(ui, out));
+                if projector {
+                    screenshot_button(app.exam, ui, out);
+                }
             });
         } else {
             view_buttons(app, ui, out);
@@ -62,31 +96,31 @@ pub fn show(app: &mut ToolbarContext<'_>, ui: &mut egui::Ui, out: &mut Actions) 
         show_menu(app, ui, out);
         let sides = app.layout.sides();
         if ui
-            .selectable_label(!(sides.left || sides.right), "Panels (V)")
-            .on_hover_text("Hide or show both side panels")
+            .selectable_label(
+                !(sides.left || sides.right),
+                key_hint("Panels", "V", projector),
+            )
+            .on_hover_text("Hide or show both side panels (V)")
             .clicked()
         {
             out.push(Action::ToggleSidePanels);
         }
         if ui
-            .selectable_label(projector, "Projector (P)")
+            .selectable_label(projector, key_hint("Projector", "P", projector))
             .on_hover_text("Large fonts and lines, the 3D view large; P again restores the layout")
             .clicked()
         {
             out.push(Action::ToggleProjector);
         }
-        if ui
-            .add_enabled(!app.exam, egui::Button::new("Screenshot"))
-            .on_hover_text("Save the window as armlab-<model>-<n>.png in the current folder")
-            .on_disabled_hover_text("Off during an exam")
-            .clicked()
-        {
-            out.push(Action::Screenshot);
+        // In projector mode Screenshot is under View (the row's large text has no room for it
+        // at 1200 px with six tabs).
+        if !projector {
+            screenshot_button(app.exam, ui, out);
         }
         // Record, except in projector mode where the row has no room for it (1200 px); a
         // recording in progress always shows its Stop.
         #[cfg(feature = "app")]
-        if app.recording.is_some() || (!app.exam && (!projector || ui.available_width() > 130.0)) {
+        if app.recording.is_some() || (!app.exam && (!projector || ui.available_width() > 260.0)) {
             let (label, hint) = match app.recording {
                 None => (
                     "Record".to_string(),
@@ -110,6 +144,19 @@ pub fn show(app: &mut ToolbarContext<'_>, ui: &mut egui::Ui, out: &mut Actions) 
             ui.add(egui::Label::new(RichText::new(name).weak()).truncate());
         });
     });
+}
+
+/// Screenshot, off during an exam.
+fn screenshot_button(exam: bool, ui: &mut egui::Ui, out: &mut Actions) {
+    if ui
+        .add_enabled(!exam, egui::Button::new("Screenshot"))
+        .on_hover_text("Save the window as armlab-<model>-<n>.png in the current folder")
+        .on_disabled_hover_text("Off during an exam")
+        .clicked()
+    {
+        out.push(Action::Screenshot);
+        ui.close();
+    }
 }
 
 /// The camera presets, Fit and the projection.
@@ -161,6 +208,16 @@ fn show_menu(app: &mut ToolbarContext<'_>, ui: &mut egui::Ui, out: &mut Actions)
             ui.close();
         }
     });
+}
+
+/// A button's name with its key, `Panels (V)`; in projector mode without the key (the row's
+/// large text leaves no room for it at 1280 px; the keys are in the help and on hover).
+fn key_hint(name: &str, key: &str, projector: bool) -> String {
+    if projector {
+        name.to_string()
+    } else {
+        format!("{name} ({key})")
+    }
 }
 
 /// The projector's model menu: every built-in model, and a model file.

@@ -162,39 +162,6 @@ pub fn status_bar(
     });
 }
 
-impl super::shell::AppUi {
-    /// The toolbar, the status and lesson bars and the side panels (all but the central tab),
-    /// with their rectangles recorded for the tests.
-    pub(super) fn bars_and_panels(&mut self, ui: &mut egui::Ui, out: &mut Actions) {
-        let top = egui::Panel::top("top").show(ui, |ui| {
-            let robot = self.state.robot();
-            let (name, dof) = (robot.name.clone(), robot.dof());
-            let mut cx = super::toolbar::ToolbarContext {
-                layout: &self.layout,
-                tabs: (
-                    self.tabs.all().iter().map(|t| t.title()).collect(),
-                    self.tab,
-                ),
-                model: (&name, dof),
-                projection: self.tabs.view3d.camera.projection,
-                display: &mut self.state.display,
-                follow: &mut self.tabs.view3d.follow,
-                #[cfg(feature = "app")]
-                recording: self.recorder.as_ref().map(super::recorder::Recorder::len),
-                exam: self.state.hidden.exam,
-            };
-            super::toolbar::show(&mut cx, ui, out);
-        });
-        self.rects.top = top.response.rect;
-        let (ee, job) = (self.ee(), self.tabs.workspace.job.as_ref());
-        let status = (&self.state, ee, job.and_then(|j| j.progress()));
-        let lesson = self.lesson.as_mut();
-        self.rects.bottom = bottom_bars(ui, status, &mut self.message_seen, lesson, out);
-        let panels = (&mut self.model, &mut self.ik, &mut self.rects);
-        side_panels(ui, &self.layout, panels, &mut self.state, out);
-    }
-}
-
 /// How long (s) the way out of "present this figure" is shown after entering it.
 const PRESENT_HINT_SECONDS: f64 = 4.0;
 

@@ -52,6 +52,14 @@ pub enum KindArg {
     Redundancy,
     /// Which DH parameters a stated measurement setup cannot identify.
     Identifiability,
+    /// The Euler angles (ZYZ, ZXZ or RPY) of a given rotation matrix.
+    Euler,
+    /// The matrix of a described sequence of rotations about current or fixed axes.
+    Compose,
+    /// The angle and axis of a given rotation matrix.
+    AxisAngle,
+    /// The unit quaternion of a given rotation matrix.
+    Quaternion,
 }
 
 impl From<KindArg> for Kind {
@@ -63,6 +71,10 @@ impl From<KindArg> for Kind {
             KindArg::Workspace => Kind::Workspace,
             KindArg::Redundancy => Kind::Redundancy,
             KindArg::Identifiability => Kind::Identifiability,
+            KindArg::Euler => Kind::Euler,
+            KindArg::Compose => Kind::Compose,
+            KindArg::AxisAngle => Kind::AxisAngle,
+            KindArg::Quaternion => Kind::Quaternion,
         }
     }
 }
@@ -70,10 +82,14 @@ impl From<KindArg> for Kind {
 /// Arguments of `armlab exercise new`.
 #[derive(Debug, clap::Args)]
 pub struct NewArgs {
-    /// The kind of exercise.
-    #[arg(value_enum)]
-    pub kind: KindArg,
-    /// The arm of every sheet (built-in name or model file).
+    /// The kind of exercise (or --kind KIND).
+    #[arg(value_enum, required_unless_present = "kind_flag")]
+    pub kind: Option<KindArg>,
+    /// The kind of exercise, as a flag (instead of the first argument).
+    #[arg(long = "kind", value_enum, id = "kind_flag", conflicts_with = "kind")]
+    pub kind_flag: Option<KindArg>,
+    /// The arm of every sheet (built-in name or model file); not for the orientation kinds
+    /// (euler, compose, axis-angle, quaternion), which draw no arm.
     #[arg(long, conflicts_with = "random")]
     pub robot: Option<String>,
     /// A different textbook arm per sheet, with its lengths varied.
@@ -83,7 +99,7 @@ pub struct NewArgs {
     #[arg(long)]
     pub seed: u64,
     /// Number of students: one sheet each, all different.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, visible_alias = "students", default_value_t = 1)]
     pub class: usize,
     /// Folder to write each student's `student-NN/sheet.md`, `student-NN/figure.png` and
     /// `student-NN/sheet.json` (the sheet the app opens in exam mode: no answer in it), and
@@ -137,16 +153,33 @@ fn io_error(path: &Path, e: impl std::fmt::Display) -> CliError {
     CliError::Export(format!("{}: {e}", path.display()))
 }
 
-/// `armlab exercise new`.
-fn new(args: &NewArgs, out: &mut dyn Write) -> Result<(), CliError> {
+/// The kind asked for (first argument or --kind) and the arm of every sheet (`None`: drawn per
+/// sheet, or none at all for the workspace and orientation kinds).
+fn kind_and_robot(args: &NewArgs) -> Result<(Kind, Option<crate::kinematics::Robot>), CliError> {
+    let kind: Kind = args
+        .kind
+        .or(args.kind_flag)
+        .ok_or(CliError::Usage("give the kind of exercise"))?
+        .into();
     let robot = match (&args.robot, args.random) {
+        (Some(_), _) if kind.is_orientation() => {
+            return Err(CliError::Usage(
+                "an orientation exercise draws no arm: leave out --robot",
+            ));
+        }
         (Some(spec), _) => Some(super::load_model(spec)?),
         (None, true) => None,
-        (None, false) if Kind::from(args.kind) == Kind::Workspace => None,
+        (None, false) if kind == Kind::Workspace || kind.is_orientation() => None,
         (None, false) => {
             return Err(CliError::Usage("give --robot MODEL or --random"));
         }
     };
+    Ok((kind, robot))
+}
+
+/// `armlab exercise new`.
+fn new(args: &NewArgs, out: &mut dyn Write) -> Result<(), CliError> {
+    let (kind, robot) = kind_and_robot(args)?;
     if args.class == 0 {
         return Err(CliError::Usage("--class must be at least 1"));
     }
@@ -154,19 +187,27 @@ fn new(args: &NewArgs, out: &mut dyn Write) -> Result<(), CliError> {
     std::fs::create_dir_all(&keys).map_err(|e| io_error(&keys, e))?;
     let mut figures = Figures::new()?;
     for student in 1..=args.class {
-        let sheet =
-            generate(args.kind.into(), robot.as_ref(), args.seed, student).map_err(|e| {
-                CliError::BadTarget {
-                    source_name: "exercise new".into(),
-                    reason: e.to_string(),
-                }
-            })?;
+        let sheet = generate(kind, robot.as_ref(), args.seed, student).map_err(|e| {
+            CliError::BadTarget {
+                source_name: "exercise new".into(),
+                reason: e.to_string(),
+            }
+        })?;
         let dir = args.out.join(format!("student-{student:02}"));
         std::fs::create_dir_all(&dir).map_err(|e| io_error(&dir, e))?;
         let md = dir.join("sheet.md");
+        // A compose sheet has no figure: its final frame is the answer.
+        let drawn = kind != Kind::Compose;
         let text = format!(
-            "{}\n![figure](figure.png)\n\nSheet {student} of {} (seed {}).\n",
-            sheet.markdown, args.class, args.seed
+            "{}\n{}Sheet {student} of {} (seed {}).\n",
+            sheet.markdown,
+            if drawn {
+                "![figure](figure.png)\n\n"
+            } else {
+                ""
+            },
+            args.class,
+            args.seed
         );
         std::fs::write(&md, text).map_err(|e| io_error(&md, e))?;
         let sheet_path = dir.join("sheet.json");
@@ -178,19 +219,28 @@ fn new(args: &NewArgs, out: &mut dyn Write) -> Result<(), CliError> {
         let json = serde_json::to_string_pretty(&sheet_file).map_err(std::io::Error::from)?;
         std::fs::write(&sheet_path, json + "\n").map_err(|e| io_error(&sheet_path, e))?;
         let png = dir.join("figure.png");
-        let img = figure(&mut figures, &sheet, args.size.0)?;
-        write_png(&img, &png)?;
+        if drawn {
+            let img = figure(&mut figures, &sheet, args.size.0)?;
+            write_png(&img, &png)?;
+        }
         let key_path = keys.join(format!("student-{student:02}.json"));
         let json = serde_json::to_string_pretty(&sheet.key).map_err(std::io::Error::from)?;
         std::fs::write(&key_path, json + "\n").map_err(|e| io_error(&key_path, e))?;
+        let figure_name = if drawn {
+            format!(", {}", png.display())
+        } else {
+            String::new()
+        };
         writeln!(
             out,
-            "wrote {}, {}, {} and {} ({})",
+            "wrote {}, {}{figure_name} and {} ({})",
             md.display(),
             sheet_path.display(),
-            png.display(),
             key_path.display(),
-            sheet.robot.name
+            sheet
+                .robot
+                .as_ref()
+                .map_or(kind.name(), |r| r.name.as_str())
         )?;
     }
     Ok(())
@@ -203,12 +253,14 @@ fn figure(
     sheet: &Sheet,
     size: [u32; 2],
 ) -> Result<image::RgbaImage, CliError> {
+    let Some(robot) = &sheet.robot else {
+        return frame_figure(figures, sheet, size);
+    };
     let style = ArmStyle {
         frames: sheet.frames,
         frame_labels: sheet.frames,
         ..ArmStyle::default()
     };
-    let robot = &sheet.robot;
     let mut scene = arm_scene(robot, &sheet.q, &style)?;
     let len = 0.18 * robot.characteristic_length().max(0.1);
     let n = robot.dof();
@@ -256,16 +308,56 @@ fn figure(
     Ok(figures.scene(size, Theme::Light, &fig)?)
 }
 
+/// An orientation sheet's figure: the reference frame and the given frame (a rotation about
+/// the origin), seen from the usual corner.
+fn frame_figure(
+    figures: &mut Figures,
+    sheet: &Sheet,
+    size: [u32; 2],
+) -> Result<image::RgbaImage, CliError> {
+    let mut scene = crate::scene::Scene::default();
+    frame_triad(&mut scene, &crate::kinematics::Pose::identity(), "0", 1.0);
+    if let Some(t) = &sheet.target {
+        frame_triad(&mut scene, t, "", 0.7);
+    }
+    let corners = [-1.0, 1.0].map(|s| nalgebra::Vector3::new(s, s, s));
+    let points: Vec<_> = corners.iter().map(point32).collect();
+    let camera = framing_camera(Preset::Iso, &points, size, false);
+    let fig = Scene3d {
+        title: format!(
+            "Exercise {}, sheet {}",
+            sheet.key.kind.name(),
+            sheet.key.student
+        ),
+        subtitle: "the reference frame (x0 y0 z0) and the given frame (x y z)".into(),
+        scene: &scene,
+        camera,
+        legend: Vec::new(),
+        caption: String::new(),
+    };
+    Ok(figures.scene(size, Theme::Light, &fig)?)
+}
+
 /// Reads an answer: a model file for dh-table, rows of numbers otherwise (`#` comments; a
-/// first line `# deg` makes ik rows degrees).
-fn read_answer(key_answer: &KeyAnswer, path: &Path) -> Result<Answer, CliError> {
-    if matches!(key_answer, KeyAnswer::DhTable) {
+/// first line `# deg` makes ik rows degrees), an orientation's own lines for those kinds.
+fn read_answer(key: &Key, path: &Path) -> Result<Answer, CliError> {
+    if matches!(key.answer, KeyAnswer::DhTable) {
         return Ok(Answer::Model(Box::new(super::load_model(
             &path.to_string_lossy(),
         )?)));
     }
     let text = std::fs::read_to_string(path).map_err(|e| io_error(path, e))?;
-    if matches!(key_answer, KeyAnswer::Identifiability { .. }) {
+    if key.kind.is_orientation() {
+        let name = path.display().to_string();
+        let parsed = crate::exercise::orientation::parse_answer(key.kind, &text, &name);
+        return parsed
+            .map(Answer::Orientation)
+            .map_err(|e| CliError::BadTarget {
+                source_name: name,
+                reason: e.to_string(),
+            });
+    }
+    if matches!(key.answer, KeyAnswer::Identifiability { .. }) {
         return Ok(Answer::Words(crate::exercise::parse_words(&text)));
     }
     let rows = crate::exercise::parse_rows(&text, &path.display().to_string()).map_err(|e| {
@@ -297,7 +389,7 @@ fn check(args: &CheckArgs, out: &mut dyn Write) -> Result<(), CliError> {
                 source_name: key_path.display().to_string(),
                 reason: format!("not an armlab exercise key: {e}"),
             })?;
-            let answer = read_answer(&key.answer, answer)?;
+            let answer = read_answer(&key, answer)?;
             grade(&key, &answer).map_err(|e| CliError::BadTarget {
                 source_name: args.files[1].display().to_string(),
                 reason: e.to_string(),
@@ -388,7 +480,7 @@ fn grade_student(stem: &str, key: &Key, answer: Option<&PathBuf>) -> StudentGrad
             error: Some(error),
         };
     };
-    let graded = read_answer(&key.answer, path).and_then(|a| {
+    let graded = read_answer(key, path).and_then(|a| {
         grade(key, &a).map_err(|e| CliError::BadTarget {
             source_name: path.display().to_string(),
             reason: e.to_string(),

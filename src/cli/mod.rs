@@ -13,8 +13,10 @@ mod lesson;
 pub use crate::input;
 mod reach;
 pub mod reference;
+mod rotation;
 mod self_motion;
 mod symbolic;
+pub use symbolic::rotation_to_json as symbolic_rotation_json;
 pub use symbolic::to_json as symbolic_json;
 mod view;
 
@@ -53,6 +55,8 @@ pub enum EulerArg {
     Zyz,
     /// Roll-pitch-yaw (2.21).
     Rpy,
+    /// ZXZ Euler angles (Problem 2.1).
+    Zxz,
 }
 
 impl From<EulerArg> for crate::kinematics::EulerKind {
@@ -60,6 +64,7 @@ impl From<EulerArg> for crate::kinematics::EulerKind {
         match e {
             EulerArg::Zyz => Self::Zyz,
             EulerArg::Rpy => Self::Rpy,
+            EulerArg::Zxz => Self::Zxz,
         }
     }
 }
@@ -159,11 +164,18 @@ pub enum Command {
     /// folder of answers graded at once (`grade`).
     Exercise(exercise::ExerciseArgs),
     /// The direct kinematics in symbols, in the textbook's notation: each A_i^{i-1}, the
-    /// product T_n^0 and, for an arm with a spherical wrist, the wrist point p_W (Sect. 2.9).
+    /// product T_n^0 and, for an arm with a spherical wrist, the wrist point p_W (Sect. 2.9);
+    /// or, with --rotation, the rotation matrix of Euler angles, RPY, angle and axis or a unit
+    /// quaternion (Sects. 2.4-2.6).
     Symbolic(symbolic::SymbolicArgs),
     /// Write a model as URDF (same forward kinematics, limits, simple visuals) or as a TOML
     /// model file.
     Export(export::ExportArgs),
+    /// One rotation in every representation of Sect. 2.4 (the matrix, ZYZ and ZXZ Euler angles,
+    /// roll-pitch-yaw, angle and axis, the unit quaternion) with both Euler solutions and the
+    /// singular cases in words, or a composition of elementary rotations about current and fixed
+    /// axes, each partial product printed (Sect. 2.3).
+    Rotation(rotation::RotationArgs),
     /// An animation to GIF or APNG: the self-motion, a morph through the postures, the DH
     /// build one elementary motion at a time, or a straight tool path with its joint rates.
     Animate(animate::AnimateArgs),
@@ -244,6 +256,9 @@ pub enum CliError {
     /// A model the asked format cannot hold, or a file that cannot be written.
     #[error("{0}")]
     Export(String),
+    /// A rotation or a sequence `armlab rotation` cannot read.
+    #[error(transparent)]
+    Rotation(#[from] rotation::RotationError),
     /// Writing the output failed.
     #[error("cannot write output: {0}")]
     Output(#[from] std::io::Error),
@@ -317,6 +332,7 @@ pub fn run(cli: Cli, out: &mut dyn std::io::Write) -> Result<(), CliError> {
         Some(Command::Exercise(args)) => exercise::run(&args, out),
         Some(Command::Lesson(args)) => lesson::run(&args, out),
         Some(Command::Animate(args)) => animate::run(&args, out),
+        Some(Command::Rotation(args)) => rotation::run(&args, out),
     }
 }
 

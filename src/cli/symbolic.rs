@@ -1,9 +1,12 @@
-//! `armlab symbolic`: the direct kinematics in symbols, in the textbook's notation.
+//! `armlab symbolic`: the direct kinematics in symbols, in the textbook's notation, or with
+//! `--rotation` the matrix of a representation of orientation (Sects. 2.4-2.6).
 
 use super::CliError;
 use crate::kinematics::pose::pose_to_rows;
 use crate::kinematics::symbolic::document::{self, position, strings, vector};
-use crate::kinematics::symbolic::expr::{Style, number};
+use crate::kinematics::symbolic::expr::{Style, number, write};
+use crate::kinematics::symbolic::poly::Poly;
+use crate::kinematics::symbolic::rotation::{Representation, SymbolicRotation, derive_rotation};
 use crate::kinematics::symbolic::{Options, Source, SymbolicKinematics, derive};
 use crate::kinematics::{JointKind, Pose};
 use clap::ValueEnum;
@@ -24,11 +27,45 @@ pub enum SymbolicFormat {
     Json,
 }
 
-/// Arguments of `armlab symbolic`.
+/// The representations `--rotation` writes (clap's names for
+/// [`crate::kinematics::symbolic::rotation::Representation`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum RotationArg {
+    /// Euler angles ZXZ, Rz(phi) Rx'(theta) Rz''(psi) (Problem 2.1).
+    Zxz,
+    /// Euler angles ZYZ, Rz(phi) Ry'(theta) Rz''(psi) (2.18).
+    Zyz,
+    /// Roll-pitch-yaw, Rz(phi) Ry(theta) Rx(psi) about fixed axes (2.21).
+    Rpy,
+    /// The rotation by theta about the unit axis r (2.25).
+    AxisAngle,
+    /// The unit quaternion (eta, epsilon) (2.33).
+    Quaternion,
+}
+
+impl From<RotationArg> for Representation {
+    fn from(r: RotationArg) -> Self {
+        match r {
+            RotationArg::Zxz => Representation::Zxz,
+            RotationArg::Zyz => Representation::Zyz,
+            RotationArg::Rpy => Representation::Rpy,
+            RotationArg::AxisAngle => Representation::AxisAngle,
+            RotationArg::Quaternion => Representation::Quaternion,
+        }
+    }
+}
+
+/// Arguments of `armlab symbolic`: exactly one of MODEL and `--rotation`.
 #[derive(Debug, clap::Args)]
+#[command(group(clap::ArgGroup::new("what").required(true).args(["model", "rotation"])))]
 pub struct SymbolicArgs {
-    /// Built-in name or path to a .toml / .urdf model.
-    pub model: String,
+    /// Built-in name or path to a .toml / .urdf model; or --rotation instead.
+    pub model: Option<String>,
+    /// Write a rotation matrix instead of an arm: the Euler angles ZXZ (Problem 2.1) or ZYZ
+    /// (2.18), roll-pitch-yaw (2.21), angle and axis (2.25) or the unit quaternion (2.33), in
+    /// the textbook's symbols: c_phi, s_theta, r_x, eta, epsilon_x.
+    #[arg(long, value_enum, value_name = "REPRESENTATION", conflicts_with_all = ["numbers", "ee"])]
+    pub rotation: Option<RotationArg>,
     /// Substitute the lengths (a2, d4, ...) by their values in metres.
     #[arg(long)]
     pub numbers: bool,
@@ -41,29 +78,86 @@ pub struct SymbolicArgs {
 }
 
 /// The grammar of the JSON strings, in one sentence (also in the JSON output).
-pub const GRAMMAR: &str = "names: cK, sK = cos, sin of joint variable qK; c23, s23 = cos, sin of q2 + q3 (with 10 or more variables the indices are separated by '_': c1_2); aK, dK = constant DH lengths (m); dK = the prismatic variable qK where it is its row's DH length, qK otherwise (m); numbers; + - * / ^ and parentheses";
+pub const GRAMMAR: &str = "names: cK, sK = cos, sin of joint variable qK; c23, s23 = cos, sin of q2 + q3 (with 10 or more variables the indices are separated by '_': c1_2); aK, dK = constant DH lengths (m); dK = the prismatic variable qK where it is its row's DH length, qK otherwise (m); for rotations: c_phi, s_phi, c_theta, s_theta, c_psi, s_psi = cos, sin of the angles phi, theta, psi (rad), r_x, r_y, r_z = the unit axis' components, eta, epsilon_x, epsilon_y, epsilon_z = the unit quaternion's scalar and vector parts; numbers; + - * / ^ and parentheses";
 
 /// Runs `armlab symbolic`.
 pub(super) fn run(args: &SymbolicArgs, out: &mut dyn Write) -> Result<(), CliError> {
-    let mut robot = super::load_model(&args.model)?;
+    let model = match (&args.model, args.rotation) {
+        (None, Some(rotation)) => return run_rotation(rotation.into(), args.format, out),
+        (Some(model), None) => model,
+        // clap refuses both and neither before this runs
+        _ => return Err(CliError::Usage("give either a MODEL or --rotation")),
+    };
+    let mut robot = super::load_model(model)?;
     let ee = super::ik::end_effector(&mut robot, args.ee.as_deref())?;
     let options = Options {
         numbers: args.numbers,
     };
     let sk = derive(&robot, ee, &options).map_err(|e| CliError::BadTarget {
-        source_name: args.model.clone(),
+        source_name: model.clone(),
         reason: e.to_string(),
     })?;
     match args.format {
         SymbolicFormat::Text => write!(out, "{}", document::text(&sk, args.numbers))?,
         SymbolicFormat::Latex => write!(out, "{}", document::latex(&sk))?,
         SymbolicFormat::Markdown => write!(out, "{}", document::markdown(&sk, args.numbers))?,
-        SymbolicFormat::Json => {
-            serde_json::to_writer_pretty(&mut *out, &to_json(&sk)).map_err(std::io::Error::from)?;
-            writeln!(out)?;
-        }
+        SymbolicFormat::Json => write_json(&to_json(&sk), out)?,
     }
     Ok(())
+}
+
+/// `armlab symbolic --rotation R`.
+fn run_rotation(
+    representation: Representation,
+    format: SymbolicFormat,
+    out: &mut dyn Write,
+) -> Result<(), CliError> {
+    let r = derive_rotation(representation);
+    match format {
+        SymbolicFormat::Text => write!(out, "{}", document::rotation_text(&r))?,
+        SymbolicFormat::Latex => write!(out, "{}", document::rotation_latex(&r))?,
+        SymbolicFormat::Markdown => write!(out, "{}", document::rotation_markdown(&r))?,
+        SymbolicFormat::Json => write_json(&rotation_to_json(&r), out)?,
+    }
+    Ok(())
+}
+
+/// Pretty JSON and a newline.
+fn write_json(v: &Value, out: &mut dyn Write) -> Result<(), CliError> {
+    serde_json::to_writer_pretty(&mut *out, v).map_err(std::io::Error::from)?;
+    writeln!(out)?;
+    Ok(())
+}
+
+/// The JSON document of a rotation: `rotation` (the flag's value), `equation`, `formula`,
+/// `variables` (name and unit), `symbols` (each name the entries use, with its meaning),
+/// `constraint` (the unit norm, or null), `R` (3x3 strings, rows) and `grammar`, the same as
+/// the arms'.
+pub fn rotation_to_json(r: &SymbolicRotation) -> Value {
+    let rep = r.representation;
+    let variables: Vec<Value> = rep
+        .variables()
+        .iter()
+        .map(|s| json!({"name": s.name(), "unit": if s.is_angle() { "rad" } else { "1" }}))
+        .collect();
+    let symbols: serde_json::Map<String, Value> = r
+        .symbols()
+        .iter()
+        .filter_map(|f| {
+            let name = write(&Poly::factor(f.clone()), Style::Json, false);
+            Some((name, Value::from(document::meaning(f)?)))
+        })
+        .collect();
+    json!({
+        "rotation": rep.name(),
+        "equation": rep.equation(),
+        "formula": rep.formula(),
+        "variables": variables,
+        "symbols": symbols,
+        "constraint": rep.constraint().map(|p| format!("{} = 1", write(&p, Style::Json, false))),
+        "R": strings(&r.matrix, Style::Json, false),
+        "grammar": GRAMMAR,
+    })
 }
 
 /// A constant transform as strings of numbers (the same grammar).

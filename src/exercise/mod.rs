@@ -6,14 +6,17 @@
 //! The kinds: `dh-table` (write the DH table of the arm drawn with its base and tool frames:
 //! [`dh_table`]), `fk` (T at a given q), `ik` (every solution of a pose, with postures),
 //! `workspace` (which points a two-link arm reaches and with how many postures; the area of its
-//! workspace), `redundancy` (n, m, r for a stated task).
+//! workspace), `redundancy` (n, m, r for a stated task), `identifiability`; and the orientation
+//! kinds `euler`, `compose`, `axis-angle` and `quaternion` ([`orientation`]), which draw no arm.
 
 pub mod dh_table;
+pub mod orientation;
 pub mod sheet_file;
 
 use crate::kinematics::ik::Target;
 use crate::kinematics::ik::closed_form::{ClosedForm, Solutions, Verify};
 use crate::kinematics::models::built_in;
+use crate::kinematics::orientation::Step;
 use crate::kinematics::pose::pose_to_rows;
 use crate::kinematics::redundancy::{Redundancy, Task};
 use crate::kinematics::{Convention, DhJoint, DhRow, JointKind, Pose, Robot};
@@ -23,6 +26,7 @@ use std::f64::consts::PI;
 use thiserror::Error;
 
 pub use dh_table::Tolerance;
+pub use orientation::{EulerConvention, OrientationAnswer};
 pub use sheet_file::{SHEET_FORMAT, SheetFile};
 
 /// The format tag written into every key.
@@ -44,17 +48,29 @@ pub enum Kind {
     Redundancy,
     /// Which DH parameters a stated measurement setup cannot identify (Sect. 2.11).
     Identifiability,
+    /// The Euler angles (ZYZ, ZXZ or RPY) of a given matrix.
+    Euler,
+    /// The matrix of a described sequence of elementary rotations about current or fixed axes.
+    Compose,
+    /// The angle and axis of a given matrix.
+    AxisAngle,
+    /// The unit quaternion of a given matrix.
+    Quaternion,
 }
 
 impl Kind {
     /// Every kind, in the CLI's order.
-    pub const ALL: [Kind; 6] = [
+    pub const ALL: [Kind; 10] = [
         Kind::DhTable,
         Kind::Fk,
         Kind::Ik,
         Kind::Workspace,
         Kind::Redundancy,
         Kind::Identifiability,
+        Kind::Euler,
+        Kind::Compose,
+        Kind::AxisAngle,
+        Kind::Quaternion,
     ];
 
     /// The CLI name (`dh-table`).
@@ -66,7 +82,28 @@ impl Kind {
             Kind::Workspace => "workspace",
             Kind::Redundancy => "redundancy",
             Kind::Identifiability => "identifiability",
+            Kind::Euler => "euler",
+            Kind::Compose => "compose",
+            Kind::AxisAngle => "axis-angle",
+            Kind::Quaternion => "quaternion",
         }
+    }
+
+    /// Whether the kind is an orientation exercise ([`orientation`]): no arm, a given matrix or
+    /// sequence.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use armlab::exercise::Kind;
+    ///
+    /// assert!(Kind::AxisAngle.is_orientation() && !Kind::Fk.is_orientation());
+    /// ```
+    pub fn is_orientation(self) -> bool {
+        matches!(
+            self,
+            Kind::Euler | Kind::Compose | Kind::AxisAngle | Kind::Quaternion
+        )
     }
 }
 
@@ -87,32 +124,84 @@ pub enum ExerciseError {
         /// What is wrong.
         reason: String,
     },
+    /// A field of an answer file that cannot be read: the file, the line (1-based) and the
+    /// field (`None` where the whole line is at fault).
+    #[error(
+        "answer: {file}: line {line}{}: {problem}",
+        .field.map(|f| format!(", field {f}")).unwrap_or_default()
+    )]
+    AnswerField {
+        /// The file, as named to the reader.
+        file: String,
+        /// The line (1-based).
+        line: usize,
+        /// The field's name (`theta`, `r21`).
+        field: Option<&'static str>,
+        /// What is wrong with it.
+        problem: orientation::FieldProblem,
+    },
+    /// An orientation key without the question its kind needs.
+    #[error("{kind} key: no {field}")]
+    KeyField {
+        /// The kind's name.
+        kind: &'static str,
+        /// The missing field (`matrix`, `convention`, `sequence`).
+        field: &'static str,
+    },
 }
 
-/// The answer key of one sheet (written as JSON by the CLI).
+/// The answer key of one sheet (written as JSON by the CLI). The arm kinds carry `robot`,
+/// `model` and `q`; the orientation kinds carry their question instead: `matrix` (euler,
+/// axis-angle, quaternion), `convention` (euler), `sequence` (compose).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Key {
     /// [`KEY_FORMAT`].
+    #[serde(default = "key_format")]
     pub format: String,
     /// The kind.
     pub kind: Kind,
     /// The seed the class was made with.
+    #[serde(default)]
     pub seed: u64,
     /// The student's number (1-based).
+    #[serde(default)]
     pub student: usize,
-    /// The arm's name.
+    /// The arm's name (empty for the orientation kinds).
+    #[serde(default, skip_serializing_if = "String::is_empty")]
     pub robot: String,
-    /// The arm as a TOML model file (DH rows, base and tool at its frames 0 and n).
+    /// The arm as a TOML model file (DH rows, base and tool at its frames 0 and n; empty for
+    /// the orientation kinds).
+    #[serde(default, skip_serializing_if = "String::is_empty")]
     pub model: String,
-    /// The configuration drawn or asked about (rad, m).
+    /// The configuration drawn or asked about (rad, m; empty for the orientation kinds).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub q: Vec<f64>,
-    /// What the sheet asks and its answer.
+    /// The given rotation matrix, rows (euler, axis-angle, quaternion).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub matrix: Option<[[f64; 3]; 3]>,
+    /// The Euler convention asked for (euler).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub convention: Option<EulerConvention>,
+    /// The sequence of elementary rotations, in the order the sheet states it (compose; angles
+    /// in rad).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sequence: Option<Vec<Step>>,
+    /// What the sheet asks and its answer (an orientation key may leave it out: grading derives
+    /// the answer from the question).
+    #[serde(default = "KeyAnswer::from_question")]
     pub answer: KeyAnswer,
-    /// Tolerances of the grading.
+    /// Tolerances of the grading (the orientation kinds compare matrix entries within
+    /// `angle`).
+    #[serde(default)]
     pub tolerance: Tolerance,
     /// The sheet's question (Markdown), for the app's Exercise tab.
     #[serde(default)]
     pub question: String,
+}
+
+/// [`KEY_FORMAT`], for keys written without it.
+fn key_format() -> String {
+    KEY_FORMAT.into()
 }
 
 /// The answer part of a key.
@@ -162,6 +251,24 @@ pub enum KeyAnswer {
         /// Components the task constrains.
         r: usize,
     },
+    /// The Euler angles of the key's matrix (graded from `matrix` and `convention`).
+    Euler(orientation::EulerReference),
+    /// The product of the key's sequence (graded from `sequence`).
+    Compose(orientation::ComposeReference),
+    /// The angle and axis of the key's matrix (graded from `matrix`).
+    AxisAngle(orientation::AxisAngleReference),
+    /// The quaternion of the key's matrix (graded from `matrix`).
+    Quaternion(orientation::QuaternionReference),
+    /// An orientation key written without its reference answer: grading derives it from the
+    /// key's question.
+    FromQuestion,
+}
+
+impl KeyAnswer {
+    /// [`KeyAnswer::FromQuestion`]: what a key without an `answer` holds.
+    fn from_question() -> Self {
+        KeyAnswer::FromQuestion
+    }
 }
 
 /// One sheet: the question (Markdown), the key, and the arm and configuration its figure
@@ -172,13 +279,13 @@ pub struct Sheet {
     pub markdown: String,
     /// The answer key.
     pub key: Key,
-    /// The arm drawn.
-    pub robot: Robot,
+    /// The arm drawn (`None` for the orientation kinds).
+    pub robot: Option<Robot>,
     /// Its configuration in the figure.
     pub q: Vec<f64>,
     /// Draw the DH frames of every joint (false: the base and tool frames only).
     pub frames: bool,
-    /// A target frame to draw (ik).
+    /// A target frame to draw (ik; for euler, axis-angle and quaternion the given frame).
     pub target: Option<Pose>,
     /// Points to mark (workspace), world frame (m).
     pub points: Vec<[f64; 3]>,
@@ -265,13 +372,22 @@ fn random_q(robot: &Robot, rng: &mut Rng) -> Vec<f64> {
 }
 
 /// Makes one sheet. `robot`: the arm of every sheet (`--robot`), or `None` to draw one per
-/// student from [`POOL`] with varied lengths (`--random`).
+/// student from [`POOL`] with varied lengths (`--random`); the orientation kinds take none.
 pub fn generate(
     kind: Kind,
     robot: Option<&Robot>,
     seed: u64,
     student: usize,
 ) -> Result<Sheet, ExerciseError> {
+    if kind.is_orientation() {
+        if robot.is_some() {
+            return Err(unsuitable(
+                kind,
+                "an orientation exercise has no arm".into(),
+            ));
+        }
+        return orientation::generate(kind, seed, student);
+    }
     let mut rng = Rng::new(seed, student);
     if kind == Kind::Workspace {
         return workspace_sheet(robot, seed, student, &mut rng);
@@ -294,6 +410,9 @@ pub fn generate(
         robot: arm.name.clone(),
         model: model.clone(),
         q: q.clone(),
+        matrix: None,
+        convention: None,
+        sequence: None,
         answer,
         tolerance: Tolerance::default(),
         question: String::new(),
@@ -302,7 +421,7 @@ pub fn generate(
     let mut sheet = Sheet {
         markdown: String::new(),
         key: key(KeyAnswer::DhTable),
-        robot: arm.clone(),
+        robot: Some(arm.clone()),
         q: q.clone(),
         frames: false,
         target: None,
@@ -332,7 +451,9 @@ pub fn generate(
         Kind::Identifiability => {
             identifiability_sheet(&mut sheet, &arm, &mut rng, key(KeyAnswer::DhTable))?
         }
-        Kind::Workspace => unreachable!("handled above"),
+        Kind::Workspace | Kind::Euler | Kind::Compose | Kind::AxisAngle | Kind::Quaternion => {
+            unreachable!("handled above")
+        }
     }
     sheet.key.question = sheet.markdown.clone();
     Ok(sheet)
@@ -633,6 +754,9 @@ fn workspace_sheet(
         robot: arm.name.clone(),
         model: crate::model_file::to_toml(&arm).unwrap_or_default(),
         q: q.clone(),
+        matrix: None,
+        convention: None,
+        sequence: None,
         answer: KeyAnswer::Workspace {
             points: points.clone(),
             postures,
@@ -660,7 +784,7 @@ fn workspace_sheet(
             ..key
         },
         markdown,
-        robot: arm,
+        robot: Some(arm),
         q,
         frames: false,
         target: None,
@@ -767,6 +891,8 @@ pub enum Answer {
     Rows(Vec<Vec<f64>>),
     /// Names (identifiability).
     Words(Vec<String>),
+    /// An orientation answer ([`orientation::parse_answer`]).
+    Orientation(OrientationAnswer),
 }
 
 /// A mistake, named: what a class summary counts (`armlab exercise grade`). Its JSON name is
@@ -820,6 +946,32 @@ pub enum Mistake {
     MissedUnidentifiable,
     /// An identifiable parameter named as unidentifiable.
     NamedIdentifiable,
+    /// Steps about the current axes composed as about the fixed ones (pre-multiplied).
+    FixedForCurrent,
+    /// Steps about the fixed axes composed as about the current ones (post-multiplied).
+    CurrentForFixed,
+    /// The transpose (the rotation back) answered.
+    Transpose,
+    /// Degrees read as radians.
+    DegreesAsRadians,
+    /// Radians read as degrees.
+    RadiansAsDegrees,
+    /// The angles of another Euler convention.
+    OtherConvention,
+    /// The angles, or the steps, in the reversed order.
+    ReversedOrder,
+    /// One angle with the wrong sign.
+    AngleSign,
+    /// A quaternion that is not unit.
+    NonUnitQuaternion,
+    /// An axis that is not a unit vector.
+    NonUnitAxis,
+    /// epsilon written before eta.
+    EpsilonFirst,
+    /// The half angle given for the angle of angle and axis.
+    HalfAngle,
+    /// The whole angle where the quaternion takes half of it.
+    FullAngle,
 }
 
 impl std::fmt::Display for Mistake {
@@ -848,6 +1000,23 @@ impl std::fmt::Display for Mistake {
             Mistake::TaskComponents => "r (the task's components) wrong",
             Mistake::MissedUnidentifiable => "an unidentifiable parameter missed",
             Mistake::NamedIdentifiable => "an identifiable parameter named",
+            Mistake::FixedForCurrent => {
+                "you composed about the fixed axes; the sequence turns about the current ones"
+            }
+            Mistake::CurrentForFixed => {
+                "you composed about the current axes; the sequence turns about the fixed ones"
+            }
+            Mistake::Transpose => "this is the transpose",
+            Mistake::DegreesAsRadians => "degrees read as radians",
+            Mistake::RadiansAsDegrees => "radians read as degrees",
+            Mistake::OtherConvention => "the other convention",
+            Mistake::ReversedOrder => "the reversed order",
+            Mistake::AngleSign => "an angle with the wrong sign",
+            Mistake::NonUnitQuaternion => "a quaternion that is not unit",
+            Mistake::NonUnitAxis => "an axis that is not a unit vector",
+            Mistake::EpsilonFirst => "eta and epsilon in the wrong order (epsilon first)",
+            Mistake::HalfAngle => "the half angle",
+            Mistake::FullAngle => "the whole angle in the quaternion",
         })
     }
 }
@@ -897,6 +1066,9 @@ pub fn key_robot(key: &Key) -> Result<Robot, ExerciseError> {
 
 /// Grades `answer` against `key`.
 pub fn grade(key: &Key, answer: &Answer) -> Result<Grade, ExerciseError> {
+    if key.kind.is_orientation() {
+        return orientation::grade(key, answer);
+    }
     let bad = |reason: String| ExerciseError::Answer { reason };
     match (&key.answer, answer) {
         (KeyAnswer::DhTable, Answer::Model(a)) => Ok(grade_dh(&key_robot(key)?, a, key.tolerance)),
@@ -966,6 +1138,18 @@ pub fn grade(key: &Key, answer: &Answer) -> Result<Grade, ExerciseError> {
         (_, Answer::Model(_)) => Err(bad(
             "this answer is rows of numbers, not a model file".into()
         )),
+        (_, Answer::Orientation(_)) => Err(bad("this answer is not an orientation".into())),
+        (
+            KeyAnswer::Euler(_)
+            | KeyAnswer::Compose(_)
+            | KeyAnswer::AxisAngle(_)
+            | KeyAnswer::Quaternion(_)
+            | KeyAnswer::FromQuestion,
+            _,
+        ) => Err(bad(format!(
+            "a {} key holds no orientation question",
+            key.kind.name()
+        ))),
     }
 }
 
@@ -1236,6 +1420,9 @@ pub struct ClassGrades {
 
 /// How many items grading `key` gives (the maximum score): a missing answer scores 0 of it.
 pub fn item_count(key: &Key) -> usize {
+    if key.kind.is_orientation() {
+        return 1;
+    }
     match &key.answer {
         KeyAnswer::DhTable => key_robot(key).map_or(1, |r| r.dof()),
         KeyAnswer::Fk { .. } => 12,
@@ -1243,6 +1430,11 @@ pub fn item_count(key: &Key) -> usize {
         KeyAnswer::Workspace { postures, .. } => postures.len() + 1,
         KeyAnswer::Redundancy { .. } => 3,
         KeyAnswer::Identifiability { parameters, .. } => parameters.len().max(1),
+        KeyAnswer::Euler(_)
+        | KeyAnswer::Compose(_)
+        | KeyAnswer::AxisAngle(_)
+        | KeyAnswer::Quaternion(_)
+        | KeyAnswer::FromQuestion => 1,
     }
 }
 
@@ -1343,6 +1535,19 @@ pub fn mistake_name(m: Mistake) -> &'static str {
         Mistake::TaskComponents => "task_components",
         Mistake::MissedUnidentifiable => "missed_unidentifiable",
         Mistake::NamedIdentifiable => "named_identifiable",
+        Mistake::FixedForCurrent => "fixed_for_current",
+        Mistake::CurrentForFixed => "current_for_fixed",
+        Mistake::Transpose => "transpose",
+        Mistake::DegreesAsRadians => "degrees_as_radians",
+        Mistake::RadiansAsDegrees => "radians_as_degrees",
+        Mistake::OtherConvention => "other_convention",
+        Mistake::ReversedOrder => "reversed_order",
+        Mistake::AngleSign => "angle_sign",
+        Mistake::NonUnitQuaternion => "non_unit_quaternion",
+        Mistake::NonUnitAxis => "non_unit_axis",
+        Mistake::EpsilonFirst => "epsilon_first",
+        Mistake::HalfAngle => "half_angle",
+        Mistake::FullAngle => "full_angle",
     }
 }
 

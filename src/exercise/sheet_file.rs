@@ -6,8 +6,12 @@
 //! model's zero configuration: every joint is a point on its axis and the axis' direction, the
 //! same geometry the question's table of axes gives. No DH row, offset or convention is in the
 //! file, so a dh-table sheet carries its question and not its answer.
+//!
+//! An orientation sheet has no arm: it carries its question as data instead, the given
+//! `matrix` (and the `convention` asked for) or the `sequence` of turns, never their answer.
 
-use super::{ExerciseError, Kind, Sheet, joint_axes};
+use super::{EulerConvention, ExerciseError, Kind, Sheet, joint_axes};
+use crate::kinematics::orientation::Step;
 use crate::kinematics::{JointKind, Robot};
 use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
@@ -29,23 +33,42 @@ pub struct SheetFile {
     pub student: usize,
     /// The question (Markdown), as in `sheet.md`.
     pub question: String,
-    /// The arm as URDF text: link frames parallel to the base frame, joints as axes (m).
+    /// The arm as URDF text: link frames parallel to the base frame, joints as axes (m); empty
+    /// for the orientation kinds.
+    #[serde(default, skip_serializing_if = "String::is_empty")]
     pub arm: String,
-    /// The configuration drawn (rad, m).
+    /// The configuration drawn (rad, m); empty for the orientation kinds.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub q: Vec<f64>,
+    /// The given rotation matrix, rows (euler, axis-angle, quaternion).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub matrix: Option<[[f64; 3]; 3]>,
+    /// The Euler convention asked for (euler).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub convention: Option<EulerConvention>,
+    /// The sequence of elementary rotations, as the question states it (compose; rad).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sequence: Option<Vec<Step>>,
 }
 
 impl SheetFile {
     /// The sheet file of `sheet` (the student's part of it: no key).
     pub fn of(sheet: &Sheet) -> Result<Self, ExerciseError> {
+        let key = &sheet.key;
         Ok(Self {
             format: SHEET_FORMAT.into(),
-            kind: sheet.key.kind,
-            seed: sheet.key.seed,
-            student: sheet.key.student,
+            kind: key.kind,
+            seed: key.seed,
+            student: key.student,
             question: sheet.markdown.clone(),
-            arm: axes_urdf(&sheet.robot)?,
+            arm: match &sheet.robot {
+                Some(robot) => axes_urdf(robot)?,
+                None => String::new(),
+            },
             q: sheet.q.clone(),
+            matrix: key.matrix,
+            convention: key.convention,
+            sequence: key.sequence.clone(),
         })
     }
 
@@ -65,8 +88,14 @@ impl SheetFile {
         Ok(sheet)
     }
 
-    /// The sheet's arm, read from its URDF.
+    /// The sheet's arm, read from its URDF (an orientation sheet has none: an error).
     pub fn robot(&self) -> Result<Robot, ExerciseError> {
+        if self.arm.is_empty() {
+            return Err(ExerciseError::Unsuitable {
+                kind: self.kind.name(),
+                reason: "the sheet has no arm (sheet.urdf)".into(),
+            });
+        }
         crate::urdf::parse_urdf(&self.arm, std::path::Path::new("sheet.urdf")).map_err(|e| {
             ExerciseError::Answer {
                 reason: format!("the sheet's arm: {e}"),

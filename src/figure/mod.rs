@@ -7,6 +7,7 @@ pub mod accuracy;
 pub mod animation;
 pub mod figures;
 pub mod labels;
+pub mod orientation;
 pub(crate) mod palette;
 pub mod plot2d;
 pub mod raster;

@@ -194,8 +194,8 @@ impl Robot {
     }
 
     /// The analytical Jacobian `J_A = T_A(phi)^-1 J` (Sect. 3.6) for the orientation
-    /// representation `kind`; an error where `T(phi)` is singular (ZYZ: sin(theta) = 0, RPY:
-    /// cos(theta) = 0).
+    /// representation `kind`; an error where `T(phi)` is singular (ZYZ and ZXZ: sin(theta) = 0,
+    /// RPY: cos(theta) = 0).
     ///
     /// # Examples
     ///
@@ -235,6 +235,7 @@ impl Robot {
                 representation: match kind {
                     EulerKind::Zyz => "ZYZ Euler",
                     EulerKind::Rpy => "roll-pitch-yaw",
+                    EulerKind::Zxz => "ZXZ Euler",
                 },
                 detail: format!("theta = {:.6} rad", phi[1]),
             })?;

@@ -584,6 +584,7 @@ fn a_lesson_caption_takes_a_whole_sentence_and_no_key_fires_a_shortcut() {
             tab: 0,
             figure: "this-model".into(),
             construction: None,
+            orientation: None,
         };
         player.append(current_step(&app.state, 0, &seen, ""));
     }
@@ -706,7 +707,7 @@ fn an_exam_sheet_opens_without_its_key_and_nothing_can_be_copied_out() {
     );
     // the arm drawn is the key's arm at the sheet's q (independently: the key's own model)
     let tool = app.state.robot().fk(app.state.q()).unwrap();
-    let want = sheet.robot.fk(&sheet.q).unwrap();
+    let want = sheet.robot.as_ref().unwrap().fk(&sheet.q).unwrap();
     assert!((tool.to_homogeneous() - want.to_homogeneous()).amax() < 1e-12);
     // the student types the Puma's table (z1 the other way round)
     let (_, table) = puma.dh_table().unwrap();
@@ -807,6 +808,9 @@ fn a_lesson_saves_and_replays_the_tab_the_figure_the_construction_and_the_camera
     live.ik.construction.shown = true;
     live.ik.construction.step = 1;
     live.state.display.frames = false;
+    // the grid off and the trail on (found live: G before Save as lesson came back on replay)
+    live.state.display.grid = false;
+    live.state.display.trail = true;
     let mut cam = live.tabs.view3d.camera;
     cam.target = nalgebra::Point3::new(0.2, -0.1, 0.05);
     cam.distance = 2.5;
@@ -828,6 +832,8 @@ fn a_lesson_saves_and_replays_the_tab_the_figure_the_construction_and_the_camera
     let mut replay = AppUi::new(AppState::from_spec("puma560").unwrap());
     replay.state.display.workspace = true;
     replay.state.display.frames = true;
+    replay.state.display.grid = true;
+    replay.state.display.trail = false;
     assert_eq!(replay.tab, VIEW3D);
     replay.load(file.to_str().unwrap());
     assert_eq!(replay.state.spec(), "planar2_fig2_30");

@@ -7,7 +7,9 @@
 mod common;
 
 mod app_calibration;
+mod app_exercise_orientation;
 mod app_layout;
+mod app_orientation;
 mod app_screenshots;
 mod app_self_motion;
 mod app_settings;

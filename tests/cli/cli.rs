@@ -1734,3 +1734,45 @@ fn ee_takes_any_link_by_name() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn symbolic_takes_a_model_or_a_rotation_not_both_nor_neither() {
+    // clap's errors: exit code 2, nothing on stdout, the reason on stderr
+    let refused = |args: &[&str], needle: &str| {
+        let o = armlab(args);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert!(o.stdout.is_empty(), "{args:?}: partial output");
+        assert!(err.contains(needle), "{args:?}: {needle:?} not in {err}");
+        assert!(!err.contains("panicked"));
+    };
+    refused(&["symbolic"], "<MODEL|--rotation <REPRESENTATION>>");
+    refused(
+        &["symbolic", "puma560", "--rotation", "zyz"],
+        "cannot be used with",
+    );
+    refused(
+        &["symbolic", "--rotation", "zyz", "--numbers"],
+        "cannot be used with '--numbers'",
+    );
+    refused(
+        &["symbolic", "--rotation", "rpy", "--ee", "0"],
+        "cannot be used with '--ee <EE>'",
+    );
+    refused(
+        &["symbolic", "--rotation", "xyz"],
+        "[possible values: zxz, zyz, rpy, axis-angle, quaternion]",
+    );
+    // each alone works
+    for args in [
+        &["symbolic", "planar2"][..],
+        &["symbolic", "--rotation", "zyz"][..],
+    ] {
+        let o = armlab(args);
+        assert!(
+            o.status.success(),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+    }
+}

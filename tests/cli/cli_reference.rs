@@ -47,6 +47,7 @@ fn every_subcommand_and_flag_is_in_the_reference() {
         "--format",
         "--all",
         "--hayati",
+        "--rotation <REPRESENTATION>",
     ] {
         assert!(md.contains(flag), "no flag {flag:?}");
     }

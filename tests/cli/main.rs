@@ -4,3 +4,6 @@
 
 mod cli;
 mod cli_reference;
+mod exercise_orientation;
+mod orientation_figures;
+mod rotation;

@@ -163,6 +163,19 @@ fn a_mistake_has_one_name() {
         Mistake::TaskComponents,
         Mistake::MissedUnidentifiable,
         Mistake::NamedIdentifiable,
+        Mistake::FixedForCurrent,
+        Mistake::CurrentForFixed,
+        Mistake::Transpose,
+        Mistake::DegreesAsRadians,
+        Mistake::RadiansAsDegrees,
+        Mistake::OtherConvention,
+        Mistake::ReversedOrder,
+        Mistake::AngleSign,
+        Mistake::NonUnitQuaternion,
+        Mistake::NonUnitAxis,
+        Mistake::EpsilonFirst,
+        Mistake::HalfAngle,
+        Mistake::FullAngle,
     ];
     for m in all {
         assert_eq!(
@@ -372,7 +385,7 @@ fn rows_of_key(key: &Key) -> Vec<Vec<f64>> {
             r
         }
         KeyAnswer::Redundancy { n, m, r, .. } => vec![vec![*n as f64, *m as f64, *r as f64]],
-        KeyAnswer::DhTable | KeyAnswer::Identifiability { .. } => unreachable!(),
+        _ => unreachable!("{:?}", key.answer),
     }
 }
 
@@ -557,6 +570,94 @@ fn a_sheet_file_carries_its_arm_and_question_and_no_answer() {
         }
     }
     assert!(SheetFile::parse("x.json", "{}").is_err());
+    // Issue 47: an orientation sheet has no arm; it carries its question (the given matrix and
+    // the convention asked for, or the sequence) and nothing of the answer.
+    for (kind, given) in [
+        (Kind::Euler, ["convention", "matrix"].as_slice()),
+        (Kind::Compose, ["sequence"].as_slice()),
+        (Kind::AxisAngle, ["matrix"].as_slice()),
+        (Kind::Quaternion, ["matrix"].as_slice()),
+    ] {
+        for student in 1..=6 {
+            let sheet = generate(kind, None, 17, student).unwrap();
+            assert!(sheet.robot.is_none());
+            let file = SheetFile::of(&sheet).unwrap();
+            let json = serde_json::to_string_pretty(&file).unwrap();
+            let v: serde_json::Value = serde_json::from_str(&json).unwrap();
+            let mut keys: Vec<&str> = v.as_object().unwrap().keys().map(String::as_str).collect();
+            keys.sort_unstable();
+            let mut want = vec!["format", "kind", "question", "seed", "student"];
+            want.extend(given);
+            want.sort_unstable();
+            assert_eq!(keys, want, "{kind:?}");
+            assert_eq!(v["question"], sheet.markdown.as_str());
+            for (field, value) in [("matrix", &v["matrix"]), ("sequence", &v["sequence"])] {
+                let key = serde_json::to_value(&sheet.key).unwrap();
+                assert_eq!(
+                    value, &key[field],
+                    "{kind:?}: the sheet's {field} is the key's"
+                );
+            }
+            assert!(back_is_no_arm(&json));
+            assert_no_orientation_answer(&sheet.key, &[&json, &sheet.markdown]);
+        }
+    }
+}
+
+/// An orientation sheet file reads back, and has no arm to load.
+fn back_is_no_arm(json: &str) -> bool {
+    let back = armlab::exercise::SheetFile::parse("sheet.json", json).unwrap();
+    back.arm.is_empty() && back.q.is_empty() && back.robot().is_err()
+}
+
+/// None of the numbers of the key's answer appears in the student's texts (written as the
+/// sheet would write them: four to six decimals, or degrees), and no key field does.
+fn assert_no_orientation_answer(key: &Key, texts: &[&str]) {
+    let answer = serde_json::to_value(&key.answer).unwrap();
+    let mut numbers = Vec::new();
+    let mut stack = vec![&answer];
+    while let Some(v) = stack.pop() {
+        match v {
+            serde_json::Value::Number(n) => numbers.push(n.as_f64().unwrap()),
+            serde_json::Value::Array(a) => stack.extend(a),
+            serde_json::Value::Object(o) => stack.extend(o.values()),
+            _ => {}
+        }
+    }
+    // a number also in the question's matrix (a 0 or a 1, an entry of a half turn's axis
+    // equal to one of the matrix) says nothing
+    let given: Vec<f64> = key.matrix.iter().flatten().flatten().copied().collect();
+    for text in texts {
+        for word in [
+            "\"answer\"",
+            "\"solutions\"",
+            "\"product\"",
+            "\"epsilon\"",
+            "tolerance",
+            armlab::exercise::KEY_FORMAT,
+        ] {
+            assert!(!text.contains(word), "the student's file holds {word:?}");
+        }
+        for x in &numbers {
+            if x.abs() < 1e-3 || (x.abs() - 1.0).abs() < 1e-3 {
+                continue;
+            }
+            if given.iter().any(|g| (g.abs() - x.abs()).abs() < 1e-4) {
+                continue;
+            }
+            for shown in [
+                format!("{x:.4}"),
+                format!("{x:.6}"),
+                format!("{:.1}", x.to_degrees()),
+            ] {
+                assert!(
+                    !text.contains(&shown),
+                    "{:?}: the answer's {shown} is in the student's file",
+                    key.kind
+                );
+            }
+        }
+    }
 }
 
 /// A sheet file's JSON holds the question (what `sheet.md` says), the arm and q, and nothing

@@ -10,6 +10,7 @@ mod calibration_files;
 mod calibration_setups;
 mod construction;
 mod exercise;
+mod exercise_orientation;
 mod lesson;
 mod redundancy;
 mod self_motion_locked;

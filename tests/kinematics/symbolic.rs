@@ -541,3 +541,333 @@ fn a_urdf_arm_reads_in_dh_symbols_and_bad_input_is_one_line() {
     assert_eq!(o.status.code(), Some(2));
     assert_eq!(String::from_utf8_lossy(&o.stderr).lines().count(), 1);
 }
+
+// ---------------------------------------------------------------------------------------------
+// `armlab symbolic --rotation`: the matrices of Sects. 2.4-2.6 in symbols.
+
+use armlab::kinematics::symbolic::rotation::{REPRESENTATIONS, Representation, derive_rotation};
+
+type M3 = [[f64; 3]; 3];
+
+/// The elementary rotations (2.6)-(2.8), written out here.
+fn rot_x(a: f64) -> M3 {
+    let (c, s) = (a.cos(), a.sin());
+    [[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]]
+}
+fn rot_y(a: f64) -> M3 {
+    let (c, s) = (a.cos(), a.sin());
+    [[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]]
+}
+fn rot_z(a: f64) -> M3 {
+    let (c, s) = (a.cos(), a.sin());
+    [[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]]
+}
+fn mul3(a: &M3, b: &M3) -> M3 {
+    std::array::from_fn(|i| std::array::from_fn(|j| (0..3).map(|k| a[i][k] * b[k][j]).sum()))
+}
+fn product(ms: &[M3]) -> M3 {
+    ms.iter().fold(rot_z(0.0), |acc, m| mul3(&acc, m))
+}
+
+/// The rotation by `theta` about the unit axis `r` as the book derives (2.25): align r with z
+/// (alpha about z, beta about y), turn about z, undo the alignment,
+/// R = Rz(alpha) Ry(beta) Rz(theta) Ry(-beta) Rz(-alpha).
+fn about_axis(theta: f64, r: [f64; 3]) -> M3 {
+    let alpha = r[1].atan2(r[0]);
+    let beta = r[2].clamp(-1.0, 1.0).acos();
+    product(&[
+        rot_z(alpha),
+        rot_y(beta),
+        rot_z(theta),
+        rot_y(-beta),
+        rot_z(-alpha),
+    ])
+}
+
+fn rotation_json(rep: Representation) -> serde_json::Value {
+    armlab::cli::symbolic_rotation_json(&derive_rotation(rep))
+}
+
+fn rotation_entry(doc: &serde_json::Value, i: usize, j: usize) -> &str {
+    doc["R"][i][j].as_str().unwrap()
+}
+
+/// The book's matrix of each representation, typed in the grammar from (2.18), (2.21), (2.25),
+/// (2.33), and for ZXZ (Problem 2.1) the product Rz(phi) Rx(theta) Rz(psi) multiplied out by
+/// hand.
+fn book_rotation(rep: Representation) -> [[&'static str; 3]; 3] {
+    match rep {
+        Representation::Zxz => [
+            [
+                "c_phi*c_psi - s_phi*c_theta*s_psi",
+                "-c_phi*s_psi - s_phi*c_theta*c_psi",
+                "s_phi*s_theta",
+            ],
+            [
+                "s_phi*c_psi + c_phi*c_theta*s_psi",
+                "-s_phi*s_psi + c_phi*c_theta*c_psi",
+                "-c_phi*s_theta",
+            ],
+            ["s_theta*s_psi", "s_theta*c_psi", "c_theta"],
+        ],
+        Representation::Zyz => [
+            [
+                "c_phi*c_theta*c_psi - s_phi*s_psi",
+                "-c_phi*c_theta*s_psi - s_phi*c_psi",
+                "c_phi*s_theta",
+            ],
+            [
+                "s_phi*c_theta*c_psi + c_phi*s_psi",
+                "-s_phi*c_theta*s_psi + c_phi*c_psi",
+                "s_phi*s_theta",
+            ],
+            ["-s_theta*c_psi", "s_theta*s_psi", "c_theta"],
+        ],
+        Representation::Rpy => [
+            [
+                "c_phi*c_theta",
+                "c_phi*s_theta*s_psi - s_phi*c_psi",
+                "c_phi*s_theta*c_psi + s_phi*s_psi",
+            ],
+            [
+                "s_phi*c_theta",
+                "s_phi*s_theta*s_psi + c_phi*c_psi",
+                "s_phi*s_theta*c_psi - c_phi*s_psi",
+            ],
+            ["-s_theta", "c_theta*s_psi", "c_theta*c_psi"],
+        ],
+        Representation::AxisAngle => [
+            [
+                "r_x^2*(1 - c_theta) + c_theta",
+                "r_x*r_y*(1 - c_theta) - r_z*s_theta",
+                "r_x*r_z*(1 - c_theta) + r_y*s_theta",
+            ],
+            [
+                "r_x*r_y*(1 - c_theta) + r_z*s_theta",
+                "r_y^2*(1 - c_theta) + c_theta",
+                "r_y*r_z*(1 - c_theta) - r_x*s_theta",
+            ],
+            [
+                "r_x*r_z*(1 - c_theta) - r_y*s_theta",
+                "r_y*r_z*(1 - c_theta) + r_x*s_theta",
+                "r_z^2*(1 - c_theta) + c_theta",
+            ],
+        ],
+        Representation::Quaternion => [
+            [
+                "2*(eta^2 + epsilon_x^2) - 1",
+                "2*(epsilon_x*epsilon_y - eta*epsilon_z)",
+                "2*(epsilon_x*epsilon_z + eta*epsilon_y)",
+            ],
+            [
+                "2*(epsilon_x*epsilon_y + eta*epsilon_z)",
+                "2*(eta^2 + epsilon_y^2) - 1",
+                "2*(epsilon_y*epsilon_z - eta*epsilon_x)",
+            ],
+            [
+                "2*(epsilon_x*epsilon_z - eta*epsilon_y)",
+                "2*(epsilon_y*epsilon_z + eta*epsilon_x)",
+                "2*(eta^2 + epsilon_z^2) - 1",
+            ],
+        ],
+    }
+}
+
+#[test]
+fn rotation_matrices_read_like_2_18_2_21_2_25_2_33_and_problem_2_1() {
+    for rep in REPRESENTATIONS {
+        let doc = rotation_json(rep);
+        let book = book_rotation(rep);
+        for (i, row) in book.iter().enumerate() {
+            for (j, e) in row.iter().enumerate() {
+                let what = format!("{rep} R[{i}][{j}]");
+                let actual = rotation_entry(&doc, i, j);
+                assert_same_terms(&what, actual, e);
+                // simplified: no unit factor and no multiplication by one written out
+                assert!(
+                    !actual.starts_with("1*") && !actual.contains(" 1*") && !actual.contains("*1"),
+                    "{what}: {actual}"
+                );
+            }
+        }
+        // `symbols` names exactly the atoms of the entries, each with its meaning
+        let mut atoms: Vec<String> = (0..9)
+            .flat_map(|k| parse(rotation_entry(&doc, k / 3, k % 3)).into_keys())
+            .flatten()
+            .collect();
+        atoms.sort();
+        atoms.dedup();
+        let mut listed: Vec<String> = doc["symbols"]
+            .as_object()
+            .unwrap()
+            .keys()
+            .cloned()
+            .collect();
+        listed.sort();
+        assert_eq!(atoms, listed, "{rep}");
+        assert_eq!(doc["rotation"], rep.name());
+        assert_eq!(doc["grammar"], json_of("planar3")["grammar"], "one grammar");
+    }
+}
+
+#[test]
+fn rotation_matrices_are_grouped_as_the_book_writes_them() {
+    let doc = rotation_json(Representation::AxisAngle);
+    // (2.25): every entry has (1 - c_theta) once, the diagonal r_k^2(1 - c_theta) + c_theta
+    for (i, k) in ["x", "y", "z"].iter().enumerate() {
+        assert_eq!(
+            rotation_entry(&doc, i, i),
+            format!("r_{k}^2*(1 - c_theta) + c_theta")
+        );
+        for j in 0..3 {
+            assert_eq!(
+                rotation_entry(&doc, i, j).matches("(1 - c_theta)").count(),
+                1
+            );
+        }
+    }
+    assert_eq!(
+        rotation_entry(&doc, 0, 1),
+        "r_x*r_y*(1 - c_theta) - r_z*s_theta"
+    );
+    let doc = rotation_json(Representation::Quaternion);
+    // (2.33): 2(eta^2 + epsilon_k^2) - 1 on the diagonal, 2(...) off it
+    for (i, k) in ["x", "y", "z"].iter().enumerate() {
+        assert_eq!(
+            rotation_entry(&doc, i, i),
+            format!("2*(eta^2 + epsilon_{k}^2) - 1")
+        );
+        for j in (0..3).filter(|&j| j != i) {
+            let e = rotation_entry(&doc, i, j);
+            assert!(e.starts_with("2*(") && e.ends_with(')'), "{e}");
+        }
+    }
+    assert_eq!(
+        rotation_entry(&doc, 0, 1),
+        "2*(epsilon_x*epsilon_y - eta*epsilon_z)"
+    );
+}
+
+/// The values of the atoms `c_phi`, `r_x`, `eta`, ... for the evaluator (passed as its lengths).
+fn atoms(values: &[(&str, f64)]) -> BTreeMap<String, f64> {
+    let mut out = BTreeMap::new();
+    for &(name, v) in values {
+        if ["phi", "theta", "psi"].contains(&name) {
+            out.insert(format!("c_{name}"), v.cos());
+            out.insert(format!("s_{name}"), v.sin());
+        } else {
+            out.insert(name.to_string(), v);
+        }
+    }
+    out
+}
+
+/// The JSON strings of `rep`, parsed here, evaluated at `values` and compared with `expected`.
+fn check_rotation(rep: Representation, values: &[(&str, f64)], expected: &M3) {
+    let doc = rotation_json(rep);
+    let a = atoms(values);
+    let none = BTreeMap::new();
+    for (i, row) in expected.iter().enumerate() {
+        for (j, want) in row.iter().enumerate() {
+            let v = evaluate(&parse(rotation_entry(&doc, i, j)), &none, &a, false);
+            assert!(
+                (v - want).abs() < 1e-13,
+                "{rep} R[{i}][{j}] at {values:?}: symbols give {v}, the elementary product {want}"
+            );
+        }
+    }
+}
+
+#[test]
+fn rotation_matrices_equal_the_elementary_products_at_100_angle_sets() {
+    use std::f64::consts::PI;
+    for k in 0..100u64 {
+        let u = pseudo_random(k + 1000, 7, -1.0, 1.0);
+        let (phi, theta, psi) = (PI * u[0], PI * u[1], PI * u[2]);
+        let angles = [("phi", phi), ("theta", theta), ("psi", psi)];
+        let zxz = product(&[rot_z(phi), rot_x(theta), rot_z(psi)]);
+        check_rotation(Representation::Zxz, &angles, &zxz);
+        let zyz = product(&[rot_z(phi), rot_y(theta), rot_z(psi)]);
+        check_rotation(Representation::Zyz, &angles, &zyz);
+        let rpy = product(&[rot_z(phi), rot_y(theta), rot_x(psi)]);
+        check_rotation(Representation::Rpy, &angles, &rpy);
+        // angle and axis: a random unit axis
+        let n = (u[3] * u[3] + u[4] * u[4] + u[5] * u[5]).sqrt().max(1e-3);
+        let r = [u[3] / n, u[4] / n, u[5] / n];
+        let expected = about_axis(theta, r);
+        let values = [
+            ("theta", theta),
+            ("r_x", r[0]),
+            ("r_y", r[1]),
+            ("r_z", r[2]),
+        ];
+        check_rotation(Representation::AxisAngle, &values, &expected);
+        // the quaternion of the same rotation, (2.30)-(2.31): eta = cos(theta/2),
+        // epsilon = sin(theta/2) r
+        let (c, s) = ((theta / 2.0).cos(), (theta / 2.0).sin());
+        let values = [
+            ("eta", c),
+            ("epsilon_x", s * r[0]),
+            ("epsilon_y", s * r[1]),
+            ("epsilon_z", s * r[2]),
+        ];
+        check_rotation(Representation::Quaternion, &values, &expected);
+    }
+}
+
+#[test]
+fn the_rotation_commands_print_the_book_s_notation() {
+    let text = stdout(&["symbolic", "--rotation", "zxz"]);
+    assert!(
+        text.contains("r11 = c_phi c_psi - s_phi c_theta s_psi"),
+        "{text}"
+    );
+    assert!(text.contains("R = Rz(phi) Rx'(theta) Rz''(psi)"), "{text}");
+    let latex = stdout(&["symbolic", "--rotation", "zxz", "--format", "latex"]);
+    assert!(
+        latex.contains("c_\\varphi c_\\psi - s_\\varphi c_\\vartheta s_\\psi"),
+        "{latex}"
+    );
+    let text = stdout(&["symbolic", "--rotation", "axis-angle"]);
+    assert!(
+        text.contains("r11 = r_x^2(1 - c_theta) + c_theta"),
+        "{text}"
+    );
+    assert!(
+        text.contains("r12 = r_x r_y(1 - c_theta) - r_z s_theta"),
+        "{text}"
+    );
+    let text = stdout(&["symbolic", "--rotation", "quaternion"]);
+    assert!(text.contains("r11 = 2(eta^2 + epsilon_x^2) - 1"), "{text}");
+    assert!(
+        text.contains("r12 = 2(epsilon_x epsilon_y - eta epsilon_z)"),
+        "{text}"
+    );
+    let md = stdout(&["symbolic", "--rotation", "rpy", "--format", "markdown"]);
+    assert!(
+        md.contains("$$") && md.contains("c_\\varphi c_\\vartheta"),
+        "{md}"
+    );
+    for rep in ["zxz", "zyz", "rpy", "axis-angle", "quaternion"] {
+        let doc: serde_json::Value = serde_json::from_str(&stdout(&[
+            "symbolic",
+            "--rotation",
+            rep,
+            "--format",
+            "json",
+        ]))
+        .unwrap();
+        assert_eq!(doc["rotation"], rep);
+        assert_eq!(doc["R"].as_array().unwrap().len(), 3);
+        for key in [
+            "equation",
+            "formula",
+            "variables",
+            "symbols",
+            "constraint",
+            "grammar",
+        ] {
+            assert!(doc.get(key).is_some(), "{rep}: no {key}");
+        }
+    }
+}

@@ -4,10 +4,15 @@
 //! takes the answer (a DH table in a grid, or rows of numbers); an exam saves it to be handed in
 //! (`armlab exercise grade` grades the class), practice grades it here item by item. Grading
 //! is [`crate::exercise`]'s.
+//!
+//! An orientation sheet (euler, compose, axis-angle, quaternion) has no arm: the app keeps its
+//! own, and the answer is typed line by line as its file has it (`phi theta psi`, the matrix's
+//! rows, ...), with a degrees toggle where the answer holds angles.
 
 use super::super::action::{Action, Actions};
 use super::super::state::{AppState, Hidden, Level};
 use super::{Tab, TabContext};
+use crate::exercise::orientation::{answer_lines, parse_answer, takes_degrees};
 use crate::exercise::{Answer, Grade, Key, KeyAnswer, Kind, SheetFile, grade, parse_rows};
 use crate::kinematics::{Convention, DhJoint, DhRow, JointKind, Pose, Robot};
 use egui::{Color32, RichText};
@@ -57,6 +62,10 @@ pub struct OpenSheet {
     pub modified: bool,
     /// The rows-of-numbers answer (other sheets).
     pub text: String,
+    /// An orientation answer's lines as typed, one per line of its file.
+    pub lines: Vec<String>,
+    /// The orientation answer's angles are in degrees (the file's first line `# deg`).
+    pub degrees: bool,
     /// The last grade, or why the answer could not be graded.
     pub result: Option<Result<Grade, String>>,
 }
@@ -99,11 +108,14 @@ impl Opening {
         parse_key(name, text).map(|k| Self::Practice(Box::new(k)))
     }
 
-    /// The arm to load: a model file's name (its format) and text.
-    pub fn arm(&self) -> (&'static str, &str) {
+    /// The arm to load: a model file's name (its format) and text; `None` for an orientation
+    /// sheet, which has no arm.
+    pub fn arm(&self) -> Option<(&'static str, &str)> {
         match self {
-            Self::Practice(k) => ("sheet.toml", &k.model),
-            Self::Exam(s) => ("sheet.urdf", &s.arm),
+            Self::Practice(k) if k.kind.is_orientation() => None,
+            Self::Exam(s) if s.kind.is_orientation() => None,
+            Self::Practice(k) => Some(("sheet.toml", &k.model)),
+            Self::Exam(s) => Some(("sheet.urdf", &s.arm)),
         }
     }
 }
@@ -202,6 +214,8 @@ impl ExerciseTab {
         ui.heading("Your answer");
         if sheet.kind == Kind::DhTable {
             dh_grid(ui, sheet);
+        } else if sheet.kind.is_orientation() {
+            orientation_entry(ui, sheet);
         } else {
             ui.add(
                 egui::TextEdit::multiline(&mut sheet.text)
@@ -222,6 +236,15 @@ impl ExerciseTab {
 /// the sheet asks for hidden (and in an exam every way out of the answer), the tab shown.
 fn setup(kind: Kind, q: &[f64], exam: bool, state: &AppState) -> Actions {
     let mut out = Actions::default();
+    if kind.is_orientation() {
+        // no arm: the app's own stays as it is; an exam still closes every way out
+        out.push(Action::SetHidden(Hidden {
+            exam,
+            ..Hidden::default()
+        }));
+        out.push(Action::ShowTab(super::EXERCISE));
+        return out;
+    }
     out.push(Action::SetQ(q.to_vec()));
     out.push(Action::TargetToTool(0));
     let dh = kind == Kind::DhTable;
@@ -255,6 +278,8 @@ impl OpenSheet {
             rows: vec![AnswerRow::default(); if dh { state.robot().dof() } else { 0 }],
             modified: false,
             text: String::new(),
+            lines: vec![String::new(); answer_lines(kind).len()],
+            degrees: takes_degrees(kind),
             result: None,
         }
     }
@@ -304,13 +329,67 @@ fn save_row(ui: &mut egui::Ui, sheet: &mut OpenSheet, out: &mut Actions) {
     }
 }
 
-/// The answer as the file handed in: the typed DH table as a model file, else the text.
+/// The answer as the file handed in: the typed DH table as a model file, an orientation's
+/// lines (after `# deg` where they are degrees), else the text.
 fn answer_text(sheet: &OpenSheet) -> Result<String, String> {
+    if sheet.kind.is_orientation() {
+        return Ok(orientation_text(sheet));
+    }
     if sheet.kind != Kind::DhTable {
         return Ok(sheet.text.clone());
     }
     crate::model_file::to_toml(&answer_robot(sheet)?)
         .ok_or_else(|| "the typed table is no DH model file".to_string())
+}
+
+/// An orientation answer as its file: `# deg` first where the angles are degrees, then the
+/// typed lines.
+fn orientation_text(sheet: &OpenSheet) -> String {
+    let mut text = String::new();
+    if sheet.degrees && takes_degrees(sheet.kind) {
+        text.push_str("# deg\n");
+    }
+    for line in &sheet.lines {
+        text.push_str(line.trim());
+        text.push('\n');
+    }
+    text
+}
+
+/// The orientation answer: one field per line of its file, named by its numbers
+/// (`phi theta psi`, `row 1: r11 r12 r13`), and the degrees toggle where it holds angles.
+fn orientation_entry(ui: &mut egui::Ui, sheet: &mut OpenSheet) {
+    let layout = answer_lines(sheet.kind);
+    if takes_degrees(sheet.kind) {
+        ui.checkbox(&mut sheet.degrees, "angles in degrees");
+    }
+    ui.label("Numbers separated by spaces or commas.");
+    sheet.lines.resize(layout.len(), String::new());
+    egui::Grid::new("exercise orientation answer").show(ui, |ui| {
+        for (i, (line, names)) in sheet.lines.iter_mut().zip(layout).enumerate() {
+            let name = if layout.len() > 1 {
+                format!("row {}: {}", i + 1, names.join(" "))
+            } else {
+                names.join(" ")
+            };
+            ui.label(RichText::new(&name).monospace());
+            let e = ui.add(
+                egui::TextEdit::singleline(line)
+                    .hint_text(names.join(" "))
+                    .desired_width(260.0)
+                    .font(egui::TextStyle::Monospace),
+            );
+            // named for screen readers (and UI tests): "answer: phi theta psi"
+            let name = format!("answer: {name}");
+            let value = line.clone();
+            e.widget_info(|| {
+                let mut info = egui::WidgetInfo::labeled(egui::Role::TextInput, true, &name);
+                info.current_text_value = Some(value.clone());
+                info
+            });
+            ui.end_row();
+        }
+    });
 }
 
 /// The DH-table answer: one editable row per joint, and the convention.
@@ -425,6 +504,11 @@ fn check(sheet: &OpenSheet) -> Result<Grade, String> {
         .key
         .as_ref()
         .ok_or("a sheet is graded by the teacher")?;
+    if key.kind.is_orientation() {
+        let text = orientation_text(sheet);
+        let answer = parse_answer(key.kind, &text, "answer").map_err(|e| e.to_string())?;
+        return grade(key, &Answer::Orientation(answer)).map_err(|e| e.to_string());
+    }
     let answer = match key.answer {
         KeyAnswer::DhTable => Answer::Model(Box::new(answer_robot(sheet)?)),
         KeyAnswer::Identifiability { .. } => {

@@ -4,6 +4,7 @@
 
 pub mod calibration;
 pub mod exercise;
+pub mod orientation;
 pub mod self_motion;
 pub mod view3d;
 pub mod workspace;
@@ -93,6 +94,7 @@ tabs! {
     calibration: calibration::CalibrationTab,
     self_motion: self_motion::SelfMotionTab,
     exercise: exercise::ExerciseTab,
+    orientation: orientation::OrientationTab,
 }
 
 impl Tabs {
@@ -121,3 +123,5 @@ pub const CALIBRATION: usize = 2;
 pub const SELF_MOTION: usize = 3;
 /// The index of the exercise tab.
 pub const EXERCISE: usize = 4;
+/// The index of the orientation tab.
+pub const ORIENTATION: usize = 5;

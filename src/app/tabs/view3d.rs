@@ -198,26 +198,8 @@ impl View3d {
     /// The viewport: the image, its labels, the gizmo and navigation.
     fn viewport(&mut self, cx: &mut TabContext<'_>, ui: &mut egui::Ui, out: &mut Actions) {
         let rect = ui.available_rect_before_wrap();
-        self.viewport_rect = rect;
+        self.set_rect(ui, rect);
         let ppp = ui.ctx().pixels_per_point();
-        self.viewport_px = [
-            ((rect.width() * ppp).round() as u32).max(16),
-            ((rect.height() * ppp).round() as u32).max(16),
-        ];
-        let response = ui.allocate_rect(rect, egui::Sense::click_and_drag());
-        if let Some(im) = &cx.image {
-            // On whole pixels, the texture's size: a texel per pixel, no resampling.
-            let [w, h] = self.viewport_px;
-            let at = (rect.min.to_vec2() * ppp).round() / ppp;
-            let rect =
-                egui::Rect::from_min_size(at.to_pos2(), egui::vec2(w as f32, h as f32) / ppp);
-            ui.painter().image(
-                im.id,
-                rect,
-                egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0)),
-                egui::Color32::WHITE,
-            );
-        }
         let ee = cx.ee;
         let font = egui::FontId::proportional(12.5 * cx.layout.text_scale());
         // The current target's gizmo is kept clear of labels.
@@ -234,14 +216,7 @@ impl View3d {
                 egui::Vec2::splat(2.0 * half as f32 / ppp),
             ))
         });
-        self.placed_labels = crate::figure::labels::draw_labels(
-            ui.painter(),
-            rect,
-            (self.viewport_px, &self.camera),
-            &self.labels,
-            gizmo.as_slice(),
-            &font,
-        );
+        let response = self.paint(ui, cx.image.as_ref(), &font, gizmo.as_slice());
         let mut gizmo_active = false;
         if let Ok(t) = cx.state.target(ee) {
             let pose = t.world_from_tool;
@@ -269,8 +244,55 @@ impl View3d {
         }
     }
 
+    /// Takes `rect` (points) as the view's place: the image is rendered at its size in pixels.
+    pub fn set_rect(&mut self, ui: &egui::Ui, rect: egui::Rect) {
+        self.viewport_rect = rect;
+        let ppp = ui.ctx().pixels_per_point();
+        self.viewport_px = [
+            ((rect.width() * ppp).round() as u32).max(16),
+            ((rect.height() * ppp).round() as u32).max(16),
+        ];
+    }
+
+    /// Paints `image` (rendered for this view) in the view's rectangle on whole pixels, and
+    /// the scene's labels over it in `font`, clear of `avoid`; returns the view's response
+    /// (click and drag).
+    pub fn paint(
+        &mut self,
+        ui: &mut egui::Ui,
+        image: Option<&ViewportImage>,
+        font: &egui::FontId,
+        avoid: &[egui::Rect],
+    ) -> egui::Response {
+        let rect = self.viewport_rect;
+        let ppp = ui.ctx().pixels_per_point();
+        let response = ui.allocate_rect(rect, egui::Sense::click_and_drag());
+        if let Some(im) = image {
+            // On whole pixels, the texture's size: a texel per pixel, no resampling.
+            let [w, h] = self.viewport_px;
+            let at = (rect.min.to_vec2() * ppp).round() / ppp;
+            let rect =
+                egui::Rect::from_min_size(at.to_pos2(), egui::vec2(w as f32, h as f32) / ppp);
+            ui.painter().image(
+                im.id,
+                rect,
+                egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0)),
+                egui::Color32::WHITE,
+            );
+        }
+        self.placed_labels = crate::figure::labels::draw_labels(
+            ui.painter(),
+            rect,
+            (self.viewport_px, &self.camera),
+            &self.labels,
+            avoid,
+            font,
+        );
+        response
+    }
+
     /// Orbit (drag), pan (right or middle drag) and zoom (scroll, pinch).
-    fn navigate(
+    pub fn navigate(
         &mut self,
         ui: &egui::Ui,
         response: &egui::Response,

@@ -3,7 +3,8 @@
 //! print or copy what this returns.
 
 use super::expr::{Style, number, write};
-use super::poly::Poly;
+use super::poly::{Factor, Poly, Symbol};
+use super::rotation::{Representation, SymbolicRotation};
 use super::{SymMatrix, SymbolicKinematics};
 use crate::kinematics::JointKind;
 use std::fmt::Write as _;
@@ -11,8 +12,12 @@ use std::fmt::Write as _;
 /// Above this many characters an entry of `T` is listed on its own line instead of in a grid.
 const GRID_WIDTH: usize = 28;
 
-/// Each entry of `m` written in `style`.
-pub fn strings(m: &SymMatrix, style: Style, separate: bool) -> [[String; 4]; 4] {
+/// Each entry of `m` (a 4x4 transform or a 3x3 rotation) written in `style`.
+pub fn strings<const N: usize>(
+    m: &[[Poly; N]; N],
+    style: Style,
+    separate: bool,
+) -> [[String; N]; N] {
     std::array::from_fn(|i| std::array::from_fn(|j| write(&m[i][j], style, separate)))
 }
 
@@ -172,8 +177,8 @@ pub fn text(sk: &SymbolicKinematics, numbers: bool) -> String {
     s
 }
 
-/// A matrix in LaTeX (`bmatrix`).
-pub fn latex_matrix(m: &SymMatrix, separate: bool) -> String {
+/// A matrix (a 4x4 transform or a 3x3 rotation) in LaTeX (`bmatrix`).
+pub fn latex_matrix<const N: usize>(m: &[[Poly; N]; N], separate: bool) -> String {
     let cells = strings(m, Style::Latex, separate);
     let rows: Vec<String> = cells.iter().map(|r| r.join(" & ")).collect();
     format!(
@@ -259,5 +264,150 @@ pub fn markdown(sk: &SymbolicKinematics, numbers: bool) -> String {
             let _ = writeln!(s, "$$p_{{W{axis}}} = {e}$$\n");
         }
     }
+    s
+}
+
+/// What a symbol of a rotation stands for, in words: `cos(phi)`, `the unit axis' x
+/// component`; `None` for an arm's factor (`c1`, `a2`), which the arm's text explains.
+///
+/// ```
+/// use armlab::kinematics::symbolic::document::meaning;
+/// use armlab::kinematics::symbolic::poly::{Angle, Factor, Symbol};
+/// assert_eq!(meaning(&Factor::SinOf(Symbol::Theta)).unwrap(), "sin(theta)");
+/// assert_eq!(
+///     meaning(&Factor::Symbol(Symbol::Eta)).unwrap(),
+///     "the quaternion's scalar part"
+/// );
+/// assert!(meaning(&Factor::Cos(Angle::one(1))).is_none());
+/// ```
+pub fn meaning(f: &Factor) -> Option<String> {
+    Some(match f {
+        Factor::CosOf(s) => format!("cos({s})"),
+        Factor::SinOf(s) => format!("sin({s})"),
+        Factor::Symbol(s) => match s {
+            Symbol::Rx => "the unit axis' x component".into(),
+            Symbol::Ry => "the unit axis' y component".into(),
+            Symbol::Rz => "the unit axis' z component".into(),
+            Symbol::Eta => "the quaternion's scalar part".into(),
+            Symbol::EpsilonX => "the quaternion's vector part, x component".into(),
+            Symbol::EpsilonY => "the quaternion's vector part, y component".into(),
+            Symbol::EpsilonZ => "the quaternion's vector part, z component".into(),
+            Symbol::Phi | Symbol::Theta | Symbol::Psi => format!("the angle {s} (rad)"),
+        },
+        _ => return None,
+    })
+}
+
+/// The units of a rotation's variables, in words: `phi, theta, psi (rad)`.
+fn rotation_variables(r: &SymbolicRotation) -> String {
+    let names = |v: &[Symbol]| v.iter().map(|s| s.name()).collect::<Vec<_>>().join(", ");
+    let v = r.representation.variables();
+    match r.representation {
+        Representation::AxisAngle => {
+            format!("{} (rad), r = ({}) a unit vector", v[0], names(&v[1..]))
+        }
+        Representation::Quaternion => format!(
+            "eta = cos(theta/2), epsilon = ({}) = sin(theta/2) r (2.30)-(2.31)",
+            names(&v[1..])
+        ),
+        _ => format!("{} (rad)", names(v)),
+    }
+}
+
+/// A rotation matrix in plain text: what it represents, its variables and symbols, then each
+/// entry `r11 = c_phi c_psi - s_phi c_theta s_psi`, as `armlab symbolic --rotation` prints it.
+///
+/// ```
+/// use armlab::kinematics::symbolic::document::rotation_text;
+/// use armlab::kinematics::symbolic::rotation::{Representation, derive_rotation};
+/// let text = rotation_text(&derive_rotation(Representation::Rpy));
+/// assert!(text.contains("R = Rz(phi) Ry(theta) Rx(psi)"), "{text}");
+/// assert!(text.contains("r31 = -s_theta"), "{text}");
+/// ```
+pub fn rotation_text(r: &SymbolicRotation) -> String {
+    let rep = r.representation;
+    let mut s = String::new();
+    let _ = writeln!(s, "{}, {}: {}", rep.title(), rep.equation(), rep.formula());
+    let _ = writeln!(s, "variables: {}", rotation_variables(r));
+    let notation: Vec<String> = r
+        .symbols()
+        .iter()
+        .filter(|f| matches!(f, Factor::CosOf(_) | Factor::SinOf(_)))
+        .filter_map(|f| {
+            Some(format!(
+                "{} = {}",
+                write_symbol(f, Style::Text),
+                meaning(f)?
+            ))
+        })
+        .collect();
+    if !notation.is_empty() {
+        let _ = writeln!(s, "notation: {}", notation.join(", "));
+    }
+    if let Some(norm) = rep.constraint() {
+        let _ = writeln!(s, "with {} = 1", write(&norm, Style::Text, false));
+    }
+    let cells = strings(&r.matrix, Style::Text, false);
+    let _ = writeln!(s, "\nR =");
+    for (i, row) in cells.iter().enumerate() {
+        for (j, e) in row.iter().enumerate() {
+            let _ = writeln!(s, "  r{}{} = {e}", i + 1, j + 1);
+        }
+    }
+    s
+}
+
+/// One factor alone, as the entries write it (`c_phi`).
+fn write_symbol(f: &Factor, style: Style) -> String {
+    write(&Poly::factor(f.clone()), style, false)
+}
+
+/// The left-hand side of the rotation's equation in LaTeX: `R(\varphi, \vartheta, \psi)`.
+fn rotation_lhs(r: &SymbolicRotation) -> String {
+    match r.representation {
+        Representation::AxisAngle => "R(\\vartheta, \\boldsymbol{r})".into(),
+        Representation::Quaternion => "R(\\eta, \\boldsymbol{\\epsilon})".into(),
+        rep => {
+            let v: Vec<&str> = rep.variables().iter().map(|s| s.latex()).collect();
+            format!("R({})", v.join(", "))
+        }
+    }
+}
+
+/// A rotation matrix as a LaTeX display equation (for `amsmath`), in the textbook's letters:
+/// `c_\varphi c_\psi - s_\varphi c_\vartheta s_\psi`.
+///
+/// ```
+/// use armlab::kinematics::symbolic::document::rotation_latex;
+/// use armlab::kinematics::symbolic::rotation::{Representation, derive_rotation};
+/// let latex = rotation_latex(&derive_rotation(Representation::Zxz));
+/// assert!(latex.starts_with("R(\\varphi, \\vartheta, \\psi) = \\begin{bmatrix}"));
+/// assert!(latex.contains("c_\\varphi c_\\psi - s_\\varphi c_\\vartheta s_\\psi"));
+/// ```
+pub fn rotation_latex(r: &SymbolicRotation) -> String {
+    format!("{} = {}\n", rotation_lhs(r), latex_matrix(&r.matrix, false))
+}
+
+/// A rotation matrix as Markdown with a `$$` LaTeX block (GitHub, mdBook with MathJax,
+/// Jupyter).
+///
+/// ```
+/// use armlab::kinematics::symbolic::document::rotation_markdown;
+/// use armlab::kinematics::symbolic::rotation::{Representation, derive_rotation};
+/// let md = rotation_markdown(&derive_rotation(Representation::Quaternion));
+/// assert!(md.starts_with("# Unit quaternion, (2.33)"), "{md}");
+/// assert!(md.contains("2\\left(\\eta^{2} + \\epsilon_x^{2}\\right) - 1"), "{md}");
+/// ```
+pub fn rotation_markdown(r: &SymbolicRotation) -> String {
+    let rep = r.representation;
+    let mut s = String::new();
+    let _ = writeln!(s, "# {}, {}\n", rep.title(), rep.equation());
+    let _ = writeln!(
+        s,
+        "`{}`; variables: {}.\n",
+        rep.formula(),
+        rotation_variables(r)
+    );
+    let _ = writeln!(s, "$$\n{}\n$$", rotation_latex(r).trim_end());
     s
 }

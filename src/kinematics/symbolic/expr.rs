@@ -2,7 +2,7 @@
 //! (`c1(a2c2 + a3c23)`, (2.95)), terms in the book's order, in plain text, LaTeX, or the
 //! machine-readable grammar of the JSON output.
 
-use super::poly::{Angle, Factor, Monomial, Poly, WritingKey, mono_div};
+use super::poly::{Angle, Factor, Monomial, Poly, Symbol, WritingKey, mono_div};
 
 /// One term of a factored sum: `coef * factors * (group)`, the group a sum of its own (or
 /// nothing, meaning 1).
@@ -71,7 +71,7 @@ fn factor_terms(terms: Vec<(Monomial, f64)>, hoist_sign: bool) -> Vec<Term> {
         return vec![absorb(numeric, common, group)];
     }
     let Some(f) = grouping_factor(&terms) else {
-        return plain(terms);
+        return numeric_group(terms);
     };
     let (with, rest): (Vec<_>, Vec<_>) = terms
         .into_iter()
@@ -83,6 +83,30 @@ fn factor_terms(terms: Vec<(Monomial, f64)>, hoist_sign: bool) -> Vec<Term> {
     let mut group = factor_terms(with, true);
     sort_sum(&mut group);
     let mut out = vec![absorb(1.0, vec![(f, 1)], group)];
+    out.extend(factor_terms(rest, false));
+    out
+}
+
+/// Where no symbol is shared, the terms whose coefficients are the same whole number (2 or
+/// more; some terms, not all) grouped behind it, as (2.33) writes `2(eta^2 + epsilon_x^2) - 1`;
+/// the terms as they are otherwise. Such a number is the algebra's (the 2 of a half angle);
+/// an arm's lengths with `--numbers` are grouped only where two are the same whole metres.
+fn numeric_group(terms: Vec<(Monomial, f64)>) -> Vec<Term> {
+    let whole = |c: f64| c.abs() >= 2.0 && c.abs() <= 1e6 && c.fract() == 0.0;
+    let shared = terms.iter().map(|(_, c)| c.abs()).find(|&k| {
+        whole(k) && {
+            let n = terms.iter().filter(|(_, c)| c.abs() == k).count();
+            n >= 2 && n < terms.len()
+        }
+    });
+    let Some(k) = shared else {
+        return plain(terms);
+    };
+    let (with, rest): (Vec<_>, Vec<_>) = terms.into_iter().partition(|(_, c)| c.abs() == k);
+    let with = with.into_iter().map(|(m, c)| (m, c / k)).collect();
+    let mut group = factor_terms(with, true);
+    sort_sum(&mut group);
+    let mut out = vec![absorb(k, Vec::new(), group)];
     out.extend(factor_terms(rest, false));
     out
 }
@@ -187,7 +211,10 @@ fn grouping_factor(terms: &[(Monomial, f64)]) -> Option<Factor> {
 fn sum_key(t: &Term) -> (bool, Vec<WritingKey>) {
     let mut keys: Vec<_> = t.factors.iter().map(|(f, _)| f.writing_key()).collect();
     keys.sort();
-    let has_length = keys.first().is_some_and(|k| k.0 == 0);
+    let has_length = t
+        .factors
+        .iter()
+        .any(|(f, _)| matches!(f, Factor::Length { .. }));
     (has_length, keys)
 }
 
@@ -235,6 +262,15 @@ fn angle_indices(a: &Angle, separate: bool) -> String {
     parts.join(if separate { "_" } else { "" })
 }
 
+/// A named symbol after `head` (`c_`, `s_` or nothing) in a style: `c_phi`, `r_x`, `eta`
+/// (text and JSON), `c_\varphi`, `\eta` (LaTeX).
+fn write_named(head: &str, symbol: Symbol, style: Style) -> String {
+    match style {
+        Style::Latex => format!("{head}{}", symbol.latex()),
+        _ => format!("{head}{}", symbol.name()),
+    }
+}
+
 /// One factor (with its exponent) in a style.
 fn write_factor(f: &Factor, e: u32, style: Style, separate: bool) -> String {
     let (head, sub) = match f {
@@ -243,8 +279,12 @@ fn write_factor(f: &Factor, e: u32, style: Style, separate: bool) -> String {
         }
         Factor::Cos(a) => ("c".into(), angle_indices(a, separate)),
         Factor::Sin(a) => ("s".into(), angle_indices(a, separate)),
+        Factor::Symbol(s) => (write_named("", *s, style), String::new()),
+        Factor::CosOf(s) => (write_named("c_", *s, style), String::new()),
+        Factor::SinOf(s) => (write_named("s_", *s, style), String::new()),
     };
     let base = match style {
+        _ if f.is_named() => head,
         Style::Latex => format!("{head}_{{{}}}", sub.replace('_', ",")),
         _ => format!("{head}{sub}"),
     };
@@ -257,33 +297,41 @@ fn write_factor(f: &Factor, e: u32, style: Style, separate: bool) -> String {
 
 /// A term without its sign.
 fn write_unsigned(t: &Term, style: Style, separate: bool) -> String {
-    let join = if style == Style::Json { "*" } else { "" };
-    let mut parts: Vec<String> = Vec::new();
+    // each part with whether it is a named symbol (`c_phi`), which text and LaTeX set apart
+    // from its neighbours by a space (`c_phi c_psi`, `c_\varphi c_\psi`) where the arms'
+    // one-letter names are juxtaposed (`c1s23`)
+    let mut parts: Vec<(String, bool)> = Vec::new();
     let magnitude = t.coef.abs();
     let bare = t.factors.is_empty() && t.group.is_empty();
     if bare || (magnitude - 1.0).abs() > 1e-15 {
-        parts.push(number(magnitude));
+        parts.push((number(magnitude), false));
     }
     let mut factors = t.factors.clone();
     factors.sort_by_key(|(f, _)| f.writing_key());
     for (f, e) in &factors {
-        parts.push(write_factor(f, *e, style, separate));
+        parts.push((write_factor(f, *e, style, separate), f.is_named()));
+    }
+    let mut s = String::new();
+    for (i, (p, named)) in parts.iter().enumerate() {
+        // a number followed by a factor in text needs nothing; two numbers never meet
+        if i > 0 {
+            match style {
+                Style::Json => s.push('*'),
+                _ if *named || parts[i - 1].1 => s.push(' '),
+                _ => {}
+            }
+        }
+        s.push_str(p);
     }
     if !t.group.is_empty() {
         let inner = write_sum(&t.group, style, separate);
-        let paren = match style {
-            Style::Latex => format!("\\left({inner}\\right)"),
-            _ => format!("({inner})"),
-        };
-        parts.push(paren);
-    }
-    let mut s = String::new();
-    for (i, p) in parts.iter().enumerate() {
-        // a number followed by a factor in text needs nothing; two numbers never meet
-        if i > 0 {
-            s.push_str(join);
+        if style == Style::Json && !parts.is_empty() {
+            s.push('*');
         }
-        s.push_str(p);
+        match style {
+            Style::Latex => s.push_str(&format!("\\left({inner}\\right)")),
+            _ => s.push_str(&format!("({inner})")),
+        }
     }
     s
 }
@@ -337,6 +385,61 @@ mod tests {
         assert_eq!(
             write(&p, Style::Latex, false),
             "c_{1}\\left(a_{2}c_{2} + a_{3}c_{23}\\right)"
+        );
+    }
+
+    fn named(s: Symbol) -> Poly {
+        Poly::factor(Factor::Symbol(s))
+    }
+
+    #[test]
+    fn named_symbols_are_spaced_and_whole_numbers_grouped() {
+        // (2.33)'s r11 as the engine expands it: 2 eta^2 + 2 epsilon_x^2 - 1
+        let eta = named(Symbol::Eta);
+        let ex = named(Symbol::EpsilonX);
+        let p = eta
+            .mul(&eta)
+            .add(&ex.mul(&ex))
+            .scale(2.0)
+            .add(&Poly::constant(-1.0));
+        assert_eq!(write(&p, Style::Text, false), "2(eta^2 + epsilon_x^2) - 1");
+        assert_eq!(write(&p, Style::Json, false), "2*(eta^2 + epsilon_x^2) - 1");
+        assert_eq!(
+            write(&p, Style::Latex, false),
+            "2\\left(\\eta^{2} + \\epsilon_x^{2}\\right) - 1"
+        );
+        // both negative: the sign goes outside, and the sum starts with its positive term
+        assert_eq!(
+            write(&p.scale(-1.0), Style::Text, false),
+            "1 - 2(eta^2 + epsilon_x^2)"
+        );
+        // (2.25)'s r12: r_x r_y (1 - c) - r_z s
+        let c = Poly::factor(Factor::CosOf(Symbol::Theta));
+        let sn = Poly::factor(Factor::SinOf(Symbol::Theta));
+        let rxy = named(Symbol::Rx).mul(&named(Symbol::Ry));
+        let p = rxy
+            .add(&rxy.mul(&c).scale(-1.0))
+            .add(&named(Symbol::Rz).mul(&sn).scale(-1.0));
+        assert_eq!(
+            write(&p, Style::Text, false),
+            "r_x r_y(1 - c_theta) - r_z s_theta"
+        );
+        assert_eq!(
+            write(&p, Style::Latex, false),
+            "r_x r_y\\left(1 - c_\\vartheta\\right) - r_z s_\\vartheta"
+        );
+    }
+
+    #[test]
+    fn equal_lengths_of_an_arm_are_not_grouped() {
+        // the Puma's a2 = d4 = 0.4318 m with --numbers: a coincidence of values, not algebra
+        let p = c(&[2])
+            .scale(0.4318)
+            .add(&c(&[2, 3]).scale(0.0203))
+            .add(&s(&[2, 3]).scale(0.4318));
+        assert_eq!(
+            write(&p, Style::Text, false),
+            "0.4318c2 + 0.0203c23 + 0.4318s23"
         );
     }
 

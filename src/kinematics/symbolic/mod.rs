@@ -14,10 +14,16 @@
 //! length) or `q3` (any other prismatic variable); numbers; `+ - * / ^` and parentheses.
 //! Variable k is the robot's joint variable `q_k` (the angle itself where the joint's offset
 //! is zero, as on every textbook arm); lengths carry the subscript of their DH row.
+//!
+//! The matrices of the representations of orientation ([`rotation`]: ZYZ, ZXZ, RPY, angle and
+//! axis, unit quaternion) use the same engine and grammar with the book's letters: `c_phi`,
+//! `s_theta`, `c_psi` (cos, sin of the angles phi, theta, psi), `r_x`, `r_y`, `r_z` (the unit
+//! axis) and `eta`, `epsilon_x`, `epsilon_y`, `epsilon_z` (the unit quaternion).
 
 pub mod document;
 pub mod expr;
 pub mod poly;
+pub mod rotation;
 
 use super::pose::pose_to_rows;
 use super::robot::{Drive, JointGeometry, JointId, JointKind};
@@ -141,12 +147,12 @@ pub fn constant_matrix(p: &Pose) -> SymMatrix {
     std::array::from_fn(|i| std::array::from_fn(|j| Poly::constant(snap(rows[i][j]))))
 }
 
-/// `a * b`, simplified entry by entry.
-pub fn mat_mul(a: &SymMatrix, b: &SymMatrix) -> SymMatrix {
+/// `a * b`, simplified entry by entry (4x4 transforms, or 3x3 rotations).
+pub fn mat_mul<const N: usize>(a: &[[Poly; N]; N], b: &[[Poly; N]; N]) -> [[Poly; N]; N] {
     std::array::from_fn(|i| {
         std::array::from_fn(|j| {
             let mut p = Poly::default();
-            for k in 0..4 {
+            for k in 0..N {
                 if !a[i][k].is_zero() && !b[k][j].is_zero() {
                     p = p.add(&a[i][k].mul(&b[k][j]));
                 }

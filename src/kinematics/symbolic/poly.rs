@@ -1,6 +1,9 @@
 //! Polynomials in the textbook's symbols: products of constant lengths (`a2`, `d4`), cosines
 //! and sines of joint-angle sums (`c1`, `s23`) and prismatic variables (`d3`, `q3`), each with
-//! a real coefficient; and the trigonometric identities the textbook simplifies with.
+//! a real coefficient; and the trigonometric identities the textbook simplifies with. The
+//! symbols of the representations of orientation (Sects. 2.4-2.6) are factors too: the angles
+//! phi, theta, psi through their cosines and sines (`c_phi`, `s_theta`), the axis `r_x`, and
+//! the unit quaternion's `eta`, `epsilon_x`.
 
 use std::collections::BTreeMap;
 
@@ -39,9 +42,99 @@ impl Angle {
     }
 }
 
-/// Sort key of a factor in the textbook's writing order: (kind: length 0, trig 1, variable 2;
-/// first joint or row; name or cos 0 / sin 1; the angle's joints).
+/// Sort key of a factor in the textbook's writing order: (kind: length or named scalar 0, trig
+/// 1, variable 2; first joint, row or symbol; name or cos 0 / sin 1; the angle's joints).
 pub type WritingKey = (u8, u16, u8, Vec<u16>);
+
+/// A named symbol of a representation of orientation, in the textbook's letters (Sects.
+/// 2.4-2.6): an angle (rad) or a dimensionless component. Ordered as the book writes products:
+/// `c_phi c_theta c_psi`, `r_x r_y`, `eta epsilon_z`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Symbol {
+    /// phi, the first Euler angle (ZYZ, ZXZ) or the angle about z of RPY (rad).
+    Phi,
+    /// theta, the second Euler angle, RPY's angle about y, or the angle of angle and axis (rad).
+    Theta,
+    /// psi, the third Euler angle or RPY's angle about x (rad).
+    Psi,
+    /// r_x, the x component of the unit axis r of (2.25).
+    Rx,
+    /// r_y, the y component of the unit axis r.
+    Ry,
+    /// r_z, the z component of the unit axis r.
+    Rz,
+    /// eta, the scalar part of the unit quaternion, cos(theta/2) (2.30).
+    Eta,
+    /// epsilon_x, the x component of the quaternion's vector part sin(theta/2) r (2.31).
+    EpsilonX,
+    /// epsilon_y, its y component.
+    EpsilonY,
+    /// epsilon_z, its z component.
+    EpsilonZ,
+}
+
+impl Symbol {
+    /// The name in plain text and in the JSON grammar: `phi`, `r_x`, `epsilon_z`.
+    ///
+    /// ```
+    /// use armlab::kinematics::symbolic::poly::Symbol;
+    /// assert_eq!(Symbol::Theta.name(), "theta");
+    /// assert_eq!(Symbol::EpsilonX.name(), "epsilon_x");
+    /// ```
+    pub fn name(self) -> &'static str {
+        match self {
+            Symbol::Phi => "phi",
+            Symbol::Theta => "theta",
+            Symbol::Psi => "psi",
+            Symbol::Rx => "r_x",
+            Symbol::Ry => "r_y",
+            Symbol::Rz => "r_z",
+            Symbol::Eta => "eta",
+            Symbol::EpsilonX => "epsilon_x",
+            Symbol::EpsilonY => "epsilon_y",
+            Symbol::EpsilonZ => "epsilon_z",
+        }
+    }
+
+    /// The name in LaTeX, in the textbook's letters: `\varphi`, `\vartheta`, `r_x`, `\eta`.
+    ///
+    /// ```
+    /// use armlab::kinematics::symbolic::poly::Symbol;
+    /// assert_eq!(Symbol::Phi.latex(), "\\varphi");
+    /// assert_eq!(Symbol::EpsilonZ.latex(), "\\epsilon_z");
+    /// ```
+    pub fn latex(self) -> &'static str {
+        match self {
+            Symbol::Phi => "\\varphi",
+            Symbol::Theta => "\\vartheta",
+            Symbol::Psi => "\\psi",
+            Symbol::Rx => "r_x",
+            Symbol::Ry => "r_y",
+            Symbol::Rz => "r_z",
+            Symbol::Eta => "\\eta",
+            Symbol::EpsilonX => "\\epsilon_x",
+            Symbol::EpsilonY => "\\epsilon_y",
+            Symbol::EpsilonZ => "\\epsilon_z",
+        }
+    }
+
+    /// Whether it is an angle (rad), written through its cosine and sine.
+    ///
+    /// ```
+    /// use armlab::kinematics::symbolic::poly::Symbol;
+    /// assert!(Symbol::Psi.is_angle());
+    /// assert!(!Symbol::Eta.is_angle());
+    /// ```
+    pub fn is_angle(self) -> bool {
+        matches!(self, Symbol::Phi | Symbol::Theta | Symbol::Psi)
+    }
+}
+
+impl std::fmt::Display for Symbol {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
 
 /// One symbol of a monomial.
 #[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -65,6 +158,12 @@ pub enum Factor {
         /// The variable's index (1-based).
         index: u16,
     },
+    /// A named symbol itself: `r_x`, `eta`, `epsilon_y`.
+    Symbol(Symbol),
+    /// cos of a named angle: `c_phi`.
+    CosOf(Symbol),
+    /// sin of a named angle: `s_theta`.
+    SinOf(Symbol),
 }
 
 impl Factor {
@@ -77,6 +176,34 @@ impl Factor {
             Factor::Cos(a) => (1, a.first(), 0, a.0.clone()),
             Factor::Sin(a) => (1, a.first(), 1, a.0.clone()),
             Factor::Var { name, index } => (2, *index, *name as u8, Vec::new()),
+            // a named symbol after the lengths' names ('a', 'd'), which it never meets
+            Factor::Symbol(s) => (0, *s as u16, u8::MAX, Vec::new()),
+            Factor::CosOf(s) => (1, *s as u16, 0, Vec::new()),
+            Factor::SinOf(s) => (1, *s as u16, 1, Vec::new()),
+        }
+    }
+
+    /// Whether this is a named symbol of orientation (or its cosine or sine).
+    ///
+    /// ```
+    /// use armlab::kinematics::symbolic::poly::{Angle, Factor, Symbol};
+    /// assert!(Factor::CosOf(Symbol::Phi).is_named());
+    /// assert!(!Factor::Cos(Angle::one(1)).is_named());
+    /// ```
+    pub fn is_named(&self) -> bool {
+        matches!(
+            self,
+            Factor::Symbol(_) | Factor::CosOf(_) | Factor::SinOf(_)
+        )
+    }
+
+    /// The sine matching a cosine: `s1` for `c1`, `s_phi` for `c_phi`; `None` for any other
+    /// factor.
+    fn sine_of(&self) -> Option<Factor> {
+        match self {
+            Factor::Cos(a) => Some(Factor::Sin(a.clone())),
+            Factor::CosOf(s) => Some(Factor::SinOf(*s)),
+            _ => None,
         }
     }
 }
@@ -194,22 +321,51 @@ impl Poly {
         out
     }
 
-    /// The value at `values`.
+    /// The value at `values` (an arm's variables and lengths; a named symbol of orientation has
+    /// no value there and makes it NaN: see [`Poly::eval_symbols`]).
     pub fn eval(&self, values: &Values) -> f64 {
+        self.eval_with(|f| match f {
+            Factor::Length { name, index } => values.lengths[&format!("{name}{index}")],
+            Factor::Cos(a) => a.value(values.variables, values.first).cos(),
+            Factor::Sin(a) => a.value(values.variables, values.first).sin(),
+            Factor::Var { index, .. } => values.variables[(*index - values.first) as usize],
+            Factor::Symbol(_) | Factor::CosOf(_) | Factor::SinOf(_) => f64::NAN,
+        })
+    }
+
+    /// The value with each named symbol's value given by `value` (angles in rad); any other
+    /// factor (an arm's) has none here and makes it NaN.
+    ///
+    /// ```
+    /// use armlab::kinematics::symbolic::poly::{Factor, Poly, Symbol};
+    /// // r_x^2 (1 - c_theta) + c_theta, the first entry of (2.25)
+    /// let rx = Poly::factor(Factor::Symbol(Symbol::Rx));
+    /// let c = Poly::factor(Factor::CosOf(Symbol::Theta));
+    /// let one_minus_c = Poly::constant(1.0).add(&c.scale(-1.0));
+    /// let p = rx.mul(&rx).mul(&one_minus_c).add(&c);
+    /// let v = p.eval_symbols(|s| match s {
+    ///     Symbol::Rx => 0.6,
+    ///     Symbol::Theta => 0.5,
+    ///     _ => f64::NAN,
+    /// });
+    /// assert!((v - (0.36 * (1.0 - 0.5f64.cos()) + 0.5f64.cos())).abs() < 1e-15);
+    /// ```
+    pub fn eval_symbols(&self, value: impl Fn(Symbol) -> f64) -> f64 {
+        self.eval_with(|f| match f {
+            Factor::Symbol(s) => value(*s),
+            Factor::CosOf(s) => value(*s).cos(),
+            Factor::SinOf(s) => value(*s).sin(),
+            _ => f64::NAN,
+        })
+    }
+
+    /// The value with each factor's value given by `value`.
+    fn eval_with(&self, value: impl Fn(&Factor) -> f64) -> f64 {
         self.terms
             .iter()
             .map(|(m, c)| {
-                m.iter().fold(*c, |acc, (f, e)| {
-                    let v = match f {
-                        Factor::Length { name, index } => values.lengths[&format!("{name}{index}")],
-                        Factor::Cos(a) => a.value(values.variables, values.first).cos(),
-                        Factor::Sin(a) => a.value(values.variables, values.first).sin(),
-                        Factor::Var { index, .. } => {
-                            values.variables[(*index - values.first) as usize]
-                        }
-                    };
-                    acc * v.powi(*e as i32)
-                })
+                m.iter()
+                    .fold(*c, |acc, (f, e)| acc * value(f).powi(*e as i32))
             })
             .sum()
     }
@@ -223,7 +379,9 @@ impl Poly {
             .flat_map(|(f, _)| match f {
                 Factor::Cos(a) | Factor::Sin(a) => a.0.clone(),
                 Factor::Var { index, .. } => vec![*index],
-                Factor::Length { .. } => Vec::new(),
+                Factor::Length { .. } | Factor::Symbol(_) | Factor::CosOf(_) | Factor::SinOf(_) => {
+                    Vec::new()
+                }
             })
             .collect();
         out.sort_unstable();
@@ -292,11 +450,12 @@ impl Poly {
                         return true;
                     }
                 }
-                // c_A^2 + s_A^2 = 1
-                if let (Factor::Cos(a), 2..) = (f1, e1) {
+                // c_A^2 + s_A^2 = 1 (a joint angle's or a named one's)
+                if *e1 >= 2
+                    && let Some(s) = f1.sine_of()
+                {
                     let rest = mono_div(m1, f1).and_then(|m| mono_div(&m, f1));
                     let Some(rest) = rest else { continue };
-                    let s = Factor::Sin(a.clone());
                     let m2 = mono_mul(&mono_mul(&rest, &s), &s);
                     if same(self.coef(&m2), 1.0) {
                         self.replace_pair(m1, &m2, rest, None);
@@ -362,6 +521,30 @@ mod tests {
         let mut p = c(&[4]).mul(&c(&[4])).add(&s(&[4]).mul(&s(&[4])));
         p.simplify();
         assert_eq!(p, Poly::constant(1.0));
+    }
+
+    #[test]
+    fn a_named_angle_s_cosine_and_sine_squared_sum_to_one() {
+        let c = Poly::factor(Factor::CosOf(Symbol::Theta));
+        let s = Poly::factor(Factor::SinOf(Symbol::Theta));
+        let rx = Poly::factor(Factor::Symbol(Symbol::Rx));
+        // r_x c^2 + r_x s^2 = r_x
+        let mut p = rx.mul(&c).mul(&c).add(&rx.mul(&s).mul(&s));
+        p.simplify();
+        assert_eq!(p, rx);
+        // no sum of named angles is formed: c_phi c_psi - s_phi s_psi stays
+        let two = |a: Symbol, b: Symbol| {
+            Poly::factor(Factor::CosOf(a))
+                .mul(&Poly::factor(Factor::CosOf(b)))
+                .add(
+                    &Poly::factor(Factor::SinOf(a))
+                        .mul(&Poly::factor(Factor::SinOf(b)))
+                        .scale(-1.0),
+                )
+        };
+        let mut p = two(Symbol::Phi, Symbol::Psi);
+        p.simplify();
+        assert_eq!(p, two(Symbol::Phi, Symbol::Psi));
     }
 
     #[test]
