@@ -365,7 +365,7 @@ def check_screenshot_download(d, folder):
         "cmd": "Browser.setDownloadBehavior",
         "params": {"behavior": "allow", "downloadPath": folder},
     })
-    click(d, 1100, 20)  # "Screenshot", in the toolbar's one row (x 1058-1140)
+    click(d, 954, 20)  # "Screenshot", in the toolbar's one row (x 914-995; six tabs fold the view presets)
     deadline = time.time() + 30
     while True:
         done = [f for f in os.listdir(folder) if f.endswith(".png")]
@@ -459,6 +459,18 @@ def main():
         st = wait_for(d, "the lesson's next step", lambda s: s["lesson"]["step"] == 1, 10)
         print(f"  ?lesson=...: {st['lesson']['title']}, step {st['lesson']['step'] + 1} of "
               f"{st['lesson']['steps']}, {st['solutions']} solutions")
+        # the orientation lab in the browser: its lesson opens the Orientation tab (index 5),
+        # which draws the turned frame in its own 3D view
+        st, ms = open_page(d, url + "?lesson=lessons/orientation_euler_gimbal_lock.toml")
+        st = wait_for(d, "the orientation lesson", lambda s: s.get("tab") == 5, 10)
+        time.sleep(1.0)
+        img = d.screenshot()
+        keep(d, "armlab-web-orientation-tab.png")
+        colours = {pixel(img, x, y) for x in range(300, 640, 4) for y in range(120, 680, 4)}
+        print(f"  ?lesson=orientation_euler_gimbal_lock.toml: tab {st['tab']}, "
+              f"{len(colours)} colours in its 3D view")
+        if len(colours) < 20:
+            fail("the Orientation tab's 3D view shows no frame")
         st, ms = open_page(d, url + "?model=stanford&workers=2")
         print(f"  ?model=stanford&workers=2 (the approach scan, spread over two workers):")
         check_workspace(d, workers=2)
