@@ -9,7 +9,7 @@ use armlab::app::AppUi;
 use armlab::app::state::AppState;
 use armlab::exercise::{Kind, SheetFile, generate};
 use egui_kittest::Harness;
-use egui_kittest::kittest::Queryable;
+use egui_kittest::kittest::{NodeT, Queryable};
 use serde_json::Value;
 
 fn harness(app: AppUi) -> Harness<'static, AppUi> {
@@ -123,6 +123,10 @@ fn an_euler_key_is_answered_in_one_typed_line_and_checked() {
     let mut h = harness(app);
     assert!(h.query_by_label("angles in degrees").is_some());
     let before = settings(h.state());
+    // the field is wide enough for the line (in a grid it was 40 points: found live)
+    let field = h.get_by_label("answer: phi theta psi");
+    let width = field.accesskit_node().bounding_box().unwrap().width();
+    assert!(width >= 250.0, "the answer field is {width} points wide");
     let a = euler_degrees(v["convention"].as_str().unwrap(), &v["matrix"]);
     let typed = format!("{:.3}, {:.3} {:.3}", a[0], a[1], a[2]);
     fill(&mut h, "answer: phi theta psi", &typed);

@@ -365,18 +365,20 @@ fn orientation_entry(ui: &mut egui::Ui, sheet: &mut OpenSheet) {
     }
     ui.label("Numbers separated by spaces or commas.");
     sheet.lines.resize(layout.len(), String::new());
-    egui::Grid::new("exercise orientation answer").show(ui, |ui| {
-        for (i, (line, names)) in sheet.lines.iter_mut().zip(layout).enumerate() {
-            let name = if layout.len() > 1 {
-                format!("row {}: {}", i + 1, names.join(" "))
-            } else {
-                names.join(" ")
-            };
+    // One row each, not a grid: a grid's first frame gave the field 40 points (found live: a
+    // typed line showed only its last three letters).
+    for (i, (line, names)) in sheet.lines.iter_mut().zip(layout).enumerate() {
+        let name = if layout.len() > 1 {
+            format!("row {}: {}", i + 1, names.join(" "))
+        } else {
+            names.join(" ")
+        };
+        ui.horizontal(|ui| {
             ui.label(RichText::new(&name).monospace());
             let e = ui.add(
                 egui::TextEdit::singleline(line)
                     .hint_text(names.join(" "))
-                    .desired_width(260.0)
+                    .desired_width(320.0)
                     .font(egui::TextStyle::Monospace),
             );
             // named for screen readers (and UI tests): "answer: phi theta psi"
@@ -387,9 +389,8 @@ fn orientation_entry(ui: &mut egui::Ui, sheet: &mut OpenSheet) {
                 info.current_text_value = Some(value.clone());
                 info
             });
-            ui.end_row();
-        }
-    });
+        });
+    }
 }
 
 /// The DH-table answer: one editable row per joint, and the convention.
