@@ -62,6 +62,17 @@ pub fn read(
     if pressed(Key::H) || pressed(Key::F1) {
         out.push(Action::ToggleHelp);
     }
+    state_keys(ctx, state, construction, out);
+}
+
+/// The single keys that change the state at once (G, D, T; C, N, B; L) or reset it (R).
+fn state_keys(
+    ctx: &egui::Context,
+    state: &mut AppState,
+    construction: &mut ConstructionPanel,
+    out: &mut Actions,
+) {
+    let pressed = |k: Key| ctx.input(|i| i.key_pressed(k));
     let d = &mut state.display;
     for (k, flag) in [
         (Key::G, &mut d.grid),

@@ -117,24 +117,8 @@ pub fn show(app: &mut ToolbarContext<'_>, ui: &mut egui::Ui, out: &mut Actions) 
         if !projector {
             screenshot_button(app.exam, ui, out);
         }
-        // Record, except in projector mode where the row has no room for it (1200 px); a
-        // recording in progress always shows its Stop.
         #[cfg(feature = "app")]
-        if app.recording.is_some() || (!app.exam && (!projector || ui.available_width() > 260.0)) {
-            let (label, hint) = match app.recording {
-                None => (
-                    "Record".to_string(),
-                    "Record what the 3D view shows; Stop saves it as armlab-<model>-<n>.gif",
-                ),
-                Some(n) => (
-                    format!("Stop ({n})"),
-                    "Stop recording and save the GIF (frames recorded so far)",
-                ),
-            };
-            if ui.button(label).on_hover_text(hint).clicked() {
-                out.push(Action::Record);
-            }
-        }
+        record_button(app, projector, ui, out);
         if ui.button("Help (H)").clicked() {
             out.push(Action::ToggleHelp);
         }
@@ -144,6 +128,28 @@ pub fn show(app: &mut ToolbarContext<'_>, ui: &mut egui::Ui, out: &mut Actions) 
             ui.add(egui::Label::new(RichText::new(name).weak()).truncate());
         });
     });
+}
+
+/// Record, except in projector mode where the row has no room for it (1200 px); a recording
+/// in progress always shows its Stop.
+#[cfg(feature = "app")]
+fn record_button(app: &ToolbarContext<'_>, projector: bool, ui: &mut egui::Ui, out: &mut Actions) {
+    if app.recording.is_none() && (app.exam || (projector && ui.available_width() <= 260.0)) {
+        return;
+    }
+    let (label, hint) = match app.recording {
+        None => (
+            "Record".to_string(),
+            "Record what the 3D view shows; Stop saves it as armlab-<model>-<n>.gif",
+        ),
+        Some(n) => (
+            format!("Stop ({n})"),
+            "Stop recording and save the GIF (frames recorded so far)",
+        ),
+    };
+    if ui.button(label).on_hover_text(hint).clicked() {
+        out.push(Action::Record);
+    }
 }
 
 /// Screenshot, off during an exam.

@@ -84,11 +84,7 @@ pub(super) fn run(args: &AnimateArgs, out: &mut dyn Write) -> Result<(), CliErro
         Motion::DhFrames => 1.5 * robot.dof() as f64,
         _ => 5.0,
     });
-    if !(seconds > 0.0 && seconds <= 600.0) {
-        return Err(CliError::Usage(
-            "--seconds must be more than 0 and at most 600",
-        ));
-    }
+    check_seconds(seconds)?;
     let frames = ((seconds * f64::from(args.fps)).round() as usize).max(2);
     let bad = |reason: String| CliError::BadTarget {
         source_name: model.clone(),
@@ -151,11 +147,7 @@ fn rotation(args: &AnimateArgs, ext: &str, out: &mut dyn Write) -> Result<(), Cl
     let text = args.compose.as_deref().unwrap_or(DEFAULT_SEQUENCE);
     let steps = super::rotation::sequence_of(text, args.rad)?;
     let seconds = args.seconds.unwrap_or(1.5 * steps.len().max(1) as f64);
-    if !(seconds > 0.0 && seconds <= 600.0) {
-        return Err(CliError::Usage(
-            "--seconds must be more than 0 and at most 600",
-        ));
-    }
+    check_seconds(seconds)?;
     let frames = ((seconds * f64::from(args.fps)).round() as usize).max(2);
     let shots = crate::animation::rotation::rotation_shots(&steps, frames);
     let title = format!(
@@ -181,4 +173,15 @@ fn rotation(args: &AnimateArgs, ext: &str, out: &mut dyn Write) -> Result<(), Cl
         args.fps,
     )?;
     Ok(())
+}
+
+/// `--seconds` must be more than 0 and at most 600.
+fn check_seconds(seconds: f64) -> Result<(), CliError> {
+    if seconds > 0.0 && seconds <= 600.0 {
+        Ok(())
+    } else {
+        Err(CliError::Usage(
+            "--seconds must be more than 0 and at most 600",
+        ))
+    }
 }

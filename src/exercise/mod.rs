@@ -291,6 +291,18 @@ pub struct Sheet {
     pub points: Vec<[f64; 3]>,
 }
 
+/// The question of an `fk` sheet: the arm, its DH table, q (`shown`), what to hand in.
+fn fk_question(arm: &Robot, shown: &str) -> String {
+    format!(
+        "# Direct kinematics\n\n{}\n\nThe figure shows the arm with its DH frames; its table:\n\n{}\n\
+         Compute the end-effector pose T = T_n^0(q) (2.50) at\n\n    q = {shown}\n\n\
+         Answer with a text file of four rows of four numbers (the rows of T, metres), \
+         hand it in: the app's Exercise tab saves it under your sheet's name (`student-NN.txt`).\n",
+        arm.name,
+        dh_table_markdown(arm)
+    )
+}
+
 /// The arms `--random` draws from (the textbook's, with their lengths varied).
 pub const POOL: [&str; 7] = [
     "planar3",
@@ -437,14 +449,7 @@ pub fn generate(
                 t: pose_to_rows(&t),
             });
             sheet.frames = true;
-            sheet.markdown = format!(
-                "# Direct kinematics\n\n{}\n\nThe figure shows the arm with its DH frames; its table:\n\n{}\n\
-                 Compute the end-effector pose T = T_n^0(q) (2.50) at\n\n    q = {shown}\n\n\
-                 Answer with a text file of four rows of four numbers (the rows of T, metres), \
-                 hand it in: the app's Exercise tab saves it under your sheet's name (`student-NN.txt`).\n",
-                arm.name,
-                dh_table_markdown(&arm)
-            );
+            sheet.markdown = fk_question(&arm, &shown);
         }
         Kind::Ik => ik_sheet(&mut sheet, &arm, &mut rng, key(KeyAnswer::DhTable))?,
         Kind::Redundancy => redundancy_sheet(&mut sheet, &arm, &mut rng, key(KeyAnswer::DhTable)),
@@ -1080,45 +1085,7 @@ pub fn grade(key: &Key, answer: &Answer) -> Result<Grade, ExerciseError> {
             grade_workspace(postures, *area, rows)
         }
         (KeyAnswer::Redundancy { n, m, r, .. }, Answer::Rows(rows)) => {
-            let got: Vec<f64> = rows.iter().flatten().copied().collect();
-            if got.len() != 3 {
-                return Err(bad(format!(
-                    "give n, m, r: three numbers, not {}",
-                    got.len()
-                )));
-            }
-            let items = [
-                ("n", *n, "the number of joints", Mistake::JointNumber),
-                (
-                    "m",
-                    *m,
-                    "the dimension of the operational space of the task's kind",
-                    Mistake::OperationalSpace,
-                ),
-                (
-                    "r",
-                    *r,
-                    "the number of components the task prescribes",
-                    Mistake::TaskComponents,
-                ),
-            ]
-            .iter()
-            .zip(&got)
-            .map(|((name, want, what, mistake), g)| {
-                let ok = (*g - *want as f64).abs() < 1e-9;
-                Item {
-                    item: name.to_string(),
-                    correct: ok,
-                    feedback: if ok {
-                        "right".into()
-                    } else {
-                        format!("{name} is wrong: it is {what}")
-                    },
-                    mistake: (!ok).then_some(*mistake),
-                }
-            })
-            .collect();
-            Ok(Grade::of(items))
+            grade_redundancy([*n, *m, *r], rows)
         }
         (
             KeyAnswer::Identifiability {
@@ -1151,6 +1118,50 @@ pub fn grade(key: &Key, answer: &Answer) -> Result<Grade, ExerciseError> {
             key.kind.name()
         ))),
     }
+}
+
+/// n, m and r (Sect. 2.10) against the key's: an item each, the mistake named.
+fn grade_redundancy([n, m, r]: [usize; 3], rows: &[Vec<f64>]) -> Result<Grade, ExerciseError> {
+    let bad = |reason: String| ExerciseError::Answer { reason };
+    let got: Vec<f64> = rows.iter().flatten().copied().collect();
+    if got.len() != 3 {
+        return Err(bad(format!(
+            "give n, m, r: three numbers, not {}",
+            got.len()
+        )));
+    }
+    let items = [
+        ("n", n, "the number of joints", Mistake::JointNumber),
+        (
+            "m",
+            m,
+            "the dimension of the operational space of the task's kind",
+            Mistake::OperationalSpace,
+        ),
+        (
+            "r",
+            r,
+            "the number of components the task prescribes",
+            Mistake::TaskComponents,
+        ),
+    ]
+    .iter()
+    .zip(&got)
+    .map(|((name, want, what, mistake), g)| {
+        let ok = (*g - *want as f64).abs() < 1e-9;
+        Item {
+            item: name.to_string(),
+            correct: ok,
+            feedback: if ok {
+                "right".into()
+            } else {
+                format!("{name} is wrong: it is {what}")
+            },
+            mistake: (!ok).then_some(*mistake),
+        }
+    })
+    .collect();
+    Ok(Grade::of(items))
 }
 
 /// Parameter names from an answer's text: separated by commas, spaces or lines; `#` comments.

@@ -95,6 +95,49 @@ pub fn matrix(ui: &mut egui::Ui, name: &str, r: &Rotation3<f64>) {
 /// Compose: the sequence, its playback and the product written out.
 pub fn compose_ui(tab: &mut OrientationTab, ui: &mut egui::Ui) {
     ui.label("Elementary rotations, in the order stated; each about the current frame (post-multiplied, 2.14) or the fixed one (pre-multiplied, 2.16).");
+    step_list(tab, ui);
+    playback(tab, ui);
+    changes(tab, ui);
+    let c = &tab.composition;
+    let upto = &c.steps[..c.shown.min(c.steps.len())];
+    ui.label(format!(
+        "Step {} of {}",
+        c.shown.min(c.steps.len()),
+        c.steps.len()
+    ));
+    ui.label(RichText::new(lab::product_text(upto)).strong());
+    matrix(ui, "R", &compose(upto));
+    if let Some(b) = c.before {
+        let apart = rotation_angle_between(&b.end, &compose(&c.steps));
+        let what = match (b.reversed, b.switched) {
+            (true, true) => "Reversed and switched",
+            (true, false) => "Reversed",
+            _ => "Switched",
+        };
+        let text = if apart < 1e-9 {
+            format!("{what}: the frame ends where the stated sequence ended (b).")
+        } else {
+            format!(
+                "{what}: the frame ends {:.1}° away from where the stated sequence ended (b).",
+                apart.to_degrees()
+            )
+        };
+        ui.label(RichText::new(text).color(WARN));
+    }
+    if ui
+        .button("Turn this frame")
+        .on_hover_text("Edit the result in the Turn mode's representations")
+        .clicked()
+    {
+        let r = compose(upto);
+        tab.mode = Mode::Turn;
+        tab.set_rotation(r);
+    }
+}
+
+/// The sequence's rows (about which frame, which axis, by how much; Remove) and Add; any
+/// change shows the whole new sequence and forgets the stated one's ghost.
+fn step_list(tab: &mut OrientationTab, ui: &mut egui::Ui) {
     let c = &mut tab.composition;
     let mut remove = None;
     let mut changed = false;
@@ -148,43 +191,6 @@ pub fn compose_ui(tab: &mut OrientationTab, ui: &mut egui::Ui) {
     if changed {
         c.shown = c.steps.len();
         c.before = None;
-    }
-    playback(tab, ui);
-    changes(tab, ui);
-    let c = &tab.composition;
-    let upto = &c.steps[..c.shown.min(c.steps.len())];
-    ui.label(format!(
-        "Step {} of {}",
-        c.shown.min(c.steps.len()),
-        c.steps.len()
-    ));
-    ui.label(RichText::new(lab::product_text(upto)).strong());
-    matrix(ui, "R", &compose(upto));
-    if let Some(b) = c.before {
-        let apart = rotation_angle_between(&b.end, &compose(&c.steps));
-        let what = match (b.reversed, b.switched) {
-            (true, true) => "Reversed and switched",
-            (true, false) => "Reversed",
-            _ => "Switched",
-        };
-        let text = if apart < 1e-9 {
-            format!("{what}: the frame ends where the stated sequence ended (b).")
-        } else {
-            format!(
-                "{what}: the frame ends {:.1}° away from where the stated sequence ended (b).",
-                apart.to_degrees()
-            )
-        };
-        ui.label(RichText::new(text).color(WARN));
-    }
-    if ui
-        .button("Turn this frame")
-        .on_hover_text("Edit the result in the Turn mode's representations")
-        .clicked()
-    {
-        let r = compose(upto);
-        tab.mode = Mode::Turn;
-        tab.set_rotation(r);
     }
 }
 
