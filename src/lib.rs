@@ -86,6 +86,7 @@ pub mod calibration;
 pub mod camera;
 #[cfg(feature = "app")]
 pub mod cli;
+pub mod collision;
 pub mod construction;
 pub mod exercise;
 #[cfg(feature = "gui")]

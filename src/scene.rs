@@ -4,11 +4,11 @@
 //! joint bodies (a cylinder along z for a revolute joint, a box for a prismatic one), DH frame
 //! triads with labels, the ground grid and the end-effector.
 
-use crate::kinematics::pose::{Pose, rot_x, trans_x};
+use crate::kinematics::pose::Pose;
 use crate::kinematics::visual::VisualGeometry;
-use crate::kinematics::{Convention, JointGeometry, JointKind, KinematicsError, Robot};
+use crate::kinematics::{JointKind, KinematicsError, Robot};
 use crate::mesh::TriMesh;
-use nalgebra::{Matrix4, Point3, Rotation3, Unit, Vector3};
+use nalgebra::{Matrix4, Point3, Rotation3, Vector3};
 use std::sync::Arc;
 
 pub mod orientation;
@@ -246,24 +246,6 @@ fn segment_transform(a: &Vector3<f64>, b: &Vector3<f64>, radius: f64) -> Option<
     Some(m)
 }
 
-/// For joint `j`: the frame whose z (DH) or `axis` (URDF) is the joint axis, in the world.
-fn axis_frame(robot: &Robot, frames: &[Pose], j: usize) -> (Pose, Unit<Vector3<f64>>) {
-    let joint = &robot.joints()[j];
-    let parent = joint.parent.map_or(robot.base, |p| frames[p]);
-    let f = parent * joint.pre;
-    match &joint.geometry {
-        JointGeometry::Dh {
-            row,
-            convention: Convention::Modified,
-        } => (f * rot_x(row.alpha) * trans_x(row.a), Vector3::z_axis()),
-        JointGeometry::Dh { .. } => (f, Vector3::z_axis()),
-        JointGeometry::Origin {
-            parent_from_joint,
-            axis,
-        } => (f * parent_from_joint, *axis),
-    }
-}
-
 /// The arm of `robot` at `q`, in world coordinates.
 pub fn arm_scene(robot: &Robot, q: &[f64], style: &ArmStyle) -> Result<Scene, KinematicsError> {
     let frames = robot.fk_frames(q)?;
@@ -374,27 +356,13 @@ impl ArmPainter<'_> {
     fn joint(&mut self, robot: &Robot, frames: &[Pose], q: &[f64], j: usize) {
         let (style, r_link) = (self.style, self.r_link);
         let joint = &robot.joints()[j];
-        let parent_o = joint.parent.map_or(robot.base.translation.vector, |p| {
-            frames[p].translation.vector
-        });
-        let (af, axis) = axis_frame(robot, frames, j);
-        let ao = af.translation.vector;
-        let z = af.rotation * axis.into_inner();
-        let out_o = frames[j].translation.vector;
-        let mut pts = vec![parent_o, ao];
-        if let JointGeometry::Dh {
-            row,
-            convention: Convention::Standard,
-        } = joint.geometry
-        {
-            let d = if joint.kind == JointKind::Prismatic {
-                robot.joint_variable(j, q) + joint.offset
-            } else {
-                row.d
-            };
-            pts.push(ao + z * d);
-        }
-        pts.push(out_o);
+        let body = crate::kinematics::visual::stick_body(robot, frames, q, j);
+        let (ao, z, out_o) = (
+            body.axis_origin,
+            body.axis,
+            body.polyline[body.polyline.len() - 1],
+        );
+        let pts = body.polyline;
         for w in pts.windows(2) {
             self.segment(&w[0], &w[1], r_link, style.link, Shape::Cylinder);
         }
@@ -414,7 +382,7 @@ impl ArmPainter<'_> {
                 Shape::Cylinder,
             ),
             JointKind::Prismatic => {
-                let d = robot.joint_variable(j, q) + joint.offset;
+                let d = body.extension;
                 let start = ao + z * (d - h).min(0.0);
                 let end = ao + z * d.max(h * 0.5);
                 self.segment(&start, &end, r_link * 1.6, style.prismatic, Shape::Cube);

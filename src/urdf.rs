@@ -347,7 +347,14 @@ pub fn parse_urdf(text: &str, path: &Path) -> Result<Robot, UrdfError> {
         .collect();
     let (visuals, warnings) =
         visuals::read(&urdf, path, |link| child_of.get(link).map(|&s| new_id[s]));
+    (robot.collisions, robot.collision_warnings) = visuals::collisions(
+        &urdf,
+        path,
+        |link| child_of.get(link).map(|&s| new_id[s]),
+        &visuals,
+    );
     robot.visuals = visuals;
+    robot.root_link = Some(roots[0].clone());
     // The links' masses at their centres of mass (the inertia tensors are not needed for
     // gravity).
     robot.masses = urdf

@@ -32,6 +32,6 @@ pub use jacobian::JacobianAnalysis;
 pub use orientation::EulerKind;
 pub use pose::Pose;
 pub use robot::{
-    DhJoint, Drive, EndEffector, Joint, JointGeometry, JointId, JointKind, NamedConfig, PointMass,
-    Robot, UNBOUNDED,
+    DhJoint, DisabledPair, Drive, EndEffector, Joint, JointGeometry, JointId, JointKind,
+    NamedConfig, PointMass, Robot, UNBOUNDED,
 };

@@ -260,6 +260,17 @@ pub struct PointMass {
     pub mass: f64,
 }
 
+/// One link pair never checked for collision (the stored allowed-collision matrix).
+#[derive(Debug, Clone, PartialEq)]
+pub struct DisabledPair {
+    /// The first link's name.
+    pub link1: String,
+    /// The second link's name.
+    pub link2: String,
+    /// Why, as an SRDF says it ("Adjacent", "Always", "Never", "Default", or the user's word).
+    pub reason: String,
+}
+
 /// A manipulator: base transform, joint tree, end-effectors and named configurations.
 ///
 /// # Examples
@@ -294,6 +305,21 @@ pub struct Robot {
     /// What the links look like (a URDF's `<visual>` elements); empty for a DH model, which is
     /// drawn from its joints.
     pub visuals: Vec<super::visual::Visual>,
+    /// What collision checks use for the links (a URDF's `<collision>` elements, or a link's
+    /// `<visual>` where it has no `<collision>`); empty for a DH model, whose links are checked
+    /// as they are drawn (see `crate::collision`).
+    pub collisions: Vec<super::visual::Visual>,
+    /// What reading the collision geometry skipped or replaced, in words naming the link (a link
+    /// without `<collision>` checked with its `<visual>`, a collision mesh not found); said when
+    /// collisions are checked, not on every load.
+    pub collision_warnings: Vec<String>,
+    /// The link pairs never checked for collision (a model file's `[[disable_collisions]]`, as
+    /// an SRDF's `<disable_collisions>`): the stored allowed-collision matrix; empty when none
+    /// is stored.
+    pub disabled_collisions: Vec<DisabledPair>,
+    /// The name of the root link (a URDF's), the base's body in collision reports; `None` for a
+    /// DH model ("base").
+    pub root_link: Option<String>,
     /// What loading the model skipped, in words naming the file (a mesh that could not be read
     /// and was replaced by the joint's body); empty when nothing was.
     pub load_warnings: Vec<String>,
@@ -379,6 +405,10 @@ impl Robot {
                 q: vec![0.0; n],
             }],
             visuals: Vec::new(),
+            collisions: Vec::new(),
+            collision_warnings: Vec::new(),
+            root_link: None,
+            disabled_collisions: Vec::new(),
             load_warnings: Vec::new(),
             masses: Vec::new(),
             link_frames: Vec::new(),

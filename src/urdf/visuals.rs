@@ -195,6 +195,48 @@ fn named_materials(urdf: &urdf_rs::Robot, warnings: &mut Vec<String>) -> HashMap
     named
 }
 
+/// Which of a link's elements to read.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Elements {
+    /// `<visual>`: what is drawn.
+    Visual,
+    /// `<collision>`: what collision checks use.
+    Collision,
+}
+
+impl Elements {
+    /// The element's name in messages.
+    fn word(self) -> &'static str {
+        match self {
+            Elements::Visual => "visual",
+            Elements::Collision => "collision",
+        }
+    }
+}
+
+/// One element of a link as the reader sees it: origin, geometry and material.
+type Element<'a> = (
+    &'a urdf_rs::Pose,
+    &'a urdf_rs::Geometry,
+    Option<&'a urdf_rs::Material>,
+);
+
+/// The elements of one kind of a link.
+fn elements_of(link: &urdf_rs::Link, which: Elements) -> Vec<Element<'_>> {
+    match which {
+        Elements::Visual => link
+            .visual
+            .iter()
+            .map(|v| (&v.origin, &v.geometry, v.material.as_ref()))
+            .collect(),
+        Elements::Collision => link
+            .collision
+            .iter()
+            .map(|c| (&c.origin, &c.geometry, None))
+            .collect(),
+    }
+}
+
 /// Reads every link's visuals; `joint_of` maps a link to the joint whose child it is (`None`
 /// for the root link). Returns the visuals and the warnings.
 pub(super) fn read(
@@ -202,23 +244,77 @@ pub(super) fn read(
     urdf_path: &Path,
     joint_of: impl Fn(&str) -> Option<usize>,
 ) -> (Vec<Visual>, Vec<String>) {
+    read_elements(urdf, urdf_path, &joint_of, Elements::Visual)
+}
+
+/// Every link's collision geometry: its `<collision>` elements, or, for a link that has none,
+/// its `visuals` (read already by [`read`]), with one warning naming those links.
+pub(super) fn collisions(
+    urdf: &urdf_rs::Robot,
+    urdf_path: &Path,
+    joint_of: impl Fn(&str) -> Option<usize>,
+    visuals: &[Visual],
+) -> (Vec<Visual>, Vec<String>) {
+    let (mut out, mut warnings) = read_elements(urdf, urdf_path, &joint_of, Elements::Collision);
+    let mut borrowed = Vec::new();
+    for link in urdf.links.iter().filter(|l| l.collision.is_empty()) {
+        let joint = joint_of(&link.name);
+        let theirs: Vec<&Visual> = visuals.iter().filter(|v| v.joint == joint).collect();
+        if theirs.is_empty() {
+            continue;
+        }
+        borrowed.push(format!("\"{}\"", link.name));
+        out.extend(theirs.into_iter().map(|v| Visual {
+            color: None,
+            ..v.clone()
+        }));
+    }
+    if !borrowed.is_empty() {
+        let more = borrowed.len().saturating_sub(6);
+        borrowed.truncate(6);
+        let more = if more > 0 {
+            format!(" and {more} more")
+        } else {
+            String::new()
+        };
+        warnings.push(format!(
+            "links {}{more} have no <collision>: their <visual> is used for collisions",
+            borrowed.join(", ")
+        ));
+    }
+    (out, warnings)
+}
+
+/// Reads every link's `<visual>` or `<collision>` elements (see [`read`]); a mesh that cannot
+/// be read is left out with a warning naming the link and the file.
+pub(super) fn read_elements(
+    urdf: &urdf_rs::Robot,
+    urdf_path: &Path,
+    joint_of: &impl Fn(&str) -> Option<usize>,
+    which: Elements,
+) -> (Vec<Visual>, Vec<String>) {
     let mut warnings = Vec::new();
     let named = named_materials(urdf, &mut warnings);
+    if which == Elements::Collision {
+        // The materials were already judged with the visuals.
+        warnings.clear();
+    }
     let mut cache: HashMap<PathBuf, LoadedMesh> = HashMap::new();
     let mut noted: Vec<PathBuf> = Vec::new();
     let mut missing: Vec<MissingMesh> = Vec::new();
     let mut visuals = Vec::new();
     for link in &urdf.links {
         let joint = joint_of(&link.name);
-        for v in &link.visual {
-            let Some(origin) = origin(&v.origin) else {
+        for (v_origin, v_geometry, v_material) in elements_of(link, which) {
+            let Some(origin) = origin(v_origin) else {
                 warnings.push(format!(
-                    "link \"{}\": a visual origin is not finite; skipped",
-                    link.name
+                    "link \"{}\": a {} origin is not finite; skipped",
+                    link.name,
+                    which.word()
                 ));
                 continue;
             };
-            let geometry = match &v.geometry {
+            let geometry = match v_geometry {
                 urdf_rs::Geometry::Box { size } => VisualGeometry::Box(size.0),
                 urdf_rs::Geometry::Cylinder { radius, length }
                 | urdf_rs::Geometry::Capsule { radius, length } => VisualGeometry::Cylinder {
@@ -247,6 +343,7 @@ pub(super) fn read(
                                 link: link.name.clone(),
                                 filename: filename.clone(),
                                 why: e,
+                                which,
                             });
                             continue;
                         }
@@ -255,8 +352,9 @@ pub(super) fn read(
             };
             if !sizes_ok(&geometry) {
                 warnings.push(format!(
-                    "link \"{}\": a visual has a bad size; skipped",
-                    link.name
+                    "link \"{}\": a {} has a bad size; skipped",
+                    link.name,
+                    which.word()
                 ));
                 continue;
             }
@@ -264,7 +362,7 @@ pub(super) fn read(
                 joint,
                 origin,
                 geometry,
-                color: color(v.material.as_ref(), &named),
+                color: color(v_material, &named),
             });
         }
     }
@@ -289,6 +387,8 @@ struct MissingMesh {
     link: String,
     filename: String,
     why: String,
+    /// Whether it was a visual's mesh or a collision's.
+    which: Elements,
 }
 
 /// One warning per missing mesh, except that the meshes of one package that is not found at
@@ -326,10 +426,16 @@ fn missing_mesh_warnings(missing: Vec<MissingMesh>) -> Vec<String> {
         } else {
             String::new()
         };
+        let (what, instead) = match ms[0].which {
+            Elements::Visual => ("meshes not drawn", "drawn with their joints' bodies"),
+            Elements::Collision => (
+                "collision meshes not read",
+                "checked with their joints' bodies",
+            ),
+        };
         out.push(format!(
-            "package \"{pkg}\" not found: {} meshes not drawn, on links {}{more} (drawn with \
-             their joints' bodies); add the package's parent folder with --package-path or \
-             ROS_PACKAGE_PATH",
+            "package \"{pkg}\" not found: {} {what}, on links {}{more} ({instead}); add the \
+             package's parent folder with --package-path or ROS_PACKAGE_PATH",
             ms.len(),
             shown.join(", ")
         ));
@@ -339,10 +445,17 @@ fn missing_mesh_warnings(missing: Vec<MissingMesh>) -> Vec<String> {
 
 /// The warning for one mesh not drawn.
 fn one_missing(m: &MissingMesh) -> String {
-    format!(
-        "link \"{}\": mesh \"{}\" not drawn ({}); the link is drawn with its joint's body",
-        m.link, m.filename, m.why
-    )
+    match m.which {
+        Elements::Visual => format!(
+            "link \"{}\": mesh \"{}\" not drawn ({}); the link is drawn with its joint's body",
+            m.link, m.filename, m.why
+        ),
+        Elements::Collision => format!(
+            "link \"{}\": collision mesh \"{}\" not read ({}); the link is checked with its \
+             joint's body",
+            m.link, m.filename, m.why
+        ),
+    }
 }
 
 /// The mesh with the URDF's `scale` applied (shared unchanged when the scale is 1).

@@ -30,7 +30,7 @@ pub mod planar;
 pub mod posture;
 pub mod reach;
 pub mod rectangle;
-mod rng;
+pub(crate) mod rng;
 pub mod sample;
 pub mod stats;
 pub mod views;

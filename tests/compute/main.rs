@@ -8,6 +8,7 @@ mod animation;
 mod calibration;
 mod calibration_files;
 mod calibration_setups;
+mod collision;
 mod construction;
 mod exercise;
 mod exercise_orientation;

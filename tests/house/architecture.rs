@@ -77,6 +77,7 @@ const LAYERS: &[Layer] = &[
         name: "compute",
         modules: &[
             "workspace",
+            "collision",
             "calibration",
             "redundancy",
             "construction",
