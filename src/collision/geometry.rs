@@ -163,7 +163,7 @@ impl RobotGeometry {
     }
 
     /// The stick body of joint `j` (`None`: the base pedestal) at a configuration, as convex
-    /// parts in the world frame: capsules along its polyline and its joint body.
+    /// parts in the world frame: capsules along its polyline, and a prismatic joint's body.
     pub(super) fn stick_parts(
         &self,
         robot: &Robot,
@@ -187,20 +187,15 @@ impl RobotGeometry {
                 out.push((PPose::IDENTITY, SharedShape::capsule(v(&w[0]), v(&w[1]), r)));
             }
         }
-        let (ao, z) = (body.axis_origin, body.axis);
-        let h = self.scale * JOINT_BODY_LENGTH_FRACTION;
-        match robot.joints()[j].kind {
-            JointKind::Revolute => out.push(cylinder_between(
-                v(&(ao - z * h * 0.5)),
-                v(&(ao + z * h * 0.5)),
-                r * 1.9,
-            )),
-            JointKind::Prismatic => {
-                let d = body.extension;
-                let (a, b) = (ao + z * (d - h).min(0.0), ao + z * d.max(h * 0.5));
-                out.push((PPose::IDENTITY, SharedShape::capsule(v(&a), v(&b), r * 1.6)));
-            }
-            JointKind::Fixed => {}
+        // A prismatic joint's sliding body, as drawn. A revolute joint's drum is left out: at
+        // a spherical wrist three drums overlap by construction, and the links' capsules
+        // already cover the joint.
+        if robot.joints()[j].kind == JointKind::Prismatic {
+            let (ao, z) = (body.axis_origin, body.axis);
+            let h = self.scale * JOINT_BODY_LENGTH_FRACTION;
+            let d = body.extension;
+            let (a, b) = (ao + z * (d - h).min(0.0), ao + z * d.max(h * 0.5));
+            out.push((PPose::IDENTITY, SharedShape::capsule(v(&a), v(&b), r * 1.6)));
         }
     }
 }

@@ -145,6 +145,21 @@ fn a_stick_link_is_a_capsule_of_the_drawn_radius() {
         "clearance {c}, closed form {expected}"
     );
     assert_eq!(r.closest.unwrap().a, "link2");
+    // A 0.1 m box whose near face is 0.02 m off the link's axis overlaps the capsule by 0.036 - 0.02.
+    let off: Vec<f64> = (0..3).map(|k| mid[k] + 0.07 * normal[k]).collect();
+    let cell = scene(&format!(
+        "[[obstacle]]\nname = \"block\"\nshape = \"box\"\nsize = [0.1, 0.1, 0.1]\nxyz = [{}, {}, {}]\nrpy_deg = [0, 0, {}]\n",
+        off[0],
+        off[1],
+        off[2],
+        (q1 + q2).to_degrees()
+    ));
+    let world = CollisionWorld::new(&robot, &cell).unwrap();
+    let r = world.check(&robot, &[q1, q2]).unwrap();
+    assert!(r.in_collision);
+    let depth = r.pairs[0].depth_m;
+    assert!((depth - (link_radius - 0.02)).abs() < 1e-9, "depth {depth}");
+    assert!(world.in_collision(&robot, &[q1, q2]).unwrap());
 }
 
 #[test]
