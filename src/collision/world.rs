@@ -298,7 +298,8 @@ impl CollisionWorld {
                 if !pa.aabb.intersects(&pb.aabb) {
                     continue;
                 }
-                if let Some((depth, at)) = penetration(pa, pb)
+                if intersects(pa, pb)
+                    && let Some((depth, at)) = penetration(pa, pb)
                     && best.is_none_or(|(d, _)| depth > d)
                 {
                     best = Some((depth, at));
@@ -324,7 +325,7 @@ impl CollisionWorld {
             }
             for pa in &parts[i] {
                 for pb in &parts[j] {
-                    if pa.aabb.intersects(&pb.aabb) && penetration(pa, pb).is_some() {
+                    if pa.aabb.intersects(&pb.aabb) && overlap(pa, pb) {
                         return Ok(true);
                     }
                 }
@@ -427,6 +428,39 @@ impl CollisionWorld {
             .collect())
     }
 
+    /// The obstacle a ray from `origin` along the unit vector `dir` (world, m) meets first at
+    /// `q`: its index in the scene and the distance (m). Planes are left out unless `planes`
+    /// (a floor would catch every click below the horizon). What a click in a 3D view picks.
+    pub fn obstacle_on_ray(
+        &self,
+        robot: &Robot,
+        q: &[f64],
+        (origin, dir): ([f64; 3], [f64; 3]),
+        planes: bool,
+    ) -> Result<Option<(usize, f64)>, KinematicsError> {
+        use parry3d_f64::query::Ray;
+        let placement = self.place(robot, q)?;
+        let n = self.geometry.bodies.len();
+        let ray = Ray::new(
+            Vec3::new(origin[0], origin[1], origin[2]),
+            Vec3::new(dir[0], dir[1], dir[2]),
+        );
+        let mut best: Option<(usize, f64)> = None;
+        for k in 0..self.obstacles.len() {
+            for p in placement.parts(n + k) {
+                if !planes && p.shape.as_shape::<HalfSpace>().is_some() {
+                    continue;
+                }
+                if let Some(t) = p.shape.cast_ray(&p.pose, &ray, f64::MAX, true)
+                    && best.is_none_or(|(_, b)| t < b)
+                {
+                    best = Some((k, t));
+                }
+            }
+        }
+        Ok(best)
+    }
+
     /// World poses of every obstacle at `q` (`world_from_obstacle`), for drawing.
     pub fn obstacle_poses(&self, robot: &Robot, q: &[f64]) -> Result<Vec<Pose>, KinematicsError> {
         let frames = robot.fk_frames(q)?;
@@ -500,11 +534,10 @@ fn penetration(pa: &Placed<'_>, pb: &Placed<'_>) -> Option<(f64, [f64; 3])> {
     // parry 0.31.1 gets a convex shape against a half-space wrong in that order (a capsule 14
     // mm above a floor reads 86 mm deep; the test `a_half_space_second_is_measured_right`
     // holds it); the half-space first is right, and the contact is symmetric.
-    let (first, second) = if pb.shape.as_shape::<HalfSpace>().is_some() {
-        (pb, pa)
-    } else {
-        (pa, pb)
-    };
+    if let Some(found) = rounded_penetration(pa, pb) {
+        return found;
+    }
+    let (first, second) = half_space_first(pa, pb);
     let c = query::contact(&first.pose, first.shape, &second.pose, second.shape, 0.0)
         .ok()
         .flatten()?;
@@ -513,6 +546,87 @@ fn penetration(pa: &Placed<'_>, pb: &Placed<'_>) -> Option<(f64, [f64; 3])> {
         let m = (c.point1 + c.point2) * 0.5;
         (depth, [m.x, m.y, m.z])
     })
+}
+
+/// A part's core and rounding: a capsule is its segment and radius, anything else itself and 0.
+fn core<'a>(p: &'a Placed<'_>) -> (&'a dyn Shape, f64) {
+    match p.shape.as_capsule() {
+        Some(c) => (&c.segment, c.radius),
+        None => (p.shape, 0.0),
+    }
+}
+
+/// For a pair with a capsule: the overlap measured between the cores (a segment's contact is
+/// a closed form or a short GJK; two capsules through EPA cost ten times more). `None` when no
+/// capsule is involved, or the cores themselves overlap (then the shapes are asked).
+#[allow(clippy::option_option)]
+fn rounded_penetration(pa: &Placed<'_>, pb: &Placed<'_>) -> Option<Option<(f64, [f64; 3])>> {
+    let ((sa, ra), (sb, rb)) = (core(pa), core(pb));
+    let rounding = ra + rb;
+    if rounding == 0.0 {
+        return None;
+    }
+    let ((s1, p1, r1), (s2, p2, r2)) = if sb.as_shape::<HalfSpace>().is_some() {
+        ((sb, &pb.pose, rb), (sa, &pa.pose, ra))
+    } else {
+        ((sa, &pa.pose, ra), (sb, &pb.pose, rb))
+    };
+    let c = match query::contact(p1, s1, p2, s2, rounding) {
+        Ok(Some(c)) => c,
+        Ok(None) => return Some(None),
+        Err(_) => return None,
+    };
+    if c.dist <= 0.0 {
+        return None;
+    }
+    let depth = rounding - c.dist;
+    Some((depth > TOUCH_TOLERANCE_M).then(|| {
+        let m = (c.point1 + c.normal1 * r1 + c.point2 + c.normal2 * r2) * 0.5;
+        (depth, [m.x, m.y, m.z])
+    }))
+}
+
+/// The distance between two placed parts that do not overlap (m). A capsule is measured as
+/// its segment less its radius: parry has the segments' distance in closed form, where two
+/// capsules would go through GJK (five times slower on the Puma's links).
+fn part_distance(pa: &Placed<'_>, pb: &Placed<'_>) -> Option<f64> {
+    let ((sa, ra), (sb, rb)) = (core(pa), core(pb));
+    let (first, second) = if sb.as_shape::<HalfSpace>().is_some() {
+        ((sb, &pb.pose), (sa, &pa.pose))
+    } else {
+        ((sa, &pa.pose), (sb, &pb.pose))
+    };
+    let d = query::distance(first.1, first.0, second.1, second.0).ok()?;
+    Some(d.distance - ra - rb)
+}
+
+/// Whether two placed parts overlap deeper than [`TOUCH_TOLERANCE_M`] (an intersection test
+/// first: no penetration depth is computed for parts apart).
+fn overlap(pa: &Placed<'_>, pb: &Placed<'_>) -> bool {
+    intersects(pa, pb) && penetration(pa, pb).is_some()
+}
+
+/// Whether two placed parts touch or overlap (parry's intersection test, the half-space
+/// first; an unsupported pair counts as touching, so that the contact query decides).
+fn intersects(pa: &Placed<'_>, pb: &Placed<'_>) -> bool {
+    if let Some(found) = rounded_penetration(pa, pb) {
+        return found.is_some();
+    }
+    let (first, second) = half_space_first(pa, pb);
+    query::intersection_test(&first.pose, first.shape, &second.pose, second.shape)
+        .map_or(true, |i| i.intersecting)
+}
+
+/// The two parts with a half-space first (see [`penetration`]).
+fn half_space_first<'a, 'b>(
+    pa: &'a Placed<'b>,
+    pb: &'a Placed<'b>,
+) -> (&'a Placed<'b>, &'a Placed<'b>) {
+    if pb.shape.as_shape::<HalfSpace>().is_some() {
+        (pb, pa)
+    } else {
+        (pa, pb)
+    }
 }
 
 /// The box around a body's parts (`None`: no parts).
@@ -539,10 +653,10 @@ fn min_distance(a: &[Placed<'_>], b: &[Placed<'_>], bound: f64) -> Option<f64> {
             if aabb_gap(&pa.aabb, &pb.aabb) >= limit {
                 continue;
             }
-            if let Ok(d) = query::distance(&pa.pose, pa.shape, &pb.pose, pb.shape)
-                && best.is_none_or(|x| d.distance < x)
+            if let Some(d) = part_distance(pa, pb)
+                && best.is_none_or(|x| d < x)
             {
-                best = Some(d.distance);
+                best = Some(d);
             }
         }
     }
