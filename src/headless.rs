@@ -3,12 +3,13 @@
 //! (same pixels, same bytes) and, with the command line, a progress bar shown only when standard
 //! output is a terminal.
 
+use crate::collision::CellScene;
 use crate::figure::figures::{Figures, PlotFrame};
 use crate::figure::workspace::{WsFigure, WsFigureOptions, WsPlan, paint, paint_forming, plan};
 use crate::figure::{FigureError, Theme};
 use crate::kinematics::Robot;
 use crate::workspace::{
-    MapForming, WorkspaceMap, compute_figure_data, compute_figure_data_forming,
+    MapForming, OneShot, WorkspaceMap, compute_figure_data_forming, compute_figure_data_in,
 };
 use std::path::Path;
 use thiserror::Error;
@@ -22,9 +23,24 @@ pub fn workspace_figure(
     opts: &WsFigureOptions,
     progress: &(dyn Fn(f32) + Sync),
 ) -> Result<WsFigure, FigureError> {
+    workspace_figure_in(figs, robot, title, opts, None, progress)
+}
+
+/// [`workspace_figure`] in a cell (`None`: empty space): a point counts as reached by a
+/// posture only where that posture is within the limits and hits neither the arm nor the
+/// cell's obstacles, decided cell by cell at a resolution the figure states; the obstacles are
+/// drawn in the view ([`crate::workspace::compute_figure_data_in`]). Plane, top and side views.
+pub fn workspace_figure_in(
+    figs: &mut Figures,
+    robot: &Robot,
+    title: &str,
+    opts: &WsFigureOptions,
+    cell: Option<&CellScene>,
+    progress: &(dyn Fn(f32) + Sync),
+) -> Result<WsFigure, FigureError> {
     figs.text_scale = opts.text_scale;
     let plan = plan(figs, robot, title, opts)?;
-    let data = compute_figure_data(robot, &plan.request, progress)?;
+    let data = compute_figure_data_in(robot, &plan.request, cell, progress, &mut OneShot)?;
     let figure = paint(figs, robot, &plan, &data)?;
     progress(1.0);
     Ok(figure)

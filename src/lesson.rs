@@ -15,7 +15,14 @@
 //! target_rpy_deg = [0, 0, 0]           # its orientation (roll, pitch, yaw)
 //! view = "iso"                         # front, side, top, iso
 //! overlays = ["ghosts", "frames", "labels"]
+//! scene = "cell.toml"                  # optional: the cell's obstacles from this step on
 //! ```
+//!
+//! A step's `scene` is a scene file's path (relative to the lesson) or the scene file's
+//! obstacles written in the lesson itself, as `[[steps.scene.obstacle]]` tables with the keys of
+//! the scene file's `[[obstacle]]` (see [`crate::collision::CellScene`]; "Save as lesson" writes
+//! the app's cell so). Replaying the step makes it the cell; a step without `scene` leaves the
+//! cell as it is, so a scene given on the first step holds for the whole lesson.
 
 use crate::kinematics::Robot;
 use serde::{Deserialize, Serialize};
@@ -140,6 +147,20 @@ pub struct Step {
     /// The Orientation tab's setup (with `tab = "orientation"`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub orientation: Option<OrientationStep>,
+    /// The cell's obstacles from this step on: a scene file's path (relative to the lesson),
+    /// or a table holding the scene file's `obstacle` list; absent: the cell stays as it is.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub scene: Option<toml::Value>,
+}
+
+/// Where a step's scene comes from.
+#[derive(Debug, Clone, PartialEq)]
+pub enum SceneSource {
+    /// A scene file's path as written (resolve it against the lesson's folder with
+    /// [`resolve_spec`]).
+    Path(String),
+    /// The obstacles written in the lesson, as a scene file's text (`[[obstacle]]` tables).
+    Inline(String),
 }
 
 /// What the Orientation tab shows.
@@ -367,6 +388,9 @@ impl Lesson {
             if let Some(message) = s.orientation.as_ref().and_then(OrientationStep::check) {
                 return Err(step_error(message));
             }
+            if let Some(Err(message)) = lesson.step_scene(i) {
+                return Err(step_error(message));
+            }
         }
         Ok(lesson)
     }
@@ -435,6 +459,28 @@ impl Lesson {
             });
         }
         Ok(Some(q))
+    }
+
+    /// Where the scene of step `i` comes from (`None`: the step leaves the cell as it is), or
+    /// why its `scene` is not usable.
+    pub fn step_scene(&self, i: usize) -> Option<Result<SceneSource, String>> {
+        let scene = self.steps.get(i)?.scene.as_ref()?;
+        Some(match scene {
+            toml::Value::String(path) => Ok(SceneSource::Path(path.clone())),
+            toml::Value::Table(t) if t.keys().all(|k| k == "obstacle") => match t.get("obstacle") {
+                None | Some(toml::Value::Array(_)) => toml::to_string(t)
+                    .map(SceneSource::Inline)
+                    .map_err(|e| format!("scene: {e}")),
+                Some(_) => {
+                    Err("scene.obstacle: a list of [[steps.scene.obstacle]] tables".to_string())
+                }
+            },
+            toml::Value::Table(_) => Err(
+                "scene: a scene file's path, or [[steps.scene.obstacle]] tables (no other keys)"
+                    .to_string(),
+            ),
+            _ => Err("scene: a scene file's path, or [[steps.scene.obstacle]] tables".to_string()),
+        })
     }
 
     /// The overlays step `i` turns off explicitly (`overlays_off`; none when absent).

@@ -29,6 +29,10 @@
 //! [[configurations]]                 # optional named joint vectors, one value per dof
 //! name = "ready"
 //! q = [0.0, "pi/2"]
+//! [[disable_collisions]]             # optional: the stored allowed-collision matrix
+//! link1 = "link2"                    # "base", or "linkN": the link moving with joint N
+//! link2 = "link4"
+//! reason = "Never"                   # optional: Adjacent, Always, Default, Never, or your word
 //! ```
 //!
 //! A revolute joint's `theta` and a prismatic joint's `d` are its variable: they may be written

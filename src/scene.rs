@@ -11,6 +11,7 @@ use crate::mesh::TriMesh;
 use nalgebra::{Matrix4, Point3, Rotation3, Vector3};
 use std::sync::Arc;
 
+pub mod obstacles;
 pub mod orientation;
 
 /// RGBA colour, each channel in [0, 1] (linear).

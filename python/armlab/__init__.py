@@ -18,10 +18,15 @@ Rotations in batches (matrices to Euler, RPY, angle-axis and quaternions, and ba
 :meth:`Robot.self_motion`, :func:`textbook_figure`) show inline in Jupyter and save as PNG, SVG
 or PDF.
 
+Collisions: :meth:`Robot.collisions` says what a configuration hits (the arm's own links and the
+obstacles of a scene file), and every solution of :meth:`Robot.ik` carries its ``collision`` and
+``clearance_m``.
+
 Errors are armlab's own, with the library's messages: :class:`ModelError` (a model that cannot
 be loaded: file, line and field named), :class:`IkError`, :class:`KinematicsError`,
-:class:`WorkspaceError`, :class:`FigureError`, :class:`CalibrationError`, all subclasses of
-:class:`ArmlabError`. A bad array (wrong shape or dtype, NaN) raises ``ValueError``.
+:class:`WorkspaceError`, :class:`FigureError`, :class:`CalibrationError`,
+:class:`CollisionError` (a scene that cannot be used: file, line and obstacle named), all
+subclasses of :class:`ArmlabError`. A bad array (wrong shape or dtype, NaN) raises ``ValueError``.
 """
 
 from __future__ import annotations
@@ -30,6 +35,7 @@ import io
 import json
 import os
 import struct
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
@@ -40,6 +46,7 @@ from . import _core
 from ._core import (
     ArmlabError,
     CalibrationError,
+    CollisionError,
     FigureError,
     IkError,
     KinematicsError,
@@ -75,6 +82,7 @@ __all__ = [
     "WorkspaceError",
     "FigureError",
     "CalibrationError",
+    "CollisionError",
 ]
 
 PathLike = Union[str, "os.PathLike[str]"]
@@ -97,6 +105,26 @@ def _floats(x: Any, name: str) -> np.ndarray:
 
 # ---------------------------------------------------------------------------------------------
 # Figures
+
+
+def _scene_args(scene: Any) -> Tuple[Optional[str], Optional[str]]:
+    """A scene as (path, text): a path (str or os.PathLike) to a scene file, or the TOML text
+    of one (a str holding a newline or ``[[``); None for no obstacles."""
+    if scene is None:
+        return None, None
+    if isinstance(scene, os.PathLike):
+        return os.fspath(scene), None
+    if isinstance(scene, str):
+        if "\n" in scene or "[[" in scene:
+            return None, scene
+        return scene, None
+    raise TypeError(f"scene must be a path to a scene file or its TOML text; got {type(scene).__name__}")
+
+
+def _warn(messages: Sequence[str]) -> None:
+    """The checker's warnings (each naming its link, obstacle or file) as Python warnings."""
+    for m in messages:
+        warnings.warn(m, stacklevel=3)
 
 
 def _png_size(png: bytes) -> Tuple[int, int]:
@@ -234,6 +262,15 @@ class IkSolution:
     free_joints: List[Tuple[int, str]] = field(default_factory=list)
     #: The posture's fields as JSON text (read by :attr:`parts`).
     _parts_json: str = field(default="", repr=False)
+    #: What it hits: None when free, else the contacts, each ``{"a", "b", "depth_m", "at"}``
+    #: (a link and a link or obstacle, the depth in m, where in the world frame), deepest first;
+    #: the ``collision`` of ``armlab ik --format json``.
+    collision: Optional[List[Dict[str, Any]]] = None
+    #: The smallest distance between the bodies checked (m; 0 in collision; None when nothing is
+    #: checked): the arm's own links and, with a scene, its obstacles.
+    clearance_m: Optional[float] = None
+    #: The same in words: "forearm hits table, 12 mm" or "free, 45 mm clear".
+    collision_summary: str = ""
 
     @property
     def parts(self) -> Dict[str, Any]:
@@ -247,7 +284,8 @@ class IkSolution:
     def __repr__(self) -> str:
         q = np.array2string(np.asarray(self.q), precision=4, suppress_small=True, floatmode="fixed")
         flag = "" if self.within_limits else "  OUTSIDE the limits"
-        return f"{self.posture:<44} q = {q}{flag}"
+        hits = f"  COLLIDES: {self.collision_summary}" if self.collision else ""
+        return f"{self.posture:<44} q = {q}{flag}{hits}"
 
 
 class IkSolutions(list):
@@ -529,6 +567,14 @@ class CalibrationReport:
         return self.summary
 
 
+def _solution(row: Tuple[Any, ...]) -> IkSolution:
+    """One solution of ``_core.CoreRobot.ik`` as an :class:`IkSolution`."""
+    q, posture, within, pe, oe, free, parts, report, summary = row
+    r = json.loads(report)
+    return IkSolution(np.array(q, dtype=float), posture, within, pe, oe, list(free), parts,
+                      r["pairs"] if r["in_collision"] else None, r["clearance_m"], summary)
+
+
 # ---------------------------------------------------------------------------------------------
 # The robot
 
@@ -687,6 +733,7 @@ class Robot:
         posture: Optional[str] = None,
         ee: int = 0,
         solver: str = "auto",
+        scene: Any = None,
     ) -> Union[IkSolutions, IkSolution, IkBatch, None]:
         """Inverse kinematics of a pose (4, 4) or a position (3,).
 
@@ -699,22 +746,26 @@ class Robot:
         (every core, the GIL released): every closed-form solution, or, for an arm without a
         closed form (or ``solver="numerical"``), the numerical solver's answer from ``seed``
         (one q, or one row per pose; default "ready"), ``valid`` where it converged.
+
+        Each solution of a single target says what it hits (``collision``, ``clearance_m``,
+        ``collision_summary``): the arm's own links and, with ``scene`` (a scene file's path, or
+        its TOML text), the scene's obstacles. A batch carries no collision fields.
         """
         a = _floats(T, "T")
         s = None if seed is None else _floats(seed, "seed")
         if a.ndim == 3:
+            if scene is not None:
+                raise ValueError("scene is for a single target: a batch carries no collision fields")
             numerical = solver == "numerical" or (solver == "auto" and self.closed_form is None)
             if not numerical:
                 q, valid, within, codes, labels = _core.ik_batch(self._core, a)
                 return IkBatch(q, valid, within, codes, dict(labels))
             q, valid, within, codes, labels, pe, oe = _core.ik_batch_numerical(self._core, a, s, ee)
             return IkBatch(q, valid, within, codes, dict(labels), pe, oe)
-        status, distance, used, found = self._core.ik(a, ee, s, solver)
-        sols = IkSolutions(
-            [IkSolution(np.array(q, dtype=float), p, w, pe, oe, list(fr), parts)
-             for q, p, w, pe, oe, fr, parts in found],
-            status, used, distance,
-        )
+        path, text = _scene_args(scene)
+        (status, distance, used, found), said = self._core.ik(a, ee, s, solver, path, text)
+        _warn(said)
+        sols = IkSolutions([_solution(row) for row in found], status, used, distance)
         if all:
             return sols
         if posture is not None:
@@ -724,6 +775,26 @@ class Robot:
         if s is None:
             return sols[0]
         return min(sols, key=lambda x: float(np.linalg.norm(_wrapped(x.q - s, self.joint_kinds))))
+
+    def collisions(self, q: Any, scene: Any = None) -> Union[Dict[str, Any], List[Dict[str, Any]]]:
+        """What configuration ``q`` (dof,) hits, as ``armlab collisions --format json`` says it:
+        ``{"in_collision": bool, "pairs": [{"a", "b", "depth_m", "at"}], "clearance_m": m or
+        None, "closest": {"a", "b"} or None}``. Pairs are a link and a link or obstacle, deepest
+        first, with the depth (m) and where (world frame, m); ``clearance_m`` is the smallest
+        distance between the bodies checked (0 in collision) and ``closest`` their names.
+
+        The arm's own links are checked (adjacent links and the pairs the model's matrix
+        disables are not); ``scene`` adds the obstacles of a scene file (its path, or its TOML
+        text). Q of shape (N, dof) gives a list of reports. A scene that cannot be used raises
+        :class:`CollisionError` naming the file, line and obstacle; what the checker lets pass
+        with a remark (a link checked with its visual) is a warning."""
+        a = _floats(q, "q")
+        if a.ndim not in (1, 2):
+            raise ValueError(f"q must have shape ({self.dof},) or (N, {self.dof}); got shape {a.shape}")
+        path, text = _scene_args(scene)
+        report, said = _core.collisions(self._core, a, path, text)
+        _warn(said)
+        return json.loads(report)
 
     def ik_numerical(
         self,

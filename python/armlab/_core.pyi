@@ -32,6 +32,9 @@ class FigureError(ArmlabError):
 class CalibrationError(ArmlabError):
     """A calibration that could not run; the message names the file and line."""
 
+class CollisionError(ArmlabError):
+    """A scene the collision checker cannot use; the message names the file, line and obstacle."""
+
 F64 = npt.NDArray[np.float64]
 
 class CoreRobot:
@@ -65,10 +68,20 @@ class CoreRobot:
     def manipulability(self, q: F64, ee: int) -> Tuple[float, List[int]]:
         """(manipulability, task rows)."""
     def ik(
-        self, target: F64, ee: int = 0, seed: Optional[F64] = None, solver: str = "auto"
-    ) -> Tuple[str, Optional[float], str, List[Tuple[List[float], str, bool, float, float, List[Tuple[int, str]], str]]]:
-        """(status, distance, solver, [(q, posture, within_limits, position_error,
-        orientation_error, free joints)])."""
+        self,
+        target: F64,
+        ee: int = 0,
+        seed: Optional[F64] = None,
+        solver: str = "auto",
+        scene_path: Optional[str] = None,
+        scene_text: Optional[str] = None,
+    ) -> Tuple[
+        Tuple[str, Optional[float], str, List[Tuple[List[float], str, bool, float, float, List[Tuple[int, str]], str, str, str]]],
+        List[str],
+    ]:
+        """((status, distance, solver, [(q, posture, within_limits, position_error,
+        orientation_error, free joints, posture fields JSON, collision report JSON, collision
+        summary)]), the collision checker's warnings)."""
     def ik_numerical(
         self,
         target: F64,
@@ -86,6 +99,11 @@ def fk_batch(
     robot: CoreRobot, qs: F64, ee: int = 0, frames: bool = False, out: Optional[F64] = None
 ) -> F64:
     """(N, 4, 4) or (N, frames, 4, 4); every core, the GIL released."""
+
+def collisions(
+    robot: CoreRobot, q: F64, scene_path: Optional[str] = None, scene_text: Optional[str] = None
+) -> Tuple[str, List[str]]:
+    """(the report as JSON, or a list of them for (N, dof), the checker's warnings)."""
 
 def ik_batch(
     robot: CoreRobot, ts: F64

@@ -52,6 +52,14 @@ create_exception!(
      the file and line."
 );
 
+create_exception!(
+    armlab,
+    CollisionError,
+    ArmlabError,
+    "A scene file (or scene text) the collision checker cannot use; the message names the \
+     file, the line and the obstacle."
+);
+
 /// A `ValueError` with `message` (bad shapes, NaN, bad option values).
 pub fn value_error(message: impl Into<String>) -> PyErr {
     PyValueError::new_err(message.into())
@@ -81,3 +89,4 @@ layer!(armlab::workspace::WorkspaceError, WorkspaceError);
 layer!(armlab::figure::FigureError, FigureError);
 layer!(armlab::headless::HeadlessError, FigureError);
 layer!(armlab::redundancy::RedundancyError, IkError);
+layer!(armlab::collision::CollisionError, CollisionError);

@@ -5,6 +5,7 @@
 
 use crate::arrays::{checked, pose_of, to_numpy, write_pose};
 use crate::errors::{IntoPy, value_error};
+use armlab::collision::{CellScene, CollisionWorld};
 use armlab::kinematics::ik::closed_form::ClosedForm;
 use armlab::kinematics::ik::numerical::{self, Method, NumericalOptions};
 use armlab::kinematics::ik::solver::{self, SolverChoice};
@@ -15,6 +16,7 @@ use armlab::nalgebra::Vector3;
 use numpy::{PyReadonlyArrayDyn, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use serde_json::json;
+use std::sync::OnceLock;
 
 /// A robot of the library with its closed form (if its structure has one).
 #[pyclass(module = "armlab._core", frozen)]
@@ -32,6 +34,9 @@ pub struct CoreRobot {
     pub arm_base: Vec<f64>,
     /// Whether each joint variable is an angle.
     pub revolute: Vec<bool>,
+    /// The checker of the robot's own links (its stored matrix, or one sampled at first use),
+    /// built when first asked for.
+    self_world: OnceLock<CollisionWorld>,
 }
 
 impl CoreRobot {
@@ -62,7 +67,18 @@ impl CoreRobot {
             arm_free,
             arm_base,
             revolute,
+            self_world: OnceLock::new(),
         }
+    }
+
+    /// The checker of the robot's own links, no obstacles (built on first use: the geometry
+    /// and the allowed-collision matrix, sampled quickly when the model stores none).
+    pub fn self_world(&self) -> PyResult<&CollisionWorld> {
+        if let Some(w) = self.self_world.get() {
+            return Ok(w);
+        }
+        let w = CollisionWorld::new(&self.robot, &CellScene::default()).py_err()?;
+        Ok(self.self_world.get_or_init(|| w))
     }
 
     /// A checked joint vector.
@@ -106,7 +122,8 @@ impl CoreRobot {
 
 /// One IK solution as Python receives it: (q, posture label, within_limits, position_error,
 /// orientation_error, free joints as (index, why), the posture's fields as JSON (the
-/// `posture_parts` of `armlab ik --format json`), read when Python asks).
+/// `posture_parts` of `armlab ik --format json`), read when Python asks, and what it hits as
+/// JSON (`armlab collisions --format json`'s report), with its summary in words).
 pub type SolutionTuple = (
     Vec<f64>,
     String,
@@ -115,38 +132,46 @@ pub type SolutionTuple = (
     f64,
     Vec<(usize, &'static str)>,
     String,
+    String,
+    String,
 );
 
 /// An IK result as Python receives it: (status, distance to the workspace when unreachable,
 /// the solver that answered, the solutions).
 pub type IkTuple = (&'static str, Option<f64>, String, Vec<SolutionTuple>);
 
-/// An IK result as plain tuples (no JSON: a single call stays in microseconds).
-fn ik_tuple(result: IkResult, used: &str) -> IkTuple {
+/// An IK result as plain tuples, each solution with what it hits in `world` (the posture's
+/// fields and the collision report as JSON, read when Python asks).
+fn ik_tuple(
+    result: IkResult,
+    used: &str,
+    robot: &Robot,
+    world: &CollisionWorld,
+) -> PyResult<IkTuple> {
     let (status, distance) = match result.status {
         IkStatus::Ok => ("ok", None),
         IkStatus::Singular => ("singular", None),
         IkStatus::Unreachable { distance } => ("unreachable", Some(distance)),
     };
-    let solutions = result
-        .solutions
-        .into_iter()
-        .map(|s| {
-            let free = s.free_joints.iter().map(|f| (f.index, f.reason)).collect();
-            // A posture is plain data (enums, numbers): it always serialises.
-            let parts = serde_json::to_string(&s.posture).unwrap_or_default();
-            (
-                s.q,
-                s.posture.to_string(),
-                s.within_limits,
-                s.position_error,
-                s.orientation_error,
-                free,
-                parts,
-            )
-        })
-        .collect();
-    (status, distance, used.to_string(), solutions)
+    let mut solutions = Vec::with_capacity(result.solutions.len());
+    for s in result.solutions {
+        let free = s.free_joints.iter().map(|f| (f.index, f.reason)).collect();
+        // A posture is plain data (enums, numbers): it always serialises.
+        let parts = serde_json::to_string(&s.posture).unwrap_or_default();
+        let report = world.check(robot, &s.q).py_err()?;
+        solutions.push((
+            s.q,
+            s.posture.to_string(),
+            s.within_limits,
+            s.position_error,
+            s.orientation_error,
+            free,
+            parts,
+            crate::collision::report_json(&report),
+            report.summary(),
+        ));
+    }
+    Ok((status, distance, used.to_string(), solutions))
 }
 
 #[pymethods]
@@ -300,15 +325,19 @@ impl CoreRobot {
 
     /// Every IK solution of a pose (4x4) or position (3,) target: the closed form with
     /// its labelled postures where the structure has one, else the numerical solver from
-    /// `seed` (`solver` = "auto", "closed-form" or "numerical").
-    #[pyo3(signature = (target, ee=0, seed=None, solver="auto"))]
+    /// `seed` (`solver` = "auto", "closed-form" or "numerical"). Each solution says what it
+    /// hits: the arm's own links and the obstacles of the scene file `scene_path` (or of the
+    /// scene text `scene_text`); and the checker's warnings.
+    #[pyo3(signature = (target, ee=0, seed=None, solver="auto", scene_path=None, scene_text=None))]
     fn ik(
         &self,
         target: PyReadonlyArrayDyn<'_, f64>,
         ee: usize,
         seed: Option<PyReadonlyArrayDyn<'_, f64>>,
         solver: &str,
-    ) -> PyResult<IkTuple> {
+        scene_path: Option<&str>,
+        scene_text: Option<&str>,
+    ) -> PyResult<(IkTuple, Vec<String>)> {
         let t = self.target(&target, "T")?;
         let seed = seed.map(|s| self.q(&s, "seed")).transpose()?;
         let choice = match solver {
@@ -330,7 +359,9 @@ impl CoreRobot {
             &NumericalOptions::default(),
         )
         .py_err()?;
-        Ok(ik_tuple(result, &used.to_string()))
+        let world = crate::collision::world(self, scene_path, scene_text)?;
+        let tuple = ik_tuple(result, &used.to_string(), &self.robot, &world)?;
+        Ok((tuple, world.warnings.clone()))
     }
 
     /// The numerical solver alone, from `q0`: its report as JSON (q, converged, iterations,

@@ -139,6 +139,8 @@ pub enum Action {
     },
     /// A message for the status bar.
     Message(Level, String),
+    /// Something about the cell's obstacles (the Cell menu, the cell panel, the gizmo).
+    Cell(super::cell::CellAction),
 }
 
 /// Collects the actions of one frame.

@@ -14,6 +14,9 @@ pub struct FileBrowser {
     entries: Vec<(String, bool)>,
     /// Why the folder could not be listed.
     error: Option<String>,
+    /// Choosing a cell's scene file rather than a model (the title and the hint say so; the
+    /// choice is opened by its contents either way).
+    pub scenes: bool,
 }
 
 /// Whether `name` is a model file armlab opens.
@@ -23,8 +26,15 @@ fn is_model(name: &str) -> bool {
 }
 
 impl FileBrowser {
+    /// Opens the browser on `dir` to choose a cell's scene file (.toml).
+    pub fn show_scenes(&mut self, dir: &Path) {
+        self.show_dir(dir);
+        self.scenes = true;
+    }
+
     /// Opens the browser on `dir` (the working directory when empty).
     pub fn show_dir(&mut self, dir: &Path) {
+        self.scenes = false;
         self.dir = if dir.as_os_str().is_empty() {
             std::env::current_dir().unwrap_or_default()
         } else {
@@ -63,18 +73,26 @@ impl FileBrowser {
         let mut chosen = None;
         let mut go = None;
         let mut open = self.open;
-        egui::Window::new("Open a model file")
+        let (title, hint) = if self.scenes {
+            (
+                "Open a scene file",
+                "No desktop file dialog here (it needs xdg-desktop-portal): choose a .toml scene \
+                 file (the cell's obstacles).",
+            )
+        } else {
+            (
+                "Open a model file",
+                "No desktop file dialog here (it needs xdg-desktop-portal): choose a .toml or \
+                 .urdf file.",
+            )
+        };
+        egui::Window::new(title)
+            .id(egui::Id::unique("file browser"))
             .open(&mut open)
             .collapsible(false)
             .default_size([420.0, 360.0])
             .show(ctx, |ui| {
-                ui.label(
-                    egui::RichText::new(
-                        "No desktop file dialog here (it needs xdg-desktop-portal): choose a \
-                         .toml or .urdf file.",
-                    )
-                    .small(),
-                );
+                ui.label(egui::RichText::new(hint).small());
                 ui.horizontal(|ui| {
                     if ui.button("Up").clicked()
                         && let Some(p) = self.dir.parent()

@@ -13,6 +13,10 @@ pub enum FileKind {
     ModelToSave,
     /// A measurement file (calibration).
     Measurements,
+    /// A cell's scene file to open (.toml).
+    Scene,
+    /// A cell's scene file to save (.toml).
+    SceneToSave,
 }
 
 #[cfg(feature = "app")]
@@ -22,6 +26,8 @@ impl FileKind {
             FileKind::Model => "Open a robot model",
             FileKind::ModelToSave => "Save the model as",
             FileKind::Measurements => "Open a measurement file",
+            FileKind::Scene => "Open a scene file (the cell's obstacles)",
+            FileKind::SceneToSave => "Save the cell as a scene file",
         }
     }
 
@@ -30,6 +36,7 @@ impl FileKind {
             FileKind::Model => &[("Robot models", &["toml", "urdf"])],
             FileKind::ModelToSave => &[("TOML model file", &["toml"]), ("URDF", &["urdf"])],
             FileKind::Measurements => &[("Measurements", &["csv", "txt"]), ("All files", &["*"])],
+            FileKind::Scene | FileKind::SceneToSave => &[("Scene files", &["toml"])],
         }
     }
 }

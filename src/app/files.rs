@@ -18,6 +18,8 @@ pub enum Opening {
     Exercise(String),
     /// A lesson, or why it could not be read.
     Lesson(Result<Lesson, String>),
+    /// A cell's scene file (`[[obstacle]]` tables): its text.
+    Scene(String),
     /// A model: its text where the file came as bytes (`None`: loaded by its name, a built-in
     /// model or a path).
     Model(Option<String>),
@@ -25,8 +27,8 @@ pub enum Opening {
     Unreadable(String),
 }
 
-/// What `spec` (a built-in model's name or a path) is: a lesson (.toml) or an exercise key
-/// (.json) by its contents, else a model.
+/// What `spec` (a built-in model's name or a path) is: a lesson or a scene file (.toml) or an
+/// exercise key (.json) by its contents, else a model.
 pub fn open_path(spec: &str) -> Opening {
     lesson_or_key_text(spec).map_or(Opening::Model(None), |text| of_text(text, spec, false))
 }
@@ -46,6 +48,9 @@ pub fn open_bytes(name: &str, bytes: &[u8]) -> Opening {
 fn of_text(text: String, name: &str, model_text: bool) -> Opening {
     if text.contains(crate::exercise::KEY_FORMAT) || text.contains(crate::exercise::SHEET_FORMAT) {
         return Opening::Exercise(text);
+    }
+    if super::cell::is_scene_text(&text) {
+        return Opening::Scene(text);
     }
     match Lesson::detect(&text, name) {
         Some(lesson) => Opening::Lesson(lesson),

@@ -92,6 +92,7 @@ impl LessonPlayer {
         });
         let overlays = (lesson.overlays(i), lesson.overlays_off(i));
         overlay_actions(&overlays, state, &mut out);
+        scene_action(lesson, i, file, state, &mut out);
         if let Some(k) = step.construction_step {
             out.push(Action::ShowConstruction(true));
             out.push(Action::ConstructionStep(k.saturating_sub(1)));
@@ -391,5 +392,53 @@ pub fn current_step(state: &AppState, ee: usize, seen: &Seen, caption: &str) -> 
         figure: Some(seen.figure.to_string()),
         construction_step: seen.construction.map(|k| k + 1),
         orientation: seen.orientation.clone(),
+        scene: state.cell_scene().and_then(inline_scene),
+    }
+}
+
+/// The cell's obstacles as a lesson step writes them: the scene file's `obstacle` tables.
+fn inline_scene(scene: &crate::collision::CellScene) -> Option<toml::Value> {
+    toml::from_str::<toml::Table>(&scene.to_toml())
+        .ok()
+        .map(toml::Value::Table)
+}
+
+/// The cell of step `i` of `lesson` (read from `file`), where it names one that differs from
+/// the app's (a scene file read relative to the lesson, or the obstacles the step writes); what
+/// cannot be read is a warning naming the step, the file, the line and the obstacle, and the
+/// cell stays as it is.
+fn scene_action(lesson: &Lesson, i: usize, file: &str, state: &AppState, out: &mut Actions) {
+    use super::cell::CellAction;
+    use crate::collision::CellScene;
+    use crate::lesson::SceneSource;
+    let step = format!("{file}: step {}", i + 1);
+    let read = match lesson.step_scene(i) {
+        None => return,
+        Some(Err(e)) => Err(e),
+        Some(Ok(SceneSource::Path(p))) => {
+            let path = crate::lesson::resolve_spec(&p, std::path::Path::new(file));
+            CellScene::read(std::path::Path::new(&path)).map_err(|e| e.to_string())
+        }
+        Some(Ok(SceneSource::Inline(text))) => {
+            // The lines of the text made from the step's tables are not the lesson's: the
+            // message names the step and the obstacle instead.
+            CellScene::parse(&text, std::path::Path::new(file)).map_err(|e| match e {
+                crate::collision::CollisionError::Obstacle {
+                    obstacle, problem, ..
+                } => format!("scene: obstacle \"{obstacle}\": {problem}"),
+                other => format!("scene: {other}"),
+            })
+        }
+    };
+    match read {
+        Ok(scene) => {
+            let same = state
+                .cell_scene()
+                .is_some_and(|c| c.obstacles == scene.obstacles);
+            if !same {
+                out.push(Action::Cell(CellAction::Use(Some(Box::new(scene)))));
+            }
+        }
+        Err(e) => out.message(Level::Warning, format!("{step}: {e}")),
     }
 }

@@ -7,6 +7,7 @@
 //! offscreen.
 
 pub mod action;
+pub mod cell;
 pub mod file_browser;
 pub mod file_picker;
 pub mod files;
@@ -300,6 +301,8 @@ pub struct RunOptions {
     pub ee: usize,
     /// A lesson to play (and the file it came from).
     pub lesson: Option<(crate::lesson::Lesson, String)>,
+    /// The cell's obstacles to open with (`armlab view --scene FILE`).
+    pub scene: Option<crate::collision::CellScene>,
 }
 
 /// The name eframe stores the settings under (`~/.local/share/armlab/app.ron` on Linux).
@@ -315,6 +318,11 @@ pub fn run(spec: &str) -> Result<(), AppError> {
 #[cfg(feature = "app")]
 pub fn run_with(spec: &str, opts: &RunOptions) -> Result<Option<probe::FrameReport>, AppError> {
     let mut state = state::AppState::from_spec(spec).map_err(|e| AppError::Model(e.to_string()))?;
+    if let Some(scene) = &opts.scene {
+        state
+            .set_scene(Some(scene.clone()))
+            .map_err(AppError::Input)?;
+    }
     if let Some(q) = &opts.q {
         let input = |e: state::StateError| AppError::Input(e.to_string());
         state.set_q(q).map_err(input)?;

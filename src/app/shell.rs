@@ -45,11 +45,9 @@ pub struct AppUi {
     pub file_picker: Box<dyn FilePicker>,
     /// The in-app file browser (where the desktop has no file dialog).
     pub browser: FileBrowser,
-    /// Where heavy computations go where the app has no threads: a browser's pool of web
-    /// workers (empty on the desktop, which has threads).
+    /// Heavy computations where the app has no threads: a browser's web workers (none here).
     pub offload: Vec<Box<dyn crate::offload::Offload>>,
-    /// Seconds on a clock that runs where the app does (a browser's; `None`: the standard
-    /// library's), for the sliced workspace job's budget per frame.
+    /// Seconds on the app's clock (a browser's; `None`: std's): the workspace job's frame budget.
     pub clock: Option<fn() -> f64>,
     /// The panel rectangles of the last layout (points): left, right, central, toolbar,
     /// status bar (tests check them).
@@ -201,6 +199,7 @@ impl AppUi {
                 self.report(saved);
             }
             Action::CloseLesson => self.lesson = None,
+            Action::Cell(c) => super::cell::apply(self, c),
             Action::OpenExercise(path) => self.open(&path, files::open_key(&path)),
             Action::CloseExercise => {
                 let shown = self.tabs.exercise.close(&self.state);
@@ -254,6 +253,7 @@ impl AppUi {
                 let loaded = self.load_model(name, text.as_deref());
                 loaded.map_err(|e| e.to_string())
             }
+            Opening::Scene(text) => return super::cell::open_text(self, name, &text),
             Opening::Unreadable(e) => Err(e),
         };
         if let Err(e) = opened {

@@ -29,6 +29,7 @@
 //! - a target that cannot be reached (outside the workspace, only outside the limits, solver not
 //!   converged) leaves q as it is and is flagged with a [`Reach`] saying how far out it is.
 
+mod cell;
 mod dh;
 mod select;
 mod self_motion;
@@ -37,7 +38,9 @@ mod types;
 mod units;
 
 pub use dh::{DH_FIELDS, DhCell, DhField, DhRowCells};
-pub use self_motion::{SELF_MOTION_SAMPLES, SelfMotionView, TracedPath, full_task, tasks_for};
+pub use self_motion::{
+    SELF_MOTION_CELL_SCAN, SELF_MOTION_SAMPLES, SelfMotionView, TracedPath, full_task, tasks_for,
+};
 pub use track::{BRANCH_SWITCH_MARGIN, BRANCH_SWITCH_MEASURE, tracking_options};
 pub use types::{
     DisplayToggles, EeTarget, Ghost, GhostLabel, Level, Reach, Readouts, StateError, StatusMessage,
@@ -120,6 +123,8 @@ pub struct AppState {
     /// The robots before each model edit (undo) and the ones undone (redo).
     undo: Vec<Robot>,
     redo: Vec<Robot>,
+    /// The cell: obstacles, the collision world, what the arm and the solutions hit.
+    cell: cell::Cell,
 }
 
 /// A robot's end-effectors grouped by arm, and each one's arm analysed at q = 0 (the chain's
@@ -195,6 +200,7 @@ impl AppState {
             messages_pushed: 0,
             undo: Vec::new(),
             redo: Vec::new(),
+            cell: cell::Cell::default(),
             robot,
         };
         if let Some(note) = me.install_q() {
@@ -250,6 +256,7 @@ impl AppState {
                 self.redo.clear();
                 self.robot = robot;
                 self.generation += 1;
+                self.cell_model_changed();
                 self.trails.clear();
                 let note = self.install_q();
                 let mut msg = format!("loaded {} ({} DOF)", self.robot.name, self.robot.dof());
@@ -299,6 +306,7 @@ impl AppState {
         for ee in 0..self.targets.len() {
             self.sync_target(ee);
         }
+        self.recheck_arm();
         self.push_trail();
         opening.note
     }
@@ -387,7 +395,8 @@ impl AppState {
 
     /// The status bar's line: while a target is not reached, the same sentence the IK panel
     /// shows for it (one source, so the two can never disagree, e.g. on how far out a dragged
-    /// target is), preferring end-effector `ee`; otherwise the newest message.
+    /// target is), preferring end-effector `ee`; otherwise the newest message (the status bar
+    /// shows [`AppState::collision_warning`] once that message has had its time).
     pub fn status_line(&self, ee: usize) -> Option<StatusMessage> {
         let unreached = |t: &EeTarget| {
             t.reach.message().map(|m| StatusMessage {
@@ -610,6 +619,7 @@ impl AppState {
     fn apply_q(&mut self, q: Vec<f64>, solved: Option<usize>) {
         self.q = q;
         self.q_epoch += 1;
+        self.recheck_arm();
         self.push_trail();
         for ee in 0..self.targets.len() {
             if Some(ee) == solved {
@@ -663,6 +673,7 @@ impl AppState {
         t.result = result;
         t.selected = selected;
         t.reach = Reach::Reached;
+        self.recheck_solutions(ee);
     }
 
     /// After a successful DH edit: q clamped into the (maybe new) limits, solvers rebuilt,
@@ -679,6 +690,7 @@ impl AppState {
         for ee in 0..self.targets.len() {
             self.sync_target(ee);
         }
+        self.cell_model_changed();
         self.push_trail();
     }
 

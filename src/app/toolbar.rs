@@ -28,6 +28,8 @@ pub struct ToolbarContext<'a> {
     pub recording: Option<usize>,
     /// An exam sheet is open: no screenshot, no recording.
     pub exam: bool,
+    /// Whether there is a cell, and whether its collisions are checked.
+    pub cell: (bool, bool),
 }
 
 /// The toolbar as a top panel of the window: what it shows is read from `layout`, the tabs
@@ -45,6 +47,7 @@ pub fn bar(
     let top = egui::Panel::top("top").show(ui, |ui| {
         let robot = state.robot();
         let (name, dof) = (robot.name.clone(), robot.dof());
+        let cell = (state.cell_scene().is_some(), state.collisions_on());
         let mut cx = ToolbarContext {
             layout,
             tabs: (tabs.all().iter().map(|t| t.title()).collect(), tab),
@@ -55,6 +58,7 @@ pub fn bar(
             #[cfg(feature = "app")]
             recording,
             exam: state.hidden.exam,
+            cell,
         };
         show(&mut cx, ui, out);
     });
@@ -78,13 +82,19 @@ pub fn show(app: &mut ToolbarContext<'_>, ui: &mut egui::Ui, out: &mut Actions) 
         }
         ui.separator();
         // Large text or a narrow window: the presets fold into a menu, so the row still fits
-        // (the buttons take about 280 points, and about 470 follow them, the model name shrinking).
-        if projector || ui.available_width() < 760.0 {
+        // (the buttons take about 280 points, and about 470 follow them, the model name
+        // shrinking); narrower still (1200 px with six tabs), the Cell menu goes there too.
+        let room = ui.available_width();
+        let cell_in_view = projector || room < 610.0;
+        if projector || room < 760.0 {
             ui.menu_button("View", |ui| {
                 view_buttons(app, ui, out);
                 // In projector mode the left panel is usually closed: the model list is here.
                 ui.separator();
                 ui.menu_button("Model", |ui| model_menu(ui, out));
+                if cell_in_view {
+                    ui.menu_button("Cell", |ui| cell_items(app.cell, ui, out));
+                }
                 if projector {
                     screenshot_button(app.exam, ui, out);
                 }
@@ -94,6 +104,11 @@ pub fn show(app: &mut ToolbarContext<'_>, ui: &mut egui::Ui, out: &mut Actions) 
         }
         ui.separator();
         show_menu(app, ui, out);
+        if !cell_in_view {
+            ui.menu_button("Cell", |ui| cell_items(app.cell, ui, out))
+                .response
+                .on_hover_text("Obstacles around the robot, and collisions");
+        }
         let sides = app.layout.sides();
         if ui
             .selectable_label(
@@ -214,6 +229,46 @@ fn show_menu(app: &mut ToolbarContext<'_>, ui: &mut egui::Ui, out: &mut Actions)
             ui.close();
         }
     });
+}
+
+/// The Cell menu: obstacles sized to the robot, the checks, the scene file. `cell` says
+/// whether there is a cell and whether its collisions are checked.
+fn cell_items((exists, on): (bool, bool), ui: &mut egui::Ui, out: &mut Actions) {
+    use super::cell::{CellAction, ObstacleKind};
+    for kind in ObstacleKind::ALL {
+        if ui.button(format!("Add {}", kind.name())).clicked() {
+            out.push(Action::Cell(CellAction::Add(kind)));
+            ui.close();
+        }
+    }
+    ui.separator();
+    let mut check = on;
+    if ui
+        .checkbox(&mut check, "Check collisions")
+        .on_hover_text("The arm and every posture against itself and the obstacles")
+        .changed()
+    {
+        out.push(Action::Cell(CellAction::Check(check)));
+    }
+    if ui.button("Open scene...").clicked() {
+        out.push(Action::Cell(CellAction::Open(None)));
+        ui.close();
+    }
+    if ui
+        .add_enabled(exists, egui::Button::new("Save scene..."))
+        .clicked()
+    {
+        out.push(Action::Cell(CellAction::Save(None)));
+        ui.close();
+    }
+    if ui
+        .add_enabled(exists, egui::Button::new("Remove the cell"))
+        .on_hover_text("Every obstacle goes; nothing is checked")
+        .clicked()
+    {
+        out.push(Action::Cell(CellAction::Use(None)));
+        ui.close();
+    }
 }
 
 /// A button's name with its key, `Panels (V)`; in projector mode without the key (the row's

@@ -359,6 +359,7 @@ pub fn build_scene(state: &AppState, ee: usize, projector: bool) -> Scene {
         }
     }
     let scale = robot.longest_chain_length() as f32;
+    add_cell(&mut scene, state, scale);
     // One IK target per arm (its tool), and the chosen end-effector's: not one on each of the
     // dozens of frames a robot description names.
     let tools = state.ee_catalog().tools();
@@ -397,6 +398,97 @@ pub fn build_scene(state: &AppState, ee: usize, projector: bool) -> Scene {
         }
     }
     scene
+}
+
+/// The colour of a posture in collision: its ghost, its contact points, the pair's name.
+pub const COLLISION_RED: [f32; 4] = [0.88, 0.1, 0.08, 1.0];
+/// The obstacles' colour in the 3D view: translucent grey (the arm inside stays visible).
+pub const OBSTACLE_GREY: [f32; 4] = [0.52, 0.54, 0.58, 0.4];
+/// The colour of a plane (a floor, a wall of infinite extent): opaque light grey.
+pub const FLOOR_GREY: [f32; 4] = [0.74, 0.75, 0.77, 1.0];
+/// The colour of the selected obstacle (the one the gizmo moves).
+pub const OBSTACLE_SELECTED: [f32; 4] = [0.3, 0.5, 0.85, 0.5];
+/// The colour of a contact's name ("link3 hits table, 12 mm"): the 3D view places these
+/// labels first (see [`super::tabs::view3d::View3d::paint`]).
+pub const CONTACT_LABEL: [f32; 4] = [0.75, 0.05, 0.05, 1.0];
+/// Most contacts named at one posture (the deepest; every contact gets its dot).
+const CONTACTS_NAMED: usize = 3;
+
+/// The cell's obstacles (translucent grey, the selected one blue), and where the arm is in
+/// collision its contacts, marked and named.
+fn add_cell(scene: &mut Scene, state: &AppState, scale: f32) {
+    let Some(cell) = state.cell_scene() else {
+        return;
+    };
+    use crate::scene::obstacles::{ObstacleStyle, add_obstacle};
+    let l = f64::from(scale);
+    let grey = ObstacleStyle {
+        color: OBSTACLE_GREY,
+        plane_half_size: 0.6 * l,
+        plane_thickness: 0.004 * l,
+        labels: true,
+    };
+    let selected = state.selected_obstacle();
+    for (k, (o, pose)) in cell
+        .obstacles
+        .iter()
+        .zip(state.obstacle_poses())
+        .enumerate()
+    {
+        let color = match (selected == Some(k), &o.shape) {
+            (true, _) => OBSTACLE_SELECTED,
+            // A floor is opaque: nothing is under it, and a translucent square the size of the
+            // view costs a software rasterizer a blend per pixel every frame.
+            (false, crate::collision::ObstacleShape::Plane) => FLOOR_GREY,
+            (false, _) => OBSTACLE_GREY,
+        };
+        let style = ObstacleStyle { color, ..grey };
+        add_obstacle(scene, o, &pose, &style);
+    }
+    if let Some(r) = state.arm_collision() {
+        add_contacts(scene, r, scale);
+    }
+}
+
+/// Marks the contacts of `report` (a red dot in a translucent red ball at each) and names the
+/// deepest pairs next to them ("link3 hits table, 12 mm"; the label placer leaves a name out
+/// where it finds no room, e.g. under the gizmo).
+fn add_contacts(scene: &mut Scene, report: &crate::collision::CollisionReport, scale: f32) {
+    // A translucent red ball around each contact (twice a link's radius): the point itself
+    // lies inside the link and the obstacle, where a dot alone would be hidden.
+    let r = 2.0 * crate::kinematics::visual::LINK_RADIUS_FRACTION as f32 * scale;
+    for (k, c) in report.pairs.iter().enumerate() {
+        let p = c.at.map(|v| v as f32);
+        scene.dots.push(Dot {
+            p,
+            color: COLLISION_RED,
+            size_px: 9.0,
+        });
+        scene.meshes.push(crate::scene::MeshInstance {
+            shape: crate::scene::Shape::Sphere,
+            world_from_unit: [
+                [r, 0.0, 0.0, 0.0],
+                [0.0, r, 0.0, 0.0],
+                [0.0, 0.0, r, 0.0],
+                [p[0], p[1], p[2], 1.0],
+            ],
+            color: [COLLISION_RED[0], COLLISION_RED[1], COLLISION_RED[2], 0.55],
+        });
+        if k < CONTACTS_NAMED {
+            let one = crate::collision::CollisionReport {
+                in_collision: true,
+                pairs: vec![c.clone()],
+                clearance_m: Some(0.0),
+                closest: None,
+            };
+            scene.labels.push(Label {
+                p: [p[0], p[1], p[2] + scale * 0.03],
+                text: one.summary(),
+                color: CONTACT_LABEL,
+                movable: true,
+            });
+        }
+    }
 }
 
 /// The IK target: a small triad and a dot, red when unreachable.
@@ -450,14 +542,19 @@ fn add_ghost(
         // The posture's colour, as in the workspace figures and the solution list.
         ghost.link = posture_rgba(c);
     }
-    if !g.within_limits {
-        let grey = [0.55, 0.55, 0.57, 1.0];
+    let hits = g.collision.as_ref().filter(|r| r.in_collision);
+    if !g.within_limits || hits.is_some() {
+        let c = if hits.is_some() {
+            COLLISION_RED
+        } else {
+            [0.55, 0.55, 0.57, 1.0]
+        };
         ghost = ArmStyle {
-            link: grey,
-            revolute: grey,
-            prismatic: grey,
-            tool: grey,
-            alpha: 0.18,
+            link: c,
+            revolute: c,
+            prismatic: c,
+            tool: c,
+            alpha: if g.within_limits { 0.35 } else { 0.18 },
             ..ghost
         };
     }
@@ -474,6 +571,9 @@ fn add_ghost(
         }
     }
     add_new_meshes(scene, s.custom_meshes, tol);
+    if let Some(r) = hits {
+        add_contacts(scene, r, scale);
+    }
     if !label {
         return;
     }
@@ -581,7 +681,7 @@ fn same_body(a: &crate::scene::MeshInstance, b: &crate::scene::MeshInstance, tol
 }
 
 /// Ghost labels that fall on the same spot (postures differing only at the wrist share an elbow)
-/// become one label with a line per posture.
+/// become one label with a line per posture; a line already there is not repeated.
 fn merge_close_labels(labels: &mut Vec<Label>, tol: f32) {
     let mut out: Vec<Label> = Vec::with_capacity(labels.len());
     for l in labels.drain(..) {
@@ -590,6 +690,8 @@ fn merge_close_labels(labels: &mut Vec<Label>, tol: f32) {
             d.sqrt() < tol && o.color == l.color
         });
         match near {
+            // The same words once (postures hitting the table at one spot name it once).
+            Some(o) if o.text.lines().any(|t| t == l.text) => {}
             Some(o) => {
                 o.text.push('\n');
                 o.text.push_str(&l.text);

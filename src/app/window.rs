@@ -111,7 +111,8 @@ pub fn bottom_bars(
 }
 
 /// The status bar: the workspace job's `progress` (0 to 1), and the newest message of `state`
-/// until it expires (or the reason the target of `ee` is not reached, or the usual hint).
+/// until it expires (or the reason the target of `ee` is not reached; then, while the arm is in
+/// collision, what it hits; or the usual hint).
 /// `seen` is the count of messages seen and when the newest came (s, egui time).
 pub fn status_bar(
     ui: &mut egui::Ui,
@@ -132,11 +133,23 @@ pub fn status_bar(
                     .text("workspace"),
             );
         }
-        let line = state.status_line(ee).filter(|m| {
-            let is_newest = state.last_message() == Some(m);
-            let ttl = MESSAGE_SECONDS[m.level as usize];
-            !is_newest || now - seen.1 < ttl
-        });
+        // While the arm is in collision, what it hits, once the newest message had its time.
+        let collision = || {
+            state
+                .collision_warning(ee)
+                .map(|text| super::state::StatusMessage {
+                    level: Level::Warning,
+                    text,
+                })
+        };
+        let line = state
+            .status_line(ee)
+            .filter(|m| {
+                let is_newest = state.last_message() == Some(m);
+                let ttl = MESSAGE_SECONDS[m.level as usize];
+                !is_newest || now - seen.1 < ttl
+            })
+            .or_else(collision);
         match line {
             Some(m) => {
                 let color = match m.level {

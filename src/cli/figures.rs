@@ -116,6 +116,10 @@ pub struct RenderArgs {
     /// Colours.
     #[arg(long, value_enum, default_value_t)]
     pub theme: ThemeArg,
+    /// A scene file of obstacles (TOML `[[obstacle]]` tables) to draw with the arm; the
+    /// subtitle says what the configuration hits.
+    #[arg(long, value_name = "FILE")]
+    pub scene: Option<PathBuf>,
 }
 
 /// A camera at `preset` framing `points` (leaving room for the title at the top).
@@ -155,18 +159,19 @@ pub(super) fn render(args: &RenderArgs, out: &mut dyn std::io::Write) -> Result<
     if robot.end_effectors().len() > 1 {
         crate::scene::label_driven_chain_only(&mut scene, &robot, ee);
     }
-    let camera = framing_camera(
-        args.view.into(),
-        &crate::scene::arm_points(&robot, &q)?,
-        args.size.0,
-        args.orthographic,
-    );
+    let mut framed = crate::scene::arm_points(&robot, &q)?;
+    let hits = match &args.scene {
+        Some(path) => Some(add_cell(&mut scene, &robot, &q, path, &mut framed)?),
+        None => None,
+    };
+    let camera = framing_camera(args.view.into(), &framed, args.size.0, args.orthographic);
     let shown = super::q_for_display(&robot, &q);
     let fig = Scene3d {
         title: robot.name.clone(),
         subtitle: format!(
-            "q = {} (deg; m for prismatic joints)",
-            fmt_vec(&shown).replace(".000000", "")
+            "q = {} (deg; m for prismatic joints){}",
+            fmt_vec(&shown).replace(".000000", ""),
+            hits.map(|h| format!("; {h}")).unwrap_or_default()
         ),
         scene: &scene,
         camera,
@@ -184,6 +189,50 @@ pub(super) fn render(args: &RenderArgs, out: &mut dyn std::io::Write) -> Result<
         img.height()
     )?;
     Ok(())
+}
+
+/// Adds the obstacles of the scene file `path` to `scene` (planes as squares the size of the
+/// robot's reach) and the centres of the bounded ones to the points the camera frames; says
+/// what configuration `q` hits ("link3 hits table, 12 mm", or "free, 45 mm clear").
+fn add_cell(
+    scene: &mut crate::scene::Scene,
+    robot: &crate::kinematics::Robot,
+    q: &[f64],
+    path: &std::path::Path,
+    framed: &mut Vec<nalgebra::Point3<f32>>,
+) -> Result<String, CliError> {
+    use crate::collision::ObstacleShape;
+    use crate::scene::obstacles::{ObstacleStyle, add_obstacle};
+    let cell = crate::collision::CellScene::read(path)?;
+    let world = crate::collision::CollisionWorld::new(robot, &cell)?;
+    let poses = world.obstacle_poses(robot, q)?;
+    let solid = ObstacleStyle {
+        plane_half_size: robot.longest_chain_length().max(0.5),
+        ..ObstacleStyle::default()
+    };
+    // Planes lighter than the solids, so that a table on the floor stands out.
+    let plane = ObstacleStyle {
+        color: [0.8, 0.8, 0.83, 0.6],
+        ..solid
+    };
+    for (o, pose) in cell.obstacles.iter().zip(&poses) {
+        if o.shape == ObstacleShape::Plane {
+            add_obstacle(scene, o, pose, &plane);
+        } else {
+            add_obstacle(scene, o, pose, &solid);
+            // A box's corners, else its centre.
+            let half = match o.shape {
+                ObstacleShape::Box { size } => nalgebra::Vector3::from(size) * 0.5,
+                _ => nalgebra::Vector3::zeros(),
+            };
+            for k in 0..8 {
+                let s = |b: usize| if k >> b & 1 == 1 { 1.0 } else { -1.0 };
+                let corner = nalgebra::Point3::new(s(0) * half.x, s(1) * half.y, s(2) * half.z);
+                framed.push(crate::scene::point32(&(pose * corner).coords));
+            }
+        }
+    }
+    Ok(world.check(robot, q)?.summary())
 }
 
 /// Workspace view.
@@ -264,6 +313,12 @@ pub struct WorkspaceArgs {
     /// Print the statistics as JSON (area, bounds, reach, ...) instead of a summary line.
     #[arg(long, value_enum, default_value_t)]
     pub format: super::Format,
+    /// A scene file of obstacles (TOML `[[obstacle]]` tables): a point counts as reached by a
+    /// posture only where that posture is within the limits and hits neither the arm itself
+    /// nor an obstacle, decided cell by cell (the figure says at what resolution and how); the
+    /// obstacles are drawn. Plane, top and side views.
+    #[arg(long, value_name = "FILE")]
+    pub scene: Option<PathBuf>,
 }
 
 /// Runs `workspace`.
@@ -272,11 +327,12 @@ pub(super) fn workspace(
     out: &mut dyn std::io::Write,
 ) -> Result<(), CliError> {
     use crate::figure::workspace::{ColorBy, WsFigureOptions, WsView};
-    use crate::headless::workspace_figure;
+    use crate::headless::workspace_figure_in;
     let (robot, _) = super::arm_robot(super::load_model(&args.model)?, args.ee.as_deref())?;
     if args.samples == 0 || args.samples > 100_000_000 {
         return Err(CliError::Usage("--samples must be between 1 and 100000000"));
     }
+    let cell = workspace_cell(args)?;
     let planar = crate::workspace::planar_frame(&robot, 0).is_some();
     let view = match args.view {
         Some(WsViewArg::Plane) | None if planar => WsView::Plane,
@@ -308,7 +364,7 @@ pub(super) fn workspace(
     let bar = crate::headless::Progress::new(1000, "workspace");
     let mut figures = crate::headless::figures_for(&args.out)?;
     let title = robot.name.to_lowercase();
-    let fig = workspace_figure(&mut figures, &robot, &title, &opts, &|f| {
+    let fig = workspace_figure_in(&mut figures, &robot, &title, &opts, cell.as_ref(), &|f| {
         bar.set((f * 1000.0) as u64)
     })?;
     bar.finish();
@@ -338,6 +394,19 @@ pub(super) fn workspace(
     Ok(())
 }
 
+/// The cell of `armlab workspace --scene FILE`, for the views that draw one.
+fn workspace_cell(args: &WorkspaceArgs) -> Result<Option<crate::collision::CellScene>, CliError> {
+    let Some(path) = &args.scene else {
+        return Ok(None);
+    };
+    if matches!(args.view, Some(WsViewArg::ThreeD | WsViewArg::JointSpace)) {
+        return Err(CliError::Usage(
+            "--scene draws the plane, top and side views (not --view 3d or joint-space)",
+        ));
+    }
+    Ok(Some(crate::collision::CellScene::read(path)?))
+}
+
 /// The statistics of `armlab workspace --format json`.
 fn stats_json(
     robot: &crate::kinematics::Robot,
@@ -363,6 +432,9 @@ fn stats_json(
             PointArg::Flange => "flange",
         },
     });
+    if let Some(path) = &args.scene {
+        v["scene"] = serde_json::json!(path.display().to_string());
+    }
     for (key, value) in [
         ("area", s.area),
         ("area_both_postures", s.area_both_postures),

@@ -3,6 +3,7 @@
 use super::fk::fmt_vec;
 use super::input::{parse_row, read_numbered_rows};
 use super::{CliError, Format};
+use crate::collision::CollisionReport;
 use crate::kinematics::Robot;
 use crate::kinematics::ik::numerical::{Method, NumericalOptions};
 use crate::kinematics::ik::solver::{self, SolverChoice};
@@ -103,6 +104,11 @@ pub struct IkArgs {
     /// nominal model labels it. Full-pose targets.
     #[arg(long, conflicts_with = "solver")]
     pub nominal: Option<String>,
+    /// A scene file of obstacles (TOML `[[obstacle]]` tables): each solution says what it hits
+    /// there and its clearance. Without one, each solution still says whether the arm hits
+    /// itself.
+    #[arg(long, value_name = "FILE")]
+    pub scene: Option<PathBuf>,
 }
 
 /// `--task` values.
@@ -230,7 +236,6 @@ pub(super) fn end_effector(robot: &mut Robot, spec: Option<&str>) -> Result<usiz
     })
 }
 
-/// Runs `ik`. All targets are parsed before anything is solved or printed.
 /// The solver and its options from `--solver`, `--method` and `--task`.
 fn solver_setup(args: &IkArgs) -> Result<(SolverChoice, NumericalOptions), CliError> {
     let task: crate::kinematics::redundancy::Task = args.task.into();
@@ -264,6 +269,8 @@ fn solver_setup(args: &IkArgs) -> Result<(SolverChoice, NumericalOptions), CliEr
     Ok((choice, opts))
 }
 
+/// Runs `ik`. All targets are parsed before anything is solved or printed; each solution
+/// printed is checked for collisions (the arm's own links, and the obstacles of `--scene`).
 pub(super) fn run(args: &IkArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let mut robot = super::load_model(&args.model)?;
     let targets = targets(args)?;
@@ -275,6 +282,7 @@ pub(super) fn run(args: &IkArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let (choice, opts) = solver_setup(args)?;
     let reference = seed.clone().unwrap_or_else(|| vec![0.0; robot.dof()]);
     let nominal = args.nominal.as_deref().map(super::load_model).transpose()?;
+    let world = super::collisions::world_for(&robot, args.scene.as_deref())?;
     let mut answers = Vec::with_capacity(targets.len());
     for (src, t) in &targets {
         let solved = match &nominal {
@@ -286,61 +294,90 @@ pub(super) fn run(args: &IkArgs, out: &mut dyn Write) -> Result<(), CliError> {
             source: e,
         })?;
         let (picked, note) = pick(&robot, &result, args, &reference);
-        answers.push((t, result, used, picked, note));
+        let collisions = picked
+            .iter()
+            .map(|s| world.check(&robot, &s.q))
+            .collect::<Result<Vec<_>, _>>()?;
+        answers.push(Answer {
+            target: t,
+            result,
+            used: used.to_string(),
+            picked,
+            note,
+            collisions,
+        });
     }
     match args.format {
         Format::Json => {
-            let arr: Vec<Value> = answers
-                .iter()
-                .map(|(t, result, used, picked, note)| {
-                    let mut o = json!({
-                        "status": status_name(&result.status),
-                        "solutions": picked.iter().map(solution_json).collect::<Vec<_>>(),
-                        "solver": used.to_string(),
-                        "target": target_json(t),
-                    });
-                    if let IkStatus::Unreachable { distance } = result.status {
-                        o["distance"] = if distance.is_finite() {
-                            json!(distance)
-                        } else {
-                            Value::Null
-                        };
-                    }
-                    o["solution_count"] = json!(result.solutions.len());
-                    if let Some(n) = note {
-                        o["note"] = json!(n);
-                    }
-                    o
-                })
-                .collect();
+            let arr: Vec<Value> = answers.iter().map(answer_json).collect();
             serde_json::to_writer_pretty(&mut *out, &arr).map_err(std::io::Error::from)?;
             writeln!(out)?;
         }
         Format::Text => {
-            for (i, (_, result, used, picked, note)) in answers.iter().enumerate() {
+            for (i, a) in answers.iter().enumerate() {
                 if i > 0 {
                     writeln!(out)?;
                 }
-                let status = match result.status {
-                    IkStatus::Unreachable { distance } => format!(
-                        "unreachable: outside the workspace by {distance:.6} (m, or rad for an orientation)"
-                    ),
-                    s => status_name(&s).to_string(),
-                };
-                writeln!(
-                    out,
-                    "{status}; {}; {} solution(s)",
-                    used,
-                    result.solutions.len()
-                )?;
-                if let Some(n) = note {
-                    writeln!(out, "  {n}")?;
-                }
-                for s in picked {
-                    write_solution(&robot, s, out)?;
-                }
+                write_answer(&robot, a, out)?;
             }
         }
+    }
+    Ok(())
+}
+
+/// One target's answer: the solver's result, the solutions printed and what each hits.
+struct Answer<'t> {
+    target: &'t Target,
+    result: IkResult,
+    used: String,
+    picked: Vec<IkSolution>,
+    note: Option<String>,
+    /// What each picked solution hits (same order as `picked`).
+    collisions: Vec<CollisionReport>,
+}
+
+/// One target's JSON object.
+fn answer_json(a: &Answer<'_>) -> Value {
+    let mut o = json!({
+        "status": status_name(&a.result.status),
+        "solutions": a.picked.iter().zip(&a.collisions).map(|(s, c)| solution_json(s, c)).collect::<Vec<_>>(),
+        "solver": a.used,
+        "target": target_json(a.target),
+    });
+    if let IkStatus::Unreachable { distance } = a.result.status {
+        o["distance"] = if distance.is_finite() {
+            json!(distance)
+        } else {
+            Value::Null
+        };
+    }
+    o["solution_count"] = json!(a.result.solutions.len());
+    if let Some(n) = &a.note {
+        o["note"] = json!(n);
+    }
+    o
+}
+
+/// One target's answer as text: the status line, then each solution.
+fn write_answer(robot: &Robot, a: &Answer<'_>, out: &mut dyn Write) -> std::io::Result<()> {
+    let status = match a.result.status {
+        IkStatus::Unreachable { distance } => format!(
+            "unreachable: outside the workspace by {distance:.6} (m, or rad for an orientation)"
+        ),
+        s => status_name(&s).to_string(),
+    };
+    writeln!(
+        out,
+        "{status}; {}; {} solution(s)",
+        a.used,
+        a.result.solutions.len()
+    )?;
+    if let Some(n) = &a.note {
+        writeln!(out, "  {n}")?;
+    }
+    for (s, c) in a.picked.iter().zip(&a.collisions) {
+        write_solution(robot, s, out)?;
+        writeln!(out, "    collision: {}", super::collisions::report_line(c))?;
     }
     Ok(())
 }
@@ -391,7 +428,9 @@ fn status_name(s: &IkStatus) -> &'static str {
     }
 }
 
-fn solution_json(s: &IkSolution) -> Value {
+/// One solution's JSON object; `collision` is null or the contacts `{a, b, depth_m, at}`, and
+/// `clearance_m` the smallest distance between bodies checked (0 in collision).
+fn solution_json(s: &IkSolution, c: &CollisionReport) -> Value {
     json!({
         "q": s.q,
         "posture": s.posture.to_string(),
@@ -400,6 +439,8 @@ fn solution_json(s: &IkSolution) -> Value {
         "position_error": s.position_error,
         "orientation_error": s.orientation_error,
         "free_joints": s.free_joints.iter().map(|f| json!({"index": f.index, "reason": f.reason})).collect::<Vec<_>>(),
+        "collision": if c.in_collision { json!(c.pairs) } else { Value::Null },
+        "clearance_m": c.clearance_m,
     })
 }
 

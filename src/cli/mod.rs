@@ -3,6 +3,7 @@
 
 mod animate;
 pub mod calibrate;
+mod collisions;
 mod exercise;
 mod export;
 mod figures;
@@ -179,6 +180,10 @@ pub enum Command {
     /// An animation to GIF or APNG: the self-motion, a morph through the postures, the DH
     /// build one elementary motion at a time, or a straight tool path with its joint rates.
     Animate(animate::AnimateArgs),
+    /// What a configuration hits: the arm's own links and a scene's obstacles, each contact
+    /// named with its depth, and the clearance; or (--matrix) the allowed-collision matrix
+    /// sampled as MoveIt's Setup Assistant does, with every pair's verdict and why.
+    Collisions(Box<collisions::CollisionsArgs>),
 }
 
 impl From<crate::model_file::LoadError> for CliError {
@@ -262,6 +267,38 @@ pub enum CliError {
     /// Writing the output failed.
     #[error("cannot write output: {0}")]
     Output(#[from] std::io::Error),
+    /// A scene file, an SRDF or a configuration the collision checker cannot use (the message
+    /// names the file, the line and the obstacle).
+    #[error(transparent)]
+    Collision(#[from] crate::collision::CollisionError),
+    /// An input file (an SRDF) that cannot be read.
+    #[error("cannot read {what}: {source} ({})", path.display())]
+    ReadFile {
+        /// What the file is, in words ("the SRDF file").
+        what: &'static str,
+        /// The file as given.
+        path: PathBuf,
+        /// Why.
+        source: std::io::Error,
+    },
+    /// An output file that cannot be written.
+    #[error("cannot write the file: {source} ({})", path.display())]
+    WriteFile {
+        /// The file as given.
+        path: PathBuf,
+        /// Why.
+        source: std::io::Error,
+    },
+    /// A model a TOML model file cannot hold (it holds one serial DH table).
+    #[error(
+        "{model}: a TOML model file holds one serial DH table with one variable per joint; this \
+         model is a tree, a closed chain, coupled, or given by URDF origins: write its matrix \
+         with --write-srdf instead"
+    )]
+    NotSerialDh {
+        /// The model as given.
+        model: String,
+    },
 }
 
 /// Loads a model for a command; what loading skipped (a mesh file that could not be read) is
@@ -333,6 +370,7 @@ pub fn run(cli: Cli, out: &mut dyn std::io::Write) -> Result<(), CliError> {
         Some(Command::Lesson(args)) => lesson::run(&args, out),
         Some(Command::Animate(args)) => animate::run(&args, out),
         Some(Command::Rotation(args)) => rotation::run(&args, out),
+        Some(Command::Collisions(args)) => collisions::run(&args, out),
     }
 }
 

@@ -2,7 +2,7 @@
 
 use super::{CliError, Format};
 use crate::kinematics::{Pose, Robot};
-use crate::redundancy::sampler::{SelfMotionSamples, sample_self_motion_locked};
+use crate::redundancy::sampler::{SelfMotionSamples, sample_self_motion_in};
 use std::path::PathBuf;
 
 /// Arguments of `armlab self-motion`.
@@ -36,6 +36,11 @@ pub struct SelfMotionArgs {
     /// (PNG, SVG or PDF by its extension).
     #[arg(long)]
     pub out: Option<PathBuf>,
+    /// A scene file of obstacles (TOML `[[obstacle]]` tables): the feasible intervals lose
+    /// the stretches where the arm hits itself or an obstacle (their ends refined by bisection
+    /// to 1e-6 rad); each colliding stretch is given with the pair it hits.
+    #[arg(long, value_name = "FILE")]
+    pub scene: Option<PathBuf>,
 }
 
 /// Runs `self-motion`.
@@ -61,7 +66,14 @@ pub(super) fn run(args: &SelfMotionArgs, out: &mut dyn std::io::Write) -> Result
         ));
     }
     let locked = args.lock.map(|k| usize::from(k) - 1);
-    let mut motion = sample_self_motion_locked(&robot, ee, &pose, args.samples, locked)
+    let world = match &args.scene {
+        Some(path) => {
+            let cell = crate::collision::CellScene::read(path)?;
+            Some(crate::collision::CollisionWorld::new(&robot, &cell)?)
+        }
+        None => None,
+    };
+    let mut motion = sample_self_motion_in(&robot, ee, &pose, args.samples, locked, world.as_ref())
         .map_err(|e| bad(e.to_string()))?;
     if let Some(b) = &args.branch {
         motion.keep_branch(b).map_err(|e| bad(e.to_string()))?;
@@ -82,7 +94,7 @@ fn write_json(m: &SelfMotionSamples, out: &mut dyn std::io::Write) -> Result<(),
     for (name, iv) in m.names.iter().zip(&m.feasible) {
         feas.insert(name.clone(), serde_json::json!(iv));
     }
-    let v = serde_json::json!({
+    let mut v = serde_json::json!({
         "parameter": m.parameter,
         "parameter_meaning": m.meaning,
         "samples": m.samples.iter().map(|(value, s)| serde_json::json!({
@@ -99,6 +111,28 @@ fn write_json(m: &SelfMotionSamples, out: &mut dyn std::io::Write) -> Result<(),
         "manifolds": m.manifolds,
         "singular": m.singular,
     });
+    if let Some(c) = &m.collisions {
+        let mut free = serde_json::Map::new();
+        let mut colliding = serde_json::Map::new();
+        for (k, name) in m.names.iter().enumerate() {
+            free.insert(name.clone(), serde_json::json!(c.free.get(k)));
+            let stretches: Vec<serde_json::Value> = c
+                .colliding
+                .iter()
+                .filter(|s| s.branch == k)
+                .map(|s| {
+                    serde_json::json!({
+                        "from": s.from, "to": s.to, "a": s.a, "b": s.b, "depth_m": s.depth_m,
+                    })
+                })
+                .collect();
+            colliding.insert(name.clone(), serde_json::json!(stretches));
+        }
+        v["collision_free"] = serde_json::Value::Object(free);
+        v["colliding"] = serde_json::Value::Object(colliding);
+        v["collision_step"] = serde_json::json!(c.options.step);
+        v["collision_tolerance"] = serde_json::json!(c.options.tolerance);
+    }
     serde_json::to_writer(&mut *out, &v).map_err(std::io::Error::from)?;
     writeln!(out)?;
     Ok(())
@@ -135,6 +169,52 @@ fn write_text(
             m.parameter,
             iv.join(" ")
         )?;
+    }
+    if let Some(c) = &m.collisions {
+        write_cell_text(m, c, out)?;
+    }
+    Ok(())
+}
+
+/// The collision-free intervals and the colliding stretches, branch by branch.
+fn write_cell_text(
+    m: &SelfMotionSamples,
+    c: &crate::redundancy::collision::CollisionFreeMotion,
+    out: &mut dyn std::io::Write,
+) -> Result<(), CliError> {
+    writeln!(
+        out,
+        "in the cell (every {:.2} deg checked, ends refined by bisection to {:.0e} rad):",
+        c.options.step.to_degrees(),
+        c.options.tolerance
+    )?;
+    let deg = |x: f64| x.to_degrees();
+    for (k, name) in m.names.iter().enumerate() {
+        let free: Vec<String> = c.free[k]
+            .iter()
+            .map(|i| format!("[{:.4}, {:.4}]", deg(i[0]), deg(i[1])))
+            .collect();
+        writeln!(
+            out,
+            "  {name}: collision-free {} (deg) {}",
+            m.parameter,
+            if free.is_empty() {
+                "none".to_string()
+            } else {
+                free.join(" ")
+            }
+        )?;
+        for s in c.colliding.iter().filter(|s| s.branch == k) {
+            writeln!(
+                out,
+                "    [{:.4}, {:.4}] deg: {} hits {}, {:.1} mm",
+                deg(s.from),
+                deg(s.to),
+                s.a,
+                s.b,
+                s.depth_m * 1000.0
+            )?;
+        }
     }
     Ok(())
 }

@@ -41,6 +41,10 @@ pub struct ViewArgs {
     /// (vsync off; under `xvfb-run` on a machine without a display).
     #[arg(long, value_name = "N", conflicts_with = "screenshot", value_parser = super::count)]
     pub measure_frames: Option<usize>,
+    /// A scene file of obstacles (TOML `[[obstacle]]` tables) to open as the cell: every
+    /// posture is checked against them and against the arm itself.
+    #[arg(long, value_name = "FILE")]
+    pub scene: Option<PathBuf>,
 }
 
 /// Runs `view`.
@@ -48,7 +52,15 @@ pub(super) fn run(args: &ViewArgs, out: &mut dyn std::io::Write) -> Result<(), C
     let spec = args.model.as_deref().unwrap_or(DEFAULT_MODEL);
     let mut robot = super::load_model(spec)?;
     let ee = super::ik::end_effector(&mut robot, args.ee.as_deref())?;
-    let state = AppState::new(robot, spec);
+    let mut state = AppState::new(robot, spec);
+    let scene = match &args.scene {
+        Some(path) => Some(crate::collision::CellScene::read(path)?),
+        None => None,
+    };
+    if let Some(s) = &scene {
+        let cell = state.set_scene(Some(s.clone()));
+        cell.map_err(|e| CliError::App(crate::app::AppError::Input(e)))?;
+    }
     let dof = state.robot().dof();
     let q = match &args.q {
         Some(t) => Some(parse_row(t, "--q", dof, "joint values")?),
@@ -66,6 +78,7 @@ pub(super) fn run(args: &ViewArgs, out: &mut dyn std::io::Write) -> Result<(), C
             model_given: args.model.is_some(),
             ee,
             lesson: None,
+            scene,
         };
         if let Some(report) = crate::app::run_with(spec, &opts).map_err(CliError::App)? {
             writeln!(out, "{report}")?;

@@ -243,6 +243,38 @@ pub fn sample_matrix(
     geometry: &RobotGeometry,
     options: MatrixOptions,
 ) -> Result<AllowedCollisions, CollisionError> {
+    sample_matrix_with_progress(robot, geometry, options, &|_| {})
+}
+
+/// [`sample_matrix`], calling `progress` with the number of configurations sampled so far
+/// (from any thread, every 256 configurations), for a progress bar.
+///
+/// ```
+/// use armlab::collision::{
+///     GeometryOptions, MatrixOptions, PairReason, RobotGeometry, sample_matrix_with_progress,
+/// };
+/// use armlab::kinematics::models;
+/// use std::sync::atomic::{AtomicUsize, Ordering};
+///
+/// let robot = models::puma560();
+/// let geometry = RobotGeometry::of(&robot, GeometryOptions::default());
+/// let options = MatrixOptions { samples: 600, ..MatrixOptions::default() };
+/// let most = AtomicUsize::new(0);
+/// let m = sample_matrix_with_progress(&robot, &geometry, options, &|n| {
+///     most.fetch_max(n, Ordering::Relaxed);
+/// })
+/// .unwrap();
+/// // Every configuration was counted, and every pair not adjacent was judged on all of them.
+/// assert_eq!(most.load(Ordering::Relaxed), 600);
+/// assert!(m.pairs.iter().all(|p| p.reason == PairReason::Adjacent || p.samples == 600));
+/// ```
+pub fn sample_matrix_with_progress(
+    robot: &Robot,
+    geometry: &RobotGeometry,
+    options: MatrixOptions,
+    progress: &(dyn Fn(usize) + Sync),
+) -> Result<AllowedCollisions, CollisionError> {
+    let done = std::sync::atomic::AtomicUsize::new(0);
     let adjacent = AllowedCollisions::adjacent(robot, geometry);
     let everything = AllowedCollisions::default();
     let world = CollisionWorld::with(
@@ -285,6 +317,7 @@ pub fn sample_matrix(
                     counts[k] += usize::from(hit);
                 }
             }
+            progress(done.fetch_add(here, std::sync::atomic::Ordering::Relaxed) + here);
             Ok(counts)
         })
         .try_reduce(

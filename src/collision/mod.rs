@@ -38,7 +38,10 @@ mod srdf;
 mod world;
 
 pub use geometry::{Body, BodyKind, GeometryOptions, RobotGeometry};
-pub use matrix::{AllowedCollisions, MatrixOptions, PairReason, PairVerdict, sample_matrix};
+pub use matrix::{
+    AllowedCollisions, MatrixOptions, PairReason, PairVerdict, sample_matrix,
+    sample_matrix_with_progress,
+};
 pub use obstacles::{CellScene, Obstacle, ObstacleFrame, ObstacleShape};
 pub use srdf::{parse_srdf, write_srdf};
 pub use world::{ClosestPair, CollisionReport, CollisionWorld, Contact};

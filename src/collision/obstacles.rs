@@ -230,7 +230,7 @@ fn toml_string(s: &str) -> String {
 }
 
 impl CellScene {
-    /// Reads a scene file (at most [`MAX_SCENE_BYTES`]); meshes are read relative to it.
+    /// Reads a scene file (at most 1 MiB); meshes are read relative to it.
     pub fn read(path: &Path) -> Result<CellScene, CollisionError> {
         let text =
             crate::input::read_text(path, MAX_SCENE_BYTES, "a scene file").map_err(|source| {
@@ -479,7 +479,7 @@ fn read_mesh_shape(
         .and_then(|v| v.as_str())
         .ok_or("a mesh needs `mesh` = \"file.stl\" (relative to the scene file)")?;
     let scale = fixed(table, "scale", [1.0; 3])?;
-    if scale.iter().any(|s| *s == 0.0) {
+    if scale.contains(&0.0) {
         return Err(format!(
             "`scale` {scale:?} has a zero: the mesh would be flat"
         ));
@@ -491,8 +491,14 @@ fn read_mesh_shape(
     let full = path.parent().unwrap_or(Path::new(".")).join(file);
     let bytes = crate::input::read_bytes(&full, crate::urdf::MAX_MESH_BYTES, "a mesh")
         .map_err(|e| format!("mesh \"{file}\" cannot be read: {e} ({})", full.display()))?;
-    let raw = crate::urdf::parse_mesh(&bytes, &full)
-        .map_err(|e| format!("mesh \"{file}\": {e} ({})", full.display()))?;
+    let raw = crate::urdf::parse_mesh(&bytes, &full).map_err(|e| {
+        let shown = full.display().to_string();
+        if e.contains(&shown) {
+            format!("mesh \"{file}\": {e}")
+        } else {
+            format!("mesh \"{file}\": {e} ({shown})")
+        }
+    })?;
     let mesh = TriMesh {
         positions: raw
             .positions

@@ -147,7 +147,7 @@ impl CollisionWorld {
                             let known: Vec<&str> =
                                 geometry.bodies.iter().map(|b| b.name.as_str()).collect();
                             err(format!(
-                                "frame \"{name}\" is not \"world\" nor a link of {} ({})",
+                                "frame \"{name}\" is neither \"world\" nor a link of {} ({})",
                                 robot.name,
                                 known.join(", ")
                             ))

@@ -13,6 +13,7 @@ use super::{FigureError, Theme};
 use crate::camera::Preset;
 use crate::kinematics::Robot;
 use crate::scene::{ArmStyle, Dot, arm_scene};
+use crate::workspace::cell::CollisionLayer;
 use crate::workspace::figure_data::PlaneMarks;
 use crate::workspace::{
     self, COARSE, Content, ContentRequest, CurveKind, CurveRole, FigureData, FigureRequest,
@@ -206,6 +207,9 @@ pub fn paint(
                 add_plane_marks(&mut plot, marks);
             }
             add_exact_fills(&mut plot, map, opts.color_by);
+            if let Some(layer) = &map.collision {
+                add_cell(&mut plot, map, layer);
+            }
             let raster = paint_map(map, opts.color_by);
             let (image, frame) =
                 figs.plot_at(opts.size, opts.theme, &plot, Some((raster, frame.bounds)))?;
@@ -594,6 +598,69 @@ fn add_plane_marks(plot: &mut Plot2d, marks: &PlaneMarks) {
     plot.labels.extend(marks.labels.iter().cloned());
 }
 
+/// Fill of an obstacle in a map view.
+const OBSTACLE_FILL: Color32 = Color32::from_rgba_premultiplied(54, 54, 60, 120);
+/// Outline of an obstacle in a map view.
+const OBSTACLE_LINE: Color32 = Color32::from_rgb(60, 60, 68);
+/// The hatching of cells reached only through a collision.
+const BLOCKED: [u8; 3] = [200, 50, 50];
+
+/// A map in a cell: the obstacles in the view (filled, outlined, named), the legend entry of
+/// the cells reached only through a collision, and the caption saying how the collisions were
+/// decided.
+fn add_cell(plot: &mut Plot2d, map: &WorkspaceMap, layer: &CollisionLayer) {
+    let mut whole = Vec::new();
+    for o in &layer.obstacles {
+        if o.whole_view {
+            whole.push(o.name.as_str());
+        }
+        for (k, piece) in o.pieces.iter().enumerate() {
+            plot.areas.push(Area {
+                // One legend entry per obstacle.
+                name: if k == 0 {
+                    format!("{} (obstacle, {})", o.name, o.kind.words())
+                } else {
+                    String::new()
+                },
+                points: piece.clone(),
+                fill: OBSTACLE_FILL,
+            });
+        }
+        if o.ring.len() < 3 || o.pieces.is_empty() {
+            continue;
+        }
+        let mut ring = o.ring.clone();
+        ring.push(o.ring[0]);
+        plot.curves.push(Curve {
+            name: None,
+            points: ring,
+            color: OBSTACLE_LINE,
+            width: 1.5,
+            class: "obstacle",
+            ..Curve::default()
+        });
+        plot.labels.push((o.name.clone(), o.label_at));
+    }
+    let shown = map
+        .masks
+        .iter()
+        .zip(&layer.blocked)
+        .any(|(m, b)| *m == 0 && *b != 0);
+    if shown {
+        plot.legend
+            .push(("reached only through a collision".into(), c32(BLOCKED)));
+    }
+    let mut caption = vec![layer.method.clone()];
+    if !whole.is_empty() {
+        caption.push(format!("{} under the whole view", whole.join(", ")));
+    }
+    caption.push("measure, reach and boundary lines without the obstacles".into());
+    if !plot.caption.is_empty() {
+        caption.push(plot.caption.clone());
+    }
+    plot.caption = caption.join("; ");
+}
+
 /// The colour of a class mask.
 fn class_color(mask: u8, classes: usize, color_by: ColorBy) -> [u8; 3] {
     if color_by != ColorBy::Posture || classes < 2 {
@@ -644,6 +711,14 @@ fn paint_map(map: &WorkspaceMap, color_by: ColorBy) -> egui::ColorImage {
             sequential(0.0)
         })
     };
+    // Cells reached only through a collision: hatched diagonally.
+    let blocked_at = |k: usize| match &map.collision {
+        Some(layer) if layer.blocked.get(k).is_some_and(|b| *b != 0) => {
+            let a = if (k % w + k / w) % 6 < 2 { 170 } else { 45 };
+            Color32::from_rgba_unmultiplied(BLOCKED[0], BLOCKED[1], BLOCKED[2], a)
+        }
+        _ => Color32::TRANSPARENT,
+    };
     let pixels = (0..w * h)
         .map(|k| {
             let mut rgb = [0.0f32; 3];
@@ -659,7 +734,7 @@ fn paint_map(map: &WorkspaceMap, color_by: ColorBy) -> egui::ColorImage {
                 alpha += f;
             }
             if alpha <= 0.0 {
-                return Color32::TRANSPARENT;
+                return blocked_at(k);
             }
             let a = (alpha * 235.0).round() as u8;
             let c = rgb.map(|x| (x / alpha).round() as u8);

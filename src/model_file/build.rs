@@ -4,8 +4,8 @@ use super::error::{CoupleProblem, ModelFileError as E, NameKind};
 use super::value::{Ctx, Res, Span, Table, Val};
 use crate::kinematics::pose::Pose;
 use crate::kinematics::{
-    Convention, DhRow, Drive, EndEffector, Joint, JointGeometry, JointKind, ModelError,
-    NamedConfig, PointMass, Robot,
+    Convention, DhRow, DisabledPair, Drive, EndEffector, Joint, JointGeometry, JointKind,
+    ModelError, NamedConfig, PointMass, Robot,
 };
 use nalgebra::Vector3;
 use std::collections::HashMap;
@@ -21,6 +21,7 @@ const TOP_KEYS: &[&str] = &[
     "joints",
     "end_effectors",
     "configurations",
+    "disable_collisions",
 ];
 const JOINT_KEYS: &[&str] = &[
     "type", "a", "alpha", "d", "theta", "offset", "limits", "name", "parent", "pre", "couple",
@@ -28,6 +29,7 @@ const JOINT_KEYS: &[&str] = &[
 ];
 const EE_KEYS: &[&str] = &["name", "parent", "tool"];
 const CONFIG_KEYS: &[&str] = &["name", "q"];
+const DISABLE_KEYS: &[&str] = &["link1", "link2", "reason"];
 
 /// Names already used in one list: name -> (index, line of first use).
 type Names = HashMap<String, (usize, usize)>;
@@ -85,7 +87,60 @@ pub(super) fn build(ctx: &Ctx) -> Res<Robot> {
         .with_description(description);
     robot.masses = masses;
     configurations(ctx, &top, &mut robot)?;
+    robot.disabled_collisions = disabled_collisions(ctx, &top, robot.joints().len())?;
     Ok(robot)
+}
+
+/// The names collision reports give a model file's links: "base", then "link1".."linkN", link
+/// i moving with joint i (file order, fixed joints included), as `crate::collision` names the
+/// links of a robot without a URDF's link names.
+fn link_names(joints: usize) -> Vec<String> {
+    std::iter::once("base".to_string())
+        .chain((1..=joints).map(|i| format!("link{i}")))
+        .collect()
+}
+
+/// The stored allowed-collision matrix: `[[disable_collisions]]` tables with `link1`, `link2`
+/// (links of this robot, see [`link_names`]) and `reason` (optional, default "User"; MoveIt's
+/// words "Adjacent", "Always", "Default", "Never" or the user's own).
+fn disabled_collisions(ctx: &Ctx, top: &Table, joints: usize) -> Res<Vec<DisabledPair>> {
+    let links = link_names(joints);
+    let mut out = Vec::new();
+    for t in top.tables(ctx, "disable_collisions")? {
+        t.check_keys(ctx, DISABLE_KEYS)?;
+        let mut pair = [String::new(), String::new()];
+        for (slot, key) in pair.iter_mut().zip(["link1", "link2"]) {
+            let v = t.required(ctx, key)?;
+            let name = ctx.string(&t.path(key), v)?;
+            if !links.iter().any(|l| l == name) {
+                return Err(E::UnknownLink {
+                    field: t.path(key),
+                    name: name.into(),
+                    available: links.join(", "),
+                    at: ctx.at(&v.span()),
+                });
+            }
+            *slot = name.to_string();
+        }
+        if pair[0] == pair[1] {
+            return Err(E::NotApplicable {
+                field: t.path("link2"),
+                reason: "a link is never checked against itself: name two different links",
+                at: ctx.at(&t.key_span("link2")),
+            });
+        }
+        let reason = match t.get("reason") {
+            Some(v) => ctx.string(&t.path("reason"), v)?.to_string(),
+            None => "User".to_string(),
+        };
+        let [link1, link2] = pair;
+        out.push(DisabledPair {
+            link1,
+            link2,
+            reason,
+        });
+    }
+    Ok(out)
 }
 
 /// The link's mass (`mass`, kg, >= 0) at its centre of mass (`com`, m in the joint's frame;

@@ -283,6 +283,18 @@ pub enum ModelFileError {
         /// The field's key.
         at: Location,
     },
+    /// A `[[disable_collisions]]` pair naming a link the robot does not have.
+    #[error("{field}: the robot has no link \"{name}\" (its links: {available}) ({at})")]
+    UnknownLink {
+        /// The field (`disable_collisions[i].link1` or `.link2`).
+        field: String,
+        /// The name given.
+        name: String,
+        /// The robot's link names, comma-separated ("base", "link1", ...).
+        available: String,
+        /// The value.
+        at: Location,
+    },
     /// The robot assembled from the file was rejected by [`crate::kinematics::Robot::new`].
     #[error("{field}: {source} ({at})")]
     Model {
@@ -320,6 +332,7 @@ impl ModelFileError {
             | E::ConfigLength { at, .. }
             | E::EmptyJoints { at, .. }
             | E::NotApplicable { at, .. }
+            | E::UnknownLink { at, .. }
             | E::Model { at, .. } => Some(at),
         }
     }
@@ -346,6 +359,7 @@ impl ModelFileError {
             | E::ConfigLength { field, .. }
             | E::EmptyJoints { field, .. }
             | E::NotApplicable { field, .. }
+            | E::UnknownLink { field, .. }
             | E::Model { field, .. } => Some(field),
         }
     }

@@ -13,7 +13,8 @@ use std::fmt::Write;
 /// any joint. Angles that are exact multiples of pi or whole degrees are written as strings such
 /// as `"pi/2"` or `"-160deg"`, everything else with the shortest decimal that reads back to the
 /// same `f64`, so parsing the result gives a robot with the same forward kinematics, joint
-/// names, limits and named configurations. The base and tool go through
+/// names, limits, named configurations and stored allowed-collision matrix
+/// (`[[disable_collisions]]`). The base and tool go through
 /// [`crate::kinematics::pose::pose_from_matrix`] again on reading, which may change them in the
 /// last bit.
 ///
@@ -115,6 +116,12 @@ pub fn to_toml(robot: &Robot) -> Option<String> {
                 .collect();
         let _ = writeln!(s, "\n[[configurations]]\nname = {}", quote(&c.name));
         let _ = writeln!(s, "q = [{}]", q.join(", "));
+    }
+    for d in &robot.disabled_collisions {
+        let _ = writeln!(s, "\n[[disable_collisions]]");
+        let _ = writeln!(s, "link1 = {}", quote(&d.link1));
+        let _ = writeln!(s, "link2 = {}", quote(&d.link2));
+        let _ = writeln!(s, "reason = {}", quote(&d.reason));
     }
     Some(s)
 }

@@ -7,6 +7,7 @@
 //! meets a limit or the two branches merge are closed-form roots, so the feasible intervals of
 //! each branch are exact and the self-motion curves inside the limits are counted exactly.
 
+pub mod collision;
 pub mod four_link;
 mod geometry;
 pub mod locked;
@@ -115,6 +116,18 @@ pub enum RedundancyError {
         /// Distance to the reach of the arm's outer circle or inner hole (m).
         distance: f64,
     },
+    /// The collision-free intervals need an exact self-motion (the numerical walk has no
+    /// parameter to bisect on).
+    #[error(
+        "{robot} has no exact self-motion here (it is walked numerically): its collision-free          intervals cannot be refined"
+    )]
+    CellNeedsExact {
+        /// The robot's name.
+        robot: String,
+    },
+    /// The cell's obstacles could not be used with the robot.
+    #[error(transparent)]
+    Collision(#[from] crate::collision::CollisionError),
     /// Bad robot input.
     #[error(transparent)]
     Kinematics(#[from] KinematicsError),

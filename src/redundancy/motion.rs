@@ -18,7 +18,7 @@ enum Solver {
     Srs(SrsArm),
     OffsetElbow(OffsetElbowArm),
     Planar(PlanarSelfMotion),
-    FourLink(FourLinkSelfMotion),
+    FourLink(Box<FourLinkSelfMotion>),
     Locked(Box<LockedSelfMotion>),
 }
 
@@ -155,7 +155,7 @@ impl ExactSelfMotion {
                 let (f, _) = m.feasible();
                 let k = m.manifolds(robot);
                 (
-                    Solver::FourLink(m.clone()),
+                    Solver::FourLink(Box::new(m.clone())),
                     m.branch_names().to_vec(),
                     f.to_vec(),
                     k,

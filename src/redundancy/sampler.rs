@@ -3,9 +3,11 @@
 //! arm angle, the offset-elbow arm's q7, the planar phi) are sampled on an even grid of their
 //! parameter; any other redundant chain is walked numerically by arc length in joint space.
 
+use super::collision::{CellScanOptions, CollisionFreeMotion};
 use super::motion::ExactSelfMotion;
 use super::numerical::NullSpaceMotion;
 use super::{BranchSolution, RedundancyError};
+use crate::collision::CollisionWorld;
 use crate::kinematics::ik::Target;
 use crate::kinematics::ik::numerical::{NumericalOptions, solve};
 use crate::kinematics::redundancy::{Redundancy, Task};
@@ -38,6 +40,9 @@ pub struct SelfMotionSamples {
     /// An algorithmic singularity of the parameterization (the SRS shoulder-wrist line along
     /// axis 1).
     pub singular: bool,
+    /// In a cell ([`sample_self_motion_in`]): the collision-free intervals and the colliding
+    /// stretches with the pair named; `None` in empty space.
+    pub collisions: Option<CollisionFreeMotion>,
 }
 
 /// `n` parameter values covering [-pi, pi) evenly (rad).
@@ -59,6 +64,7 @@ impl SelfMotionSamples {
             feasible: motion.feasible().to_vec(),
             manifolds: motion.manifolds(),
             singular: motion.singular(),
+            collisions: None,
         }
     }
 
@@ -130,6 +136,7 @@ impl SelfMotionSamples {
             feasible: vec![feasible],
             manifolds: 1,
             singular: false,
+            collisions: None,
         })
     }
 
@@ -146,6 +153,13 @@ impl SelfMotionSamples {
         }
         self.names = vec![self.names[k].clone()];
         self.feasible = vec![self.feasible[k].clone()];
+        if let Some(c) = &mut self.collisions {
+            c.free = vec![c.free[k].clone()];
+            c.colliding.retain(|s| s.branch == k);
+            for s in &mut c.colliding {
+                s.branch = 0;
+            }
+        }
         Ok(())
     }
 }
@@ -180,16 +194,41 @@ pub fn sample_self_motion_locked(
     n: usize,
     locked: Option<usize>,
 ) -> Result<SelfMotionSamples, RedundancyError> {
+    sample_self_motion_in(robot, ee, pose, n, locked, None)
+}
+
+/// [`sample_self_motion_locked`] in a cell: with `world` (the robot and a cell's obstacles),
+/// the samples carry the collision-free intervals ([`ExactSelfMotion::collision_free`] with
+/// the default [`CellScanOptions`]). A self-motion walked numerically has none to refine:
+/// [`RedundancyError::CellNeedsExact`].
+pub fn sample_self_motion_in(
+    robot: &Robot,
+    ee: usize,
+    pose: &Pose,
+    n: usize,
+    locked: Option<usize>,
+    world: Option<&CollisionWorld>,
+) -> Result<SelfMotionSamples, RedundancyError> {
+    let in_cell = |m: &ExactSelfMotion| {
+        let mut s = SelfMotionSamples::exact(robot, m, n);
+        s.collisions = world.map(|w| m.collision_free(robot, w, CellScanOptions::default()));
+        s
+    };
     if locked.is_some() {
         let m = ExactSelfMotion::with_lock(robot, pose, locked)?;
-        return Ok(SelfMotionSamples::exact(robot, &m, n));
+        return Ok(in_cell(&m));
     }
     if ee == 0 {
         match ExactSelfMotion::new(robot, pose) {
-            Ok(m) => return Ok(SelfMotionSamples::exact(robot, &m, n)),
+            Ok(m) => return Ok(in_cell(&m)),
             Err(e) if e.unsupported() && !has_exact_shape(robot) => {}
             Err(e) => return Err(e),
         }
+    }
+    if world.is_some() {
+        return Err(RedundancyError::CellNeedsExact {
+            robot: robot.name.clone(),
+        });
     }
     let red = Redundancy::of(robot, Task::Pose);
     if red.degree() <= 0 {

@@ -5,7 +5,7 @@
 //! travel as JSON to a browser's worker.
 
 use super::map::{
-    MapForming, MapRequest, MapView, OneShot, WorkspaceMap, compute_map, compute_map_forming,
+    MapForming, MapRequest, MapView, OneShot, WorkspaceMap, compute_map, compute_map_in,
     map_statistics,
 };
 use super::planar::{CurveKind, planar_boundary};
@@ -14,6 +14,7 @@ use super::sample::{SampleOptions, sample};
 use super::stats::{StatsOptions, WorkspaceStats};
 use super::views::{PointCloud, point_cloud};
 use super::{BoundaryOptions, GridOptions, TrackedPoint, WorkspaceError};
+use crate::collision::CellScene;
 use crate::kinematics::Robot;
 use serde::{Deserialize, Serialize};
 
@@ -154,6 +155,28 @@ pub fn compute_figure_data_forming(
     progress: &(dyn Fn(f32) + Sync),
     forming: &mut dyn MapForming,
 ) -> Result<FigureData, WorkspaceError> {
+    compute_figure_data_in(robot, request, None, progress, forming)
+}
+
+/// [`compute_figure_data_forming`] in a cell: the map made with [`compute_map_in`] (a point
+/// counts as reached by a posture only where it is within the limits and collision-free; the
+/// map carries the obstacles in its view). The statistics stay those without the obstacles.
+/// A cell is for maps: a point cloud or a joint-space rectangle with one is
+/// [`WorkspaceError::InvalidOption`].
+pub fn compute_figure_data_in(
+    robot: &Robot,
+    request: &FigureRequest,
+    cell: Option<&CellScene>,
+    progress: &(dyn Fn(f32) + Sync),
+    forming: &mut dyn MapForming,
+) -> Result<FigureData, WorkspaceError> {
+    if cell.is_some() && !matches!(request.content, ContentRequest::Map(_)) {
+        return Err(WorkspaceError::InvalidOption {
+            option: "scene",
+            value: "with a 3D or joint-space view".into(),
+            expected: "a scene is drawn in the plane, top and side views",
+        });
+    }
     let mut map = None;
     if let ContentRequest::Map(req) = &request.content
         && forming.wants()
@@ -167,14 +190,14 @@ pub fn compute_figure_data_forming(
             progress,
             tiles: 0,
         };
-        map = Some(compute_map_forming(robot, req, &mut merge)?);
+        map = Some(compute_map_in(robot, req, cell, &mut merge)?);
     }
     let (stats, plane) = figure_stats(robot, request)?;
     progress(if map.is_some() { 0.8 } else { 0.3 });
     let content = match &request.content {
         ContentRequest::Map(req) => match map {
             Some(map) => Content::Map(map),
-            None => Content::Map(compute_map(robot, req)?),
+            None => Content::Map(compute_map_in(robot, req, cell, &mut OneShot)?),
         },
         ContentRequest::Cloud(opts) => {
             let n = opts.samples.max(1);

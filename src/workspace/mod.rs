@@ -22,6 +22,7 @@
 //! coordinates", which are the x-y coordinates of the robot's base frame for an arm that moves in
 //! that plane ([`PlanarFrame`]). Angles are in rad.
 
+pub mod cell;
 pub mod exact;
 pub mod figure_data;
 pub mod grid;
@@ -38,7 +39,7 @@ pub mod views;
 pub use exact::{Arc, ExactPlanar, ExactRegion, Membership, RegionSet};
 pub use figure_data::{
     COARSE, Content, ContentRequest, FigureData, FigureRequest, compute_figure_data,
-    compute_figure_data_forming,
+    compute_figure_data_forming, compute_figure_data_in,
 };
 pub use grid::{
     DexterousSet, GridAnalysis, GridMethod, GridOptions, GridSpec, MethodChoice, analyze_grid,
@@ -46,7 +47,7 @@ pub use grid::{
 pub use map::{
     CellValues, CurveRole, MapCurve, MapForming, MapFrame, MapRequest, MapValues, MapView, OneShot,
     PointQuery, ReachAnswer, Section, TILE_ROWS, TiledMap, TrackedPoint, WorkspaceMap, compute_map,
-    compute_map_forming, map_extent, map_frame, map_statistics,
+    compute_map_forming, compute_map_in, map_extent, map_frame, map_statistics,
 };
 pub use planar::{
     BoundaryCurve, BoundaryOptions, CurveKind, PlanarBoundary, PostureLoop, planar_boundary,
@@ -101,6 +102,10 @@ pub enum WorkspaceError {
     /// Forward kinematics failed.
     #[error(transparent)]
     Kinematics(#[from] KinematicsError),
+    /// The cell's obstacles could not be used with the robot (an obstacle named after a link,
+    /// or in the frame of a link it does not have).
+    #[error(transparent)]
+    Collision(#[from] crate::collision::CollisionError),
 }
 
 /// An axis-aligned box `[min, max]` (m), in the frame stated by whoever returns it.

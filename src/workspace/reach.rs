@@ -7,7 +7,7 @@
 //! z times 8 sectors of longitude).
 
 use super::posture::PostureClassifier;
-use super::{PlanarFrame, planar_frame};
+use super::{PlanarFrame, TrackedPoint, planar_frame};
 use crate::kinematics::ik::closed_form::{
     ClosedForm, Family, LIMIT_TOL, MAX_DOF, RawSolutions, wrap_into_limits,
 };
@@ -74,6 +74,9 @@ enum Mode {
     PlanarScan(usize),
     /// Six-DOF arm with spherical wrist: the 64 approach-bin centres, one roll each.
     ApproachScan,
+    /// The wrist centre of a six-DOF arm with a spherical wrist: the positioning arm's
+    /// closed form, the wrist joints at [`ReachTester::wrist_reference`].
+    WristCentre,
 }
 
 /// Decides with the closed-form IK which postures reach a position within the joint limits.
@@ -117,6 +120,8 @@ pub struct ReachTester<'a> {
     revolute: Vec<bool>,
     /// Tool rotation at the zero configuration, in the base frame (planar scan).
     r0: Matrix3<f64>,
+    /// The wrist joints' values of [`Mode::WristCentre`] (rad).
+    wrist: [f64; 3],
 }
 
 impl<'a> ReachTester<'a> {
@@ -150,8 +155,95 @@ impl<'a> ReachTester<'a> {
                 .map(|k| robot.dof_joint(k).kind == JointKind::Revolute)
                 .collect(),
             r0: (robot.base.rotation.inverse() * t0.rotation).into_inner(),
+            wrist: [3, 4, 5].map(|k| match robot.limits().get(k) {
+                Some(&[lo, hi]) if lo > 0.0 || hi < 0.0 => 0.5 * (lo + hi),
+                _ => 0.0,
+            }),
             cf,
         })
+    }
+
+    /// A tester of `point` for end-effector 0: [`Self::new`] for the flange, and for the wrist
+    /// centre of a six-DOF arm with a spherical wrist the positioning arm's closed form (the
+    /// wrist joints, which do not move the wrist centre, at [`Self::wrist_reference`]).
+    pub fn tracking(robot: &'a Robot, orientations: usize, point: TrackedPoint) -> Option<Self> {
+        let mut tester = Self::new(robot, orientations)?;
+        if point == TrackedPoint::WristCentre && tester.mode == Mode::ApproachScan {
+            tester.mode = Mode::WristCentre;
+        }
+        Some(tester)
+    }
+
+    /// Whether the tester follows the wrist centre of an arm with a spherical wrist (its
+    /// configurations hold the wrist joints at [`Self::wrist_reference`]).
+    pub fn wrist_centre(&self) -> bool {
+        self.mode == Mode::WristCentre
+    }
+
+    /// The wrist joints' values (rad) in the configurations of a wrist-centre tester: 0, or
+    /// the middle of a joint's range that excludes 0.
+    pub fn wrist_reference(&self) -> [f64; 3] {
+        self.wrist
+    }
+
+    /// Calls `visit(class_mask, q)` for every configuration within the joint limits that puts
+    /// the tracked point at world point `p` (m): one per closed-form solution (of each scanned
+    /// orientation, for the scanning arms), `q` wrapped into the limits. Stops when `visit`
+    /// returns true.
+    pub fn visit_world(&self, p: [f64; 3], visit: &mut dyn FnMut(u8, &[f64]) -> bool) {
+        let t = Translation3::new(p[0], p[1], p[2]);
+        let mut raw = RawSolutions::default();
+        let mut q = [0.0; MAX_DOF];
+        let mut each = |raw: &RawSolutions, q: &mut [f64; MAX_DOF]| -> bool {
+            (0..raw.len).any(|k| {
+                self.valid(&raw.q[k], q)
+                    && visit(
+                        self.classifier.posture_mask(&raw.postures[k]),
+                        &q[..self.limits.len()],
+                    )
+            })
+        };
+        match self.mode {
+            Mode::Position => {
+                let pose = Pose::from_parts(t, Rotation3::identity());
+                if self.cf.solve_raw(&pose, &mut raw).is_ok() {
+                    each(&raw, &mut q);
+                }
+            }
+            Mode::WristCentre => {
+                if self
+                    .cf
+                    .solve_position_raw(&Vector3::new(p[0], p[1], p[2]), &mut raw)
+                    .is_ok()
+                {
+                    for k in 0..raw.len {
+                        raw.q[k][3..6].copy_from_slice(&self.wrist);
+                    }
+                    each(&raw, &mut q);
+                }
+            }
+            Mode::PlanarScan(n) => {
+                let base = self.robot.base.rotation.into_inner();
+                for k in 0..n {
+                    let (s, c) = (k as f64 * TAU / n as f64).sin_cos();
+                    let rz = Matrix3::new(c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0);
+                    let r = Rotation3::from_matrix_unchecked(base * rz * self.r0);
+                    if self.cf.solve_raw(&Pose::from_parts(t, r), &mut raw).is_ok()
+                        && each(&raw, &mut q)
+                    {
+                        return;
+                    }
+                }
+            }
+            Mode::ApproachScan => {
+                for k in 0..ORIENTATION_BINS {
+                    let pose = Pose::from_parts(t, approach_rotation(k));
+                    if self.cf.solve_raw(&pose, &mut raw).is_ok() && each(&raw, &mut q) {
+                        return;
+                    }
+                }
+            }
+        }
     }
 
     /// Names of the posture classes (bits of [`Reach::mask`]).
@@ -175,6 +267,7 @@ impl<'a> ReachTester<'a> {
             Mode::Position => 1,
             Mode::PlanarScan(n) => n,
             Mode::ApproachScan => ORIENTATION_BINS,
+            Mode::WristCentre => 1,
         }
     }
 
@@ -226,6 +319,16 @@ impl<'a> ReachTester<'a> {
                         self.scan_one(&Pose::from_parts(t, r), &mut raw, &mut q, &mut out.mask);
                 }
                 out.tried = ORIENTATION_BINS as u32;
+            }
+            Mode::WristCentre => {
+                let mut mask = 0;
+                self.visit_world(p, &mut |m, _| {
+                    mask |= m;
+                    false
+                });
+                out.mask = mask;
+                out.reached = u32::from(mask != 0);
+                out.tried = 1;
             }
         }
         out

@@ -247,6 +247,45 @@ fn every_model_and_tab_keeps_the_3d_view_and_clips_nothing() {
     );
 }
 
+/// A cell (a table and a box, the box selected: its size, position and angles in the Cell
+/// section) and the solution list with what each posture hits: nothing clipped or overlapping,
+/// at every size, normal and in projector mode with the side panels shown.
+#[test]
+fn the_cell_section_clips_nothing() {
+    use armlab::app::cell::ObstacleKind;
+    let mut bad = Vec::new();
+    for size in SIZES {
+        for projector in [false, true] {
+            let mut state = AppState::from_spec("puma560").unwrap();
+            for kind in [ObstacleKind::Table, ObstacleKind::Box] {
+                let o = kind.obstacle(state.robot());
+                state.add_obstacle(o).unwrap();
+            }
+            let mut app = AppUi::new(state);
+            app.layout.projector = projector;
+            let mut h = harness(app, size);
+            if projector && h.state().rects.right.is_none() {
+                h.key_press(egui::Key::V);
+                settle(&mut h);
+            }
+            assert!(h.state().rects.right.is_some(), "the right panel is shown");
+            let what = format!(
+                "puma560 with a cell at {}x{}{}",
+                size[0],
+                size[1],
+                if projector { " (projector)" } else { "" }
+            );
+            bad.extend(check(&h, size, &what));
+        }
+    }
+    assert!(
+        bad.is_empty(),
+        "{} problems:\n{}",
+        bad.len(),
+        bad.join("\n")
+    );
+}
+
 /// Projector mode twice (the P key) gives back every panel rectangle, in every tab; and in
 /// projector mode the 3D view is the largest thing on screen.
 #[test]

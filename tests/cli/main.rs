@@ -2,8 +2,11 @@
 //!
 //! Needs the `app` feature (`required-features` in Cargo.toml).
 
+mod cell_commands;
 mod cli;
 mod cli_reference;
+mod collisions;
 mod exercise_orientation;
 mod orientation_figures;
 mod rotation;
+mod view_scene;

@@ -44,6 +44,8 @@ const ALLOWED_DIRECT: &[&str] = &[
     "roxmltree",
     // The exercise sheets students open and the keys (JSON; pure Rust, no graphics).
     "serde_json",
+    // Collision geometry and queries (dimforge's parry, f64; its math is glam, no graphics).
+    "parry3d-f64",
 ];
 
 fn cargo_tree(args: &[&str]) -> String {

@@ -1,6 +1,7 @@
-//! The right panel: the end-effector (a combo box, grouped, for robots with many), the pose
-//! readouts and the Jacobian, the IK target and every solution (counted from 1), then the
-//! construction and redundancy sections.
+//! The right panel: the end-effector (a combo box, grouped, for robots with many), the cell's
+//! obstacles (while there is a cell), the pose readouts and the Jacobian, the IK target and
+//! every solution (counted from 1) with what it hits, then the construction and redundancy
+//! sections.
 
 use super::super::action::{Action, Actions};
 use super::super::state::{AppState, EeTarget, format_number, without_negative_zero};
@@ -21,6 +22,8 @@ pub struct IkPanel {
     pub construction: ConstructionPanel,
     /// The kinematics in symbols, with the partial product's frame highlighted.
     pub symbols: super::symbols::SymbolsPanel,
+    /// The cell's obstacles (shown while there is a cell).
+    pub cell: super::cell::CellPanel,
 }
 
 impl IkPanel {
@@ -42,6 +45,11 @@ impl IkPanel {
                     ee_picker(state, ui, self.ee, out);
                 }
                 let ee = self.ee;
+                // The cell first: an obstacle just added or clicked is edited here at once.
+                if state.cell_scene().is_some() {
+                    self.cell.ui(state, ui, out);
+                    ui.separator();
+                }
                 if state.hidden.pose {
                     ui.label("Pose: hidden while the exercise is answered");
                 } else {
@@ -152,12 +160,39 @@ fn ik_section(state: &AppState, ui: &mut egui::Ui, ee: usize, out: &mut Actions)
     let Ok(target) = state.target(ee) else {
         return;
     };
-    let reach = target.reach.message();
+    // Unreached, or reached in collision: one reserved space, so nothing below moves when
+    // either comes or goes during a drag.
+    let reach = target
+        .reach
+        .message()
+        .or_else(|| state.collision_warning(ee));
     let reach = reach.map(|m| RichText::new(m).color(Color32::from_rgb(200, 0, 0)));
     super::reserved_warning(ui, "reach", reach);
     if let Some(result) = &target.result {
         solution_list(state, ui, ee, target, result, out);
     }
+}
+
+/// What a solution hits ("link3 hits table, 12 mm", red) or its clearance ("free, 45 mm
+/// clear"), under its line in the list.
+fn collision_line(ui: &mut egui::Ui, report: &crate::collision::CollisionReport) {
+    let color = if report.in_collision {
+        Color32::from_rgb(200, 0, 0)
+    } else {
+        Color32::from_rgb(40, 120, 60)
+    };
+    // One line, cut to the panel (the whole on hover): the list keeps its height while the
+    // pairs change during a drag.
+    let text = report.summary();
+    let hover = match (&report.closest, report.in_collision) {
+        (Some(c), false) => format!("{text}: the nearest pair is {} and {}", c.a, c.b),
+        _ => text.clone(),
+    };
+    ui.horizontal(|ui| {
+        ui.add_space(18.0);
+        ui.add(egui::Label::new(RichText::new(&text).small().color(color)).truncate())
+            .on_hover_text(hover);
+    });
 }
 
 fn matrix_grid(ui: &mut egui::Ui, id: &str, m: &nalgebra::Matrix4<f64>) {
@@ -307,6 +342,7 @@ fn solution_list(
     out: &mut Actions,
 ) {
     ui.label(format!("{} solution(s):", result.solutions.len()));
+    let collisions = state.solution_collisions(ee);
     for (i, s) in result.solutions.iter().enumerate() {
         let selected = target.selected == Some(i);
         let (long, short) = (s.posture.to_string(), s.posture.short());
@@ -351,6 +387,9 @@ fn solution_list(
         ));
         if r.clicked() {
             out.push(Action::SelectSolution(ee, i));
+        }
+        if let Some(c) = collisions.get(i) {
+            collision_line(ui, c);
         }
     }
     if !result.solutions.is_empty() && state.posture_class(&result.solutions[0].posture).is_some() {

@@ -2,6 +2,7 @@
 //! and returns actions: the model and its joints (left), the readouts and inverse kinematics
 //! with the construction and redundancy sections (right).
 
+pub mod cell;
 pub mod construction;
 pub mod ik;
 pub mod model;
@@ -38,6 +39,9 @@ pub fn reserved_warning(ui: &mut egui::Ui, key: &str, text: Option<egui::RichTex
     let Some(galley) = galley else {
         return;
     };
+    // Its text to assistive tools (and to tests that read the window).
+    let said = galley.text().to_string();
+    response.widget_info(|| egui::WidgetInfo::labeled(egui::Role::Label, true, &said));
     let cut = galley.size().y > height + 0.5;
     ui.painter()
         .with_clip_rect(rect.intersect(ui.clip_rect()))

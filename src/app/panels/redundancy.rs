@@ -9,6 +9,8 @@ use std::f64::consts::PI;
 
 /// Green of the feasible stretches of the track.
 const FEASIBLE: Color32 = Color32::from_rgb(40, 150, 80);
+/// Red of the stretches where the arm hits itself or an obstacle.
+pub const COLLIDING: Color32 = Color32::from_rgb(205, 40, 30);
 /// Shade of the infeasible stretches of the track.
 const INFEASIBLE: Color32 = Color32::from_rgb(200, 200, 205);
 
@@ -51,6 +53,7 @@ fn slider_section(
     if let Some(v) = track(ui, view) {
         out.push(Action::SetSelfMotion(ee, v));
     }
+    colliding_line(ui, view, state.collisions_on());
     let mut deg = view.value.to_degrees();
     ui.horizontal(|ui| {
         ui.label(format!("{} =", view.parameter));
@@ -104,6 +107,34 @@ fn slider_section(
     ui.checkbox(&mut state.display.self_motion_path, "Trace the path");
 }
 
+/// Under the slider, where the current branch collides (red on the track), in words: "red:
+/// 40..55 deg link3 hits table"; a line kept (empty) while collisions are `checked`, so nothing
+/// below moves as stretches come and go.
+fn colliding_line(ui: &mut egui::Ui, view: &SelfMotionView, checked: bool) {
+    let here: Vec<String> = view
+        .colliding
+        .iter()
+        .filter(|s| s.branch == view.branch)
+        .map(|s| {
+            format!(
+                "{:.0}..{:.0} deg {} hits {}",
+                s.from.to_degrees(),
+                s.to.to_degrees(),
+                s.a,
+                s.b
+            )
+        })
+        .collect();
+    let text = (!here.is_empty()).then(|| {
+        RichText::new(format!("red: {}", here.join("; ")))
+            .small()
+            .color(COLLIDING)
+    });
+    if view.exact && checked {
+        super::reserved_warning(ui, "self-motion collisions", text);
+    }
+}
+
 /// The slider track: the parameter's range, the current branch's feasible intervals green,
 /// the rest shaded, the value as a handle. Returns a new value when dragged or clicked (arrow
 /// keys step 1 deg while hovered).
@@ -131,6 +162,14 @@ pub(crate) fn track(ui: &mut egui::Ui, view: &SelfMotionView) -> Option<f64> {
             );
             painter.rect_filled(r, 0.0, FEASIBLE);
         }
+        // Where the arm hits itself or an obstacle: red over the green.
+        for s in view.colliding.iter().filter(|s| s.branch == view.branch) {
+            let r = egui::Rect::from_min_max(
+                egui::pos2(x_of(s.from), bar.top()),
+                egui::pos2(x_of(s.to).max(x_of(s.from) + 1.0), bar.bottom()),
+            );
+            painter.rect_filled(r, 0.0, COLLIDING);
+        }
     }
     let ink = ui.visuals().text_color();
     for t in [-PI, -PI / 2.0, 0.0, PI / 2.0, PI] {
@@ -148,7 +187,8 @@ pub(crate) fn track(ui: &mut egui::Ui, view: &SelfMotionView) -> Option<f64> {
         Stroke::new(1.5, ink),
     );
     let response = response.on_hover_text(
-        "drag or click: green where the branch is inside the joint limits; arrow keys: 1 deg",
+        "drag or click: green where the branch is inside the joint limits, red where the arm \
+         hits itself or an obstacle there; arrow keys: 1 deg",
     );
     if let Some(p) = response.interact_pointer_pos()
         && (response.dragged() || response.clicked())

@@ -91,6 +91,7 @@ impl AppState {
         let Some(r) = &t.result else {
             return Vec::new();
         };
+        let reports = self.solution_collisions(ee);
         r.solutions
             .iter()
             .enumerate()
@@ -100,6 +101,7 @@ impl AppState {
                 within_limits: s.within_limits,
                 selected: t.selected == Some(i),
                 class: self.posture_class(&s.posture),
+                collision: reports.get(i).cloned(),
             })
             .collect()
     }

@@ -13,6 +13,7 @@ use crate::kinematics::arm::{Arm, arm_of};
 use crate::kinematics::redundancy::{Redundancy, Task};
 use crate::kinematics::{Pose, Robot};
 use crate::redundancy::BranchSolution;
+use crate::redundancy::collision::{CellScanOptions, CollidingStretch};
 use crate::redundancy::motion::ExactSelfMotion;
 use crate::redundancy::numerical::NullSpaceMotion;
 use crate::redundancy::sampler::SelfMotionSamples;
@@ -22,6 +23,12 @@ use std::f64::consts::PI;
 /// Samples of the parameter over [-pi, pi) for the curves of the Self-motion tab and the
 /// traced path.
 pub const SELF_MOTION_SAMPLES: usize = 360;
+/// How the app looks for the self-motion's colliding stretches: every degree, the ends to
+/// 1e-4 rad (the slider's pixels; `armlab self-motion --scene` refines them to 1e-6 rad).
+pub const SELF_MOTION_CELL_SCAN: CellScanOptions = CellScanOptions {
+    step: 0.017_453_292_519_943_295,
+    tolerance: 1e-4,
+};
 /// Largest numerical self-motion sub-step (rad of arc length).
 const ARC_STEP: f64 = 0.01;
 
@@ -98,6 +105,9 @@ pub(super) struct SelfMotionCache {
     samples: Vec<(f64, Vec<BranchSolution>)>,
     /// Points visited by the numerical self-motion (world, m).
     visited: Vec<Vector3<f64>>,
+    /// The colliding stretches of every branch in the cell, with the cell's epoch they were
+    /// found at (`None`: not found yet).
+    colliding: Option<(u64, Vec<CollidingStretch>)>,
     /// The traced path of each branch, computed when first shown.
     paths: Vec<Option<TracedPath>>,
 }
@@ -136,6 +146,9 @@ pub struct SelfMotionView {
     pub orientation_error: f64,
     /// Samples of every branch over the range: the Self-motion tab's curves.
     pub samples: Vec<(f64, Vec<BranchSolution>)>,
+    /// Where the arm hits itself or the cell's obstacles, every branch (exact self-motion with
+    /// collisions on; found when the self-motion or the cell changes, not during a drag).
+    pub colliding: Vec<CollidingStretch>,
     /// The traced point over the range for the current branch (world, m; `None` where the
     /// branch does not exist), with whether each sample is within the limits; for the
     /// numerical case the points visited.
@@ -256,6 +269,7 @@ impl AppState {
                 samples,
                 visited: Vec::new(),
                 paths: Vec::new(),
+                colliding: None,
             });
         }
         self.self_motion.as_mut()
@@ -296,9 +310,10 @@ impl AppState {
         }
         let q = self.q.clone();
         let robot = self.robot.clone();
-        let cache = self
-            .self_motion_cache(ee)
+        self.self_motion_cache(ee)
             .ok_or_else(|| "no end-effector pose".to_string())?;
+        let colliding = self.self_motion_collisions();
+        let cache = self.self_motion.as_mut().expect("made above");
         let (pe, oe) = errors(&robot, (ee, cache.task), &q, &cache.pose);
         let local_q = cache.solo.local(&q);
         let solo_robot = cache.solo.robot(&robot).clone();
@@ -345,6 +360,7 @@ impl AppState {
                     orientation_error: oe,
                     samples: cache.samples.clone(),
                     path,
+                    colliding,
                 })
             }
             Kind::Numerical { arc, .. } => Ok(SelfMotionView {
@@ -366,8 +382,38 @@ impl AppState {
                 orientation_error: oe,
                 samples: Vec::new(),
                 path: cache.visited.iter().map(|p| (Some(*p), true)).collect(),
+                colliding: Vec::new(),
             }),
         }
+    }
+
+    /// The colliding stretches of the cached exact self-motion in the cell
+    /// ([`ExactSelfMotion::collision_free`], at [`SELF_MOTION_CELL_SCAN`]): found once per
+    /// self-motion and cell, not while a drag goes on (the self-motion is then new every
+    /// frame: they come when it ends). None on a tree (the world is the whole robot's).
+    fn self_motion_collisions(&mut self) -> Vec<CollidingStretch> {
+        let epoch = self.cell_epoch();
+        let Some(c) = &self.self_motion else {
+            return Vec::new();
+        };
+        if let Some((k, found)) = &c.colliding
+            && *k == epoch
+        {
+            return found.clone();
+        }
+        let world = self.collision_world().filter(|_| self.collisions_on());
+        let found = match (&c.kind, world) {
+            _ if self.dragging => return Vec::new(),
+            (Kind::Exact(m), Some(w)) if c.solo.arm.is_none() => {
+                m.collision_free(&self.robot, w, SELF_MOTION_CELL_SCAN)
+                    .colliding
+            }
+            _ => Vec::new(),
+        };
+        if let Some(c) = &mut self.self_motion {
+            c.colliding = Some((epoch, found.clone()));
+        }
+        found
     }
 
     /// Moves the self-motion parameter of `ee` to `value` (rad), the hand held. An exact
@@ -544,7 +590,9 @@ impl AppState {
                 within_limits: s.within_limits,
                 selected: false,
                 class: None,
+                collision: None,
             })
+            .map(|g| self.with_collision(g))
             .collect()
     }
 }

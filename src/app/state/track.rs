@@ -257,6 +257,7 @@ impl AppState {
         t.result = Some(result);
         t.reach = Reach::Reached;
         let name = t.name.clone();
+        self.recheck_solutions(ee);
         if let Some(n) = note {
             self.push_message(Level::Info, n);
         }
@@ -277,6 +278,7 @@ impl AppState {
             let m = format!("{}: {m}", t.name);
             self.push_message(Level::Warning, m);
         }
+        self.recheck_solutions(ee);
     }
 
     /// Moves the free joints of a degenerate solution to their current values and re-solves the

@@ -164,6 +164,8 @@ pub struct Ghost {
     pub selected: bool,
     /// Its posture class (the workspace figures' colour index), if it has one.
     pub class: Option<u8>,
+    /// What its posture hits, where collisions are checked (`None`: not checked).
+    pub collision: Option<crate::collision::CollisionReport>,
 }
 
 /// What a ghost arm is labelled with.

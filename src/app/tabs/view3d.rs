@@ -3,8 +3,10 @@
 //! ghost arm by clicking near it.
 
 use super::super::action::{Action, Actions};
+use super::super::cell::CellAction;
 use super::super::gizmo::Gizmo;
 use super::super::state::AppState;
+use super::super::viewport::CONTACT_LABEL;
 use super::super::viewport::{TextureRegistry, Viewport3d, ViewportImage};
 use super::{Tab, TabContext};
 use crate::camera::{Camera, Preset, Projection};
@@ -16,6 +18,8 @@ pub struct View3d {
     pub camera: Camera,
     /// The IK target's gizmo.
     pub gizmo: Gizmo,
+    /// The selected obstacle's gizmo (shown instead of the target's while one is selected).
+    pub obstacle_gizmo: Gizmo,
     /// The viewport's size in pixels at the last layout (the 3D render uses it).
     pub viewport_px: [u32; 2],
     /// Where the viewport was laid out last (points, window coordinates).
@@ -37,6 +41,7 @@ impl Default for View3d {
         Self {
             camera: Camera::default(),
             gizmo: Gizmo::default(),
+            obstacle_gizmo: Gizmo::default(),
             viewport_px: [800, 600],
             viewport_rect: egui::Rect::NOTHING,
             follow: false,
@@ -165,20 +170,29 @@ impl View3d {
     /// coordinates): the first visible plane square (else arrow) of end-effector `ee`; `None`
     /// before the viewport was laid out. The web page's test drags it.
     pub fn gizmo_grip(&self, state: &AppState, ee: usize) -> Option<egui::Pos2> {
+        let pose = state.target(ee).ok()?.world_from_tool;
+        self.grip(&self.gizmo, &pose)
+    }
+
+    /// Where a user would grab the selected obstacle's gizmo (as [`View3d::gizmo_grip`]);
+    /// `None` when no obstacle is selected.
+    pub fn obstacle_grip(&self, state: &AppState) -> Option<egui::Pos2> {
+        let (_, pose) = selected_obstacle(state)?;
+        self.grip(&self.obstacle_gizmo, &pose)
+    }
+
+    /// The first visible plane square (else arrow) of `gizmo` at `pose`, in window points.
+    fn grip(&self, gizmo: &Gizmo, pose: &crate::kinematics::Pose) -> Option<egui::Pos2> {
         use super::super::gizmo::Handle;
         let rect = self.viewport_rect;
         let ppp = self.viewport_px[0] as f32 / rect.width();
         if !(ppp.is_finite() && ppp > 0.0) {
             return None;
         }
-        let pose = state.target(ee).ok()?.world_from_tool;
         let handles = [0, 1, 2].map(Handle::Plane).into_iter();
         handles
             .chain([0, 1, 2].map(Handle::Axis))
-            .find_map(|h| {
-                self.gizmo
-                    .grip_px(&self.camera, self.viewport_px, &pose, ppp as f64, h)
-            })
+            .find_map(|h| gizmo.grip_px(&self.camera, self.viewport_px, pose, ppp as f64, h))
             .map(|[x, y]| rect.min + egui::vec2(x as f32, y as f32) / ppp)
     }
 
@@ -195,21 +209,30 @@ impl View3d {
         }
     }
 
-    /// The viewport: the image, its labels, the gizmo and navigation.
+    /// The viewport: the image, its labels, the gizmo (the IK target's, or the selected
+    /// obstacle's) and navigation; a click picks a ghost's posture or an obstacle.
     fn viewport(&mut self, cx: &mut TabContext<'_>, ui: &mut egui::Ui, out: &mut Actions) {
         let rect = ui.available_rect_before_wrap();
         self.set_rect(ui, rect);
         let ppp = ui.ctx().pixels_per_point();
         let ee = cx.ee;
         let font = egui::FontId::proportional(12.5 * cx.layout.text_scale());
-        // The current target's gizmo is kept clear of labels.
-        let gizmo = cx.state.target(ee).ok().and_then(|t| {
-            let ([x, y], half) = self.gizmo.extent_px(
-                &self.camera,
-                self.viewport_px,
-                &t.world_from_tool,
-                f64::from(ppp),
-            )?;
+        let obstacle = selected_obstacle(cx.state);
+        let target = cx.state.target(ee).ok();
+        // The gizmo shown is kept clear of labels.
+        let gizmo_pose = match (&obstacle, target) {
+            (Some((_, pose)), _) => Some(*pose),
+            (None, Some(t)) => Some(t.world_from_tool),
+            (None, None) => None,
+        };
+        let gizmo = gizmo_pose.and_then(|pose| {
+            let g = if obstacle.is_some() {
+                &self.obstacle_gizmo
+            } else {
+                &self.gizmo
+            };
+            let ([x, y], half) =
+                g.extent_px(&self.camera, self.viewport_px, &pose, f64::from(ppp))?;
             let c = rect.min + egui::vec2(x as f32, y as f32) / ppp;
             Some(egui::Rect::from_center_size(
                 c,
@@ -218,7 +241,18 @@ impl View3d {
         });
         let response = self.paint(ui, cx.image.as_ref(), &font, gizmo.as_slice());
         let mut gizmo_active = false;
-        if let Ok(t) = cx.state.target(ee) {
+        if let Some((k, pose)) = obstacle {
+            let g = self
+                .obstacle_gizmo
+                .ui(ui, &response, rect, &self.camera, &pose, false);
+            gizmo_active = g.active;
+            if let Some(p) = g.new_pose
+                && let Some(o) = cx.state.cell_scene().and_then(|c| c.obstacles.get(k))
+            {
+                let o = super::super::cell::moved(o, &pose, &p);
+                out.push(Action::Cell(CellAction::Set(k, o)));
+            }
+        } else if let Some(t) = target {
             let pose = t.world_from_tool;
             let unreachable = !t.reach.is_reached();
             let g = self
@@ -238,10 +272,31 @@ impl View3d {
         } else if response.clicked()
             && !gizmo_active
             && let Some(pos) = response.interact_pointer_pos()
-            && let Some(index) = self.pick_ghost(cx.state, ee, (pos - rect.min) * ppp)
         {
-            out.push(Action::SelectSolution(ee, index));
+            self.click(cx.state, ee, (pos - rect.min) * ppp, out);
         }
+    }
+
+    /// A click at a pixel of the viewport: the posture of the ghost arm there, else the
+    /// obstacle there (the gizmo then moves it), else (clicking empty space) no obstacle.
+    fn click(&self, state: &AppState, ee: usize, at: egui::Vec2, out: &mut Actions) {
+        if let Some(index) = self.pick_ghost(state, ee, at) {
+            out.push(Action::SelectSolution(ee, index));
+        } else if let Some(k) = self.pick_obstacle(state, at) {
+            out.push(Action::Cell(CellAction::Select(Some(k))));
+        } else if state.selected_obstacle().is_some() {
+            out.push(Action::Cell(CellAction::Select(None)));
+        }
+    }
+
+    /// The obstacle under a pixel of the viewport (the nearest along the ray; planes left
+    /// out: a floor would catch every click below the horizon).
+    fn pick_obstacle(&self, state: &AppState, at: egui::Vec2) -> Option<usize> {
+        let world = state.collision_world()?;
+        let (o, d) = super::super::gizmo::ray_from_pixel(&self.camera, self.viewport_px, at.into());
+        let ray = ([o.x, o.y, o.z], [d.x, d.y, d.z]);
+        let hit = world.obstacle_on_ray(state.robot(), state.q(), ray, false);
+        hit.ok().flatten().map(|(k, _)| k)
     }
 
     /// Takes `rect` (points) as the view's place: the image is rendered at its size in pixels.
@@ -280,14 +335,18 @@ impl View3d {
                 egui::Color32::WHITE,
             );
         }
-        self.placed_labels = crate::figure::labels::draw_labels(
-            ui.painter(),
-            rect,
-            (self.viewport_px, &self.camera),
-            &self.labels,
-            avoid,
-            font,
-        );
+        // What a posture hits is placed first and may cover the gizmo (a contact at the hand
+        // lies under the target's gizmo: kept clear of it, its name had nowhere to go); the
+        // other labels keep clear of both.
+        let view = (self.viewport_px, &self.camera);
+        let contact = |l: &&crate::scene::Label| l.color == CONTACT_LABEL;
+        let (first, rest): (Vec<_>, Vec<_>) =
+            self.labels.iter().cloned().partition(|l| contact(&l));
+        let draw = crate::figure::labels::draw_labels;
+        let mut placed = draw(ui.painter(), rect, view, &first, &[], font);
+        let keep_clear: Vec<egui::Rect> = avoid.iter().chain(&placed).copied().collect();
+        placed.extend(draw(ui.painter(), rect, view, &rest, &keep_clear, font));
+        self.placed_labels = placed;
         response
     }
 
@@ -367,4 +426,10 @@ impl Tab for View3d {
     fn model_changed(&mut self) {
         self.fitted = false;
     }
+}
+
+/// The selected obstacle and its world pose (m), if one is selected.
+fn selected_obstacle(state: &AppState) -> Option<(usize, crate::kinematics::Pose)> {
+    let k = state.selected_obstacle()?;
+    state.obstacle_poses().get(k).map(|p| (k, *p))
 }

@@ -21,12 +21,14 @@
 
 mod arcs;
 mod contour;
+mod in_cell;
 mod planar;
 mod query;
 mod raster;
 mod sampled;
 mod spatial;
 
+pub use in_cell::compute_map_in;
 pub use query::{PointQuery, ReachAnswer};
 pub use spatial::Section;
 
@@ -189,6 +191,10 @@ pub struct WorkspaceMap {
     /// fill these instead of the cells. Not serialized.
     #[serde(skip)]
     pub fills: Vec<MapFill>,
+    /// What a cell's obstacles took from the map, and the obstacles in its view
+    /// ([`compute_map_in`] with a cell); `None` in empty space.
+    #[serde(default)]
+    pub collision: Option<Box<crate::workspace::cell::CollisionLayer>>,
 }
 
 impl WorkspaceMap {

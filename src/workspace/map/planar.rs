@@ -43,6 +43,7 @@ pub(super) fn map(e: &ExactPlanar, req: &MapRequest, bounds: [f64; 4]) -> Worksp
             "exact: closed-form IK (Sect. 2.12.1) at each cell".into()
         },
         exact: true,
+        collision: None,
     }
 }
 

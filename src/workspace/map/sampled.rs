@@ -54,6 +54,9 @@ pub(super) fn extent(robot: &Robot, view: MapView, ee: usize) -> Result<Aabb, Wo
     Ok(b)
 }
 
+/// A configuration test: whether a joint vector may count (collision-free in a cell).
+pub(crate) type ConfigFilter<'a> = &'a (dyn Fn(&[f64]) -> bool + Sync);
+
 /// The sampled map with refined rims (see the module documentation).
 pub(super) fn map(
     robot: &Robot,
@@ -61,6 +64,18 @@ pub(super) fn map(
     bounds: [f64; 4],
     forming: &mut dyn super::MapForming,
 ) -> Result<WorkspaceMap, WorkspaceError> {
+    map_where(robot, req, bounds, forming, None).map(|(m, _)| m)
+}
+
+/// [`map`] counting only the samples (and the rim's IK solutions) that `keep` accepts; with a
+/// filter, also the cells that only rejected samples fall in (1 each, else 0).
+pub(super) fn map_where(
+    robot: &Robot,
+    req: &MapRequest,
+    bounds: [f64; 4],
+    forming: &mut dyn super::MapForming,
+    keep: Option<ConfigFilter<'_>>,
+) -> Result<(WorkspaceMap, Vec<u8>), WorkspaceError> {
     let [w, h] = req.cells;
     let s = samples(
         robot,
@@ -69,7 +84,7 @@ pub(super) fn map(
         req.values == MapValues::Manipulability,
         req.end_effector,
     )?;
-    let (owner, best) = occupancy(robot, req, &s, bounds);
+    let (owner, best, rejected) = kept_occupancy(robot, req, &s, bounds, keep);
     let method = format!(
         "sampled: {} joint-space samples (seed {}), the rim refined by numerical IK",
         s.len(),
@@ -88,12 +103,13 @@ pub(super) fn map(
         curves: Vec::new(),
         method: method.clone(),
         exact: false,
+        collision: None,
     };
     let mut masks: Vec<u8> = owner.iter().map(|&o| u8::from(o != u32::MAX)).collect();
     // The rim refined a tile at a time, the occupancy showing the rows not refined yet.
     for j0 in (0..h).step_by(super::TILE_ROWS) {
         let cells = j0 * w..(j0 + super::TILE_ROWS).min(h) * w;
-        let refined = refine(robot, req, &s, &owner, bounds, cells.clone());
+        let refined = refine(robot, req, &s, &owner, bounds, cells.clone(), keep);
         for (m, r) in masks[cells.clone()].iter_mut().zip(refined) {
             *m |= u8::from(r);
         }
@@ -116,10 +132,43 @@ pub(super) fn map(
             method: format!("{} joint-space samples", s.len()),
         }
     });
-    Ok(WorkspaceMap {
+    let map = WorkspaceMap {
         values,
         ..partial(masks)
-    })
+    };
+    let rejected = rejected
+        .iter()
+        .zip(&map.masks)
+        .map(|(r, m)| r & !m)
+        .collect();
+    Ok((map, rejected))
+}
+
+/// [`occupancy`] of the samples `keep` accepts (all without a filter), and with a filter the
+/// cells (1 each) that only rejected samples fall in.
+fn kept_occupancy(
+    robot: &Robot,
+    req: &MapRequest,
+    s: &Samples,
+    bounds: [f64; 4],
+    keep: Option<ConfigFilter<'_>>,
+) -> (Vec<u32>, Vec<f32>, Vec<u8>) {
+    let Some(f) = keep else {
+        let (owner, best) = occupancy(robot, req, s, bounds, None);
+        return (owner, best, Vec::new());
+    };
+    let kept: Vec<bool> = (0..s.len())
+        .into_par_iter()
+        .map(|k| s.joint_vector(k).is_none_or(f))
+        .collect();
+    let (owner, best) = occupancy(robot, req, s, bounds, Some(&kept));
+    let (all, _) = occupancy(robot, req, s, bounds, None);
+    let rejected = all
+        .iter()
+        .zip(&owner)
+        .map(|(a, o)| u8::from(*a != u32::MAX && *o == u32::MAX))
+        .collect();
+    (owner, best, rejected)
 }
 
 /// Per cell, the last sample in it (`u32::MAX` for none) and the largest manipulability of its
@@ -129,6 +178,7 @@ fn occupancy(
     req: &MapRequest,
     s: &Samples,
     bounds: [f64; 4],
+    kept: Option<&[bool]>,
 ) -> (Vec<u32>, Vec<f32>) {
     let [w, h] = req.cells;
     let cell_of = |v: [f64; 2]| -> Option<usize> {
@@ -139,6 +189,9 @@ fn occupancy(
     let mut owner = vec![u32::MAX; w * h];
     let mut best = vec![f32::NAN; w * h];
     for (k, p) in s.positions.iter().enumerate() {
+        if kept.is_some_and(|kept| !kept[k]) {
+            continue;
+        }
         if let Some(c) = cell_of(to_view(robot, req.view, *p)) {
             owner[c] = k as u32;
             if let Some(m) = &s.manipulability {
@@ -162,6 +215,7 @@ fn refine(
     owner: &[u32],
     bounds: [f64; 4],
     cells: std::ops::Range<usize>,
+    keep: Option<ConfigFilter<'_>>,
 ) -> Vec<bool> {
     let (view, [w, h]) = (req.view, req.cells);
     let opts = NumericalOptions {
@@ -199,7 +253,7 @@ fn refine(
                 q0,
                 &opts,
             )
-            .is_ok_and(|r| r.converged)
+            .is_ok_and(|r| r.converged && keep.is_none_or(|f| f(&r.q)))
         })
         .collect()
 }

@@ -774,6 +774,7 @@ impl Section {
             curves: Vec::new(),
             method: self.method(),
             exact: self.exact(),
+            collision: None,
         }
     }
 
