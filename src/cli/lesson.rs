@@ -19,6 +19,10 @@ pub struct LessonArgs {
     /// Window size of the rendered steps, WIDTHxHEIGHT.
     #[arg(long, default_value = "1280x800")]
     pub size: Size,
+    /// A scene file of obstacles (TOML `[[obstacle]]` tables) to open as the cell before the
+    /// first step (a step that carries its own `scene` replaces it).
+    #[arg(long, value_name = "FILE")]
+    pub scene: Option<PathBuf>,
 }
 
 /// Runs `armlab lesson`.
@@ -37,11 +41,21 @@ pub(super) fn run(args: &LessonArgs, out: &mut dyn Write) -> Result<(), CliError
         }
     }
     .map_err(|e| bad(e.to_string()))?;
+    let mut state = state;
+    let scene = match &args.scene {
+        Some(path) => Some(crate::collision::CellScene::read(path)?),
+        None => None,
+    };
+    if let Some(s) = &scene {
+        let cell = state.set_scene(Some(s.clone()));
+        cell.map_err(|e| CliError::App(crate::app::AppError::Input(e)))?;
+    }
     let Some(dir) = &args.render else {
         let spec = state.spec().to_string();
         let opts = crate::app::RunOptions {
             model_given: true,
             lesson: Some((lesson, name)),
+            scene,
             ..Default::default()
         };
         crate::app::run_with(&spec, &opts).map_err(CliError::App)?;
