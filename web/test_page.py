@@ -365,7 +365,7 @@ def check_screenshot_download(d, folder):
         "cmd": "Browser.setDownloadBehavior",
         "params": {"behavior": "allow", "downloadPath": folder},
     })
-    click(d, 954, 20)  # "Screenshot", in the toolbar's one row (x 914-995; six tabs fold the view presets)
+    click(d, 999, 20)  # "Screenshot", in the toolbar's one row (x 958-1040; six tabs fold the view presets, the Cell menu before it)
     deadline = time.time() + 30
     while True:
         done = [f for f in os.listdir(folder) if f.endswith(".png")]

@@ -145,13 +145,7 @@ impl RobotGeometry {
                 name: link_name(robot, joint),
                 kind: BodyKind::Link(joint),
                 fixed: joint.is_none_or(|j| moves_with_nothing(robot, j)),
-                // A link without geometry is drawn (and checked) as the stick figure where
-                // the robot has none at all (a DH model, a URDF whose meshes are missing) or
-                // where it moves; a URDF's frames on fixed joints ("world", "tool0") are not
-                // bodies.
-                stick: parts.is_empty()
-                    && (robot.collisions.is_empty()
-                        || joint.is_some_and(|j| robot.joints()[j].kind != JointKind::Fixed)),
+                stick: parts.is_empty(),
                 parts,
             });
         }
