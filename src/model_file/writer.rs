@@ -39,6 +39,8 @@ use std::fmt::Write;
 /// # Ok(())
 /// # }
 /// ```
+// Over 80 lines: the file's sections written in their order (joints, end-effectors,
+// configurations, masses, the collision matrix); each is a short loop, read top to bottom.
 pub fn to_toml(robot: &Robot) -> Option<String> {
     let ((convention, rows), pres) = robot.dh_table_with_pre()?;
     let follows =

@@ -304,6 +304,8 @@ impl AppState {
     }
 
     /// What the self-motion slider of `ee` shows, or why there is none.
+    // Over 80 lines: the slider's one decision (wait while dragging, exact or numerical, the
+    // cell's colliding stretches) in the order the view needs them.
     pub fn self_motion(&mut self, ee: usize) -> Result<SelfMotionView, String> {
         if self.dragging && self.self_motion_waits(ee) {
             return Err("the self-motion follows when the drag ends".into());
