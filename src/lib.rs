@@ -98,7 +98,10 @@ pub mod kinematics;
 pub mod lesson;
 pub mod mesh;
 pub mod model_file;
+#[cfg(feature = "app")]
+pub mod npz;
 pub mod offload;
+pub mod reachability;
 pub mod redundancy;
 #[cfg(feature = "gui")]
 pub mod render;

@@ -13,6 +13,7 @@ use std::sync::Arc;
 
 pub mod obstacles;
 pub mod orientation;
+pub mod reachability;
 
 /// RGBA colour, each channel in [0, 1] (linear).
 pub type Rgba = [f32; 4];

@@ -22,6 +22,9 @@ Collisions: :meth:`Robot.collisions` says what a configuration hits (the arm's o
 obstacles of a scene file), and every solution of :meth:`Robot.ik` carries its ``collision`` and
 ``clearance_m``.
 
+Reachability maps: :meth:`Robot.reachability` returns the arrays of ``armlab reachability``'s
+``.npz`` file (where the tool reaches, in which orientations, with which postures).
+
 Errors are armlab's own, with the library's messages: :class:`ModelError` (a model that cannot
 be loaded: file, line and field named), :class:`IkError`, :class:`KinematicsError`,
 :class:`WorkspaceError`, :class:`FigureError`, :class:`CalibrationError`,
@@ -830,6 +833,56 @@ class Robot:
         reachable, distance, postures, exact, _ = _core.reach(self._core, a, point)
         return Reach(np.array(reachable, dtype=bool), np.array(distance, dtype=float),
                      [list(p) for p in postures], bool(exact))
+
+    def reachability(
+        self,
+        voxel: float = 0.05,
+        directions: int = 200,
+        rolls: int = 8,
+        ee: Union[int, str, None] = None,
+        scene: Any = None,
+        seeds: int = 4,
+        force: bool = False,
+    ) -> Dict[str, Any]:
+        """The six-dimensional reachability map (``armlab reachability``): for every voxel
+        centre of a grid over the arm's reach (``voxel`` m), every approach direction of a
+        Fibonacci sphere of ``directions`` points and every roll 2 pi j / ``rolls`` about it,
+        whether some IK solution within the joint limits reaches the pose, and which postures do.
+
+        Returns a dict with the keys of the ``.npz`` file ``armlab reachability --out`` writes:
+        ``reachable`` (nx, ny, nz, N, R) bool, ``postures`` (nx, ny, nz, N, R) uint16 (bit p set
+        when posture ``posture_names[p]`` reaches the sample), ``posture_names`` (str array),
+        ``index`` (nx, ny, nz) float64 (the fraction of each voxel's samples reached),
+        ``origin`` (3,) (the centre of voxel (0, 0, 0); voxel (i, j, k) is centred at
+        ``origin + voxel * (i, j, k)``, m, world frame), ``voxel`` (m), ``size`` (3,) (m),
+        ``directions`` (N, 3), ``rolls`` (R,) (rad), ``end_effector``, ``model``, ``version``,
+        ``solver`` (str: the closed form, or the numerical solver from ``seeds`` starts per
+        sample for arms without one), ``collisions`` (bool), ``reach_centre`` (3,) and ``reach`` (m):
+        voxels farther than ``reach`` from ``reach_centre`` were not solved.
+
+        ``ee`` is an end-effector's index or name (default the first); ``scene`` (a scene file's
+        path, or its TOML text) counts a solution only when it hits neither the arm itself nor
+        the scene. Bad options (a zero voxel, no directions or rolls, over 1e9 samples without
+        ``force``) raise ``ValueError`` before any work. The map is computed on every core with
+        the GIL released; Ctrl+C does not interrupt it.
+        """
+        if ee is None:
+            index = 0
+        elif isinstance(ee, str):
+            if ee not in self.end_effectors:
+                raise ValueError(f"ee = {ee!r}: the end-effectors are {', '.join(self.end_effectors)}")
+            index = self.end_effectors.index(ee)
+        else:
+            index = int(ee)
+        counts = {"directions": int(directions), "rolls": int(rolls), "seeds": int(seeds), "ee": index}
+        for name, value in counts.items():
+            if value < 0:
+                raise ValueError(f"{name} must not be negative, got {value}")
+        path, text = _scene_args(scene)
+        m = _core.reachability(self._core, float(voxel), counts["directions"], counts["rolls"],
+                               index, counts["seeds"], bool(force), path, text)
+        m["posture_names"] = np.array(m["posture_names"], dtype=str)
+        return m
 
     def workspace(
         self,

@@ -4,7 +4,7 @@ Use the :mod:`armlab` package's API (``armlab.Robot`` and friends); this module 
 Arrays are float64; joint values in rad or m, lengths in m, poses (4, 4) row-major.
 """
 
-from typing import List, Optional, Tuple
+from typing import Any, Dict, List, Optional, Tuple
 
 import numpy as np
 import numpy.typing as npt
@@ -94,6 +94,19 @@ class CoreRobot:
         seed: int = 0x5EED,
     ) -> str:
         """The numerical solver's report as JSON."""
+
+def reachability(
+    robot: CoreRobot,
+    voxel: float = 0.05,
+    directions: int = 200,
+    rolls: int = 8,
+    ee: int = 0,
+    seeds: int = 4,
+    force: bool = False,
+    scene_path: Optional[str] = None,
+    scene_text: Optional[str] = None,
+) -> Dict[str, Any]:
+    """The reachability map as a dict with the keys of `armlab reachability`'s .npz file."""
 
 def fk_batch(
     robot: CoreRobot, qs: F64, ee: int = 0, frames: bool = False, out: Optional[F64] = None

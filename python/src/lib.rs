@@ -1,10 +1,10 @@
 //! `armlab._core`: the extension module behind the `armlab` Python package.
 //!
 //! It wraps the graphics-free library (FK, Jacobians, labelled closed-form and numerical IK,
-//! point queries, self-motions, symbolic kinematics, rotation conversions, collisions) and the
-//! headless figures, NumPy in and out, SI units and radians. The Python layer
-//! (`armlab/__init__.py`, `armlab/rotation.py`) turns its plain results into documented objects;
-//! everything that computes is here or in the armlab crate.
+//! point queries, self-motions, symbolic kinematics, rotation conversions, collisions,
+//! reachability maps) and the headless figures, NumPy in and out, SI units and radians. The
+//! Python layer (`armlab/__init__.py`, `armlab/rotation.py`) turns its plain results into
+//! documented objects; everything that computes is here or in the armlab crate.
 //!
 //! Batch calls (`fk_batch`, `ik_batch`, `rotation_to`, `rotation_from`) release the GIL and
 //! spread the rows over every core (rayon). Inputs are checked here (shape, NaN); a bad one
@@ -18,6 +18,7 @@ mod calibration;
 mod collision;
 mod errors;
 mod figures;
+mod reachability;
 mod reports;
 mod robot;
 mod rotation;
@@ -39,6 +40,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("CollisionError", py.get_type::<errors::CollisionError>())?;
     m.add_class::<robot::CoreRobot>()?;
     m.add_function(wrap_pyfunction!(collision::collisions, m)?)?;
+    m.add_function(wrap_pyfunction!(reachability::reachability, m)?)?;
     m.add_function(wrap_pyfunction!(batch::fk_batch, m)?)?;
     m.add_function(wrap_pyfunction!(batch::ik_batch, m)?)?;
     m.add_function(wrap_pyfunction!(batch::ik_batch_numerical, m)?)?;

@@ -141,6 +141,9 @@ pub enum Action {
     Message(Level, String),
     /// Something about the cell's obstacles (the Cell menu, the cell panel, the gizmo).
     Cell(super::cell::CellAction),
+    /// Something about the reachability overlay or base placement (the Show menu, the
+    /// Reachability section, the 3D view).
+    Reachability(super::reachability::ReachabilityAction),
 }
 
 /// Collects the actions of one frame.
@@ -162,7 +165,8 @@ impl Actions {
 impl Action {
     /// Why this action is refused while a sheet hides what `hidden` says: in an exam,
     /// everything that would carry the arm or its answer out of the app (saving the model or a
-    /// lesson, pictures); the workspace overlay on a workspace sheet.
+    /// lesson, pictures); the workspace overlay on a workspace sheet; the reachability overlay
+    /// on a sheet that hides the workspace or the IK solutions.
     pub fn refusal(&self, hidden: &Hidden) -> Option<&'static str> {
         let carries_out = matches!(
             self,
@@ -177,6 +181,11 @@ impl Action {
         }
         if hidden.workspace && matches!(self, Action::ToggleWorkspace) {
             return Some("the workspace is what the sheet asks for: it stays hidden");
+        }
+        use super::reachability::ReachabilityAction::{Compute, Show};
+        let shows_reach = matches!(self, Action::Reachability(Show(true) | Compute(_)));
+        if (hidden.workspace || hidden.solutions) && shows_reach {
+            return Some("the sheet asks for what the reachability map shows: it stays hidden");
         }
         None
     }

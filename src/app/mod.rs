@@ -17,6 +17,7 @@ pub mod layout;
 pub mod lesson;
 pub mod panels;
 pub mod probe;
+pub mod reachability;
 #[cfg(feature = "app")]
 pub mod recorder;
 pub mod screenshot;
@@ -122,6 +123,11 @@ impl eframe::App for ArmlabApp {
             self.save_screenshot();
         }
         self.poll_screenshot(ui.ctx());
+        if self.ui.ik.reach.computing() {
+            // The reachability map or a placement computes on a thread: its progress shown.
+            ui.ctx()
+                .request_repaint_after(std::time::Duration::from_millis(200));
+        }
         if let Some(w) = &self.ui.tabs.workspace.job {
             let clock = self.ui.clock.unwrap_or(workspace_job::native_clock);
             let worked = w.step(self.gpu.as_ref(), &mut self.ui.offload, &clock);

@@ -69,6 +69,7 @@ fn copy_of(live: &AppUi, opts: &ScreenshotOptions) -> (AppUi, crate::camera::Cam
     app.tabs.calibration.lab = live.tabs.calibration.lab.clone();
     app.ik.ee = live.ik.ee;
     app.ik.construction = live.ik.construction;
+    app.ik.reach = live.ik.reach.snapshot();
     // the lesson's bar, as the class sees it
     app.lesson = live.lesson.clone();
     (app, live.tabs.view3d.camera)

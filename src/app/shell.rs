@@ -103,9 +103,7 @@ impl AppUi {
 
     /// Applies every action collected in a frame, in order.
     pub fn apply_all(&mut self, actions: Actions) {
-        for a in actions.0 {
-            self.apply(a);
-        }
+        actions.0.into_iter().for_each(|a| self.apply(a));
     }
 
     /// Applies one action; the state's refusal comes back (the model actions, which say more
@@ -200,6 +198,7 @@ impl AppUi {
             }
             Action::CloseLesson => self.lesson = None,
             Action::Cell(c) => super::cell::apply(self, c),
+            Action::Reachability(r) => super::reachability::apply(self, r),
             Action::OpenExercise(path) => self.open(&path, files::open_key(&path)),
             Action::CloseExercise => {
                 let shown = self.tabs.exercise.close(&self.state);

@@ -31,6 +31,8 @@
 
 mod cell;
 mod dh;
+pub mod placement;
+pub mod reachability;
 mod select;
 mod self_motion;
 mod track;

@@ -216,6 +216,18 @@ fn show_menu(app: &mut ToolbarContext<'_>, ui: &mut egui::Ui, out: &mut Actions)
         if ui.checkbox(&mut ws, "Workspace (W)").changed() {
             out.push(Action::ToggleWorkspace);
         }
+        let mut reach = d.reachability;
+        if ui
+            .checkbox(&mut reach, "Reachability")
+            .on_hover_text(
+                "Where the tool reaches, in which orientations and with which postures: a \
+                 slice of voxels coloured by the share of orientations reached",
+            )
+            .changed()
+        {
+            use super::reachability::ReachabilityAction;
+            out.push(Action::Reachability(ReachabilityAction::Show(reach)));
+        }
         ui.checkbox(app.follow, "Camera follows the target");
         ui.separator();
         if ui

@@ -11,8 +11,11 @@ mod fk;
 mod ik;
 mod info;
 mod lesson;
+mod place;
 pub use crate::input;
 mod reach;
+mod reachability;
+pub mod reachability_figures;
 pub mod reference;
 mod rotation;
 mod self_motion;
@@ -150,6 +153,15 @@ pub enum Command {
     /// Which postures reach each point of a file, and its distance to the workspace boundary
     /// (positive inside, negative outside).
     Reach(reach::ReachArgs),
+    /// The six-dimensional reachability map: at every voxel, approach direction and roll, which
+    /// postures reach the pose within the joint limits (and free of collision with --scene),
+    /// written as a NumPy .npz; Ctrl+C stops cleanly.
+    Reachability(reachability::ReachabilityArgs),
+    /// Base placement: where on the floor to put the arm's base so that it reaches a file of
+    /// task poses. Every task is solved exactly by IK at every base position and yaw of a grid
+    /// over the area; prints the best placements and each task's postures there, and draws the
+    /// heat map (--out); Ctrl+C stops cleanly.
+    Place(place::PlaceArgs),
     /// Exact self-motion of a redundant arm holding its hand still (Sect. 2.10.2): every branch
     /// over the free parameter, the feasible intervals inside the joint limits, the number of
     /// disjoint self-motion curves.
@@ -271,6 +283,24 @@ pub enum CliError {
     /// names the file, the line and the obstacle).
     #[error(transparent)]
     Collision(#[from] crate::collision::CollisionError),
+    /// Bad options of a reachability map, or a map stopped by Ctrl+C.
+    #[error(transparent)]
+    Reachability(#[from] crate::reachability::ReachabilityError),
+    /// A .npz map file that cannot be written or read.
+    #[error(transparent)]
+    Npz(#[from] crate::npz::NpzError),
+    /// Bad options of a base placement (named by their flag), or a placement stopped by Ctrl+C.
+    #[error("{flag}: {source}")]
+    Placement {
+        /// The flag(s) at fault.
+        flag: &'static str,
+        /// What is wrong.
+        source: crate::reachability::PlacementError,
+    },
+    /// A task file of `armlab place` that cannot be read (the message names the line and the
+    /// field).
+    #[error(transparent)]
+    Tasks(#[from] crate::reachability::TaskFileError),
     /// An input file (an SRDF) that cannot be read.
     #[error("cannot read {what}: {source} ({})", path.display())]
     ReadFile {
@@ -281,6 +311,9 @@ pub enum CliError {
         /// Why.
         source: std::io::Error,
     },
+    /// Figure flags of `armlab reachability` that cannot be used.
+    #[error(transparent)]
+    MapFigures(#[from] reachability_figures::MapFigureFlagError),
     /// An output file that cannot be written.
     #[error("cannot write the file: {source} ({})", path.display())]
     WriteFile {
@@ -363,6 +396,8 @@ pub fn run(cli: Cli, out: &mut dyn std::io::Write) -> Result<(), CliError> {
         Some(Command::Ik(args)) => ik::run(&args, out),
         Some(Command::Calibrate(args)) => calibrate::run(&args, out),
         Some(Command::Reach(args)) => reach::run(&args, out),
+        Some(Command::Reachability(args)) => reachability::run(&args, out),
+        Some(Command::Place(args)) => place::run(&args, out),
         Some(Command::SelfMotion(args)) => self_motion::run(&args, out),
         Some(Command::Export(args)) => export::run(&args, out),
         Some(Command::Symbolic(args)) => symbolic::run(&args, out),

@@ -334,6 +334,34 @@ impl CollisionWorld {
         Ok(false)
     }
 
+    /// The base's contacts with the obstacles fixed in the world, with the base where
+    /// `robot.base` puts it: each `(body, obstacle)` where the body moves with no joint (a fixed
+    /// link, or an obstacle attached to one) and overlaps a world obstacle, allowed pairs left
+    /// out. [`CollisionWorld::in_collision`] never checks these (fixed against fixed is the
+    /// mounting); a base placement that moves the whole robot asks them here.
+    pub fn base_contacts(&self, robot: &Robot) -> Result<Vec<(String, String)>, KinematicsError> {
+        let placement = self.place(robot, &robot.ready_or_zero())?;
+        let n = self.geometry.bodies.len();
+        let with_base = |i: usize| match i.checked_sub(n) {
+            None => self.geometry.bodies[i].fixed,
+            Some(k) => self.attached[k].0.is_some_and(|l| self.body(l).fixed),
+        };
+        let mut out = Vec::new();
+        for i in (0..self.body_count()).filter(|&i| with_base(i)) {
+            let a = placement.parts(i);
+            for k in (0..self.obstacles.len()).filter(|&k| self.attached[k].0.is_none()) {
+                let (an, bn) = (&self.body(i).name, &self.obstacles[k].name);
+                if a.is_empty() || self.allowed.is_allowed(an, bn) {
+                    continue;
+                }
+                if self.deepest(&a, &placement.parts(n + k)).is_some() {
+                    out.push((an.clone(), bn.clone()));
+                }
+            }
+        }
+        Ok(out)
+    }
+
     /// How many bodies there are (links and obstacles).
     fn body_count(&self) -> usize {
         self.geometry.bodies.len() + self.obstacles.len()

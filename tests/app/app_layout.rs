@@ -286,6 +286,66 @@ fn the_cell_section_clips_nothing() {
     );
 }
 
+/// The Reachability section, with a map, a voxel's directions, the postures at the target and
+/// a placement shown, clips nothing and keeps the 3D view's share, in every size and mode.
+#[test]
+fn the_reachability_section_clips_nothing() {
+    use armlab::app::action::Action;
+    use armlab::app::reachability::ReachabilityAction;
+    use armlab::app::state::placement::PlaceSettings;
+    use armlab::app::state::reachability::MapSettings;
+    let mut bad = Vec::new();
+    for size in SIZES {
+        for projector in [false, true] {
+            let mut app = AppUi::new(AppState::from_spec("puma560").unwrap());
+            app.layout.projector = projector;
+            app.ik.reach.map.settings = MapSettings {
+                voxel_m: 0.2,
+                directions: 16,
+                rolls: 2,
+            };
+            app.apply(Action::Reachability(ReachabilityAction::Show(true)));
+            app.ik.reach.map.wait(&app.state, 0);
+            let m = &app.ik.reach.map.result().unwrap().map;
+            let s = m.reachable.iter().position(|&b| b).unwrap();
+            let (voxel, direction, roll) = (s / 32, s / 2 % 16, s % 2);
+            app.apply(Action::Reachability(ReachabilityAction::Aim {
+                voxel,
+                direction,
+                roll,
+            }));
+            app.apply(Action::Reachability(ReachabilityAction::AddTargetAsTask));
+            let area = [-0.2, 0.2, -0.2, 0.2];
+            let grid = PlaceSettings {
+                area,
+                step: 0.1,
+                yaws: 4,
+            };
+            app.apply(Action::Reachability(ReachabilityAction::Place(grid)));
+            app.ik.reach.placement.wait();
+            let mut h = harness(app, size);
+            if projector && h.state().rects.right.is_none() {
+                h.key_press(egui::Key::V);
+                settle(&mut h);
+            }
+            assert!(h.state().rects.right.is_some(), "the right panel is shown");
+            let what = format!(
+                "puma560 with the reachability overlay at {}x{}{}",
+                size[0],
+                size[1],
+                if projector { " (projector)" } else { "" }
+            );
+            bad.extend(check(&h, size, &what));
+        }
+    }
+    assert!(
+        bad.is_empty(),
+        "{} problems:\n{}",
+        bad.len(),
+        bad.join("\n")
+    );
+}
+
 /// Projector mode twice (the P key) gives back every panel rectangle, in every tab; and in
 /// projector mode the 3D view is the largest thing on screen.
 #[test]

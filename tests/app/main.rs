@@ -11,6 +11,7 @@ mod app_cell;
 mod app_exercise_orientation;
 mod app_layout;
 mod app_orientation;
+mod app_reachability;
 mod app_screenshots;
 mod app_self_motion;
 mod app_settings;

@@ -8,5 +8,7 @@ mod cli_reference;
 mod collisions;
 mod exercise_orientation;
 mod orientation_figures;
+mod place;
+mod reachability;
 mod rotation;
 mod view_scene;

@@ -16,6 +16,8 @@ mod construction;
 mod exercise;
 mod exercise_orientation;
 mod lesson;
+mod placement;
+mod reachability;
 mod redundancy;
 mod self_motion_locked;
 mod self_motion_sampler;

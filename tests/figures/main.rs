@@ -7,6 +7,7 @@
 mod common;
 
 mod figures;
+mod reachability;
 mod render;
 mod render_target;
 mod shader_validation;

@@ -51,7 +51,7 @@ struct Layer {
 const LAYERS: &[Layer] = &[
     Layer {
         name: "input",
-        modules: &["input"],
+        modules: &["input", "npz"],
         graphics: Graphics::No,
         files: true,
     },
@@ -78,6 +78,7 @@ const LAYERS: &[Layer] = &[
         modules: &[
             "workspace",
             "collision",
+            "reachability",
             "calibration",
             "redundancy",
             "construction",

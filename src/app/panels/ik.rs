@@ -24,6 +24,8 @@ pub struct IkPanel {
     pub symbols: super::symbols::SymbolsPanel,
     /// The cell's obstacles (shown while there is a cell).
     pub cell: super::cell::CellPanel,
+    /// The reachability overlay and base placement (shown while the overlay is on).
+    pub reach: super::reachability::ReachabilityPanel,
 }
 
 impl IkPanel {
@@ -32,6 +34,7 @@ impl IkPanel {
     pub fn decorate(&mut self, state: &AppState, ee: usize, scene: &mut crate::scene::Scene) {
         self.construction.decorate(state, scene);
         self.symbols.decorate(state, ee, scene);
+        self.reach.decorate(state, ee, scene);
     }
 
     /// The whole panel.
@@ -48,6 +51,10 @@ impl IkPanel {
                 // The cell first: an obstacle just added or clicked is edited here at once.
                 if state.cell_scene().is_some() {
                     self.cell.ui(state, ui, out);
+                    ui.separator();
+                }
+                if super::reachability::shown(state) {
+                    self.reach.ui(state, ee, ui, out);
                     ui.separator();
                 }
                 if state.hidden.pose {

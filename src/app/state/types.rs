@@ -51,6 +51,9 @@ pub struct DisplayToggles {
     pub self_motion_path: bool,
     /// Label every frame (else a robot with many frames labels only its driven chain's).
     pub all_labels: bool,
+    /// The reachability overlay (issue 49). Not remembered: its map is computed on request.
+    #[serde(skip)]
+    pub reachability: bool,
 }
 
 impl Default for DisplayToggles {
@@ -64,6 +67,7 @@ impl Default for DisplayToggles {
             workspace: false,
             self_motion_path: true,
             all_labels: false,
+            reachability: false,
         }
     }
 }

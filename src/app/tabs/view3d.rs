@@ -5,7 +5,9 @@
 use super::super::action::{Action, Actions};
 use super::super::cell::CellAction;
 use super::super::gizmo::Gizmo;
+use super::super::reachability::ReachabilityAction;
 use super::super::state::AppState;
+use super::super::state::reachability::Ray;
 use super::super::viewport::CONTACT_LABEL;
 use super::super::viewport::{TextureRegistry, Viewport3d, ViewportImage};
 use super::{Tab, TabContext};
@@ -34,6 +36,9 @@ pub struct View3d {
     /// Viewport size and camera right after the last framing: while the camera is untouched, a
     /// new viewport size (the first layout, a resized window) frames the arm again.
     framed: Option<([u32; 2], Camera)>,
+    /// Where the pointer was last said to the reachability overlay (points; `None`: off the
+    /// view, or dragging).
+    pointed: Option<egui::Pos2>,
 }
 
 impl Default for View3d {
@@ -49,6 +54,7 @@ impl Default for View3d {
             placed_labels: Vec::new(),
             fitted: false,
             framed: None,
+            pointed: None,
         }
     }
 }
@@ -267,6 +273,9 @@ impl View3d {
             }
         }
         self.navigate(ui, &response, rect, gizmo_active);
+        if cx.state.display.reachability {
+            self.point(&response, (rect, ppp), gizmo_active, out);
+        }
         if response.double_clicked() {
             self.fit(cx.state);
         } else if response.clicked()
@@ -279,13 +288,50 @@ impl View3d {
 
     /// A click at a pixel of the viewport: the posture of the ghost arm there, else the
     /// obstacle there (the gizmo then moves it), else (clicking empty space) no obstacle.
+    /// While the reachability overlay is on, the overlay decides (a direction of the shown
+    /// voxel, else the ghost there, else a voxel of the slice).
     fn click(&self, state: &AppState, ee: usize, at: egui::Vec2, out: &mut Actions) {
-        if let Some(index) = self.pick_ghost(state, ee, at) {
+        if state.display.reachability {
+            let (ray, ghost) = (self.ray_at(at), self.pick_ghost(state, ee, at));
+            out.push(Action::Reachability(ReachabilityAction::Click {
+                ray,
+                ghost,
+            }));
+        } else if let Some(index) = self.pick_ghost(state, ee, at) {
             out.push(Action::SelectSolution(ee, index));
         } else if let Some(k) = self.pick_obstacle(state, at) {
             out.push(Action::Cell(CellAction::Select(Some(k))));
         } else if state.selected_obstacle().is_some() {
             out.push(Action::Cell(CellAction::Select(None)));
+        }
+    }
+
+    /// Tells the reachability overlay where the pointer looks when it moved (nothing while a
+    /// gizmo or the camera is dragged); `view` is the viewport's rectangle and pixels per point.
+    fn point(
+        &mut self,
+        response: &egui::Response,
+        (rect, ppp): (egui::Rect, f32),
+        busy: bool,
+        out: &mut Actions,
+    ) {
+        let at = response
+            .hover_pos()
+            .filter(|_| !busy && !response.dragged());
+        if at == self.pointed {
+            return;
+        }
+        self.pointed = at;
+        let ray = at.map(|p| self.ray_at((p - rect.min) * ppp));
+        out.push(Action::Reachability(ReachabilityAction::Point(ray)));
+    }
+
+    /// The ray through a pixel of the viewport (world, m).
+    fn ray_at(&self, at: egui::Vec2) -> Ray {
+        let (o, d) = super::super::gizmo::ray_from_pixel(&self.camera, self.viewport_px, at.into());
+        Ray {
+            origin: [o.x, o.y, o.z],
+            dir: [d.x, d.y, d.z],
         }
     }
 
