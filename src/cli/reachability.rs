@@ -289,6 +289,15 @@ pub(super) fn read_map(path: &Path) -> Result<ReachabilityMap, CliError> {
     })
 }
 
+/// What the summary reports, counted once for text and JSON.
+struct Counts {
+    samples: usize,
+    reached: usize,
+    per_posture: Vec<usize>,
+    voxels_reached: usize,
+    file_bytes: Option<u64>,
+}
+
 /// Prints what the map holds: text or JSON.
 fn summary(
     map: &ReachabilityMap,
@@ -297,89 +306,115 @@ fn summary(
     figures: &[PathBuf],
     out: &mut dyn Write,
 ) -> Result<(), CliError> {
-    let samples = map.reachable.len();
-    let reached = map.reached_count();
-    let counts: Vec<usize> = (0..map.posture_names.len())
-        .map(|b| map.postures.iter().filter(|&&m| m >> b & 1 == 1).count())
-        .collect();
-    let voxels_reached = map.index().iter().filter(|&&x| x > 0.0).count();
-    let file_bytes = args
-        .out
-        .as_ref()
-        .and_then(|p| std::fs::metadata(p).ok())
-        .map(|m| m.len());
+    let c = Counts {
+        samples: map.reachable.len(),
+        reached: map.reached_count(),
+        per_posture: (0..map.posture_names.len())
+            .map(|b| map.postures.iter().filter(|&&m| m >> b & 1 == 1).count())
+            .collect(),
+        voxels_reached: map.index().iter().filter(|&&x| x > 0.0).count(),
+        file_bytes: args
+            .out
+            .as_ref()
+            .and_then(|p| std::fs::metadata(p).ok())
+            .map(|m| m.len()),
+    };
     match args.format {
-        Format::Json => {
-            let postures: Vec<_> = map
-                .posture_names
-                .iter()
-                .zip(&counts)
-                .map(|(name, &c)| json!({"name": name, "samples": c}))
-                .collect();
-            let v = json!({
-                "model": map.model,
-                "end_effector": map.end_effector,
-                "solver": map.solver.describe(),
-                "collisions": map.collisions,
-                "origin": map.grid.origin,
-                "voxel": map.grid.voxel_m,
-                "dims": map.grid.dims,
-                "directions": map.directions.len(),
-                "rolls": map.rolls.len(),
-                "samples": samples,
-                "reached": reached,
-                "voxels_reached": voxels_reached,
-                "postures": postures,
-                "seconds": seconds,
-                "out": args.out,
-                "file_bytes": file_bytes,
-                "figures": figures,
-            });
-            writeln!(
-                out,
-                "{}",
-                serde_json::to_string_pretty(&v).unwrap_or_default()
-            )?;
+        Format::Json => summary_json(map, args, seconds, figures, &c, out),
+        Format::Text => summary_text(map, args, seconds, figures, &c, out),
+    }
+}
+
+/// The summary as one JSON object.
+fn summary_json(
+    map: &ReachabilityMap,
+    args: &ReachabilityArgs,
+    seconds: f64,
+    figures: &[PathBuf],
+    c: &Counts,
+    out: &mut dyn Write,
+) -> Result<(), CliError> {
+    let postures: Vec<_> = map
+        .posture_names
+        .iter()
+        .zip(&c.per_posture)
+        .map(|(name, &n)| json!({"name": name, "samples": n}))
+        .collect();
+    let v = json!({
+        "model": map.model,
+        "end_effector": map.end_effector,
+        "solver": map.solver.describe(),
+        "collisions": map.collisions,
+        "origin": map.grid.origin,
+        "voxel": map.grid.voxel_m,
+        "dims": map.grid.dims,
+        "directions": map.directions.len(),
+        "rolls": map.rolls.len(),
+        "samples": c.samples,
+        "reached": c.reached,
+        "voxels_reached": c.voxels_reached,
+        "postures": postures,
+        "seconds": seconds,
+        "out": args.out,
+        "file_bytes": c.file_bytes,
+        "figures": figures,
+    });
+    writeln!(
+        out,
+        "{}",
+        serde_json::to_string_pretty(&v).unwrap_or_default()
+    )?;
+    Ok(())
+}
+
+/// The summary in words.
+fn summary_text(
+    map: &ReachabilityMap,
+    args: &ReachabilityArgs,
+    seconds: f64,
+    figures: &[PathBuf],
+    c: &Counts,
+    out: &mut dyn Write,
+) -> Result<(), CliError> {
+    let [nx, ny, nz] = map.grid.dims;
+    writeln!(
+        out,
+        "{} ({}): {}",
+        map.model,
+        map.end_effector,
+        map.solver.describe()
+    )?;
+    writeln!(
+        out,
+        "grid {nx} x {ny} x {nz} voxels of {} m from ({:.3}, {:.3}, {:.3}) m, {} directions x {} rolls: {} samples{}",
+        map.grid.voxel_m,
+        map.grid.origin[0],
+        map.grid.origin[1],
+        map.grid.origin[2],
+        map.directions.len(),
+        map.rolls.len(),
+        c.samples,
+        if map.collisions {
+            ", collisions taken out"
+        } else {
+            ""
         }
-        Format::Text => {
-            let [nx, ny, nz] = map.grid.dims;
-            writeln!(
-                out,
-                "{} ({}): {}",
-                map.model,
-                map.end_effector,
-                map.solver.describe()
-            )?;
-            writeln!(
-                out,
-                "grid {nx} x {ny} x {nz} voxels of {} m from ({:.3}, {:.3}, {:.3}) m, {} directions x {} rolls: {samples} samples{}",
-                map.grid.voxel_m,
-                map.grid.origin[0],
-                map.grid.origin[1],
-                map.grid.origin[2],
-                map.directions.len(),
-                map.rolls.len(),
-                if map.collisions {
-                    ", collisions taken out"
-                } else {
-                    ""
-                }
-            )?;
-            writeln!(
-                out,
-                "reached: {reached} samples ({:.2} %), in {voxels_reached} voxels; {seconds:.1} s",
-                100.0 * reached as f64 / samples.max(1) as f64
-            )?;
-            for (name, c) in map.posture_names.iter().zip(&counts) {
-                writeln!(out, "  {name:<45} {c:>12} samples")?;
-            }
-            if let (Some(p), Some(b)) = (&args.out, file_bytes) {
-                writeln!(out, "wrote {} ({:.1} MB)", p.display(), b as f64 / 1e6)?;
-            }
-            for p in figures {
-                writeln!(out, "wrote {}", p.display())?;
-            }
-        }
+    )?;
+    writeln!(
+        out,
+        "reached: {} samples ({:.2} %), in {} voxels; {seconds:.1} s",
+        c.reached,
+        100.0 * c.reached as f64 / c.samples.max(1) as f64,
+        c.voxels_reached
+    )?;
+    for (name, n) in map.posture_names.iter().zip(&c.per_posture) {
+        writeln!(out, "  {name:<45} {n:>12} samples")?;
+    }
+    if let (Some(p), Some(b)) = (&args.out, c.file_bytes) {
+        writeln!(out, "wrote {} ({:.1} MB)", p.display(), b as f64 / 1e6)?;
+    }
+    for p in figures {
+        writeln!(out, "wrote {}", p.display())?;
     }
     Ok(())
 }
