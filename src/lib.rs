@@ -84,6 +84,7 @@ pub mod app;
 pub mod calibration;
 #[cfg(feature = "gui")]
 pub mod camera;
+pub mod class;
 #[cfg(feature = "app")]
 pub mod cli;
 pub mod collision;

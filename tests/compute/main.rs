@@ -8,6 +8,7 @@ mod animation;
 mod calibration;
 mod calibration_files;
 mod calibration_setups;
+mod class_protocol;
 mod collision;
 mod collision_matrix;
 mod collision_self_motion;

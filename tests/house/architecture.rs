@@ -84,6 +84,7 @@ const LAYERS: &[Layer] = &[
             "construction",
             "exercise",
             "lesson",
+            "class",
             "offload",
             "animation",
         ],
@@ -110,7 +111,7 @@ const LAYERS: &[Layer] = &[
     },
     Layer {
         name: "front ends",
-        modules: &["app", "cli", "web"],
+        modules: &["app", "cli", "web", "class_server"],
         graphics: Graphics::Any,
         files: true,
     },
