@@ -86,6 +86,8 @@ pub mod calibration;
 pub mod camera;
 pub mod class;
 #[cfg(feature = "app")]
+pub mod class_server;
+#[cfg(feature = "app")]
 pub mod cli;
 pub mod collision;
 pub mod construction;

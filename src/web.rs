@@ -6,9 +6,12 @@
 //!   storage), else the default robot.
 //! * Files: "Open file..." and "Browse..." show the browser's file picker, a file dropped onto the
 //!   page is opened, and saving (models, calibrated models, screenshots) is a download.
+//! * The live class (issue 50): `?token=T` joins the class server the page came from as the
+//!   teacher, `?code=C&name=N` as a student (`?code=C` alone asks for a nickname first).
 //! * [`WebHandle::status`] reports the app's state as JSON, for the page and its tests.
 
 use crate::app::AppUi;
+use crate::app::class::{ClassAction, NamePrompt, link};
 use crate::app::file_picker::{FileKind, FilePicker};
 use crate::app::state::{AppState, Level};
 use crate::app::workspace_job::WorkspaceJob;
@@ -81,6 +84,7 @@ impl WebHandle {
                         None => {}
                     }
                     ui.clock = Some(|| js_sys::Date::now() / 1000.0);
+                    join_class(&mut ui);
                     for _ in 0..pool_size() {
                         match WorkerOffload::new() {
                             Ok(w) => ui.offload.push(Box::new(w)),
@@ -96,7 +100,9 @@ impl WebHandle {
     /// The app's state as JSON: `{"started", "model", "dof", "q" (rad, m), "position" (m),
     /// "rpy_deg", "solutions", "within_limits", "gizmo" ([x, y] in CSS pixels of a translation
     /// handle), "backend" ("BrowserWebGpu" or "Gl" for WebGL2), "workspace_progress" (0..1), "workspace_figure" ([w, h] px), "workspace_dots", "workspace_previews" (pictures of the figure as it formed), "workers" (the pool of web workers),
-    /// "workspace_error", "messages", "frames", "panicked"}`.
+    /// "workspace_error", "messages", "frames", "panicked", "class" (the live class: role,
+    /// connected, following, question, answered, joined, counts, correct_percent, mistakes; see
+    /// [`crate::app::class::ClassClient::status`])}`.
     pub fn status(&self) -> String {
         let panicked = self.runner.has_panicked();
         let Some(app) = self.runner.app_mut::<ArmlabApp>() else {
@@ -107,6 +113,37 @@ impl WebHandle {
         v["frames"] = app.frames().into();
         v["backend"] = app.graphics_backend().into();
         v.to_string()
+    }
+
+    /// The live class, for the page's tests: answers question `id` with `answer_json` (a
+    /// poll's choice index, an exercise's text as a JSON string) through the same action as
+    /// the question window's buttons and the Exercise tab's "Send answer". An error where the
+    /// app has not started or the JSON cannot be read.
+    pub fn class_answer(&self, id: u64, answer_json: &str) -> Result<(), JsValue> {
+        let answer: serde_json::Value = serde_json::from_str(answer_json)
+            .map_err(|e| JsValue::from_str(&format!("the answer's JSON: {e}")))?;
+        self.class_action(ClassAction::Answer { id, answer })
+    }
+
+    /// The live class, for the page's tests: the teacher asks "Which posture is this?" about
+    /// the current target, through the same action as the Class window's button.
+    pub fn class_ask_poll(&self) -> Result<(), JsValue> {
+        let mut app = self
+            .runner
+            .app_mut::<ArmlabApp>()
+            .ok_or_else(|| JsValue::from_str("the app has not started"))?;
+        let q = crate::app::class::poll_request(app.app_ui()).map_err(|e| JsValue::from_str(&e))?;
+        app.apply(crate::app::action::Action::Class(ClassAction::Ask(q)));
+        Ok(())
+    }
+
+    fn class_action(&self, action: ClassAction) -> Result<(), JsValue> {
+        let mut app = self
+            .runner
+            .app_mut::<ArmlabApp>()
+            .ok_or_else(|| JsValue::from_str("the app has not started"))?;
+        app.apply(crate::app::action::Action::Class(action));
+        Ok(())
     }
 
     /// Whether the app has panicked (then the page shows the panic).
@@ -290,12 +327,67 @@ fn status_json(app: &AppUi) -> serde_json::Value {
         "workers": app.offload.len(),
         "workspace_error": app.tabs.workspace.job.as_ref().and_then(|w| w.error()),
         "messages": s.messages().iter().map(|m| m.text.clone()).collect::<Vec<_>>(),
+        "class": app.class.status(),
         "lesson": app.lesson.as_ref().map(|p| serde_json::json!({
             "title": p.lesson.title,
             "step": p.step,
             "steps": p.lesson.steps.len(),
         })),
     })
+}
+
+/// Joins the live class the page's URL names: `?token=T` as the teacher (the Class window
+/// open), `?code=C&name=N` as the student `N`, `?code=C` alone after the nickname prompt; over
+/// `ws(s)://HOST/ws` of the page's own server. A student's resume secret is kept in local
+/// storage per code, so that a reload is the same student.
+fn join_class(ui: &mut AppUi) {
+    let (token, code) = (url_parameter("token"), url_parameter("code"));
+    if token.is_none() && code.is_none() {
+        return;
+    }
+    let Some(ws) = page_ws_url() else {
+        return ui
+            .state
+            .push_message(Level::Error, "class: the page has no address");
+    };
+    if let Some(token) = token {
+        match link::open(&ws) {
+            Ok(l) => ui.class.connect_teacher(l, &token),
+            Err(e) => ui.state.push_message(Level::Error, format!("class: {e}")),
+        }
+        ui.class.window = true;
+        return;
+    }
+    let code = code.unwrap_or_default();
+    let key = format!("armlab-class-resume-{code}");
+    let resume = local_storage().and_then(|s| s.get_item(&key).ok().flatten());
+    ui.class.on_resume = Some(Box::new(move |secret| {
+        if let Some(s) = local_storage() {
+            let _ = s.set_item(&key, secret);
+        }
+    }));
+    match url_parameter("name") {
+        Some(name) => match link::open(&ws) {
+            Ok(l) => ui.class.connect_student(l, &code, &name, resume),
+            Err(e) => ui.state.push_message(Level::Error, format!("class: {e}")),
+        },
+        None => ui.class.prompt = Some(NamePrompt { ws, code, resume }),
+    }
+}
+
+/// The class server's WebSocket URL on the page's own host: `ws://HOST/ws` (`wss://` on https).
+fn page_ws_url() -> Option<String> {
+    let location = web_sys::window()?.location();
+    let scheme = match location.protocol().ok()?.as_str() {
+        "https:" => "wss",
+        _ => "ws",
+    };
+    Some(format!("{scheme}://{}/ws", location.host().ok()?))
+}
+
+/// The page's local storage, where the browser allows it.
+fn local_storage() -> Option<web_sys::Storage> {
+    web_sys::window()?.local_storage().ok().flatten()
 }
 
 /// The text at `url` (relative to the page), fetched.

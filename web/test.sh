@@ -11,3 +11,6 @@ if [ "$ARMLAB_WEB_PROFILE" = web-test ]; then
 fi
 web/build.sh web/dist
 python3 web/test_page.py web/dist
+# the live class: the class server (target/debug/armlab) serving web/dist, a teacher's page and
+# two students' pages
+python3 web/test_class.py web/dist

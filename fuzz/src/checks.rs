@@ -785,3 +785,74 @@ pub fn calibration_files(data: &[u8]) {
         same_measurements(ms, &again.measurements, false, "template");
     }
 }
+
+/// A live-class message (issue 50), as the server reads a client's ([`parse_client`]) and a
+/// client reads the server's ([`parse_server`]); bytes that are not UTF-8 are read with their
+/// bad sequences replaced. Never a panic. A client message that parses keeps its limits: at
+/// most 64 KB, or a model file whose contents are at most 8 MB; a nickname of at most 40
+/// characters without control characters; finite joint values; a poll with 2 to 16 choices and
+/// a right choice among them, an exercise with none; and written back (`to_text`) it reads
+/// again equal. A rejected message's error has words. A server message that parses writes back
+/// and reads again equal.
+///
+/// [`parse_client`]: armlab::class::protocol::parse_client
+/// [`parse_server`]: armlab::class::protocol::parse_server
+pub fn class_message(data: &[u8]) {
+    use armlab::class::protocol::{
+        ClientMessage, MAX_CHOICES, MAX_MESSAGE_BYTES, MAX_MODEL_BYTES, MAX_NAME_CHARS,
+        QuestionKind, parse_client, parse_server,
+    };
+    let text = String::from_utf8_lossy(data);
+    match parse_client(&text) {
+        Ok(m) => {
+            match &m {
+                ClientMessage::Model { text: contents, .. } => {
+                    assert!(
+                        contents.len() <= MAX_MODEL_BYTES,
+                        "a model over 8 MB passed"
+                    )
+                }
+                _ => assert!(
+                    text.len() <= MAX_MESSAGE_BYTES,
+                    "a message over 64 KB passed"
+                ),
+            }
+            match &m {
+                ClientMessage::Join(j) => {
+                    if let Some(name) = &j.name {
+                        assert!(name.chars().count() <= MAX_NAME_CHARS, "a long name passed");
+                        assert!(!name.chars().any(char::is_control), "a control character");
+                    }
+                }
+                ClientMessage::State { state } => {
+                    assert!(state.q.iter().all(|v| v.is_finite()), "q not finite")
+                }
+                ClientMessage::Question(q) if q.kind == QuestionKind::Poll => {
+                    assert!((2..=MAX_CHOICES).contains(&q.choices.len()), "poll choices");
+                    assert!(
+                        q.correct.is_none_or(|c| c < q.choices.len()),
+                        "right choice"
+                    );
+                }
+                ClientMessage::Question(q) => {
+                    assert!(
+                        q.choices.is_empty() && q.correct.is_none(),
+                        "exercise choices"
+                    )
+                }
+                _ => {}
+            }
+            let written = m.to_text();
+            let back: ClientMessage = serde_json::from_str(&written)
+                .unwrap_or_else(|e| panic!("a client message does not read back: {e}\n{written}"));
+            assert_eq!(back, m, "a client message changed on writing");
+        }
+        Err(e) => assert!(!e.to_string().trim().is_empty(), "an error without words"),
+    }
+    if let Ok(m) = parse_server(&text) {
+        let written = m.to_text();
+        let back = parse_server(&written)
+            .unwrap_or_else(|e| panic!("a server message does not read back: {e}\n{written}"));
+        assert_eq!(back, m, "a server message changed on writing");
+    }
+}

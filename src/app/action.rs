@@ -137,6 +137,17 @@ pub enum Action {
         /// Its contents.
         text: String,
     },
+    /// Open a file handed over as text (a model file, an exercise sheet), as a dropped file
+    /// is opened: by its contents, `name` for messages.
+    OpenText {
+        /// The file's name (its extension tells a model's format).
+        name: String,
+        /// Its contents.
+        text: String,
+    },
+    /// Something for the live class's client (the toolbar's "Start class", the class
+    /// window, the Exercise tab's "Send answer").
+    Class(super::class::ClassAction),
     /// A message for the status bar.
     Message(Level, String),
     /// Something about the cell's obstacles (the Cell menu, the cell panel, the gizmo).

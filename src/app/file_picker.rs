@@ -17,6 +17,8 @@ pub enum FileKind {
     Scene,
     /// A cell's scene file to save (.toml).
     SceneToSave,
+    /// A live class's answers to save (.csv).
+    ClassCsv,
 }
 
 #[cfg(feature = "app")]
@@ -28,6 +30,7 @@ impl FileKind {
             FileKind::Measurements => "Open a measurement file",
             FileKind::Scene => "Open a scene file (the cell's obstacles)",
             FileKind::SceneToSave => "Save the cell as a scene file",
+            FileKind::ClassCsv => "Save the class's answers as CSV",
         }
     }
 
@@ -37,6 +40,7 @@ impl FileKind {
             FileKind::ModelToSave => &[("TOML model file", &["toml"]), ("URDF", &["urdf"])],
             FileKind::Measurements => &[("Measurements", &["csv", "txt"]), ("All files", &["*"])],
             FileKind::Scene | FileKind::SceneToSave => &[("Scene files", &["toml"])],
+            FileKind::ClassCsv => &[("CSV", &["csv"])],
         }
     }
 }

@@ -59,8 +59,8 @@ impl LessonPlayer {
     }
 
     /// Goes to step `i` (clamped) and returns what it sets up, in order: the joints, the IK
-    /// target of `ee`, the overlays, the view; with the step's name (`file: step n`) for the
-    /// warnings of these actions. `None` where the lesson has no steps.
+    /// target of `ee`, the overlays, the view (see [`step_actions`]); with the step's name
+    /// (`file: step n`) for the warnings of these actions. `None` where the lesson has no steps.
     pub fn go_to(&mut self, i: usize, state: &AppState, ee: usize) -> Option<(String, Actions)> {
         let n = self.lesson.steps.len();
         if n == 0 {
@@ -68,67 +68,15 @@ impl LessonPlayer {
         }
         let i = i.min(n - 1);
         self.step = i;
-        let (lesson, file) = (&self.lesson, &self.file);
-        let step = &lesson.steps[i];
-        let mut out = Actions::default();
-        match lesson.step_q(i, state.robot(), file) {
-            Ok(Some(q)) => out.push(Action::SetQ(q)),
-            Ok(None) => {}
-            Err(e) => out.message(Level::Warning, e.to_string()),
-        }
-        // The step's target, or the tool's pose (at the step's joints).
-        let (position, rotation) = match step.target_position {
-            Some(p) => (
-                Some(Vector3::from(p)),
-                step.target_rpy_deg
-                    .map(|r| rotation_from_rpy(&Vector3::from(r).map(f64::to_radians))),
-            ),
-            None => (None, None),
-        };
-        out.push(Action::TargetFromTool {
-            ee,
-            position,
-            rotation,
-        });
-        let overlays = (lesson.overlays(i), lesson.overlays_off(i));
-        overlay_actions(&overlays, state, &mut out);
-        scene_action(lesson, i, file, state, &mut out);
-        if let Some(k) = step.construction_step {
-            out.push(Action::ShowConstruction(true));
-            out.push(Action::ConstructionStep(k.saturating_sub(1)));
-        }
-        if let Some(f) = &step.figure {
-            out.push(Action::WorkspaceFigure(f.clone()));
-        }
-        if let Some(t) = step.tab {
-            out.push(Action::ShowTab(tab_index(t)));
-        }
-        if let Some(o) = &step.orientation {
-            out.push(Action::Orientation(Box::new(o.clone())));
-        }
-        out.push(
-            match (&step.camera, step.view.as_deref().and_then(preset)) {
-                (Some(c), _) => camera_action(c),
-                (None, Some(p)) => Action::CameraPreset(p),
-                (None, None) => Action::Fit,
-            },
-        );
-        if self.frames_reach() {
-            out.push(Action::FitReach);
-        }
-        out.push(Action::ClearTrails);
-        Some((format!("{file}: step {}", i + 1), out))
+        let out = step_actions(&self.lesson, i, &self.file, state, ee);
+        Some((format!("{}: step {}", self.file, i + 1), out))
     }
 
     /// Whether the current step is framed for its overlays rather than for the arm alone: it
     /// shows the workspace and names no camera distance.
     pub fn frames_reach(&self) -> bool {
         let i = self.step.min(self.lesson.steps.len().saturating_sub(1));
-        !self.lesson.steps.is_empty()
-            && self.lesson.overlays(i).contains(&Overlay::Workspace)
-            && self.lesson.steps[i]
-                .camera
-                .is_none_or(|c| c.distance.is_none())
+        frames_reach(&self.lesson, i)
     }
 
     /// Appends `step` to the lesson and shows it.
@@ -232,6 +180,76 @@ impl LessonPlayer {
             }
         });
     }
+}
+
+/// What showing step `i` of `lesson` (read from `file`) sets up, in order: the joints, the IK
+/// target of `ee` (the step's, else the tool's at the step's joints), the overlays, the cell, the
+/// construction's step, the figure, the tab, the orientation lab, the camera, and the trails
+/// cleared. The lesson player and the live class's students (a one-step lesson made of the
+/// teacher's setup) share it. What cannot be read is a warning naming the step.
+pub fn step_actions(lesson: &Lesson, i: usize, file: &str, state: &AppState, ee: usize) -> Actions {
+    let step = &lesson.steps[i];
+    let mut out = Actions::default();
+    match lesson.step_q(i, state.robot(), file) {
+        Ok(Some(q)) => out.push(Action::SetQ(q)),
+        Ok(None) => {}
+        Err(e) => out.message(Level::Warning, e.to_string()),
+    }
+    // The step's target, or the tool's pose (at the step's joints).
+    let (position, rotation) = match step.target_position {
+        Some(p) => (
+            Some(Vector3::from(p)),
+            step.target_rpy_deg
+                .map(|r| rotation_from_rpy(&Vector3::from(r).map(f64::to_radians))),
+        ),
+        None => (None, None),
+    };
+    out.push(Action::TargetFromTool {
+        ee,
+        position,
+        rotation,
+    });
+    let overlays = (lesson.overlays(i), lesson.overlays_off(i));
+    overlay_actions(&overlays, state, &mut out);
+    scene_action(lesson, i, file, state, &mut out);
+    view_actions(step, &mut out);
+    if frames_reach(lesson, i) {
+        out.push(Action::FitReach);
+    }
+    out.push(Action::ClearTrails);
+    out
+}
+
+/// The step's construction, figure, tab, orientation lab and camera.
+fn view_actions(step: &Step, out: &mut Actions) {
+    if let Some(k) = step.construction_step {
+        out.push(Action::ShowConstruction(true));
+        out.push(Action::ConstructionStep(k.saturating_sub(1)));
+    }
+    if let Some(f) = &step.figure {
+        out.push(Action::WorkspaceFigure(f.clone()));
+    }
+    if let Some(t) = step.tab {
+        out.push(Action::ShowTab(tab_index(t)));
+    }
+    if let Some(o) = &step.orientation {
+        out.push(Action::Orientation(Box::new(o.clone())));
+    }
+    out.push(
+        match (&step.camera, step.view.as_deref().and_then(preset)) {
+            (Some(c), _) => camera_action(c),
+            (None, Some(p)) => Action::CameraPreset(p),
+            (None, None) => Action::Fit,
+        },
+    );
+}
+
+/// Whether step `i` of `lesson` is framed for its overlays rather than for the arm alone: it
+/// shows the workspace and names no camera distance.
+fn frames_reach(lesson: &Lesson, i: usize) -> bool {
+    !lesson.steps.is_empty()
+        && lesson.overlays(i).contains(&Overlay::Workspace)
+        && lesson.steps[i].camera.is_none_or(|c| c.distance.is_none())
 }
 
 /// The camera a step names: the whole camera where it gives the look-at point and the

@@ -8,6 +8,7 @@
 
 pub mod action;
 pub mod cell;
+pub mod class;
 pub mod file_browser;
 pub mod file_picker;
 pub mod files;
@@ -192,6 +193,11 @@ impl ArmlabApp {
     /// The app's state and UI (read by the web page's test hooks).
     pub fn app_ui(&self) -> &AppUi {
         &self.ui
+    }
+
+    /// Applies one action as the window's buttons do (the web page's test hooks).
+    pub fn apply(&mut self, action: action::Action) {
+        self.ui.apply(action);
     }
 
     /// The graphics backend the window draws with (`"BrowserWebGpu"`, `"Gl"` for WebGL2,

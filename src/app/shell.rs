@@ -49,11 +49,12 @@ pub struct AppUi {
     pub offload: Vec<Box<dyn crate::offload::Offload>>,
     /// Seconds on the app's clock (a browser's; `None`: std's): the workspace job's frame budget.
     pub clock: Option<fn() -> f64>,
-    /// The panel rectangles of the last layout (points): left, right, central, toolbar,
-    /// status bar (tests check them).
+    /// The last layout's panel rectangles (points): left, right, central, toolbar, status bar.
     pub rects: PanelRects,
     /// The lesson being played, if any.
     pub lesson: Option<LessonPlayer>,
+    /// The live class: teacher or student of a class server, or neither.
+    pub class: super::class::ClassClient,
     /// The newest message seen and when it came (s, egui time).
     message_seen: (u64, f64),
 }
@@ -79,6 +80,7 @@ impl AppUi {
             clock: None,
             rects: PanelRects::default(),
             lesson: None,
+            class: Default::default(),
             message_seen: (0, 0.0),
         }
     }
@@ -204,6 +206,8 @@ impl AppUi {
                 let shown = self.tabs.exercise.close(&self.state);
                 self.apply_all(shown);
             }
+            Action::OpenText { name, text } => self.open_bytes(&name, text.as_bytes()),
+            Action::Class(c) => self.class.apply(c, &mut self.tabs, &mut *self.file_picker),
             Action::SaveAnswer { path, text } => {
                 let saved = files::write_answer(self.file_picker.as_mut(), &path, &text);
                 self.report(saved);
@@ -221,8 +225,7 @@ impl AppUi {
         }
     }
 
-    /// Loads a model, a lesson or an exercise key (by the file's contents); on error the app
-    /// keeps what it shows and the status says why.
+    /// Loads a model, a lesson or an exercise key (by its contents); on error keeps what it shows.
     pub fn load(&mut self, spec: &str) {
         if spec.is_empty() {
             let m = "type a model's path, or choose a built-in model";
@@ -236,8 +239,7 @@ impl AppUi {
         self.open(name, files::open_bytes(name, bytes));
     }
 
-    /// Opens what the file `name` turned out to be; on error the app keeps what it shows and
-    /// the status says why.
+    /// Opens what the file `name` turned out to be; on error the app keeps its state and says why.
     fn open(&mut self, name: &str, opening: Opening) {
         let opened = match opening {
             Opening::Exercise(text) => self.open_exercise_text(name, &text),
@@ -317,8 +319,7 @@ impl AppUi {
         }
     }
 
-    /// Writes the model to `path` (a download in a browser); the status bar shows the full path
-    /// written, or why not.
+    /// Writes the model to `path` (a download in a browser); the status bar says where, or why not.
     fn save_model(&mut self, path: &str) {
         let saved = if self.file_picker.downloads() {
             self.model.save_path = path.to_string();
@@ -389,8 +390,7 @@ impl AppUi {
         Ok(())
     }
 
-    /// Where a user would grab the current target's gizmo (see
-    /// [`tabs::view3d::View3d::gizmo_grip`]).
+    /// Where a user would grab the current target's gizmo ([`tabs::view3d::View3d::gizmo_grip`]).
     pub fn gizmo_grip(&self) -> Option<egui::Pos2> {
         self.tabs.view3d.gizmo_grip(&self.state, self.ee())
     }
@@ -488,6 +488,7 @@ impl AppUi {
             }
         });
         self.rects.central = central.response.rect;
+        self.class = std::mem::take(&mut self.class).frame(&ctx, self, &mut out);
         window::present_hint(&ctx, self.layout.present, self.layout.text_scale());
         shortcuts::help_window(&ctx, &mut self.show_help);
         if let Some(path) = self.browser.ui(&ctx) {

@@ -83,28 +83,25 @@ pub fn show(app: &mut ToolbarContext<'_>, ui: &mut egui::Ui, out: &mut Actions) 
         ui.separator();
         // Large text or a narrow window: the presets fold into a menu, so the row still fits
         // (the buttons take about 280 points, and about 470 follow them, the model name
-        // shrinking); narrower still (1200 px with six tabs), the Cell menu goes there too.
+        // shrinking, and 85 more for Start class); narrower still (1200 px with six tabs), the
+        // Cell menu goes there too. Start class goes there below 700 points of room (1280 px
+        // with six tabs: the row is then as it was before the class came) and in projector
+        // mode.
         let room = ui.available_width();
-        let cell_in_view = projector || room < 610.0;
-        if projector || room < 760.0 {
-            ui.menu_button("View", |ui| {
-                view_buttons(app, ui, out);
-                // In projector mode the left panel is usually closed: the model list is here.
-                ui.separator();
-                ui.menu_button("Model", |ui| model_menu(ui, out));
-                if cell_in_view {
-                    ui.menu_button("Cell", |ui| cell_items(app.cell, ui, out));
-                }
-                if projector {
-                    screenshot_button(app.exam, ui, out);
-                }
-            });
+        let folded = Folded {
+            presets: projector || room < 845.0,
+            cell: projector || room < 610.0,
+            screenshot: projector,
+            class: projector || room < 700.0,
+        };
+        if folded.presets {
+            ui.menu_button("View", |ui| view_menu(app, folded, ui, out));
         } else {
             view_buttons(app, ui, out);
         }
         ui.separator();
         show_menu(app, ui, out);
-        if !cell_in_view {
+        if !folded.cell {
             ui.menu_button("Cell", |ui| cell_items(app.cell, ui, out))
                 .response
                 .on_hover_text("Obstacles around the robot, and collisions");
@@ -134,6 +131,9 @@ pub fn show(app: &mut ToolbarContext<'_>, ui: &mut egui::Ui, out: &mut Actions) 
         }
         #[cfg(feature = "app")]
         record_button(app, projector, ui, out);
+        if !folded.class {
+            class_button(ui, out);
+        }
         if ui.button("Help (H)").clicked() {
             out.push(Action::ToggleHelp);
         }
@@ -143,6 +143,36 @@ pub fn show(app: &mut ToolbarContext<'_>, ui: &mut egui::Ui, out: &mut Actions) 
             ui.add(egui::Label::new(RichText::new(name).weak()).truncate());
         });
     });
+}
+
+/// What the toolbar's row has no room for, in the View menu instead.
+#[derive(Debug, Clone, Copy)]
+struct Folded {
+    /// The camera presets, Fit and Ortho (the View menu is there when these are folded).
+    presets: bool,
+    /// The Cell menu.
+    cell: bool,
+    /// Screenshot.
+    screenshot: bool,
+    /// Start class.
+    class: bool,
+}
+
+/// The View menu: the presets, the model list, and what else the row has no room for.
+fn view_menu(app: &ToolbarContext<'_>, folded: Folded, ui: &mut egui::Ui, out: &mut Actions) {
+    view_buttons(app, ui, out);
+    // In projector mode the left panel is usually closed: the model list is here.
+    ui.separator();
+    ui.menu_button("Model", |ui| model_menu(ui, out));
+    if folded.cell {
+        ui.menu_button("Cell", |ui| cell_items(app.cell, ui, out));
+    }
+    if folded.screenshot {
+        screenshot_button(app.exam, ui, out);
+    }
+    if folded.class {
+        class_button(ui, out);
+    }
 }
 
 /// Record, except in projector mode where the row has no room for it (1200 px); a recording
@@ -164,6 +194,21 @@ fn record_button(app: &ToolbarContext<'_>, projector: bool, ui: &mut egui::Ui, o
     };
     if ui.button(label).on_hover_text(hint).clicked() {
         out.push(Action::Record);
+    }
+}
+
+/// "Start class": the Class window (start a class server here, or join one as the teacher).
+fn class_button(ui: &mut egui::Ui, out: &mut Actions) {
+    if ui
+        .button("Start class")
+        .on_hover_text(
+            "A live class: start a class server here or join one as the teacher; the students \
+             follow your view on their laptops and answer your questions",
+        )
+        .clicked()
+    {
+        out.push(Action::Class(super::class::ClassAction::ToggleWindow));
+        ui.close();
     }
 }
 

@@ -3,6 +3,7 @@
 
 mod animate;
 pub mod calibrate;
+mod class;
 mod collisions;
 mod exercise;
 mod export;
@@ -196,6 +197,9 @@ pub enum Command {
     /// named with its depth, and the clearance; or (--matrix) the allowed-collision matrix
     /// sampled as MoveIt's Setup Assistant does, with every pair's verdict and why.
     Collisions(Box<collisions::CollisionsArgs>),
+    /// The live classroom (`serve`): the teacher's arm on every student's screen, questions
+    /// answered from the seats and graded on the server, everything kept in SQLite.
+    Class(class::ClassArgs),
 }
 
 impl From<crate::model_file::LoadError> for CliError {
@@ -332,6 +336,10 @@ pub enum CliError {
         /// The model as given.
         model: String,
     },
+    /// The class server could not start (the address is taken, the data file cannot be
+    /// opened) or stopped on an error.
+    #[error(transparent)]
+    ClassServer(#[from] crate::class_server::ServerError),
 }
 
 /// Loads a model for a command; what loading skipped (a mesh file that could not be read) is
@@ -406,6 +414,7 @@ pub fn run(cli: Cli, out: &mut dyn std::io::Write) -> Result<(), CliError> {
         Some(Command::Animate(args)) => animate::run(&args, out),
         Some(Command::Rotation(args)) => rotation::run(&args, out),
         Some(Command::Collisions(args)) => collisions::run(&args, out),
+        Some(Command::Class(args)) => class::run(&args, out),
     }
 }
 

@@ -8,6 +8,7 @@ mod common;
 
 mod app_calibration;
 mod app_cell;
+mod app_class;
 mod app_exercise_orientation;
 mod app_layout;
 mod app_orientation;

@@ -3,6 +3,7 @@
 //! Needs the `app` feature (`required-features` in Cargo.toml).
 
 mod cell_commands;
+mod class_server;
 mod cli;
 mod cli_reference;
 mod collisions;

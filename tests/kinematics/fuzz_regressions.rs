@@ -66,3 +66,8 @@ fn exercise_inputs() {
 fn calibration_files_inputs() {
     replay("calibration_files", checks::calibration_files);
 }
+
+#[test]
+fn class_message_inputs() {
+    replay("class_message", checks::class_message);
+}

@@ -68,6 +68,36 @@ pub struct OpenSheet {
     pub degrees: bool,
     /// The last grade, or why the answer could not be graded.
     pub result: Option<Result<Grade, String>>,
+    /// A live class's question (the sheet came from the teacher): "Send answer" sends the
+    /// answer to the class server instead of saving it.
+    pub class: Option<ClassQuestion>,
+}
+
+/// A live class's question answered in the tab: its id, what became of the answer, and
+/// whether the teacher closed it (the inputs are then off).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ClassQuestion {
+    /// The question's id in the session.
+    pub id: u64,
+    /// What became of the answer (`Open` before any was sent).
+    pub status: ClassSheetStatus,
+    /// The teacher closed the question.
+    pub closed: bool,
+}
+
+/// What happens to a class question's sheet, as the class client tells the tab.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ClassSheetStatus {
+    /// The sheet of this kind just opened is the class's question (nothing sent yet).
+    Open(Kind),
+    /// The answer was sent.
+    Sent,
+    /// The server has it, with the grade where the question gives feedback.
+    Received(Option<crate::class::protocol::StudentGrade>),
+    /// The server refused it (why).
+    Refused(String),
+    /// The teacher closed the question.
+    Closed,
 }
 
 /// The Exercise tab's own state.
@@ -171,6 +201,31 @@ impl ExerciseTab {
         ])
     }
 
+    /// A class question's news: `Open(kind)` makes the sheet just opened (of that kind) the
+    /// class's question `id`; the others say what became of its answer. News of another
+    /// question than the open one is dropped.
+    pub fn class_status(&mut self, id: u64, status: ClassSheetStatus) {
+        let Some(sheet) = &mut self.sheet else {
+            return;
+        };
+        if let ClassSheetStatus::Open(kind) = status {
+            if kind == sheet.kind && sheet.key.is_none() {
+                sheet.class = Some(ClassQuestion {
+                    id,
+                    status,
+                    closed: false,
+                });
+            }
+            return;
+        }
+        if let Some(c) = sheet.class.as_mut().filter(|c| c.id == id) {
+            match status {
+                ClassSheetStatus::Closed => c.closed = true,
+                status => c.status = status,
+            }
+        }
+    }
+
     fn contents(&mut self, ui: &mut egui::Ui, out: &mut Actions) {
         ui.horizontal(|ui| {
             let l = ui.label("Sheet:");
@@ -200,32 +255,24 @@ impl ExerciseTab {
         };
         ui.separator();
         if sheet.key.is_none() {
-            ui.label(
-                RichText::new(
-                    "Exam: saving the model, the symbols and figure export are off until the \
-                     sheet is closed.",
-                )
-                .color(Color32::from_rgb(150, 90, 0)),
-            );
+            let note = if sheet.class.is_some() {
+                "The teacher's question: Send answer sends your answer to the class."
+            } else {
+                "Exam: saving the model, the symbols and figure export are off until the \
+                 sheet is closed."
+            };
+            ui.label(RichText::new(note).color(Color32::from_rgb(150, 90, 0)));
         }
         let size = 15f32.max(super::super::layout::text_floor(ui.ctx()));
         ui.add(egui::Label::new(RichText::new(&sheet.question).size(size)).wrap());
         ui.separator();
         ui.heading("Your answer");
-        if sheet.kind == Kind::DhTable {
-            dh_grid(ui, sheet);
-        } else if sheet.kind.is_orientation() {
-            orientation_entry(ui, sheet);
-        } else {
-            ui.add(
-                egui::TextEdit::multiline(&mut sheet.text)
-                    .hint_text("rows of numbers, or names, as the question says")
-                    .desired_rows(6)
-                    .font(egui::TextStyle::Monospace),
-            );
-        }
+        let closed = sheet.class.as_ref().is_some_and(|c| c.closed);
+        ui.add_enabled_ui(!closed, |ui| answer_entry(ui, sheet));
         if sheet.key.is_some() {
             check_row(ui, sheet, out);
+        } else if sheet.class.is_some() {
+            class_row(ui, sheet, out);
         } else {
             save_row(ui, sheet, out);
         }
@@ -281,6 +328,7 @@ impl OpenSheet {
             lines: vec![String::new(); answer_lines(kind).len()],
             degrees: takes_degrees(kind),
             result: None,
+            class: None,
         }
     }
 }
@@ -302,6 +350,74 @@ fn check_row(ui: &mut egui::Ui, sheet: &mut OpenSheet, out: &mut Actions) {
             ui.colored_label(Color32::from_rgb(180, 40, 30), e);
         }
         None => {}
+    }
+}
+
+/// The answer's inputs: a DH table's grid, an orientation's lines, or rows of numbers.
+fn answer_entry(ui: &mut egui::Ui, sheet: &mut OpenSheet) {
+    if sheet.kind == Kind::DhTable {
+        dh_grid(ui, sheet);
+    } else if sheet.kind.is_orientation() {
+        orientation_entry(ui, sheet);
+    } else {
+        ui.add(
+            egui::TextEdit::multiline(&mut sheet.text)
+                .hint_text("rows of numbers, or names, as the question says")
+                .desired_rows(6)
+                .font(egui::TextStyle::Monospace),
+        );
+    }
+}
+
+/// A live class's question: Send answer sends the same text Save answer would write; then
+/// what became of it (sent, received, the grade where the teacher gives feedback, refused),
+/// and the inputs off once the teacher closed the question.
+fn class_row(ui: &mut egui::Ui, sheet: &mut OpenSheet, out: &mut Actions) {
+    let Some(class) = sheet.class.clone() else {
+        return;
+    };
+    if ui
+        .add_enabled(!class.closed, egui::Button::new("Send answer"))
+        .on_disabled_hover_text("The teacher closed the question")
+        .clicked()
+    {
+        match answer_text(sheet) {
+            Ok(text) => {
+                sheet.result = None;
+                out.push(Action::Class(crate::app::class::ClassAction::Answer {
+                    id: class.id,
+                    answer: serde_json::Value::String(text),
+                }));
+            }
+            Err(e) => sheet.result = Some(Err(e)),
+        }
+    }
+    let red = Color32::from_rgb(180, 40, 30);
+    match &class.status {
+        ClassSheetStatus::Sent => _ = ui.label("answer sent"),
+        ClassSheetStatus::Received(None) => _ = ui.label("answer sent: the teacher has it"),
+        ClassSheetStatus::Received(Some(g)) => class_grade(ui, g),
+        ClassSheetStatus::Refused(e) => _ = ui.colored_label(red, format!("not taken: {e}")),
+        ClassSheetStatus::Open(_) | ClassSheetStatus::Closed => {}
+    }
+    if class.closed {
+        ui.label("The teacher closed the question.");
+    }
+    if let Some(Err(e)) = &sheet.result {
+        ui.colored_label(red, e);
+    }
+}
+
+/// A class question's grade as the student sees it, item by item.
+fn class_grade(ui: &mut egui::Ui, g: &crate::class::protocol::StudentGrade) {
+    ui.label(RichText::new(format!("answer sent: score {} of {}", g.score, g.max)).strong());
+    for item in &g.items {
+        let (mark, color) = if item.correct {
+            ("right", Color32::from_rgb(30, 130, 60))
+        } else {
+            ("wrong", Color32::from_rgb(180, 40, 30))
+        };
+        ui.colored_label(color, format!("{mark}  {}: {}", item.item, item.feedback));
     }
 }
 

@@ -1,0 +1,181 @@
+#!/usr/bin/env python3
+"""The live class in headless Chromium (issue 50): the class server (`armlab class serve`, which
+serves the web build too) with one teacher page (the teacher link, ``?token=T``) and two student
+pages (the student link with a nickname, ``?code=C&name=N``), each its own Chromium driven
+through chromedriver (web/test_page.py's Driver). Checks, from the pages:
+
+1. the three pages join: the teacher's page counts two students;
+2. the teacher drags the IK target's gizmo (a scripted mouse drag, as web/test_page.py does):
+   both students' ``status().q`` equal the teacher's within 1 s (polled), to 1e-9 rad;
+3. the teacher asks "Which posture is this?" (the page hook that applies the Class window
+   button's action), one student answers a choice (the hook that applies the question window
+   button's action): the teacher's page shows one answer of two, counted on that choice;
+4. no console errors, no panic.
+
+Usage: web/test_class.py DIST_DIR. Builds ``target/debug/armlab`` with cargo if it is missing.
+Fails (never skips) when Chromium or chromedriver is missing.
+"""
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from test_page import Driver, fail, status, wait_for  # noqa: E402
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+ARMLAB = os.path.join(ROOT, "target", "debug", "armlab")
+FOLLOW_WITHIN_S = 1.0
+
+
+def start_server(dist, data):
+    """`armlab class serve` on a free port; returns (process, teacher URL, students URL)."""
+    if not os.path.isfile(ARMLAB):
+        print("  building target/debug/armlab (cargo build)")
+        subprocess.run(["cargo", "build", "--bin", "armlab"], cwd=ROOT, check=True)
+    proc = subprocess.Popen(
+        [ARMLAB, "class", "serve", "--port", "0", "--web", dist, "--data", data],
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    lines, deadline = {}, time.time() + 60
+
+    def read():
+        for line in proc.stdout:
+            key, _, value = line.partition(": ")
+            if key in ("teacher", "students") and key not in lines:
+                lines[key] = value.strip()
+
+    threading.Thread(target=read, daemon=True).start()
+    while len(lines) < 2:
+        if proc.poll() is not None:
+            fail(f"armlab class serve exited ({proc.returncode}): {proc.stderr.read()[:2000]}")
+        if time.time() > deadline:
+            proc.kill()
+            fail("armlab class serve printed no teacher: and students: lines in 60 s")
+        time.sleep(0.05)
+    return proc, lines["teacher"], lines["students"]
+
+
+def class_status(d):
+    st = status(d)
+    return (st or {}).get("class") or {}
+
+
+def drag_gizmo(d):
+    """A mouse drag on the IK target's gizmo (as web/test_page.py's check_gizmo_drag)."""
+    before = wait_for(d, "the teacher's gizmo", lambda s: s.get("gizmo"), 20)
+    x, y = before["gizmo"]
+    steps = [{"type": "pointerMove", "x": int(x), "y": int(y), "origin": "viewport",
+              "duration": 0}, {"type": "pointerDown", "button": 0}]
+    for k in range(1, 11):
+        steps.append({"type": "pointerMove", "x": int(x - 6 * k), "y": int(y + 4 * k),
+                      "origin": "viewport", "duration": 30})
+    steps.append({"type": "pointerUp", "button": 0})
+    d.s("/actions", {"actions": [{"type": "pointer", "id": "mouse",
+                                  "parameters": {"pointerType": "mouse"}, "actions": steps}]})
+    d.s("/actions", method="DELETE")
+    return wait_for(d, "the teacher's arm to move after the drag",
+                    lambda s: s["q"] != before["q"], 10)
+
+
+def same_q(a, b):
+    return len(a) == len(b) and all(abs(x - y) <= 1e-9 for x, y in zip(a, b))
+
+
+def check_follow(teacher, students):
+    moved = drag_gizmo(teacher)
+    # The drag's last frames may still move the arm: the teacher's q once it is steady.
+    time.sleep(0.2)
+    q = status(teacher)["q"]
+    t0 = time.time()
+    pending = dict(enumerate(students))
+    while pending:
+        for i, d in list(pending.items()):
+            if same_q(status(d)["q"], q):
+                print(f"  student {i + 1} follows: {1000 * (time.time() - t0):.0f} ms")
+                del pending[i]
+        if time.time() - t0 > FOLLOW_WITHIN_S:
+            fail(f"students {sorted(pending)} did not follow within {FOLLOW_WITHIN_S} s: teacher "
+                 f"q {q}, theirs {[status(d)['q'] for d in pending.values()]}")
+        time.sleep(0.02)
+    print(f"  the teacher dragged the target: q {[round(v, 4) for v in moved['q']]}")
+
+
+def check_poll(teacher, students):
+    teacher.js("window.armlab.class_ask_poll()")
+    qs = [wait_for(d, "the poll on a student's page",
+                   lambda s: ((s.get("class") or {}).get("question") or {}).get("kind") == "poll",
+                   10)["class"]["question"] for d in students]
+    q = qs[0]
+    if len(q["choices"]) < 2:
+        fail(f"the poll has choices {q['choices']}")
+    choice = len(q["choices"]) - 1
+    students[0].js("window.armlab.class_answer(BigInt(arguments[0]), arguments[1])", q["id"],
+                   json.dumps(choice))
+    st = wait_for(teacher, "the teacher's count of the answer",
+                  lambda s: (s.get("class") or {}).get("answered") == 1, 10)["class"]
+    print(f"  poll {q['id']} ({len(q['choices'])} postures): answered {st['answered']} of "
+          f"{st['joined']}, counts {st['counts']}")
+    if st["joined"] != 2 or st["counts"][choice] != 1 or sum(st["counts"]) != 1:
+        fail(f"the teacher's tally: {st}")
+    wait_for(students[0], "the student's answer received",
+             lambda s: (s.get("class") or {}).get("answered") == 1, 10)
+
+
+def main():
+    if len(sys.argv) != 2:
+        fail("usage: web/test_class.py DIST_DIR")
+    dist = os.path.abspath(sys.argv[1])
+    for f in ("index.html", "armlab.js", "armlab_bg.wasm"):
+        if not os.path.isfile(os.path.join(dist, f)):
+            fail(f"{dist}/{f} is missing: run web/build.sh first")
+    chromium = shutil.which("chromium") or shutil.which("chromium-browser")
+    chromedriver = shutil.which("chromedriver")
+    if not chromium or not chromedriver:
+        fail("headless Chromium and chromedriver are needed: apt-get install chromium chromium-driver")
+    folder = tempfile.mkdtemp(prefix="armlab-class-web-")
+    proc, teacher_url, students_url = start_server(dist, os.path.join(folder, "class.sqlite"))
+    drivers = []
+    try:
+        print(f"  server: {teacher_url.split('?')[0]}")
+        teacher = Driver(chromedriver, chromium)
+        drivers.append(teacher)
+        students = []
+        for name in ("Ada", "Bo"):
+            d = Driver(chromedriver, chromium)
+            drivers.append(d)
+            d.s("/url", {"url": f"{students_url}&name={name}"})
+            students.append(d)
+        teacher.s("/url", {"url": teacher_url})
+        wait_for(teacher, "the teacher's page to see two students",
+                 lambda s: (s.get("class") or {}).get("connected")
+                 and (s.get("class") or {}).get("joined") == 2, 30)
+        for d in students:
+            wait_for(d, "a student following", lambda s: (s.get("class") or {}).get("following")
+                     and (s.get("class") or {}).get("connected"), 30)
+        print("  one teacher and two students joined")
+        check_follow(teacher, students)
+        check_poll(teacher, students)
+        for d in drivers:
+            errors = d.js("return window.__errors || []")
+            severe = [e for e in d.browser_log() if e.get("level") == "SEVERE"]
+            if errors or severe:
+                fail(f"console errors: {errors} {severe}")
+    finally:
+        for d in drivers:
+            d.quit()
+        proc.terminate()
+        try:
+            proc.wait(10)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+        shutil.rmtree(folder, ignore_errors=True)
+    print("web class test passed")
+
+
+if __name__ == "__main__":
+    main()
