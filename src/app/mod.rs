@@ -315,6 +315,9 @@ pub struct RunOptions {
     pub lesson: Option<(crate::lesson::Lesson, String)>,
     /// The cell's obstacles to open with (`armlab view --scene FILE`).
     pub scene: Option<crate::collision::CellScene>,
+    /// A class to join as its teacher, by the teacher link (`armlab class demo`), the Class
+    /// window open.
+    pub class_teacher: Option<String>,
 }
 
 /// The name eframe stores the settings under (`~/.local/share/armlab/app.ron` on Linux).
@@ -363,6 +366,7 @@ pub fn run_with(spec: &str, opts: &RunOptions) -> Result<Option<probe::FrameRepo
     options.persist_window = remember;
     let model_given = opts.model_given || opts.q.is_some() || opts.lesson.is_some();
     let lesson = opts.lesson.clone();
+    let class_teacher = opts.class_teacher.clone();
     if probe.is_some() {
         options.wgpu_options.surface.present_mode = wgpu::PresentMode::AutoNoVsync;
     }
@@ -378,6 +382,10 @@ pub fn run_with(spec: &str, opts: &RunOptions) -> Result<Option<probe::FrameRepo
                 ui.state.push_message(state::Level::Error, e);
             }
             ui.file_picker = Box::new(file_picker::NativeDialogs);
+            if let Some(link) = class_teacher {
+                ui.apply(action::Action::Class(class::ClassAction::JoinTeacher(link)));
+                ui.class.window = true;
+            }
             Ok(Box::new(ArmlabApp::new(
                 cc,
                 ui,

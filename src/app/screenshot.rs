@@ -139,17 +139,66 @@ pub fn lesson_frames(
     Ok(frames)
 }
 
+/// An app's window laid out offscreen frame after frame, then rendered: for an app that waits
+/// on something before its picture is taken (a class link's messages, which arrive as frames
+/// run), as `armlab class demo --screenshot` does.
+pub struct OffscreenWindow {
+    gpu: Gpu,
+    offscreen: Offscreen,
+    size: [u32; 2],
+}
+
+impl OffscreenWindow {
+    /// A window of `size` pixels on `gpu`.
+    pub fn new(gpu: &Gpu, size: [u32; 2]) -> Self {
+        let mut offscreen = Offscreen::new(&gpu.device);
+        // a quarter second a pass: the class's windows have faded in when the picture is taken
+        offscreen.set_clock_step(0.25);
+        Self {
+            gpu: gpu.clone(),
+            offscreen,
+            size,
+        }
+    }
+
+    /// Lays `app` out once (a frame: its class client reads and sends, its actions apply).
+    pub fn frame(&mut self, app: &mut AppUi) -> Result<(), AppError> {
+        self.offscreen
+            .layout(&self.gpu.device, self.size, 1.0, |ui| app.show(ui, None))?;
+        Ok(())
+    }
+
+    /// Renders `app`'s window as it is now (the 3D view framing the arm), keeping what the
+    /// frames before laid out (window places and sizes).
+    pub fn render(mut self, app: AppUi) -> Result<image::RgbaImage, AppError> {
+        let (gpu, size) = (self.gpu.clone(), self.size);
+        Ok(render_window_on(&gpu, &mut self.offscreen, app, size, None, false)?.0)
+    }
+}
+
 /// Lays the window out once to learn the viewport size, renders the 3D view (with `camera`, or
 /// framing the arm), and paints the window with it, all on `gpu`. With `defer`, the image is
 /// blank and the pixels come from the read-back returned with it.
 fn render_window(
     gpu: &Gpu,
-    mut app: AppUi,
+    app: AppUi,
     size: [u32; 2],
     camera: Option<crate::camera::Camera>,
     defer: bool,
 ) -> Result<(image::RgbaImage, Option<crate::render::PendingRead>), AppError> {
     let mut offscreen = Offscreen::new(&gpu.device);
+    render_window_on(gpu, &mut offscreen, app, size, camera, defer)
+}
+
+/// [`render_window`] on an offscreen window already laid out before.
+fn render_window_on(
+    gpu: &Gpu,
+    offscreen: &mut Offscreen,
+    mut app: AppUi,
+    size: [u32; 2],
+    camera: Option<crate::camera::Camera>,
+    defer: bool,
+) -> Result<(image::RgbaImage, Option<crate::render::PendingRead>), AppError> {
     offscreen.set_background(Some(app.background()));
     let mut vp = Viewport3d::new(gpu.clone()).map_err(crate::figure::FigureError::from)?;
     offscreen.layout(&gpu.device, size, 1.0, |ui| app.show(ui, None))?;

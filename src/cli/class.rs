@@ -28,6 +28,10 @@ pub enum ClassAction {
     /// view followed by every student, questions answered from the seats and graded on the
     /// server); everything kept in an SQLite file. Ctrl+C stops it.
     Serve(ServeArgs),
+    /// Rehearse a class alone: a server on this computer, the teacher's app joined to it, and
+    /// simulated students who follow and answer (right, or with the mistakes students make);
+    /// with --screenshot / --student-screenshot, the windows rendered to PNG instead.
+    Demo(super::class_demo::DemoArgs),
 }
 
 /// Arguments of `armlab class serve`.
@@ -60,6 +64,7 @@ pub struct ServeArgs {
 pub fn run(args: &ClassArgs, out: &mut dyn Write) -> Result<(), CliError> {
     match &args.action {
         ClassAction::Serve(a) => serve(a, out),
+        ClassAction::Demo(a) => super::class_demo::run(a, out),
     }
 }
 

@@ -4,6 +4,7 @@
 mod animate;
 pub mod calibrate;
 mod class;
+mod class_demo;
 mod collisions;
 mod exercise;
 mod export;
@@ -197,8 +198,9 @@ pub enum Command {
     /// named with its depth, and the clearance; or (--matrix) the allowed-collision matrix
     /// sampled as MoveIt's Setup Assistant does, with every pair's verdict and why.
     Collisions(Box<collisions::CollisionsArgs>),
-    /// The live classroom (`serve`): the teacher's arm on every student's screen, questions
-    /// answered from the seats and graded on the server, everything kept in SQLite.
+    /// The live classroom (`serve`; `demo` to rehearse alone): the teacher's arm on every
+    /// student's screen, questions answered from the seats and graded on the server, everything
+    /// kept in SQLite.
     Class(class::ClassArgs),
 }
 

@@ -79,6 +79,7 @@ pub(super) fn run(args: &ViewArgs, out: &mut dyn std::io::Write) -> Result<(), C
             ee,
             lesson: None,
             scene,
+            class_teacher: None,
         };
         if let Some(report) = crate::app::run_with(spec, &opts).map_err(CliError::App)? {
             writeln!(out, "{report}")?;

@@ -23,6 +23,8 @@ pub struct Offscreen {
     captured: Option<UiCapture>,
     /// The images of egui's managed textures (not the font atlas), kept for captures.
     images: std::collections::HashMap<egui::TextureId, std::sync::Arc<egui::ColorImage>>,
+    /// egui's clock (s) and how far each pass moves it (0: it stands still).
+    clock: (f64, f64),
 }
 
 /// What one render painted, before tessellation: egui's shapes in points, and the images they
@@ -83,7 +85,28 @@ impl Offscreen {
             capture: false,
             captured: None,
             images: Default::default(),
+            clock: (0.0, 0.0),
         }
+    }
+
+    /// Moves egui's clock `step` seconds on at each pass, so that what animates (a window
+    /// fading in) ends as frames go by. Default 0: the clock stands at 0, and a picture comes
+    /// out the same on every run.
+    pub fn set_clock_step(&mut self, step: f64) {
+        self.clock.1 = step;
+    }
+
+    /// egui's input for the next pass: [`raw_input`] at the clock's time, the clock moved on.
+    fn input(
+        &mut self,
+        device: &wgpu::Device,
+        size: [u32; 2],
+        pixels_per_point: f32,
+    ) -> Result<egui::RawInput, UiRenderError> {
+        let mut input = raw_input(device, size, pixels_per_point)?;
+        input.time = Some(self.clock.0);
+        self.clock.0 += self.clock.1;
+        Ok(input)
     }
 
     /// Makes a wgpu texture view (format `Rgba8Unorm`, gamma-encoded bytes) available to egui
@@ -125,7 +148,7 @@ impl Offscreen {
         pixels_per_point: f32,
         mut ui: impl FnMut(&mut egui::Ui),
     ) -> Result<image::RgbaImage, UiRenderError> {
-        let input = raw_input(device, size, pixels_per_point)?;
+        let input = self.input(device, size, pixels_per_point)?;
         let mut deltas = std::mem::take(&mut self.pending);
         let mut output = self.ctx.run_ui(input.clone(), &mut ui);
         deltas.append(std::mem::take(&mut output.textures_delta));
@@ -212,7 +235,7 @@ impl Offscreen {
         pixels_per_point: f32,
         mut ui: impl FnMut(&mut egui::Ui),
     ) -> Result<(), UiRenderError> {
-        let input = raw_input(device, size, pixels_per_point)?;
+        let input = self.input(device, size, pixels_per_point)?;
         for _ in 0..2 {
             let mut output = self.ctx.run_ui(input.clone(), &mut ui);
             self.pending
@@ -233,7 +256,7 @@ impl Offscreen {
         pixels_per_point: f32,
         ui: impl FnMut(&mut egui::Ui),
     ) -> Result<egui::PlatformOutput, UiRenderError> {
-        let input = raw_input(device, size, pixels_per_point)?;
+        let input = self.input(device, size, pixels_per_point)?;
         let mut output = self.ctx.run_ui(input, ui);
         let platform = std::mem::take(&mut output.platform_output);
         self.paint(device, queue, view, size, output);

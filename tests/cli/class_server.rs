@@ -1007,3 +1007,150 @@ async fn the_binary_prints_its_links_first_and_a_kill_loses_no_acknowledged_answ
     child.kill().unwrap();
     child.wait().unwrap();
 }
+
+/// The question the teacher just asked, once `n` answered it.
+async fn answered_by_all(t: &mut Client, n: usize) -> Tally {
+    let id = question(t).await.id;
+    t.recv_until(|m| match m {
+        ServerMessage::Tally(tally) if tally.id == id && tally.answered == n => Some(tally),
+        _ => None,
+    })
+    .await
+}
+
+/// `armlab class demo`'s simulated students, against a teacher made here: ten join and follow
+/// the Puma; a DH-table question gets ten readable answers, each wrong one with a mistake the
+/// server's grader names (alpha's or d's sign, a and d swapped: what they make), some right;
+/// fk, euler and quaternion questions too; the posture poll's most chosen answer is the arm's posture. The arm's posture is found here
+/// from the closed-form IK at the arm's tool pose: the solution equal to q.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn simulated_students_answer_as_a_room_does() {
+    use armlab::app::class::rehearsal::{Pace, Rehearsal};
+    let data = data_file("rehearsal");
+    let server = server(&data, false);
+    let (mut t, _) = teacher(&server).await;
+    let q = vec![0.3, 0.5, -1.2, 0.4, 0.8, -0.6];
+    t.send(&puma_state(q.clone())).await;
+    let ws = format!("ws://{}/ws", server.addr);
+    let room = Rehearsal::start(&ws, &server.code, 10, 7, Pace::AtOnce);
+    t.recv_until(|m| match m {
+        ServerMessage::Roster { joined: 10, .. } => Some(()),
+        _ => None,
+    })
+    .await;
+    t.send(&ClientMessage::Question(QuestionRequest {
+        seed: Some(99),
+        ..request(QuestionKind::Exercise(Kind::DhTable))
+    }))
+    .await;
+    let tally = answered_by_all(&mut t, 10).await;
+    assert_eq!(tally.unreadable, 0, "{tally:?}");
+    let right = tally.counts[tally.max];
+    assert!(
+        (1..10).contains(&right),
+        "some right, some wrong: {tally:?}"
+    );
+    let named: usize = tally.mistakes.values().sum();
+    assert!(named >= 10 - right, "each wrong answer named: {tally:?}");
+    for m in tally.mistakes.keys() {
+        assert!(
+            m.contains("wrong sign") || m.contains("swapped"),
+            "a mistake the simulated students make: {m}"
+        );
+    }
+    // The other kinds they answer: every answer readable, some right, each wrong one named.
+    for kind in [Kind::Fk, Kind::Euler, Kind::Quaternion] {
+        t.send(&ClientMessage::Question(QuestionRequest {
+            seed: Some(5),
+            ..request(QuestionKind::Exercise(kind))
+        }))
+        .await;
+        let tally = answered_by_all(&mut t, 10).await;
+        assert_eq!(tally.unreadable, 0, "{kind:?}: {tally:?}");
+        let right = tally.counts[tally.max];
+        assert!(right >= 1, "{kind:?}: {tally:?}");
+        let named: usize = tally.mistakes.values().sum();
+        assert!(
+            named >= 10 - right,
+            "{kind:?}: each wrong answer named: {tally:?}"
+        );
+    }
+    // The posture poll: choices in an order made here, the arm's posture among them.
+    let robot = built_in("puma560").unwrap();
+    let tool = robot.fk(&q).unwrap();
+    let solutions = armlab::kinematics::ik::closed_form::ClosedForm::detect(&robot)
+        .unwrap()
+        .solve(&robot, &armlab::kinematics::ik::Target::Pose(tool))
+        .unwrap();
+    let mut choices: Vec<String> = solutions
+        .solutions
+        .iter()
+        .map(|s| s.posture.to_string())
+        .collect();
+    choices.sort();
+    choices.dedup();
+    let at_q = solutions
+        .solutions
+        .iter()
+        .find(|s| s.q.iter().zip(&q).all(|(a, b)| (a - b).abs() < 1e-9))
+        .expect("q is one of its tool pose's solutions");
+    let arm = choices
+        .iter()
+        .position(|c| *c == at_q.posture.to_string())
+        .unwrap();
+    assert_eq!(choices.len(), 8, "the Puma's eight postures: {choices:?}");
+    t.send(&ClientMessage::Question(QuestionRequest {
+        prompt: Some("Which posture is this?".into()),
+        choices: choices.clone(),
+        ..request(QuestionKind::Poll)
+    }))
+    .await;
+    let tally = answered_by_all(&mut t, 10).await;
+    let most = (0..tally.counts.len())
+        .max_by_key(|&i| tally.counts[i])
+        .unwrap();
+    assert_eq!(most, arm, "{:?} of {choices:?}", tally.counts);
+    assert!(room.errors().is_empty(), "{:?}", room.errors());
+    drop(room);
+    server.stop().unwrap();
+}
+
+/// `armlab class demo --screenshot` and `--student-screenshot`: the pictures are written, at
+/// the size asked, once the room answered (the command's own wait: it fails after a minute).
+#[test]
+fn the_demo_writes_the_teachers_and_a_students_window() {
+    let dir = data_file("demo").with_extension("d");
+    std::fs::create_dir_all(&dir).unwrap();
+    let (teacher, student) = (dir.join("teacher.png"), dir.join("student.png"));
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_armlab"))
+        .args([
+            "class",
+            "demo",
+            "puma560",
+            "--students",
+            "6",
+            "--ask",
+            "posture",
+        ])
+        .args([
+            "--q",
+            "0.3,0.5,-1.2,0.4,0.8,-0.6",
+            "--size",
+            "640x400",
+            "--screenshot",
+        ])
+        .arg(&teacher)
+        .arg("--student-screenshot")
+        .arg(&student)
+        .output()
+        .expect("armlab runs");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    for p in [&teacher, &student] {
+        let img = image::open(p).unwrap();
+        assert_eq!((img.width(), img.height()), (640, 400), "{}", p.display());
+    }
+}

@@ -22,6 +22,8 @@ pub mod browser;
 pub mod desktop;
 pub mod link;
 pub mod panel;
+#[cfg(all(feature = "app", not(target_arch = "wasm32")))]
+pub mod rehearsal;
 mod student;
 mod teacher;
 

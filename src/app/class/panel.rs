@@ -282,8 +282,15 @@ pub fn qr_code(ui: &mut egui::Ui, rows: &[String], side: f32) {
 }
 
 /// The student's banner at the top of the window: following (with the lesson's step and
-/// caption), answering, or exploring on their own with "Follow the teacher".
+/// caption), or exploring on their own with "Follow the teacher" (while answering an exercise,
+/// the question window has that button).
 fn banner(ctx: &egui::Context, c: &ClassClient, out: &mut Actions) {
+    let trouble = matches!(c.connection, Connection::Lost(_) | Connection::Refused(_));
+    if c.student_answering() && !trouble {
+        // The question window says so, with "Follow the teacher": a banner here would cover
+        // the Exercise tab's sheet line (seen in `armlab class demo --student-screenshot`).
+        return;
+    }
     egui::Area::new(egui::Id::unique("class banner"))
         .anchor(egui::Align2::CENTER_TOP, egui::vec2(0.0, 44.0))
         .show(ctx, |ui| {
@@ -292,12 +299,6 @@ fn banner(ctx: &egui::Context, c: &ClassClient, out: &mut Actions) {
                 match &c.connection {
                     Connection::Lost(_) => _ = ui.label("connection lost: reconnecting..."),
                     Connection::Refused(why) => _ = ui.label(format!("not in the class: {why}")),
-                    _ if c.student_answering() => {
-                        ui.horizontal(|ui| {
-                            ui.label("answering the teacher's question (the Exercise tab)");
-                            follow_button(ui, out);
-                        });
-                    }
                     _ if c.following => following_line(ui, c),
                     _ => {
                         ui.horizontal(|ui| {
@@ -361,6 +362,12 @@ fn question_window(ctx: &egui::Context, c: &ClassClient, out: &mut Actions) {
                 }
             } else {
                 ui.label("Answer in the Exercise tab, then Send answer.");
+                if c.student_answering() {
+                    ui.horizontal(|ui| {
+                        ui.label("(the teacher's view waits)");
+                        follow_button(ui, out);
+                    });
+                }
             }
             match &c.answer {
                 Some(AnswerStatus::Sent) => _ = ui.label("answer sent"),
