@@ -10,7 +10,13 @@ through chromedriver (web/test_page.py's Driver). Checks, from the pages:
 3. the teacher asks "Which posture is this?" (the page hook that applies the Class window
    button's action), one student answers a choice (the hook that applies the question window
    button's action): the teacher's page shows one answer of two, counted on that choice;
-4. no console errors, no panic.
+4. a third student opens the students' link without a nickname: the page asks for one, the
+   nickname typed key by key (a whole sentence, with Enter) joins, and the server's data file
+   holds it exactly;
+5. the server is stopped and started again on the same port and data file: every page
+   reconnects by itself, the students as the same students (the teacher still counts three, no
+   new rows in the data file), and they follow the teacher's arm again;
+6. no console errors, no panic.
 
 Usage: web/test_class.py DIST_DIR. Builds ``target/debug/armlab`` with cargo if it is missing.
 Fails (never skips) when Chromium or chromedriver is missing.
@@ -19,6 +25,7 @@ Fails (never skips) when Chromium or chromedriver is missing.
 import json
 import os
 import shutil
+import sqlite3
 import subprocess
 import sys
 import tempfile
@@ -26,20 +33,20 @@ import threading
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from test_page import Driver, fail, status, wait_for  # noqa: E402
+from test_page import Driver, fail, free_port, status, wait_for  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 ARMLAB = os.path.join(ROOT, "target", "debug", "armlab")
 FOLLOW_WITHIN_S = 1.0
 
 
-def start_server(dist, data):
-    """`armlab class serve` on a free port; returns (process, teacher URL, students URL)."""
+def start_server(dist, data, port):
+    """`armlab class serve` on `port`; returns (process, teacher URL, students URL)."""
     if not os.path.isfile(ARMLAB):
         print("  building target/debug/armlab (cargo build)")
         subprocess.run(["cargo", "build", "--bin", "armlab"], cwd=ROOT, check=True)
     proc = subprocess.Popen(
-        [ARMLAB, "class", "serve", "--port", "0", "--web", dist, "--data", data],
+        [ARMLAB, "class", "serve", "--port", str(port), "--web", dist, "--data", data],
         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     lines, deadline = {}, time.time() + 60
 
@@ -126,6 +133,55 @@ def check_poll(teacher, students):
              lambda s: (s.get("class") or {}).get("answered") == 1, 10)
 
 
+def type_keys(d, text):
+    """Types `text` key by key into whatever has the page's focus (egui's text field)."""
+    actions = []
+    for ch in text:
+        actions += [{"type": "keyDown", "value": ch}, {"type": "keyUp", "value": ch}]
+    d.s("/actions", {"actions": [{"type": "key", "id": "keyboard", "actions": actions}]})
+    d.s("/actions", method="DELETE")
+
+
+def student_names(data):
+    with sqlite3.connect(data) as db:
+        return [r[0] for r in db.execute("SELECT name FROM students ORDER BY number")]
+
+
+NICKNAME = "Chen, who types whole sentences"
+
+
+def check_nickname_prompt(d, students_url, teacher, data):
+    d.s("/url", {"url": students_url})
+    wait_for(d, "the nickname prompt", lambda s: (s.get("class") or {}).get("prompt"), 30)
+    time.sleep(0.3)
+    type_keys(d, NICKNAME + "\ue007")
+    wait_for(teacher, "the teacher's page to see three students",
+             lambda s: (s.get("class") or {}).get("joined") == 3, 20)
+    names = student_names(data)
+    if NICKNAME not in names:
+        fail(f"the typed nickname is not in the data file: {names}")
+    print(f"  a student typed the nickname {NICKNAME!r}: {names}")
+
+
+def check_restart(dist, data, port, proc, teacher, students):
+    before = student_names(data)
+    proc.terminate()
+    proc.wait(20)
+    proc, _, _ = start_server(dist, data, port)
+    wait_for(teacher, "the teacher's page to reconnect and count the same three students",
+             lambda s: (s.get("class") or {}).get("connected")
+             and (s.get("class") or {}).get("joined") == 3, 30)
+    for d in students:
+        wait_for(d, "a student to reconnect", lambda s: (s.get("class") or {}).get("connected"),
+                 30)
+    after = student_names(data)
+    if after != before:
+        fail(f"the students after the restart are not the same ones: {before} -> {after}")
+    check_follow(teacher, students)
+    print(f"  restarted on port {port}: the pages reconnected as the same students")
+    return proc
+
+
 def main():
     if len(sys.argv) != 2:
         fail("usage: web/test_class.py DIST_DIR")
@@ -138,7 +194,8 @@ def main():
     if not chromium or not chromedriver:
         fail("headless Chromium and chromedriver are needed: apt-get install chromium chromium-driver")
     folder = tempfile.mkdtemp(prefix="armlab-class-web-")
-    proc, teacher_url, students_url = start_server(dist, os.path.join(folder, "class.sqlite"))
+    data, port = os.path.join(folder, "class.sqlite"), free_port()
+    proc, teacher_url, students_url = start_server(dist, data, port)
     drivers = []
     try:
         print(f"  server: {teacher_url.split('?')[0]}")
@@ -160,6 +217,10 @@ def main():
         print("  one teacher and two students joined")
         check_follow(teacher, students)
         check_poll(teacher, students)
+        third = Driver(chromedriver, chromium)
+        drivers.append(third)
+        check_nickname_prompt(third, students_url, teacher, data)
+        proc = check_restart(dist, data, port, proc, teacher, students + [third])
         for d in drivers:
             errors = d.js("return window.__errors || []")
             severe = [e for e in d.browser_log() if e.get("level") == "SEVERE"]

@@ -195,7 +195,7 @@ async fn join_student(
         w.resume = Some(inner.students[number - 1].resume.clone());
         let mut frames = vec![frame(&ServerMessage::Welcome(w))];
         frames.extend(session.student_snapshot(&inner));
-        session.to_teachers(&inner.roster());
+        session.roster_changed(&inner);
         let changed = changed.then(|| inner.students[number - 1].clone());
         (number, changed, subscription, frames)
     };

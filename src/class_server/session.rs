@@ -261,6 +261,16 @@ impl Session {
         out
     }
 
+    /// The roster changed (a student joined or left): the teacher gets it, and each open
+    /// question's tally with its new count of students (its "answered 3 of N").
+    pub(crate) fn roster_changed(&self, inner: &Inner) {
+        let joined = inner.joined();
+        for q in inner.questions.values().filter(|q| q.open()) {
+            self.to_teachers(&ServerMessage::Tally(q.tally(joined)));
+        }
+        self.to_teachers(&inner.roster());
+    }
+
     /// What a teacher gets on joining: the students' snapshot, each open question's tally, the
     /// roster.
     pub(crate) fn teacher_snapshot(&self, inner: &Inner) -> Vec<Utf8Bytes> {
@@ -300,6 +310,6 @@ impl Session {
                 inner.online.remove(&number);
             }
         }
-        self.to_teachers(&inner.roster());
+        self.roster_changed(&inner);
     }
 }

@@ -310,3 +310,31 @@ fn the_toolbar_has_start_class_and_a_wrong_token_is_a_message() {
     let _ = server.stop();
     let _ = std::fs::remove_file(&data);
 }
+
+/// A student page opened without a nickname: the prompt's field has the focus, a whole
+/// sentence typed into it stays whole, and Enter joins with it (the prompt closes, the client
+/// connects as that student).
+#[test]
+fn the_nickname_prompt_takes_a_typed_sentence_and_enter_joins() {
+    let (server, _data) = server();
+    let mut app = AppUi::new(AppState::from_spec("planar2").unwrap());
+    app.class.prompt = Some(armlab::app::class::NamePrompt {
+        ws: format!("ws://{}/ws", server.addr),
+        code: server.code.clone(),
+        resume: None,
+    });
+    let mut h = harness(app);
+    steps(&mut h, 2);
+    let name = "Chen, who types whole sentences";
+    // no click first: the field has the focus when the prompt opens
+    h.event(egui::Event::Text(name.into()));
+    h.step();
+    h.step();
+    assert_eq!(h.state().class.form.nickname, name);
+    h.key_press(egui::Key::Enter);
+    pump_one(&mut h, "joined with the typed name", |h| {
+        h.state().class.prompt.is_none() && h.state().class.connected()
+    });
+    assert_eq!(h.state().class.role(), Some(Role::Student));
+    server.stop().unwrap();
+}

@@ -1154,3 +1154,29 @@ fn the_demo_writes_the_teachers_and_a_students_window() {
         assert_eq!((img.width(), img.height()), (640, 400), "{}", p.display());
     }
 }
+
+/// A student who joins while a question is open counts in its tally at once ("answered 0 of
+/// 2", not "of 1" until somebody answers), and one who leaves stops counting (found in the
+/// browser test: a third page's student never reached the teacher's count).
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn an_open_questions_tally_follows_the_students_joining_and_leaving() {
+    let data = data_file("late-tally");
+    let server = server(&data, false);
+    let (mut t, _) = teacher(&server).await;
+    let (_a, _) = student(&server, "a").await;
+    t.send(&poll()).await;
+    let id = question(&mut t).await.id;
+    let (mut b, _) = student(&server, "b").await;
+    let joined = |n: usize| {
+        move |m: ServerMessage| match m {
+            ServerMessage::Tally(x) if x.id == id && x.joined == n => Some(x),
+            _ => None,
+        }
+    };
+    let tally = t.recv_until(joined(2)).await;
+    assert_eq!(tally.answered, 0);
+    b.send(&ClientMessage::Leave).await;
+    let tally = t.recv_until(joined(1)).await;
+    assert_eq!(tally.answered, 0);
+    server.stop().unwrap();
+}

@@ -578,6 +578,7 @@ impl ClassClient {
         serde_json::json!({
             "role": self.role(),
             "connected": self.connected(),
+            "prompt": self.prompt.is_some(),
             "following": self.following,
             "question": self.question.as_ref().map(|q| serde_json::json!({
                 "id": q.id,

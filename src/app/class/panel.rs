@@ -406,6 +406,14 @@ fn name_prompt(
                 let r = ui
                     .add(egui::TextEdit::singleline(&mut c.form.nickname).desired_width(200.0))
                     .labelled_by(l.id);
+                // The page opens ready to type: the field takes the focus once, on the prompt's
+                // first frame (every frame would take it back from Enter, which then never
+                // joined).
+                let once = r.id.with("focused once");
+                if ui.memory(|m| m.data.get_temp::<bool>(once).is_none()) {
+                    ui.memory_mut(|m| m.data.insert_temp(once, true));
+                    r.request_focus();
+                }
                 go = r.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
             });
             let name = c.form.nickname.trim().to_string();
