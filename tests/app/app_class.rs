@@ -262,8 +262,79 @@ fn students_follow_explore_come_back_and_answer_the_teachers_questions() {
     let q = follow_and_explore(&mut room);
     let poll_id = poll(&mut room);
     exercise(&mut room, poll_id, &q);
+    export(&mut room, &data);
     let _ = server.stop();
     let _ = std::fs::remove_file(&data);
+}
+
+/// Saves to one path, as a file dialog would where the user chose it.
+struct SaveTo(std::path::PathBuf);
+
+impl armlab::app::file_picker::FilePicker for SaveTo {
+    fn available(&self) -> bool {
+        true
+    }
+    fn open(&mut self, _: armlab::app::file_picker::FileKind) -> Option<std::path::PathBuf> {
+        None
+    }
+    fn save(
+        &mut self,
+        _: armlab::app::file_picker::FileKind,
+        _: &str,
+    ) -> Option<std::path::PathBuf> {
+        Some(self.0.clone())
+    }
+}
+
+/// "Export CSV" in the teacher's Class window: the file the dialog names holds the header and
+/// one line per answer the students sent (the poll's and the exercise's, both by student 1).
+fn export(room: &mut Room, data: &std::path::Path) {
+    let csv = data.with_extension("csv");
+    let _ = std::fs::remove_file(&csv);
+    room.teacher.state_mut().file_picker = Box::new(SaveTo(csv.clone()));
+    click(&mut room.teacher, "Export CSV");
+    room.pump("the CSV saved", |_| csv.exists());
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let records = csv_records(&text);
+    assert_eq!(
+        records[0][..6],
+        ["session", "question", "kind", "student", "name", "answer"]
+    );
+    assert_eq!(records.len(), 3, "{text}");
+    let kinds: Vec<&str> = records[1..].iter().map(|r| r[2].as_str()).collect();
+    assert_eq!(kinds, ["poll", "dh-table"]);
+    assert!(records[1..].iter().all(|r| r[3] == "1"), "{text}");
+    // the poll's answer is the choice the student clicked
+    assert_eq!(records[1][5], "3");
+    let _ = std::fs::remove_file(&csv);
+}
+
+/// The records of RFC 4180 CSV text: fields split at commas outside quotes, `""` a quote,
+/// line breaks inside quotes kept in the field.
+fn csv_records(text: &str) -> Vec<Vec<String>> {
+    let (mut records, mut record, mut field) = (Vec::new(), Vec::new(), String::new());
+    let (mut quoted, mut chars) = (false, text.chars().peekable());
+    while let Some(c) = chars.next() {
+        match (quoted, c) {
+            (true, '"') if chars.peek() == Some(&'"') => {
+                field.push('"');
+                chars.next();
+            }
+            (_, '"') => quoted = !quoted,
+            (false, ',') => record.push(std::mem::take(&mut field)),
+            (false, '\n') => {
+                record.push(std::mem::take(&mut field));
+                records.push(std::mem::take(&mut record));
+            }
+            (false, '\r') => {}
+            _ => field.push(c),
+        }
+    }
+    if !field.is_empty() || !record.is_empty() {
+        record.push(field);
+        records.push(record);
+    }
+    records
 }
 
 #[test]

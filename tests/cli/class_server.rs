@@ -65,9 +65,13 @@ impl Client {
         self.send_text(&m.to_text()).await;
     }
 
-    /// Sends a text frame as it is.
+    /// Sends a text frame as it is (a failure after [`WAIT`]: a server that stopped reading
+    /// must not hang the test).
     async fn send_text(&mut self, t: &str) {
-        self.ws.send(Message::text(t)).await.expect("sent");
+        tokio::time::timeout(WAIT, self.ws.send(Message::text(t)))
+            .await
+            .expect("sent in time")
+            .expect("sent");
     }
 
     /// The next text frame, raw.
@@ -1179,4 +1183,174 @@ async fn an_open_questions_tally_follows_the_students_joining_and_leaving() {
     let tally = t.recv_until(joined(1)).await;
     assert_eq!(tally.answered, 0);
     server.stop().unwrap();
+}
+
+/// Reads a QR code given as rows of modules (`dark(x, y)`, `side` modules a side, a quiet zone
+/// included) with an independent decoder (rqrr), at 4 pixels a module.
+fn decode_qr(side: usize, dark: impl Fn(usize, usize) -> bool) -> String {
+    const PX: usize = 4;
+    let mut img = rqrr::PreparedImage::prepare_from_greyscale(side * PX, side * PX, |x, y| {
+        if dark(x / PX, y / PX) { 0 } else { 255 }
+    });
+    let grids = img.detect_grids();
+    assert_eq!(grids.len(), 1, "one QR code");
+    grids[0].decode().expect("the QR code reads").1
+}
+
+/// The QR codes of the student link, as the Class window draws it (the welcome's rows) and as
+/// `armlab class serve` prints it (half blocks, light drawn on a dark terminal), both read back
+/// by an independent decoder: the student link exactly.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_qr_codes_read_back_as_the_student_link() {
+    let data = data_file("qr");
+    let server = server(&data, false);
+    let (_t, w) = teacher(&server).await;
+    assert_eq!(w.student_url, server.student_url);
+    let rows: Vec<Vec<bool>> =
+        w.qr.iter()
+            .map(|r| r.chars().map(|c| c == '#').collect())
+            .collect();
+    let n = rows.len();
+    // the window's code, with a quiet zone of four modules added here
+    let window = decode_qr(n + 8, |x, y| {
+        (4..n + 4).contains(&x) && (4..n + 4).contains(&y) && rows[y - 4][x - 4]
+    });
+    assert_eq!(window, server.student_url);
+    // the terminal's: each character two modules (top, bottom); drawn means light
+    let printed = armlab::class_server::qr::terminal(&w.qr);
+    let lines: Vec<Vec<char>> = printed.lines().map(|l| l.chars().collect()).collect();
+    let side = lines[0].len();
+    let terminal = decode_qr(side, |x, y| {
+        let c = lines
+            .get(y / 2)
+            .and_then(|l| l.get(x))
+            .copied()
+            .unwrap_or('█');
+        let light = match c {
+            '█' => true,
+            '▀' => y % 2 == 0,
+            '▄' => y % 2 == 1,
+            _ => false,
+        };
+        !light
+    });
+    assert_eq!(terminal, server.student_url);
+    server.stop().unwrap();
+}
+
+/// A model file near the 8 MB limit reaches a student whole over the WebSocket; one over it
+/// is refused with an error naming the size, and the teacher's connection goes on.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_model_file_of_nearly_8_mb_reaches_the_students_and_a_larger_one_is_refused() {
+    use armlab::class::protocol::MAX_MODEL_BYTES;
+    let data = data_file("big-model");
+    let server = server(&data, false);
+    let (mut t, _) = teacher(&server).await;
+    let (mut s, _) = student(&server, "s").await;
+    let model = armlab::model_file::to_toml(&built_in("puma560").unwrap()).unwrap();
+    // A real file's bulk (comments here), up to 7.5 MB.
+    let mut text = model.clone();
+    let mut k = 0;
+    while text.len() < MAX_MODEL_BYTES - 512 * 1024 {
+        text.push_str(&format!(
+            "# calibration note {k}: measured on the cell, kept for the record\n"
+        ));
+        k += 1;
+    }
+    t.send(&ClientMessage::Model {
+        name: "big.toml".into(),
+        text: text.clone(),
+    })
+    .await;
+    let got = s
+        .recv_until(|m| match m {
+            ServerMessage::Model { text, .. } => Some(text),
+            _ => None,
+        })
+        .await;
+    assert_eq!(got.len(), text.len());
+    assert!(got == text, "the model arrived whole");
+    // The teacher reads its own copy first, as the app does: the server writes each connection's
+    // messages in turn with its reads, so a client that only sends while 7.5 MB wait for it
+    // would stall its own connection (a loaded machine's socket buffers hold less).
+    t.recv_until(|m| matches!(m, ServerMessage::Model { .. }).then_some(()))
+        .await;
+    // Over the limit: an error, and the connection still drives.
+    let over = "#".repeat(MAX_MODEL_BYTES + 1);
+    t.send(&ClientMessage::Model {
+        name: "huge.toml".into(),
+        text: over,
+    })
+    .await;
+    let e = t.error().await;
+    assert!(e.contains("too large"), "{e}");
+    t.send(&puma_state(vec![0.1; 6])).await;
+    let q = s
+        .recv_until(|m| match m {
+            ServerMessage::State { state, .. } => Some(state.q),
+            _ => None,
+        })
+        .await;
+    assert_eq!(q, vec![0.1; 6]);
+    server.stop().unwrap();
+}
+
+/// `--new` starts a second session beside the stored one: each has its own links, and the
+/// first's still work after the restart (its teacher drives its own students only).
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_new_session_sits_beside_the_old_one_and_both_links_work() {
+    let data = data_file("two-sessions");
+    let first = server(&data, false);
+    let (old_token, old_code) = (first.token.clone(), first.code.clone());
+    first.stop().unwrap();
+    let second = start(ServerOptions {
+        port: 0,
+        data: data.clone(),
+        web: data.parent().map(PathBuf::from),
+        new_session: true,
+        ..ServerOptions::default()
+    })
+    .expect("the server starts");
+    assert_ne!(second.token, old_token);
+    assert_ne!(second.code, old_code);
+    let (mut new_teacher, _) = teacher(&second).await;
+    let (mut new_student, _) = student(&second, "new").await;
+    // The first session's teacher and student, by the old links.
+    let mut old_teacher = Client::connect(&second).await;
+    old_teacher
+        .send(&ClientMessage::Join(Join {
+            role: Role::Teacher,
+            token: Some(old_token),
+            code: None,
+            name: None,
+            resume: None,
+        }))
+        .await;
+    let w = old_teacher
+        .recv_until(|m| match m {
+            ServerMessage::Welcome(w) => Some(w),
+            _ => None,
+        })
+        .await;
+    assert_eq!(w.code, old_code);
+    let mut old_student = Client::connect(&second).await;
+    old_student
+        .send(&student_join(&old_code, "old", None))
+        .await;
+    assert!(matches!(
+        old_student.recv().await,
+        ServerMessage::Welcome(_)
+    ));
+    old_teacher.send(&puma_state(vec![0.2; 6])).await;
+    new_teacher.send(&puma_state(vec![-0.3; 6])).await;
+    let q_of = |m: ServerMessage| match m {
+        ServerMessage::State { state, .. } => Some(state.q),
+        _ => None,
+    };
+    assert_eq!(old_student.recv_until(q_of).await, vec![0.2; 6]);
+    assert_eq!(new_student.recv_until(q_of).await, vec![-0.3; 6]);
+    // Neither hears the other session.
+    assert!(old_student.quiet_for(200).await.is_empty());
+    assert!(new_student.quiet_for(200).await.is_empty());
+    second.stop().unwrap();
 }
