@@ -16,7 +16,7 @@ use crate::app::screenshot::OffscreenWindow;
 use crate::app::shell::AppUi;
 use crate::app::state::AppState;
 use crate::app::{AppError, class};
-use crate::class::protocol::{QuestionKind, QuestionRequest, Role};
+use crate::class::protocol::{QuestionRequest, Role};
 use crate::class_server::{self, ServerHandle, ServerOptions};
 use crate::exercise::Kind;
 use crate::kinematics::models::DEFAULT_MODEL;
@@ -90,15 +90,7 @@ impl AskArg {
             AskArg::Euler => Kind::Euler,
             AskArg::Quaternion => Kind::Quaternion,
         };
-        Ok(QuestionRequest {
-            kind: QuestionKind::Exercise(kind),
-            prompt: None,
-            choices: Vec::new(),
-            correct: None,
-            robot: None,
-            seed: None,
-            feedback: true,
-        })
+        Ok(class::exercise_request(kind, true))
     }
 }
 

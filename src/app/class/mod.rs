@@ -39,7 +39,7 @@ use crate::class::protocol::{
 };
 use link::{ClassLink, LinkEvent, PageLink};
 
-pub use teacher::poll_request;
+pub use teacher::{exercise_request, poll_request};
 
 /// The most states a second the teacher's app sends.
 pub const STATE_RATE_HZ: f64 = 30.0;

@@ -188,7 +188,7 @@ pub fn poll_request(app: &AppUi) -> Result<QuestionRequest, String> {
 }
 
 /// An exercise question of `kind` (on the session's robot, the seed drawn by the server).
-pub(super) fn exercise_request(kind: crate::exercise::Kind, feedback: bool) -> QuestionRequest {
+pub fn exercise_request(kind: crate::exercise::Kind, feedback: bool) -> QuestionRequest {
     QuestionRequest {
         kind: QuestionKind::Exercise(kind),
         prompt: None,
