@@ -1,5 +1,6 @@
 //! Angle and axis, (2.25)-(2.28), both ways, with the cases sin(theta) = 0 (Problem 2.5).
 
+use crate::kinematics::trig::atan2;
 use super::{SINGULAR_EPS, degrees};
 use nalgebra::{Matrix3, Rotation3, Unit, Vector3};
 use std::f64::consts::PI;
@@ -90,7 +91,7 @@ pub fn angle_axis_from_rotation(r: &Rotation3<f64>) -> AngleAxis {
     );
     let vn = v.norm(); // = 2 sin(theta)
     // (2.27), as atan2 of sine and cosine (acos loses half the digits near 0 and pi).
-    let angle = vn.atan2(m.trace() - 1.0);
+    let angle = atan2(vn, m.trace() - 1.0);
     if vn == 0.0 && angle < PI / 2.0 {
         return AngleAxis {
             angle: 0.0,

@@ -1,6 +1,7 @@
 //! Euler angles ZYZ (2.18)-(2.20) and ZXZ (Problem 2.1), roll-pitch-yaw angles (2.21)-(2.23):
 //! the matrix of the angles, one solution fast, and both solutions with the singular family.
 
+use crate::kinematics::trig::atan2;
 use super::{EulerKind, Orientation, SINGULAR_EPS, degrees, wrap_angle};
 use nalgebra::{Matrix3, Rotation3, Vector3};
 use std::fmt;
@@ -202,7 +203,7 @@ fn zaz_branch(m: &Matrix3<f64>, middle: Middle, sign: f64) -> Orientation {
     let (r11, r21, r31) = (m[(0, 0)], m[(1, 0)], m[(2, 0)]);
     let s2 = r13 * r13 + r23 * r23;
     let s = s2.sqrt();
-    let theta = (sign * s).atan2(r33);
+    let theta = atan2(sign * s, r33);
     if s < SINGULAR_EPS {
         // phi = 0: the residual is R_middle(theta)^T R.
         let h = (s2 + r33 * r33).sqrt();
@@ -212,7 +213,7 @@ fn zaz_branch(m: &Matrix3<f64>, middle: Middle, sign: f64) -> Orientation {
             Middle::X => (r11, ct * r21 + st * r31),
         };
         return Orientation {
-            angles: Vector3::new(0.0, theta, s_psi.atan2(c_psi)),
+            angles: Vector3::new(0.0, theta, atan2(s_psi, c_psi)),
             singular: true,
         };
     }
@@ -230,7 +231,7 @@ fn zaz_branch(m: &Matrix3<f64>, middle: Middle, sign: f64) -> Orientation {
         Middle::X => (row0, r33 * row1 + sign * s2 * r31),
     };
     Orientation {
-        angles: Vector3::new(y.atan2(x), theta, s_psi.atan2(c_psi)),
+        angles: Vector3::new(atan2(y, x), theta, atan2(s_psi, c_psi)),
         singular: false,
     }
 }
@@ -287,14 +288,14 @@ fn rpy_branch(m: &Matrix3<f64>, sign: f64) -> Orientation {
     let (r12, r22, r32) = (m[(0, 1)], m[(1, 1)], m[(2, 1)]);
     let c2 = r11 * r11 + r21 * r21;
     let c = c2.sqrt();
-    let theta = (-r31).atan2(sign * c);
+    let theta = atan2(-r31, sign * c);
     if c < SINGULAR_EPS {
         // phi = 0: the residual is Ry(theta)^T R.
         let h = (c2 + r31 * r31).sqrt();
         let (ct, st) = (sign * c / h, -r31 / h);
         let s_psi = st * r12 + ct * r32;
         return Orientation {
-            angles: Vector3::new(0.0, theta, s_psi.atan2(r22)),
+            angles: Vector3::new(0.0, theta, atan2(s_psi, r22)),
             singular: true,
         };
     }
@@ -306,7 +307,7 @@ fn rpy_branch(m: &Matrix3<f64>, sign: f64) -> Orientation {
     let c_psi = -y * r12 + x * r22;
     let s_psi = -r31 * (x * r12 + y * r22) + sign * c2 * r32;
     Orientation {
-        angles: Vector3::new(y.atan2(x), theta, s_psi.atan2(c_psi)),
+        angles: Vector3::new(atan2(y, x), theta, atan2(s_psi, c_psi)),
         singular: false,
     }
 }
