@@ -120,9 +120,13 @@ fn others(c: &mut Criterion, rs: &[Rotation3<f64>]) {
     // For scale: one call of the C library's atan2 (a matrix to Euler angles makes three).
     let yx: Vec<(f64, f64)> = rs.iter().map(|r| (r[(1, 2)], r[(0, 2)])).collect();
     batch(c, "atan2 (libm), for scale", &yx, 0.0, |(y, x)| y.atan2(*x));
-    batch(c, "atan2 (armlab's, in the conversions)", &yx, 0.0, |(y, x)| {
-        armlab::kinematics::trig::atan2(*y, *x)
-    });
+    batch(
+        c,
+        "atan2 (armlab's, in the conversions)",
+        &yx,
+        0.0,
+        |(y, x)| armlab::kinematics::trig::atan2(*y, *x),
+    );
     // The teaching API: allocates one Vec per call.
     batch(c, "matrix to both zyz solutions (Vec)", rs, 0usize, |r| {
         euler_solutions(EulerKind::Zyz, r).solutions.len()

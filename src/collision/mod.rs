@@ -32,6 +32,7 @@
 //! ```
 
 mod geometry;
+mod hull;
 mod matrix;
 mod obstacles;
 mod srdf;

@@ -2,6 +2,7 @@
 
 use super::CollisionError;
 use super::geometry::{Body, BodyKind, GeometryOptions, RobotGeometry};
+use super::hull::{HullData, Hulls, support_distance, support_intersects};
 use super::matrix::AllowedCollisions;
 use super::obstacles::{CellScene, ObstacleFrame};
 use crate::kinematics::{KinematicsError, Pose, Robot};
@@ -92,6 +93,8 @@ pub struct CollisionWorld {
     attached: Vec<(Option<usize>, PPose)>,
     /// The pairs of bodies checked (indices: links first, then obstacles).
     pairs: Vec<(usize, usize)>,
+    /// The hulls among the parts, with their vertex graphs (the distance queries' support).
+    hulls: Hulls,
     /// The pairs never checked, and why.
     pub allowed: AllowedCollisions,
     /// What building it said: the robot's collision warnings, meshes left out, obstacles
@@ -104,6 +107,8 @@ struct Placed<'a> {
     pose: PPose,
     shape: &'a dyn Shape,
     aabb: Aabb,
+    /// The shape's hull data, if it is a hull of the world.
+    hull: Option<&'a HullData>,
 }
 
 impl CollisionWorld {
@@ -170,11 +175,18 @@ impl CollisionWorld {
             });
             attached.push((link, o.parry_pose()));
         }
+        let mut hulls = Hulls::default();
+        for body in geometry.bodies.iter().chain(&obstacles) {
+            for (_, shape) in &body.parts {
+                hulls.add(shape.as_ref());
+            }
+        }
         let mut world = CollisionWorld {
             geometry,
             obstacles,
             attached,
             pairs: Vec::new(),
+            hulls,
             allowed,
             warnings,
         };
@@ -521,11 +533,18 @@ impl Placement<'_> {
     fn parts(&self, i: usize) -> Vec<Placed<'_>> {
         let w = self.world;
         let n = w.geometry.bodies.len();
-        fn placed(pose: PPose, shape: &SharedShape) -> Placed<'_> {
+        fn placed<'a>(hulls: &'a Hulls, pose: PPose, shape: &'a SharedShape) -> Placed<'a> {
+            let hull = hulls.get(shape.as_ref());
             Placed {
-                aabb: shape.compute_aabb(&pose),
+                // a hull's own box placed (not every vertex moved): a little looser, which a
+                // bound allows
+                aabb: hull.map_or_else(
+                    || shape.compute_aabb(&pose),
+                    |h| h.local_aabb.transform_by(&pose),
+                ),
                 pose,
                 shape: shape.as_ref(),
+                hull,
             }
         }
         if i < n {
@@ -535,14 +554,14 @@ impl Placement<'_> {
                     .sticks
                     .iter()
                     .filter(|(k, _, _)| *k == i)
-                    .map(|(_, p, s)| placed(*p, s))
+                    .map(|(_, p, s)| placed(&w.hulls, *p, s))
                     .collect();
             }
             let world_from_link = self.link_poses[i];
             return b
                 .parts
                 .iter()
-                .map(|(p, s)| placed(world_from_link * *p, s))
+                .map(|(p, s)| placed(&w.hulls, world_from_link * *p, s))
                 .collect();
         }
         let (link, frame_from_obstacle) = w.attached[i - n];
@@ -551,7 +570,7 @@ impl Placement<'_> {
         w.obstacles[i - n]
             .parts
             .iter()
-            .map(|(p, s)| placed(world_from_obstacle * *p, s))
+            .map(|(p, s)| placed(&w.hulls, world_from_obstacle * *p, s))
             .collect()
     }
 }
@@ -619,6 +638,13 @@ fn rounded_penetration(pa: &Placed<'_>, pb: &Placed<'_>) -> Option<Option<(f64, 
 /// capsules would go through GJK (five times slower on the Puma's links).
 fn part_distance(pa: &Placed<'_>, pb: &Placed<'_>) -> Option<f64> {
     let ((sa, ra), (sb, rb)) = (core(pa), core(pb));
+    // A hull is its own core: its vertex graph climbs (see `super::hull`).
+    fn hull<'a>(s: &dyn Shape, p: &Placed<'a>) -> Option<&'a HullData> {
+        p.hull.filter(|_| s.as_convex_polyhedron().is_some())
+    }
+    if let Some(d) = support_distance((&pa.pose, sa, hull(sa, pa)), (&pb.pose, sb, hull(sb, pb))) {
+        return Some(d - ra - rb);
+    }
     let (first, second) = if sb.as_shape::<HalfSpace>().is_some() {
         ((sb, &pb.pose), (sa, &pa.pose))
     } else {
@@ -639,6 +665,11 @@ fn overlap(pa: &Placed<'_>, pb: &Placed<'_>) -> bool {
 fn intersects(pa: &Placed<'_>, pb: &Placed<'_>) -> bool {
     if let Some(found) = rounded_penetration(pa, pb) {
         return found.is_some();
+    }
+    if let Some(hit) =
+        support_intersects((&pa.pose, pa.shape, pa.hull), (&pb.pose, pb.shape, pb.hull))
+    {
+        return hit;
     }
     let (first, second) = half_space_first(pa, pb);
     query::intersection_test(&first.pose, first.shape, &second.pose, second.shape)
@@ -689,4 +720,53 @@ fn min_distance(a: &[Placed<'_>], b: &[Placed<'_>], bound: f64) -> Option<f64> {
         }
     }
     best
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::path::Path;
+
+    /// The UR5's clearance as the report gives it (boxes pruning, hulls climbed) against the
+    /// smallest distance of every checked pair's every two parts by parry's own query (its
+    /// vertex scans, nothing pruned), at configurations drawn over the joint ranges.
+    #[test]
+    fn the_reports_clearance_is_the_smallest_distance_of_all_pairs() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        crate::urdf::set_package_paths(vec![root.join("tests/data/collision_meshes")]);
+        let robot = crate::urdf::load_urdf(&root.join("tests/data/urdf_corpus/ur5_robot.urdf"));
+        crate::urdf::set_package_paths(Vec::new());
+        let robot = robot.expect("the UR5");
+        let world = CollisionWorld::new(&robot, &CellScene::default()).expect("a world");
+        let mut seed = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut free = 0;
+        for _ in 0..60 {
+            let q: Vec<f64> = (0..6)
+                .map(|_| {
+                    seed ^= seed << 13;
+                    seed ^= seed >> 7;
+                    seed ^= seed << 17;
+                    ((seed >> 11) as f64 / (1u64 << 52) as f64 - 1.0) * std::f64::consts::PI
+                })
+                .collect();
+            let report = world.check(&robot, &q).expect("a report");
+            if report.in_collision {
+                continue;
+            }
+            free += 1;
+            let placement = world.place(&robot, &q).expect("placed");
+            let mut nearest = f64::INFINITY;
+            for &(i, j) in &world.pairs {
+                for pa in placement.parts(i) {
+                    for pb in placement.parts(j) {
+                        let d = query::distance(&pa.pose, pa.shape, &pb.pose, pb.shape);
+                        nearest = nearest.min(d.expect("a distance").distance);
+                    }
+                }
+            }
+            let got = report.clearance_m.expect("a clearance");
+            assert!((got - nearest).abs() < 1e-9, "q {q:?}: {got} vs {nearest}");
+        }
+        assert!(free >= 15, "{free} free configurations");
+    }
 }

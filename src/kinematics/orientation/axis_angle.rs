@@ -1,7 +1,7 @@
 //! Angle and axis, (2.25)-(2.28), both ways, with the cases sin(theta) = 0 (Problem 2.5).
 
-use crate::kinematics::trig::atan2;
 use super::{SINGULAR_EPS, degrees};
+use crate::kinematics::trig::atan2;
 use nalgebra::{Matrix3, Rotation3, Unit, Vector3};
 use std::f64::consts::PI;
 use std::fmt;

@@ -1,8 +1,8 @@
 //! Euler angles ZYZ (2.18)-(2.20) and ZXZ (Problem 2.1), roll-pitch-yaw angles (2.21)-(2.23):
 //! the matrix of the angles, one solution fast, and both solutions with the singular family.
 
-use crate::kinematics::trig::atan2;
 use super::{EulerKind, Orientation, SINGULAR_EPS, degrees, wrap_angle};
+use crate::kinematics::trig::atan2;
 use nalgebra::{Matrix3, Rotation3, Vector3};
 use std::fmt;
 
