@@ -5,7 +5,7 @@ use crate::kinematics::visual::{JOINT_BODY_LENGTH_FRACTION, StickBody, VisualGeo
 use crate::kinematics::{JointId, JointKind, Pose, Robot};
 use crate::mesh::TriMesh;
 use parry3d_f64::math::{Pose as PPose, Rot3, Vec3};
-use parry3d_f64::shape::SharedShape;
+use parry3d_f64::shape::{Ball, Capsule, Cylinder, Shape, SharedShape};
 
 /// How meshes become convex parts.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -170,7 +170,7 @@ impl RobotGeometry {
         frames: &[Pose],
         q: &[f64],
         j: Option<JointId>,
-        out: &mut Vec<(PPose, SharedShape)>,
+        out: &mut Vec<(PPose, StickPart)>,
     ) {
         let r = self.link_radius;
         let v = |p: &nalgebra::Vector3<f64>| Vec3::new(p.x, p.y, p.z);
@@ -184,7 +184,8 @@ impl RobotGeometry {
         let body = crate::kinematics::visual::stick_body(robot, frames, q, j);
         for w in body.polyline.windows(2) {
             if (w[1] - w[0]).norm() > 1e-12 {
-                out.push((PPose::IDENTITY, SharedShape::capsule(v(&w[0]), v(&w[1]), r)));
+                let c = Capsule::new(v(&w[0]), v(&w[1]), r);
+                out.push((PPose::IDENTITY, StickPart::Capsule(c)));
             }
         }
         // A prismatic joint's sliding body, as drawn. A revolute joint's drum is left out: at
@@ -195,23 +196,50 @@ impl RobotGeometry {
             let h = self.scale * JOINT_BODY_LENGTH_FRACTION;
             let d = body.extension;
             let (a, b) = (ao + z * (d - h).min(0.0), ao + z * d.max(h * 0.5));
-            out.push((PPose::IDENTITY, SharedShape::capsule(v(&a), v(&b), r * 1.6)));
+            let c = Capsule::new(v(&a), v(&b), r * 1.6);
+            out.push((PPose::IDENTITY, StickPart::Capsule(c)));
+        }
+    }
+}
+
+/// A stick body's part, made anew at each configuration: owned, so that placing a stick
+/// figure allocates no shared shape (those allocations were a sixth of a Puma report).
+#[derive(Debug, Clone, Copy)]
+pub(super) enum StickPart {
+    /// A link segment or a prismatic joint's body.
+    Capsule(Capsule),
+    /// The base pedestal.
+    Cylinder(Cylinder),
+    /// The pedestal of a base with no depth.
+    Ball(Ball),
+}
+
+impl StickPart {
+    /// The part as parry's queries take it.
+    pub(super) fn shape(&self) -> &dyn Shape {
+        match self {
+            StickPart::Capsule(c) => c,
+            StickPart::Cylinder(c) => c,
+            StickPart::Ball(b) => b,
         }
     }
 }
 
 /// A cylinder of `radius` from `a` to `b` (world), as a parry cylinder and its pose; a ball
 /// when `a` and `b` coincide.
-fn cylinder_between(a: Vec3, b: Vec3, radius: f64) -> (PPose, SharedShape) {
+fn cylinder_between(a: Vec3, b: Vec3, radius: f64) -> (PPose, StickPart) {
     let axis = b - a;
     let len = axis.length();
     if len < 1e-12 {
-        return (PPose::from_translation(a), SharedShape::ball(radius));
+        return (
+            PPose::from_translation(a),
+            StickPart::Ball(Ball::new(radius)),
+        );
     }
     let rot = Rot3::from_rotation_arc(Vec3::Y, axis / len);
     (
         PPose::from_parts((a + b) * 0.5, rot),
-        SharedShape::cylinder(len / 2.0, radius),
+        StickPart::Cylinder(Cylinder::new(len / 2.0, radius)),
     )
 }
 

@@ -1,7 +1,7 @@
 //! A robot, its cell and its allowed-collision matrix: what one configuration hits.
 
 use super::CollisionError;
-use super::geometry::{Body, BodyKind, GeometryOptions, RobotGeometry};
+use super::geometry::{Body, BodyKind, GeometryOptions, RobotGeometry, StickPart};
 use super::hull::{HullData, Hulls, support_distance, support_intersects};
 use super::matrix::AllowedCollisions;
 use super::obstacles::{CellScene, ObstacleFrame};
@@ -9,7 +9,7 @@ use crate::kinematics::{KinematicsError, Pose, Robot};
 use parry3d_f64::bounding_volume::{Aabb, BoundingVolume};
 use parry3d_f64::math::{Pose as PPose, Vec3};
 use parry3d_f64::query;
-use parry3d_f64::shape::{HalfSpace, Shape, SharedShape};
+use parry3d_f64::shape::{HalfSpace, Shape};
 use serde::Serialize;
 
 /// Penetration below this depth is touching, not a collision (m): a link resting on a table
@@ -276,7 +276,7 @@ impl CollisionWorld {
             }
         };
         // sized once: a stick body has a few capsules (growing it was 6 % of a Puma report)
-        let mut sticks: Vec<(usize, PPose, SharedShape)> =
+        let mut sticks: Vec<(usize, PPose, StickPart)> =
             Vec::with_capacity(4 * self.geometry.bodies.len());
         let mut scratch = Vec::with_capacity(8);
         for (slot, b) in self.geometry.bodies.iter().enumerate() {
@@ -527,7 +527,7 @@ struct Placement<'a> {
     /// `world_from_link` for each link body.
     link_poses: Vec<PPose>,
     /// The stick bodies' parts in the world: (body, pose, shape).
-    sticks: Vec<(usize, PPose, SharedShape)>,
+    sticks: Vec<(usize, PPose, StickPart)>,
 }
 
 impl Placement<'_> {
@@ -535,8 +535,8 @@ impl Placement<'_> {
     fn parts(&self, i: usize) -> Vec<Placed<'_>> {
         let w = self.world;
         let n = w.geometry.bodies.len();
-        fn placed<'a>(hulls: &'a Hulls, pose: PPose, shape: &'a SharedShape) -> Placed<'a> {
-            let hull = hulls.get(shape.as_ref());
+        fn placed<'a>(hulls: &'a Hulls, pose: PPose, shape: &'a dyn Shape) -> Placed<'a> {
+            let hull = hulls.get(shape);
             Placed {
                 // a hull's own box placed (not every vertex moved): a little looser, which a
                 // bound allows
@@ -545,7 +545,7 @@ impl Placement<'_> {
                     |h| h.local_aabb.transform_by(&pose),
                 ),
                 pose,
-                shape: shape.as_ref(),
+                shape,
                 hull,
             }
         }
@@ -556,14 +556,14 @@ impl Placement<'_> {
                     .sticks
                     .iter()
                     .filter(|(k, _, _)| *k == i)
-                    .map(|(_, p, s)| placed(&w.hulls, *p, s))
+                    .map(|(_, p, s)| placed(&w.hulls, *p, s.shape()))
                     .collect();
             }
             let world_from_link = self.link_poses[i];
             return b
                 .parts
                 .iter()
-                .map(|(p, s)| placed(&w.hulls, world_from_link * *p, s))
+                .map(|(p, s)| placed(&w.hulls, world_from_link * *p, s.as_ref()))
                 .collect();
         }
         let (link, frame_from_obstacle) = w.attached[i - n];
@@ -572,7 +572,7 @@ impl Placement<'_> {
         w.obstacles[i - n]
             .parts
             .iter()
-            .map(|(p, s)| placed(&w.hulls, world_from_obstacle * *p, s))
+            .map(|(p, s)| placed(&w.hulls, world_from_obstacle * *p, s.as_ref()))
             .collect()
     }
 }
