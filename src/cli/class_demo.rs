@@ -238,6 +238,10 @@ fn pictures_of(
         }
         if !asked && c.role() == Some(Role::Teacher) && c.roster.joined >= joined {
             let request = ask.request(&teacher).map_err(demo_error)?;
+            if let crate::class::protocol::QuestionKind::Exercise(kind) = request.kind {
+                // the Class window's kind box shows the kind asked, as if chosen there
+                teacher.class.form.kind = kind;
+            }
             teacher.apply(Action::Class(ClassAction::Ask(request)));
             asked = true;
             waiting = "every simulated student's answer";
