@@ -210,17 +210,10 @@ fn pictures_of(
     )));
     teacher.class.window = true;
     let mut teacher_window = OffscreenWindow::new(&gpu, args.size.0);
-    // A student of our own, in the app (a built-in robot until the teacher's arrives).
-    let mut student = args.student_screenshot.as_ref().map(|_| {
-        let mut app = AppUi::new(AppState::from_spec("planar2").expect("a built-in robot"));
-        app.apply(Action::Class(ClassAction::JoinStudent {
-            ws: format!("ws://{}/ws", server.addr),
-            code: server.code.clone(),
-            name: "Sam".into(),
-            resume: None,
-        }));
-        (app, OffscreenWindow::new(&gpu, args.size.0))
-    });
+    let mut student = args
+        .student_screenshot
+        .as_ref()
+        .map(|_| (student_app(server), OffscreenWindow::new(&gpu, args.size.0)));
     let joined = n + usize::from(student.is_some());
     let start = Instant::now();
     let mut asked = false;
@@ -237,28 +230,19 @@ fn pictures_of(
             )));
         }
         if !asked && c.role() == Some(Role::Teacher) && c.roster.joined >= joined {
-            let request = ask.request(&teacher).map_err(demo_error)?;
-            if let crate::class::protocol::QuestionKind::Exercise(kind) = request.kind {
-                // the Class window's kind box shows the kind asked, as if chosen there
-                teacher.class.form.kind = kind;
-            }
-            teacher.apply(Action::Class(ClassAction::Ask(request)));
+            ask_now(&mut teacher, ask)?;
             asked = true;
             waiting = "every simulated student's answer";
         } else if asked && ready(&teacher, student.as_ref().map(|s| &s.0), n) {
             break;
         }
         if start.elapsed() > PICTURE_TIMEOUT {
-            return Err(demo_error(format!(
-                "waited {PICTURE_TIMEOUT:?} for {waiting} ({} answered; the tally counts {}; {})",
-                room.answered(),
-                teacher.class.tally.as_ref().map_or(0, |t| t.answered),
-                student.as_ref().map_or(String::new(), |(s, _)| format!(
-                    "the student's robot {}, question {}",
-                    s.state.robot().name,
-                    s.class.question.is_some()
-                ))
-            )));
+            return Err(not_ready(
+                waiting,
+                room,
+                &teacher,
+                student.as_ref().map(|s| &s.0),
+            ));
         }
         std::thread::sleep(Duration::from_millis(10));
     }
@@ -274,6 +258,48 @@ fn pictures_of(
         write_picture(&image, path, out)?;
     }
     Ok(())
+}
+
+/// A student of our own, in the app, joining (a built-in robot until the teacher's arrives).
+fn student_app(server: &ServerHandle) -> AppUi {
+    let mut app = AppUi::new(AppState::from_spec("planar2").expect("a built-in robot"));
+    app.apply(Action::Class(ClassAction::JoinStudent {
+        ws: format!("ws://{}/ws", server.addr),
+        code: server.code.clone(),
+        name: "Sam".into(),
+        resume: None,
+    }));
+    app
+}
+
+/// The teacher's app asks `ask`, its Class window's kind box showing the kind asked as if
+/// chosen there.
+fn ask_now(teacher: &mut AppUi, ask: AskArg) -> Result<(), CliError> {
+    let request = ask.request(teacher).map_err(demo_error)?;
+    if let crate::class::protocol::QuestionKind::Exercise(kind) = request.kind {
+        teacher.class.form.kind = kind;
+    }
+    teacher.apply(Action::Class(ClassAction::Ask(request)));
+    Ok(())
+}
+
+/// Why the pictures could not be taken in time: what was awaited, and where things stood.
+fn not_ready(
+    waiting: &str,
+    room: &Rehearsal,
+    teacher: &AppUi,
+    student: Option<&AppUi>,
+) -> CliError {
+    demo_error(format!(
+        "waited {PICTURE_TIMEOUT:?} for {waiting} ({} answered; the tally counts {}; {})",
+        room.answered(),
+        teacher.class.tally.as_ref().map_or(0, |t| t.answered),
+        student.map_or(String::new(), |s| format!(
+            "the student's robot {}, question {}",
+            s.state.robot().name,
+            s.class.question.is_some()
+        ))
+    ))
 }
 
 /// The teacher's tally counts `n` answers, and the student (if any) has the question.

@@ -132,45 +132,61 @@ impl SupportMap for Climb<'_> {
 /// A placed shape for [`support_distance`]: its pose, the shape, its hull data if it is a hull.
 pub(super) type Side<'a> = (&'a PPose, &'a dyn Shape, Option<&'a HullData>);
 
-/// The distance between two placed shapes that support-map (m), each hull climbed: `None`
-/// where neither is a hull with its data, or one is not a support map (a half-space): parry's
-/// own query then.
-pub(super) fn support_distance(
-    (pose_a, a, ha): Side<'_>,
-    (pose_b, b, hb): Side<'_>,
-) -> Option<f64> {
-    use parry3d_f64::query::details::distance_support_map_support_map as gjk;
+/// One of parry's GJK queries on two support maps (`pos12`: the second's pose in the first's
+/// frame).
+trait Gjk {
+    type Out;
+    fn run<G1: ?Sized + SupportMap, G2: ?Sized + SupportMap>(
+        pos12: &PPose,
+        a: &G1,
+        b: &G2,
+    ) -> Self::Out;
+}
+
+/// The distance (m).
+struct Distance;
+
+impl Gjk for Distance {
+    type Out = f64;
+    fn run<G1: ?Sized + SupportMap, G2: ?Sized + SupportMap>(p: &PPose, a: &G1, b: &G2) -> f64 {
+        parry3d_f64::query::details::distance_support_map_support_map(p, a, b)
+    }
+}
+
+/// Whether they touch or overlap.
+struct Intersects;
+
+impl Gjk for Intersects {
+    type Out = bool;
+    fn run<G1: ?Sized + SupportMap, G2: ?Sized + SupportMap>(p: &PPose, a: &G1, b: &G2) -> bool {
+        parry3d_f64::query::details::intersection_test_support_map_support_map(p, a, b)
+    }
+}
+
+/// Query `Q` on two placed shapes, each hull climbed: `None` where neither is a hull with its
+/// data, or one is not a support map (a half-space): parry's own query then.
+fn climbed<Q: Gjk>((pose_a, a, ha): Side<'_>, (pose_b, b, hb): Side<'_>) -> Option<Q::Out> {
     fn climb<'a>(s: &'a dyn Shape, d: Option<&'a HullData>) -> Option<Climb<'a>> {
         Some(Climb::new(s.as_convex_polyhedron()?, d?))
     }
     let (ca, cb) = (climb(a, ha), climb(b, hb));
     let pos12 = pose_a.inv_mul(pose_b);
     Some(match (&ca, &cb) {
-        (Some(ca), Some(cb)) => gjk(&pos12, ca, cb),
-        (Some(ca), None) => gjk(&pos12, ca, b.as_support_map()?),
-        (None, Some(cb)) => gjk(&pos12, a.as_support_map()?, cb),
+        (Some(ca), Some(cb)) => Q::run(&pos12, ca, cb),
+        (Some(ca), None) => Q::run(&pos12, ca, b.as_support_map()?),
+        (None, Some(cb)) => Q::run(&pos12, a.as_support_map()?, cb),
         (None, None) => return None,
     })
 }
 
-/// Whether two placed shapes that support-map touch or overlap, each hull climbed: `None`
-/// as for [`support_distance`].
-pub(super) fn support_intersects(
-    (pose_a, a, ha): Side<'_>,
-    (pose_b, b, hb): Side<'_>,
-) -> Option<bool> {
-    use parry3d_f64::query::details::intersection_test_support_map_support_map as gjk;
-    fn climb<'a>(s: &'a dyn Shape, d: Option<&'a HullData>) -> Option<Climb<'a>> {
-        Some(Climb::new(s.as_convex_polyhedron()?, d?))
-    }
-    let (ca, cb) = (climb(a, ha), climb(b, hb));
-    let pos12 = pose_a.inv_mul(pose_b);
-    Some(match (&ca, &cb) {
-        (Some(ca), Some(cb)) => gjk(&pos12, ca, cb),
-        (Some(ca), None) => gjk(&pos12, ca, b.as_support_map()?),
-        (None, Some(cb)) => gjk(&pos12, a.as_support_map()?, cb),
-        (None, None) => return None,
-    })
+/// The distance between two placed shapes (m), each hull climbed; `None` as for [`climbed`].
+pub(super) fn support_distance(a: Side<'_>, b: Side<'_>) -> Option<f64> {
+    climbed::<Distance>(a, b)
+}
+
+/// Whether two placed shapes touch or overlap, each hull climbed; `None` as for [`climbed`].
+pub(super) fn support_intersects(a: Side<'_>, b: Side<'_>) -> Option<bool> {
+    climbed::<Intersects>(a, b)
 }
 
 #[cfg(test)]
