@@ -168,11 +168,14 @@ impl OffscreenWindow {
         Ok(())
     }
 
-    /// Renders `app`'s window as it is now (the 3D view framing the arm), keeping what the
-    /// frames before laid out (window places and sizes).
-    pub fn render(mut self, app: AppUi) -> Result<image::RgbaImage, AppError> {
+    /// Renders `app`'s window as it is now, keeping what the frames before laid out (window
+    /// places and sizes): with `keep_camera` the 3D view as the app has it (a following
+    /// student's is the teacher's; framing it anew would read as the student's own move), else
+    /// framing the arm.
+    pub fn render(mut self, app: AppUi, keep_camera: bool) -> Result<image::RgbaImage, AppError> {
         let (gpu, size) = (self.gpu.clone(), self.size);
-        Ok(render_window_on(&gpu, &mut self.offscreen, app, size, None, false)?.0)
+        let camera = keep_camera.then_some(app.tabs.view3d.camera);
+        Ok(render_window_on(&gpu, &mut self.offscreen, app, size, camera, false)?.0)
     }
 }
 

@@ -209,6 +209,8 @@ fn pictures_of(
         server.teacher_url.clone(),
     )));
     teacher.class.window = true;
+    // the arm framed from the start: the students follow this camera
+    teacher.tabs.view3d.fit(&teacher.state);
     let mut teacher_window = OffscreenWindow::new(&gpu, args.size.0);
     let mut student = args
         .student_screenshot
@@ -249,12 +251,14 @@ fn pictures_of(
     // A frame more, so that the last tally's window is sized.
     teacher_window.frame(&mut teacher).map_err(CliError::App)?;
     if let Some(path) = &args.screenshot {
-        let image = teacher_window.render(teacher).map_err(CliError::App)?;
+        let image = teacher_window
+            .render(teacher, false)
+            .map_err(CliError::App)?;
         write_picture(&image, path, out)?;
     }
     if let (Some(path), Some((mut app, mut window))) = (&args.student_screenshot, student) {
         window.frame(&mut app).map_err(CliError::App)?;
-        let image = window.render(app).map_err(CliError::App)?;
+        let image = window.render(app, true).map_err(CliError::App)?;
         write_picture(&image, path, out)?;
     }
     Ok(())
