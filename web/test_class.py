@@ -11,8 +11,8 @@ through chromedriver (web/test_page.py's Driver). Checks, from the pages:
    button's action), one student answers a choice (the hook that applies the question window
    button's action): the teacher's page shows one answer of two, counted on that choice;
 4. a third student opens the students' link without a nickname: the page asks for one, the
-   nickname typed key by key (a whole sentence, with Enter) joins, and the server's data file
-   holds it exactly;
+   nickname typed key by key (a whole sentence, no shortcut firing: q, tab and solutions stay,
+   then Enter) joins, and the server's data file holds it exactly;
 5. the server is stopped and started again on the same port and data file: every page
    reconnects by itself, the students as the same students (the teacher still counts three, no
    new rows in the data file), and they follow the teacher's arm again;
@@ -154,7 +154,15 @@ def check_nickname_prompt(d, students_url, teacher, data):
     d.s("/url", {"url": students_url})
     wait_for(d, "the nickname prompt", lambda s: (s.get("class") or {}).get("prompt"), 30)
     time.sleep(0.3)
-    type_keys(d, NICKNAME + "\ue007")
+    before = status(d)
+    type_keys(d, NICKNAME)
+    time.sleep(0.3)
+    after = status(d)
+    # letters of the sentence are shortcuts elsewhere (W, P, H, Space: the next solution)
+    for key in ("q", "tab", "solutions"):
+        if after[key] != before[key]:
+            fail(f"typing the nickname fired a shortcut: {key} {before[key]} -> {after[key]}")
+    type_keys(d, "\ue007")
     wait_for(teacher, "the teacher's page to see three students",
              lambda s: (s.get("class") or {}).get("joined") == 3, 20)
     names = student_names(data)
