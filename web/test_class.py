@@ -33,7 +33,7 @@ import threading
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from test_page import Driver, fail, free_port, status, wait_for  # noqa: E402
+from test_page import Driver, drag_from, fail, free_port, status, wait_for  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 ARMLAB = os.path.join(ROOT, "target", "debug", "armlab")
@@ -73,18 +73,10 @@ def class_status(d):
 
 
 def drag_gizmo(d):
-    """A mouse drag on the IK target's gizmo (as web/test_page.py's check_gizmo_drag)."""
+    """A mouse drag on the IK target's gizmo (web/test_page.py's drag, as its check_gizmo_drag)."""
     before = wait_for(d, "the teacher's gizmo", lambda s: s.get("gizmo"), 20)
     x, y = before["gizmo"]
-    steps = [{"type": "pointerMove", "x": int(x), "y": int(y), "origin": "viewport",
-              "duration": 0}, {"type": "pointerDown", "button": 0}]
-    for k in range(1, 11):
-        steps.append({"type": "pointerMove", "x": int(x - 6 * k), "y": int(y + 4 * k),
-                      "origin": "viewport", "duration": 30})
-    steps.append({"type": "pointerUp", "button": 0})
-    d.s("/actions", {"actions": [{"type": "pointer", "id": "mouse",
-                                  "parameters": {"pointerType": "mouse"}, "actions": steps}]})
-    d.s("/actions", method="DELETE")
+    drag_from(d, x, y)
     return wait_for(d, "the teacher's arm to move after the drag",
                     lambda s: s["q"] != before["q"], 10)
 

@@ -249,9 +249,8 @@ def check_default_robot(d):
         fail(f"only {link} coloured pixels in the 3D view: no arm drawn")
 
 
-def check_gizmo_drag(d):
-    before = wait_for(d, "the gizmo's position", lambda s: s.get("gizmo"), 10)
-    x, y = before["gizmo"]
+def drag_from(d, x, y):
+    """A scripted mouse drag from (x, y) px: press, ten moves of (-6, +4) px 30 ms apart, release."""
     steps = [{"type": "pointerMove", "x": int(x), "y": int(y), "origin": "viewport",
               "duration": 0}, {"type": "pointerDown", "button": 0}]
     for k in range(1, 11):
@@ -261,6 +260,12 @@ def check_gizmo_drag(d):
     d.s("/actions", {"actions": [{"type": "pointer", "id": "mouse",
                                   "parameters": {"pointerType": "mouse"}, "actions": steps}]})
     d.s("/actions", method="DELETE")
+
+
+def check_gizmo_drag(d):
+    before = wait_for(d, "the gizmo's position", lambda s: s.get("gizmo"), 10)
+    x, y = before["gizmo"]
+    drag_from(d, x, y)
     after = wait_for(d, "the pose readout to change after the drag",
                      lambda s: s["position"] != before["position"], 10)
     moved = sum((a - b) ** 2 for a, b in zip(after["position"], before["position"])) ** 0.5

@@ -24,6 +24,8 @@ pub struct LessonPlayer {
     /// caption holds (it once vanished after the first character, and the keys that followed
     /// ran as shortcuts).
     pub editing: Option<usize>,
+    /// The caption's rendered Markdown, kept between frames.
+    pub caption_view: super::markdown::MarkdownCache,
 }
 
 /// The camera preset a step names.
@@ -45,6 +47,7 @@ impl LessonPlayer {
             file: file.to_string(),
             step: 0,
             editing: None,
+            caption_view: Default::default(),
         }
     }
 
@@ -136,8 +139,13 @@ impl LessonPlayer {
                 edit.surrender_focus();
             }
         } else {
-            ui.horizontal_wrapped(|ui| {
-                ui.add(egui::Label::new(RichText::new(&step.caption).size(size)).wrap());
+            // The caption (Markdown) beside its Edit button, wrapping in the width left.
+            ui.horizontal_top(|ui| {
+                let width = (ui.available_width() - 110.0).max(120.0);
+                ui.vertical(|ui| {
+                    ui.set_max_width(width);
+                    super::markdown::show(ui, &mut self.caption_view, &step.caption, size);
+                });
                 if ui.small_button("Edit caption").clicked() {
                     self.editing = Some(i);
                 }

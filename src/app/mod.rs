@@ -16,6 +16,7 @@ pub mod gizmo;
 pub mod inner;
 pub mod layout;
 pub mod lesson;
+pub mod markdown;
 pub mod panels;
 pub mod probe;
 pub mod reachability;

@@ -279,3 +279,56 @@ fn an_axis_angle_exam_saves_the_answer_file() {
     assert_eq!((g.score, g.max), (1, 1), "{:?}", g.items);
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// An euler sheet's matrix is an indented code block in its Markdown: the tab shows each of its
+/// rows as one monospaced line with its spacing kept (the columns line up), and nothing of the
+/// markup. The rows are read here from the question's text. (A code block drawn as such has a
+/// copy button whose icon no font of the app has: the harness panics on a missing glyph.)
+#[test]
+fn an_euler_sheets_matrix_rows_show_as_aligned_lines() {
+    let sheet = generate(Kind::Euler, None, 11, 1).unwrap();
+    let file = SheetFile::of(&sheet).unwrap();
+    let rows: Vec<&str> = file
+        .question
+        .lines()
+        .filter(|l| l.starts_with("    ["))
+        .map(str::trim)
+        .collect();
+    assert_eq!(rows.len(), 3, "{}", file.question);
+    let mut app = AppUi::new(AppState::from_spec("planar3").unwrap());
+    app.open_exercise_text("sheet.json", &serde_json::to_string(&file).unwrap())
+        .unwrap();
+    let h = harness(app);
+    for row in rows {
+        let shown = row.replace(' ', "\u{a0}");
+        assert!(
+            h.query_all_by_label(&shown).next().is_some(),
+            "row {row:?} not shown as one line"
+        );
+    }
+    assert!(h.query_all_by_label_contains("# Euler").next().is_none());
+    assert!(
+        h.query_all_by_label("Euler angles of a rotation matrix")
+            .next()
+            .is_some()
+    );
+}
+
+/// The code-block rewrite on its own: an indented block and a fenced one with a backtick become
+/// inline code lines (spaces kept as no-break spaces, a fence longer than the line's backticks),
+/// the text around them unchanged; a text without a code block comes back borrowed.
+#[test]
+fn code_blocks_become_lines_of_inline_code() {
+    use armlab::app::markdown::without_code_blocks;
+    let plain = "# Title\n\n| a | b |\n|---|---|\n| 1 | 2 |\n";
+    assert!(matches!(
+        without_code_blocks(plain),
+        std::borrow::Cow::Borrowed(_)
+    ));
+    let text = "Rows:\n\n    [ 1.0  0.0 ]\n    [ 0.0  1.0 ]\n\nthen\n\n```\na `b` c\n```\nend\n";
+    let nb = '\u{a0}';
+    let want = format!(
+        "Rows:\n\n`[{nb}1.0{nb}{nb}0.0{nb}]`\\\n`[{nb}0.0{nb}{nb}1.0{nb}]`\n\nthen\n\n``a{nb}`b`{nb}c``\n\nend\n"
+    );
+    assert_eq!(without_code_blocks(text), want);
+}

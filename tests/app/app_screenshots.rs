@@ -57,6 +57,12 @@ fn unreachable_target() {
 /// Runs `armlab args...` on a virtual X server (needs `xvfb xauth`, which CI installs),
 /// stopped by `timeout` after `seconds` (exit 124 then).
 fn armlab_under_xvfb(seconds: u32, args: &[&str]) -> std::process::Output {
+    // One at a time: xvfb-run started by two tests at once once ended with its own exit 5 ("problem
+    // while cleaning up temporary directory") after the app ran its 6 s, and left its Xvfb running.
+    static ONE_AT_A_TIME: std::sync::Mutex<()> = std::sync::Mutex::new(());
+    let _turn = ONE_AT_A_TIME
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
     let seconds = seconds.to_string();
     std::process::Command::new("xvfb-run")
         .args(["-a", "-s", "-screen 0 1280x900x24", "timeout", &seconds])

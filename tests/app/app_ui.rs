@@ -645,6 +645,41 @@ fn a_lesson_caption_takes_a_whole_sentence_and_no_key_fires_a_shortcut() {
     assert!(player.lesson.steps[0].caption.is_empty());
 }
 
+/// A caption is Markdown (the lesson format says so), and the lesson bar shows it rendered: the
+/// strong words and the equation's code span as text of their own, none of the markup.
+#[test]
+fn a_lesson_caption_shows_its_markdown_rendered() {
+    use armlab::app::lesson::{LessonPlayer, Seen, current_step};
+    const CAPTION: &str = "**Elbow down**: theta3 from `(2.101)`, then theta2.";
+    let mut app = AppUi::new(AppState::from_spec("puma560").unwrap());
+    let mut player = LessonPlayer::on(&app.state);
+    let seen = Seen {
+        camera: app.tabs.view3d.camera,
+        tab: 0,
+        figure: "this-model".into(),
+        construction: None,
+        orientation: None,
+    };
+    player.append(current_step(&app.state, 0, &seen, CAPTION));
+    player.step = 0;
+    player.editing = None;
+    app.lesson = Some(player);
+    let h = harness(app);
+    for shown in ["Elbow down", "(2.101)"] {
+        assert!(
+            h.query_all_by_label(shown).next().is_some(),
+            "{shown:?} is not a text of its own"
+        );
+    }
+    for markup in ["**", "`"] {
+        assert!(
+            h.query_all_by_label_contains(markup).next().is_none(),
+            "{markup:?} shown as text"
+        );
+    }
+    assert!(h.query_by_label("Edit caption").is_some());
+}
+
 /// Issue 46, item 10: a long status message wraps inside the 1280 px window instead of being
 /// cut at its edge, and its whole text is one label (readable in full, also on hover).
 #[test]
@@ -762,6 +797,61 @@ fn an_exam_sheet_opens_without_its_key_and_nothing_can_be_copied_out() {
     let g =
         armlab::exercise::grade(&key, &armlab::exercise::Answer::Model(Box::new(answer))).unwrap();
     assert_eq!((g.score, g.max), (6, 6), "{:?}", g.items);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A sheet's question is Markdown, and the student reads it rendered: the table of joint axes as
+/// a table (each header and each direction a cell of its own), the heading as a heading; none of
+/// the markup (`| joint |`, `|---|`, `# `) is shown. It was shown raw, in class and out.
+#[test]
+fn an_exercise_sheets_question_shows_its_table_as_a_table() {
+    use armlab::exercise::{Kind, SheetFile, generate};
+    let dir = std::env::temp_dir().join(format!("armlab-sheet-md-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let puma = armlab::kinematics::models::built_in("puma560").unwrap();
+    let sheet = generate(Kind::DhTable, Some(&puma), 5, 1).unwrap();
+    let sheet_path = dir.join("sheet.json");
+    let file = SheetFile::of(&sheet).unwrap();
+    assert!(
+        file.question.contains("|---|"),
+        "the question is a Markdown table"
+    );
+    std::fs::write(&sheet_path, serde_json::to_string(&file).unwrap()).unwrap();
+    let mut app = AppUi::new(AppState::from_spec("planar3").unwrap());
+    app.load(sheet_path.to_str().unwrap());
+    let mut h = Harness::builder()
+        .with_size(egui::vec2(1280.0, 1600.0))
+        .build_ui_state(|ui, app: &mut AppUi| app.show(ui, None), app);
+    h.run();
+    for cell in ["joint", "type", "a point on the axis", "direction"] {
+        assert!(
+            h.query_all_by_label(cell).next().is_some(),
+            "no header cell {cell:?}"
+        );
+    }
+    assert!(h.query_by_label("The DH table of an arm").is_some());
+    // every cell of the table's rows (split here at the bars) is a label of its own
+    let rows: Vec<&str> = file
+        .question
+        .lines()
+        .filter(|l| l.starts_with("| ") && !l.starts_with("| joint"))
+        .collect();
+    assert_eq!(rows.len(), 6, "six joints' rows");
+    for row in rows {
+        for cell in row.trim_matches('|').split('|').map(str::trim) {
+            assert!(
+                h.query_all_by_label(cell).next().is_some(),
+                "no cell {cell:?} of {row}"
+            );
+        }
+    }
+    for markup in ["|---", "| joint", "# The DH"] {
+        assert!(
+            h.query_all_by_label_contains(markup).next().is_none(),
+            "{markup:?} shown as text"
+        );
+    }
     let _ = std::fs::remove_dir_all(&dir);
 }
 

@@ -76,6 +76,7 @@ fn save_as_lesson_appends_the_current_setup_and_a_dropped_lesson_opens() {
         file: file.to_string_lossy().into_owned(),
         step: 0,
         editing: None,
+        caption_view: Default::default(),
     });
     app.save_as_lesson().unwrap();
     app.state.set_q(&[0.4, 0.2, -0.5]).unwrap();

@@ -44,6 +44,13 @@ impl Default for AnswerRow {
     }
 }
 
+/// What the tab says before a sheet is open (Markdown).
+const INTRODUCTION: &str = "Open your sheet (`student-NN/sheet.json`, made by `armlab exercise \
+                            new`) or drop it on the window: its question shows here, what it \
+                            asks for is hidden in the panels, and your answer is saved beside \
+                            it to be handed in. A teacher's key (`keys/student-NN.json`) opens \
+                            the same sheet for practice, graded here.";
+
 /// The sheet being answered.
 #[derive(Debug, Clone)]
 pub struct OpenSheet {
@@ -107,6 +114,8 @@ pub struct ExerciseTab {
     pub key_path: String,
     /// The sheet being answered.
     pub sheet: Option<OpenSheet>,
+    /// The question's rendered Markdown, kept between frames.
+    pub question_view: crate::app::markdown::MarkdownCache,
 }
 
 impl Tab for ExerciseTab {
@@ -245,12 +254,8 @@ impl ExerciseTab {
             }
         });
         let Some(sheet) = &mut self.sheet else {
-            ui.label(
-                "Open your sheet (`student-NN/sheet.json`, made by `armlab exercise new`) or \
-                 drop it on the window: its question shows here, what it asks for is hidden in \
-                 the panels, and your answer is saved beside it to be handed in. A teacher's \
-                 key (`keys/student-NN.json`) opens the same sheet for practice, graded here.",
-            );
+            let size = egui::TextStyle::Body.resolve(ui.style()).size;
+            crate::app::markdown::show(ui, &mut self.question_view, INTRODUCTION, size);
             return;
         };
         ui.separator();
@@ -264,7 +269,7 @@ impl ExerciseTab {
             ui.label(RichText::new(note).color(Color32::from_rgb(150, 90, 0)));
         }
         let size = 15f32.max(super::super::layout::text_floor(ui.ctx()));
-        ui.add(egui::Label::new(RichText::new(&sheet.question).size(size)).wrap());
+        crate::app::markdown::show(ui, &mut self.question_view, &sheet.question, size);
         ui.separator();
         ui.heading("Your answer");
         let closed = sheet.class.as_ref().is_some_and(|c| c.closed);
@@ -283,6 +288,7 @@ impl ExerciseTab {
 /// the sheet asks for hidden (and in an exam every way out of the answer), the tab shown.
 fn setup(kind: Kind, q: &[f64], exam: bool, state: &AppState) -> Actions {
     let mut out = Actions::default();
+    let how = if exam { "to answer" } else { "for practice" };
     if kind.is_orientation() {
         // no arm: the app's own stays as it is; an exam still closes every way out
         out.push(Action::SetHidden(Hidden {
@@ -290,8 +296,20 @@ fn setup(kind: Kind, q: &[f64], exam: bool, state: &AppState) -> Actions {
             ..Hidden::default()
         }));
         out.push(Action::ShowTab(super::EXERCISE));
+        out.message(
+            Level::Info,
+            format!("exercise: a {} sheet {how}", kind.name()),
+        );
         return out;
     }
+    // Said after the arm's loading message, which spoke of its opening pose, not the sheet's q.
+    out.message(
+        Level::Info,
+        format!(
+            "exercise: a {} sheet {how}; the arm is at the sheet's q",
+            kind.name()
+        ),
+    );
     out.push(Action::SetQ(q.to_vec()));
     out.push(Action::TargetToTool(0));
     let dh = kind == Kind::DhTable;
@@ -351,6 +369,15 @@ fn check_row(ui: &mut egui::Ui, sheet: &mut OpenSheet, out: &mut Actions) {
         }
         None => {}
     }
+}
+
+/// Names a text field `name` for screen readers (and UI tests), with `value` as its text.
+fn name_text_input(e: &egui::Response, name: &str, value: &str) {
+    e.widget_info(|| {
+        let mut info = egui::WidgetInfo::labeled(egui::Role::TextInput, true, name);
+        info.current_text_value = Some(value.to_string());
+        info
+    });
 }
 
 /// The answer's inputs: a DH table's grid, an orientation's lines, or rows of numbers.
@@ -498,13 +525,7 @@ fn orientation_entry(ui: &mut egui::Ui, sheet: &mut OpenSheet) {
                     .font(egui::TextStyle::Monospace),
             );
             // named for screen readers (and UI tests): "answer: phi theta psi"
-            let name = format!("answer: {name}");
-            let value = line.clone();
-            e.widget_info(|| {
-                let mut info = egui::WidgetInfo::labeled(egui::Role::TextInput, true, &name);
-                info.current_text_value = Some(value.clone());
-                info
-            });
+            name_text_input(&e, &format!("answer: {name}"), line);
         });
     }
 }
@@ -550,14 +571,7 @@ fn dh_grid(ui: &mut egui::Ui, sheet: &mut OpenSheet) {
                     (&mut r.theta_deg, "theta"),
                 ] {
                     let e = ui.add(egui::TextEdit::singleline(field).desired_width(70.0));
-                    let name = format!("row {} {what}", i + 1);
-                    let value = field.clone();
-                    e.widget_info(|| {
-                        let mut info =
-                            egui::WidgetInfo::labeled(egui::Role::TextInput, true, &name);
-                        info.current_text_value = Some(value.clone());
-                        info
-                    });
+                    name_text_input(&e, &format!("row {} {what}", i + 1), field);
                 }
                 ui.end_row();
             }
