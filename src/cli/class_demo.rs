@@ -44,7 +44,8 @@ pub struct DemoArgs {
     /// Joint vector (rad, m) the teacher's arm starts at (the IK target on its tool).
     #[arg(long, allow_hyphen_values = true)]
     pub q: Option<String>,
-    /// Draws which simulated students err, and how.
+    /// Draws which simulated students err, and how; also the sheet of the exercise --ask asks
+    /// (the same seed, the same sheet: a rehearsal or a picture made again shows the same arm).
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
     /// Render the teacher's window, once every simulated student answered --ask (default
@@ -232,7 +233,7 @@ fn pictures_of(
             )));
         }
         if !asked && c.role() == Some(Role::Teacher) && c.roster.joined >= joined {
-            ask_now(&mut teacher, ask)?;
+            ask_now(&mut teacher, ask, args.seed)?;
             asked = true;
             waiting = "every simulated student's answer";
         } else if asked && ready(&teacher, student.as_ref().map(|s| &s.0), n) {
@@ -276,12 +277,13 @@ fn student_app(server: &ServerHandle) -> AppUi {
     app
 }
 
-/// The teacher's app asks `ask`, its Class window's kind box showing the kind asked as if
-/// chosen there.
-fn ask_now(teacher: &mut AppUi, ask: AskArg) -> Result<(), CliError> {
-    let request = ask.request(teacher).map_err(demo_error)?;
+/// The teacher's app asks `ask` (an exercise's sheet drawn from `seed`), its Class window's
+/// kind box showing the kind asked as if chosen there.
+fn ask_now(teacher: &mut AppUi, ask: AskArg, seed: u64) -> Result<(), CliError> {
+    let mut request = ask.request(teacher).map_err(demo_error)?;
     if let crate::class::protocol::QuestionKind::Exercise(kind) = request.kind {
         teacher.class.form.kind = kind;
+        request.seed = Some(seed);
     }
     teacher.apply(Action::Class(ClassAction::Ask(request)));
     Ok(())

@@ -1159,6 +1159,60 @@ fn the_demo_writes_the_teachers_and_a_students_window() {
     }
 }
 
+/// `armlab class demo --seed S --ask dh-table` asks the sheet S draws: two rehearsals with the same
+/// seed store the same question as sent to the students (its sheet, arm and q), another seed
+/// another one; the request the server keeps names the seed.
+#[test]
+fn the_demos_seed_draws_the_question_it_asks() {
+    let sent = |name: &str, seed: &str| {
+        let data = data_file(name);
+        let picture = data.with_extension("png");
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_armlab"))
+            .args([
+                "class",
+                "demo",
+                "puma560",
+                "--students",
+                "2",
+                "--ask",
+                "dh-table",
+            ])
+            .args(["--seed", seed, "--size", "320x200", "--data"])
+            .arg(&data)
+            .arg("--screenshot")
+            .arg(&picture)
+            .output()
+            .expect("armlab runs");
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let db = rusqlite::Connection::open(&data).unwrap();
+        let (request, sent): (String, String) = db
+            .query_row("SELECT request, sent FROM questions", [], |r| {
+                Ok((r.get(0)?, r.get(1)?))
+            })
+            .unwrap();
+        let request: serde_json::Value = serde_json::from_str(&request).unwrap();
+        assert_eq!(request["seed"].to_string(), seed, "{request}");
+        let sent: serde_json::Value = serde_json::from_str(&sent).unwrap();
+        sent["sheet"].clone()
+    };
+    let first = sent("demo-seed-a", "7");
+    assert!(first["question"].as_str().unwrap().contains("DH table"));
+    assert_eq!(
+        first,
+        sent("demo-seed-b", "7"),
+        "the same seed, the same sheet"
+    );
+    assert_ne!(
+        first,
+        sent("demo-seed-c", "8"),
+        "another seed, another sheet"
+    );
+}
+
 /// A student who joins while a question is open counts in its tally at once ("answered 0 of
 /// 2", not "of 1" until somebody answers), and one who leaves stops counting (found in the
 /// browser test: a third page's student never reached the teacher's count).
