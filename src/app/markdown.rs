@@ -12,9 +12,14 @@ use egui_commonmark::{CommonMarkCache, CommonMarkViewer};
 use pulldown_cmark::{Event, Parser, Tag, TagEnd};
 use std::borrow::Cow;
 
-/// What the renderer keeps between frames for one place that shows Markdown.
+/// What the renderer keeps between frames for one place that shows Markdown: egui_commonmark's
+/// cache, and the last text with its code blocks rewritten (made again only when it changes).
 #[derive(Default)]
-pub struct MarkdownCache(CommonMarkCache);
+pub struct MarkdownCache {
+    viewer: CommonMarkCache,
+    source: String,
+    shown: String,
+}
 
 /// A copy starts with an empty cache: it holds only layout worked out from the text.
 impl Clone for MarkdownCache {
@@ -44,7 +49,11 @@ pub fn show(ui: &mut egui::Ui, cache: &mut MarkdownCache, text: &str, size: f32)
                 font.size = size * scale;
             }
         }
-        CommonMarkViewer::new().show(ui, &mut cache.0, &without_code_blocks(text));
+        if cache.source != text {
+            cache.shown = without_code_blocks(text).into_owned();
+            cache.source = text.to_string();
+        }
+        CommonMarkViewer::new().show(ui, &mut cache.viewer, &cache.shown);
     });
 }
 
