@@ -332,3 +332,43 @@ fn code_blocks_become_lines_of_inline_code() {
     );
     assert_eq!(without_code_blocks(text), want);
 }
+
+/// In projector mode the sheet's question grows with the rest of the window: a matrix row and a
+/// paragraph of the question are drawn at least 1.3 times as tall as in the normal mode (the
+/// window's text grows 1.4 times; the question once stayed at the 16 px floor, smaller than the
+/// tab's own buttons).
+#[test]
+fn a_sheets_question_grows_in_projector_mode() {
+    let sheet = generate(Kind::Euler, None, 11, 1).unwrap();
+    let file = SheetFile::of(&sheet).unwrap();
+    let row = file
+        .question
+        .lines()
+        .find(|l| l.starts_with("    ["))
+        .unwrap()
+        .trim()
+        .replace(' ', "\u{a0}");
+    let heights = [false, true].map(|projector| {
+        let mut app = AppUi::new(AppState::from_spec("planar3").unwrap());
+        app.layout.projector = projector;
+        app.open_exercise_text("sheet.json", &serde_json::to_string(&file).unwrap())
+            .unwrap();
+        let h = harness(app);
+        let row_height = h.get_by_label(&row).rect().height();
+        let button_height = h.get_by_label("Open sheet").rect().height();
+        (row_height, button_height)
+    });
+    let (normal, projector) = (heights[0], heights[1]);
+    assert!(
+        projector.0 >= 1.3 * normal.0,
+        "matrix row {} px tall in projector mode, {} px in normal mode",
+        projector.0,
+        normal.0
+    );
+    assert!(
+        projector.0 >= 0.9 * projector.1 - 8.0,
+        "the question's text ({} px) is well under the buttons' ({} px)",
+        projector.0,
+        projector.1
+    );
+}

@@ -268,7 +268,9 @@ impl ExerciseTab {
             };
             ui.label(RichText::new(note).color(Color32::from_rgb(150, 90, 0)));
         }
-        let size = 15f32.max(super::super::layout::text_floor(ui.ctx()));
+        // A step above the window's body text (13.5 -> 15), so larger still in projector mode.
+        let body = egui::TextStyle::Body.resolve(ui.style()).size;
+        let size = (body * 15.0 / 13.5).max(super::super::layout::text_floor(ui.ctx()));
         crate::app::markdown::show(ui, &mut self.question_view, &sheet.question, size);
         ui.separator();
         ui.heading("Your answer");
@@ -298,7 +300,7 @@ fn setup(kind: Kind, q: &[f64], exam: bool, state: &AppState) -> Actions {
         out.push(Action::ShowTab(super::EXERCISE));
         out.message(
             Level::Info,
-            format!("exercise: a {} sheet {how}", kind.name()),
+            format!("exercise: {} sheet opened {how}", kind.name()),
         );
         return out;
     }
@@ -306,7 +308,7 @@ fn setup(kind: Kind, q: &[f64], exam: bool, state: &AppState) -> Actions {
     out.message(
         Level::Info,
         format!(
-            "exercise: a {} sheet {how}; the arm is at the sheet's q",
+            "exercise: {} sheet opened {how}; the arm is at the sheet's q",
             kind.name()
         ),
     );
