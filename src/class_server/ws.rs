@@ -3,6 +3,9 @@
 //! broadcasts written to it as they come (a slow connection falls behind on its own and is
 //! brought up to date from the snapshot). Every bad message gets an error reply and the
 //! connection goes on.
+//!
+//! Reading and writing are two tasks: a peer that sends a large message while a large one waits
+//! for it is still read (they once took turns, and such a peer stalled its own connection).
 
 use super::hub::{Hub, Joined, Joiner};
 use super::limits::{
@@ -21,6 +24,21 @@ use tokio::sync::broadcast::{self, error::RecvError, error::TryRecvError};
 
 /// The most queued broadcasts written before one flush.
 const BATCH: usize = 64;
+
+/// The most batches waiting for the writer: past them the reader waits too, the session's
+/// broadcasts queue up behind, and a connection that falls that far behind gets the snapshot.
+const WRITES_WAITING: usize = 16;
+
+/// How long the writer may take to say goodbye (a Close frame) to a peer that stopped reading.
+const CLOSE_WAIT: Duration = Duration::from_secs(5);
+
+/// What the reader hands the writer.
+enum Write {
+    /// Frames to write, flushed once.
+    Frames(Vec<Utf8Bytes>),
+    /// A Close frame, then the end.
+    Close,
+}
 
 /// A connection's own state.
 struct Conn {
@@ -50,11 +68,14 @@ enum Event {
     Shutdown,
 }
 
-/// Serves one WebSocket connection from `ip` until it closes or the server stops.
+/// Serves one WebSocket connection from `ip` until it closes or the server stops: this task
+/// reads, a second one ([`writer`]) writes.
 pub(crate) async fn connection(socket: WebSocket, ip: IpAddr, hub: Arc<Hub>) {
     let _alive = hub.connections.clone();
     let mut shutdown = hub.shutdown.clone();
-    let (mut sink, mut stream) = socket.split();
+    let (sink, mut stream) = socket.split();
+    let (to_writer, writes) = tokio::sync::mpsc::channel(WRITES_WAITING);
+    let mut writing = tokio::spawn(writer(sink, writes));
     let mut conn = Conn {
         hub,
         ip,
@@ -75,20 +96,49 @@ pub(crate) async fn connection(socket: WebSocket, ip: IpAddr, hub: Arc<Hub>) {
             Event::Frame(Some(Ok(m))) => conn.on_frame(m).await,
             Event::Broadcast(b) => conn.on_broadcast(b),
             Event::Shutdown => {
-                let _ = sink.send(Message::Close(None)).await;
-                break;
+                conn.closing = true;
+                Vec::new()
             }
         };
-        if write_all(&mut sink, out).await.is_err() {
+        // the writer gone means the peer is: its socket failed
+        if !out.is_empty() && to_writer.send(Write::Frames(out)).await.is_err() {
             break;
         }
         if conn.closing {
-            let _ = sink.send(Message::Close(None)).await;
+            let _ = to_writer.send(Write::Close).await;
             break;
         }
     }
     if let Some(Joiner::Student(session, number)) = &conn.joiner {
         session.student_left(*number);
+    }
+    drop(to_writer);
+    if tokio::time::timeout(CLOSE_WAIT, &mut writing)
+        .await
+        .is_err()
+    {
+        writing.abort();
+    }
+}
+
+/// Writes what the reader hands over, in order, until a Close, the reader's end or a failed
+/// write.
+async fn writer<S>(mut sink: S, mut writes: tokio::sync::mpsc::Receiver<Write>)
+where
+    S: futures_util::Sink<Message, Error = axum::Error> + Unpin,
+{
+    while let Some(w) = writes.recv().await {
+        match w {
+            Write::Frames(frames) => {
+                if write_all(&mut sink, frames).await.is_err() {
+                    return;
+                }
+            }
+            Write::Close => {
+                let _ = sink.send(Message::Close(None)).await;
+                return;
+            }
+        }
     }
 }
 

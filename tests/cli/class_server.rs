@@ -1324,19 +1324,33 @@ async fn a_model_file_of_nearly_8_mb_reaches_the_students_and_a_larger_one_is_re
         .await;
     assert_eq!(got.len(), text.len());
     assert!(got == text, "the model arrived whole");
-    // The teacher reads its own copy first, as the app does: the server writes each connection's
-    // messages in turn with its reads, so a client that only sends while 7.5 MB wait for it
-    // would stall its own connection (a loaded machine's socket buffers hold less).
-    t.recv_until(|m| matches!(m, ServerMessage::Model { .. }).then_some(()))
-        .await;
-    // Over the limit: an error, and the connection still drives.
+    // The teacher sends a second 7.5 MB file and one over the limit without reading its own
+    // copies (15 MB waiting for it, more than the sockets hold): the server reads on while it
+    // writes (the two once took turns, and such a client stalled its own connection).
+    t.send(&ClientMessage::Model {
+        name: "big2.toml".into(),
+        text: text.clone(),
+    })
+    .await;
     let over = "#".repeat(MAX_MODEL_BYTES + 1);
     t.send(&ClientMessage::Model {
         name: "huge.toml".into(),
         text: over,
     })
     .await;
-    let e = t.error().await;
+    // Then it reads: its two copies, and the error for the third, in whichever order the reply
+    // and the broadcast came (the connection still drives).
+    let (mut copies, mut error) = (Vec::new(), None);
+    while copies.len() < 2 || error.is_none() {
+        match t.recv().await {
+            ServerMessage::Model { name, text, .. } => copies.push((name, text.len())),
+            ServerMessage::Error { message } => error = Some(message),
+            _ => {}
+        }
+    }
+    let want = |name: &str| (name.to_string(), text.len());
+    assert_eq!(copies, [want("big.toml"), want("big2.toml")]);
+    let e = error.unwrap();
     assert!(e.contains("too large"), "{e}");
     t.send(&puma_state(vec![0.1; 6])).await;
     let q = s
