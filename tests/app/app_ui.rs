@@ -570,23 +570,27 @@ fn settings(app: &AppUi) -> String {
     )
 }
 
+/// What a lesson step records of the app's view: its camera, the 3D view's tab.
+fn seen_in(app: &AppUi) -> armlab::app::lesson::Seen {
+    armlab::app::lesson::Seen {
+        camera: app.tabs.view3d.camera,
+        tab: 0,
+        figure: "this-model".into(),
+        construction: None,
+        orientation: None,
+    }
+}
+
 /// Issue 46, item 1: the caption editor took one character, then vanished, and every key after
 /// it fired a shortcut (posture lock, ortho, workspace, projector, Space's next posture).
 #[test]
 fn a_lesson_caption_takes_a_whole_sentence_and_no_key_fires_a_shortcut() {
-    use armlab::app::lesson::{LessonPlayer, Seen, current_step};
+    use armlab::app::lesson::{LessonPlayer, current_step};
     const SENTENCE: &str = "Elbow down: theta1 = alpha - beta, with q2 and q3 (Fig. 2.23)";
     let mut app = AppUi::new(AppState::from_spec("puma560").unwrap());
     let mut player = LessonPlayer::on(&app.state);
     for _ in 0..2 {
-        let seen = Seen {
-            camera: app.tabs.view3d.camera,
-            tab: 0,
-            figure: "this-model".into(),
-            construction: None,
-            orientation: None,
-        };
-        player.append(current_step(&app.state, 0, &seen, ""));
+        player.append(current_step(&app.state, 0, &seen_in(&app), ""));
     }
     player.step = 0;
     app.lesson = Some(player);
@@ -649,18 +653,11 @@ fn a_lesson_caption_takes_a_whole_sentence_and_no_key_fires_a_shortcut() {
 /// strong words and the equation's code span as text of their own, none of the markup.
 #[test]
 fn a_lesson_caption_shows_its_markdown_rendered() {
-    use armlab::app::lesson::{LessonPlayer, Seen, current_step};
+    use armlab::app::lesson::{LessonPlayer, current_step};
     const CAPTION: &str = "**Elbow down**: theta3 from `(2.101)`, then theta2.";
     let mut app = AppUi::new(AppState::from_spec("puma560").unwrap());
     let mut player = LessonPlayer::on(&app.state);
-    let seen = Seen {
-        camera: app.tabs.view3d.camera,
-        tab: 0,
-        figure: "this-model".into(),
-        construction: None,
-        orientation: None,
-    };
-    player.append(current_step(&app.state, 0, &seen, CAPTION));
+    player.append(current_step(&app.state, 0, &seen_in(&app), CAPTION));
     player.step = 0;
     player.editing = None;
     app.lesson = Some(player);

@@ -1119,33 +1119,11 @@ async fn simulated_students_answer_as_a_room_does() {
     server.stop().unwrap();
 }
 
-/// `armlab class demo --screenshot` and `--student-screenshot`: the pictures are written, at
-/// the size asked, once the room answered (the command's own wait: it fails after a minute).
-#[test]
-fn the_demo_writes_the_teachers_and_a_students_window() {
-    let dir = data_file("demo").with_extension("d");
-    std::fs::create_dir_all(&dir).unwrap();
-    let (teacher, student) = (dir.join("teacher.png"), dir.join("student.png"));
+/// Runs `armlab class demo ARGS...` and checks that it succeeded.
+fn run_demo(args: &[&str]) {
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_armlab"))
-        .args([
-            "class",
-            "demo",
-            "puma560",
-            "--students",
-            "6",
-            "--ask",
-            "posture",
-        ])
-        .args([
-            "--q",
-            "0.3,0.5,-1.2,0.4,0.8,-0.6",
-            "--size",
-            "640x400",
-            "--screenshot",
-        ])
-        .arg(&teacher)
-        .arg("--student-screenshot")
-        .arg(&student)
+        .args(["class", "demo"])
+        .args(args)
         .output()
         .expect("armlab runs");
     assert!(
@@ -1153,6 +1131,32 @@ fn the_demo_writes_the_teachers_and_a_students_window() {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
+}
+
+/// `armlab class demo --screenshot` and `--student-screenshot`: the pictures are written, at
+/// the size asked, once the room answered (the command's own wait: it fails after a minute).
+#[test]
+fn the_demo_writes_the_teachers_and_a_students_window() {
+    let dir = data_file("demo").with_extension("d");
+    std::fs::create_dir_all(&dir).unwrap();
+    let (teacher, student) = (dir.join("teacher.png"), dir.join("student.png"));
+    let (t, s) = (teacher.to_str().unwrap(), student.to_str().unwrap());
+    let q = "0.3,0.5,-1.2,0.4,0.8,-0.6";
+    run_demo(&[
+        "puma560",
+        "--students",
+        "6",
+        "--ask",
+        "posture",
+        "--q",
+        q,
+        "--size",
+        "640x400",
+        "--screenshot",
+        t,
+        "--student-screenshot",
+        s,
+    ]);
     for p in [&teacher, &student] {
         let img = image::open(p).unwrap();
         assert_eq!((img.width(), img.height()), (640, 400), "{}", p.display());
@@ -1167,27 +1171,22 @@ fn the_demos_seed_draws_the_question_it_asks() {
     let sent = |name: &str, seed: &str| {
         let data = data_file(name);
         let picture = data.with_extension("png");
-        let out = std::process::Command::new(env!("CARGO_BIN_EXE_armlab"))
-            .args([
-                "class",
-                "demo",
-                "puma560",
-                "--students",
-                "2",
-                "--ask",
-                "dh-table",
-            ])
-            .args(["--seed", seed, "--size", "320x200", "--data"])
-            .arg(&data)
-            .arg("--screenshot")
-            .arg(&picture)
-            .output()
-            .expect("armlab runs");
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
+        let (d, p) = (data.to_str().unwrap(), picture.to_str().unwrap());
+        run_demo(&[
+            "puma560",
+            "--students",
+            "2",
+            "--ask",
+            "dh-table",
+            "--seed",
+            seed,
+            "--size",
+            "320x200",
+            "--data",
+            d,
+            "--screenshot",
+            p,
+        ]);
         let db = rusqlite::Connection::open(&data).unwrap();
         let (request, sent): (String, String) = db
             .query_row("SELECT request, sent FROM questions", [], |r| {
